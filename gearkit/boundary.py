@@ -1,0 +1,388 @@
+"""From envelope branches to the uncut tooth.
+
+The branches of a tool's half tooth join into one continuous curve in the blank frame.
+What the cutter leaves is found in two steps, the same for every family:
+
+1. **Loops are cut away.** Where the curve crosses itself (the tip rounding's trochoid
+   cutting into the flank: undercut; a cutter flank passing its limit point: trimming),
+   the loop between the crossing points lies inside the swept tool and is removed. The
+   crossing is refined to machine precision on the exact branches.
+2. **Clip to the half-tooth wedge.** For a tooth centred on +y, its right half lies between
+   the centre line (psi = 0) and the space centre line (psi = pi/z), inside the tip circle
+   (outside it for an internal gear). The part of the curve joining the space centre line
+   to the tip circle or the centre line is the flank of the half tooth; reaching the centre
+   line below the tip circle at an angle means a pointed tooth.
+
+Undercut, trimming and pointing are not special cases: they are read off these steps.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import brentq
+
+from gearkit.accuracy import adaptive_sample
+from gearkit.curves import polar_from_y, polyline_self_intersections
+from gearkit.errors import GeometryError
+
+
+@dataclass(frozen=True)
+class CircleArc:
+    """Arc of radius ``radius`` about the blank centre, polar angle from +y (towards +x)."""
+
+    radius: float
+    psi0: float
+    psi1: float
+    label: str = "tip"
+
+    def __call__(self, w):
+        psi = self.psi0 + np.asarray(w, dtype=float) * (self.psi1 - self.psi0)
+        return np.stack([self.radius * np.sin(psi), self.radius * np.cos(psi)], -1)
+
+
+@dataclass(frozen=True)
+class Piece:
+    """A labelled piece of a tooth boundary: ``curve`` (a Branch or CircleArc) on ``[w0, w1]``."""
+
+    label: str
+    curve: object
+    w0: float
+    w1: float
+
+    def __call__(self, t):
+        return self.curve(self.w0 + np.asarray(t, dtype=float) * (self.w1 - self.w0))
+
+    def reversed(self) -> "Piece":
+        return Piece(self.label, self.curve, self.w1, self.w0)
+
+
+def _refine_crossing(fa, fb, wa, wb, bounds_a, bounds_b):
+    """Newton on ``fa(wa) = fb(wb)`` (exact curves); returns refined ``(wa, wb)``."""
+    x = np.array([wa, wb], dtype=float)
+    for _ in range(30):
+        ha = 1e-7 * max(bounds_a[1] - bounds_a[0], 1e-12)
+        hb = 1e-7 * max(bounds_b[1] - bounds_b[0], 1e-12)
+        pa = fa(np.array([x[0] - ha, x[0], x[0] + ha]))
+        pb = fb(np.array([x[1] - hb, x[1], x[1] + hb]))
+        f = pa[1] - pb[1]
+        jac = np.column_stack([(pa[2] - pa[0]) / (2 * ha), -(pb[2] - pb[0]) / (2 * hb)])
+        try:
+            step = np.linalg.solve(jac, f)
+        except np.linalg.LinAlgError:
+            break
+        x = x - step
+        x[0] = min(max(x[0], bounds_a[0]), bounds_a[1])
+        x[1] = min(max(x[1], bounds_b[0]), bounds_b[1])
+        if np.abs(step).max() < 1e-16:
+            break
+    return float(x[0]), float(x[1])
+
+
+@dataclass(frozen=True)
+class HalfTooth:
+    """The right half of one tooth, from the tip (psi = 0) to the space centre (psi = pi/z).
+
+    ``joins[i]`` says how ``pieces[i]`` meets ``pieces[i+1]``: ``"smooth"`` (the cutter's own
+    edge continues) or ``"trim"`` (a crossing where a loop of the envelope was cut away).
+    """
+
+    pieces: tuple
+    joins: tuple
+    pointed: bool
+    half_pitch_angle: float
+
+    def sample(self, tol: float):
+        """Points from tip to space centre with every chord within ``tol``; and the achieved deviation."""
+        chunks, worst = [], 0.0
+        for k, piece in enumerate(self.pieces):
+            _, pts, dev = adaptive_sample(piece, tol)
+            chunks.append(pts if k == 0 else pts[1:])
+            worst = max(worst, dev)
+        return np.concatenate(chunks), worst
+
+
+# Parameters graded geometrically towards both ends of every branch. A loop of the envelope
+# that is much smaller than the sampling tolerance sits next to a branch junction (the
+# cutter point that generates it is close to where two cutter segments meet), so grading
+# the ends resolves loops down to ~1e-13 of the branch's parameter range.
+_GRADED = np.geomspace(1e-13, 0.05, 90)
+
+
+def _sample_chain(branches, tol):
+    pts, owner, ws = [], [], []
+    for k, br in enumerate(branches):
+        w, p, _ = adaptive_sample(br, tol, n_init=17)
+        extra = np.concatenate([_GRADED, 1.0 - _GRADED])
+        w = np.concatenate([w, extra])
+        p = np.concatenate([p, br(extra)])
+        order = np.argsort(w, kind="stable")
+        w, p = w[order], p[order]
+        pts.append(p)
+        owner.append(np.full(len(w), k))
+        ws.append(w)
+    return np.concatenate(pts), np.concatenate(owner), np.concatenate(ws)
+
+
+def _remove_loops(branches, pts, owner, ws, significant):
+    """Cut the loops out of the chained envelope; returns sections [(k_a, w_a), (k_b, w_b)]."""
+    ii, jj, ti, tj = polyline_self_intersections(pts)
+    same = (owner[ii] == owner[ii + 1]) & (owner[jj] == owner[jj + 1])
+    ii, jj, ti, tj = ii[same], jj[same], ti[same], tj[same]
+    sections = []
+    start = (int(owner[0]), float(ws[0]))
+    pos_e, pos_f = -1, 0.0
+    while True:
+        mask = (ii > pos_e) | ((ii == pos_e) & (ti > pos_f))
+        if not mask.any():
+            break
+        i0 = ii[mask].min()
+        cand = np.flatnonzero(mask & (ii == i0))
+        pick = cand[np.lexsort((tj[cand], jj[cand]))[-1]]
+        e_a, e_b = int(ii[pick]), int(jj[pick])
+        ka, kb = int(owner[e_a]), int(owner[e_b])
+        wa = ws[e_a] + ti[pick] * (ws[e_a + 1] - ws[e_a])
+        wb = ws[e_b] + tj[pick] * (ws[e_b + 1] - ws[e_b])
+        wa, wb = _refine_crossing(branches[ka], branches[kb], wa, wb,
+                                  (ws[e_a], ws[e_a + 1]), (ws[e_b], ws[e_b + 1]))
+        # a loop smaller than `significant` is numerical dust at a junction: cut it, but it is no trim
+        extent = np.linalg.norm(pts[e_a + 1:e_b + 1] - pts[e_a], axis=1).max(initial=0.0)
+        sections.append((start, (ka, wa), extent > significant))
+        start = (kb, wb)
+        pos_e, pos_f = e_b, float(tj[pick])
+    sections.append((start, (int(owner[-1]), float(ws[-1])), False))
+    return sections
+
+
+def _pieces_of(branches, sections):
+    """Forward pieces for the kept sections, and the join kinds between consecutive pieces."""
+    pieces, joins = [], []
+    trimmed_before = False
+    for n_sec, ((ka, wa), (kb, wb), trim_after) in enumerate(sections):
+        for k in range(ka, kb + 1):
+            a = wa if k == ka else 0.0
+            b = wb if k == kb else 1.0
+            if b <= a and not (k == ka == kb):
+                continue
+            if pieces:
+                joins.append("trim" if (k == ka and n_sec > 0 and trimmed_before) else "smooth")
+            pieces.append(Piece(branches[k].label, branches[k], a, b))
+        trimmed_before = trim_after
+    return pieces, joins
+
+
+def _crossings(pieces, func, target, n=48):
+    """Refined parameters where ``func(points) = target`` along the pieces: [(piece index, w)]."""
+    out = []
+    for k, pc in enumerate(pieces):
+        lo, hi = min(pc.w0, pc.w1), max(pc.w0, pc.w1)
+        if hi <= lo:
+            continue
+        w = np.linspace(lo, hi, n)
+        g = func(pc.curve(w)) - target
+        sgn = np.sign(g)
+        for i in np.flatnonzero(sgn[:-1] * sgn[1:] < 0):
+            def gw(x, _c=pc.curve):
+                return float(func(_c(np.array([x])))[0] - target)
+            out.append((k, brentq(gw, w[i], w[i + 1], xtol=1e-15, rtol=1e-15)))
+        for i in np.flatnonzero(g == 0):
+            out.append((k, float(w[i])))
+    return out
+
+
+def trim_half_tooth(branches, teeth_or_angle, tip_radius: float, internal: bool, detect_tol: float) -> HalfTooth:
+    """Uncut right half-tooth from the envelope branches of the cutter's facing half tooth.
+
+    Parameters
+    ----------
+    branches : sequence of Branch, in the tool chain's order
+    teeth_or_angle : int (z: the wedge is pi/z wide) or float (the half pitch angle, rad)
+    tip_radius : float, mm (the blank's tip circle)
+    internal : bool (tip circle inside the teeth)
+    detect_tol : float, mm
+        Chord tolerance of the polyline used to find loops and crossings (refined exactly).
+    """
+    half = math.pi / teeth_or_angle if isinstance(teeth_or_angle, (int, np.integer)) else float(teeth_or_angle)
+    pts, owner, ws = _sample_chain(branches, detect_tol)
+    sections = _remove_loops(branches, pts, owner, ws, significant=1e-6 * detect_tol)
+    pieces, joins = _pieces_of(branches, sections)
+
+    def psi(p):
+        return polar_from_y(p)[1]
+
+    def rho(p):
+        return polar_from_y(p)[0]
+
+    marks = [(k, w, "S") for k, w in _crossings(pieces, psi, half)]
+    marks += [(k, w, "C") for k, w in _crossings(pieces, psi, 0.0)]
+    marks += [(k, w, "R") for k, w in _crossings(pieces, rho, tip_radius)]
+    marks.sort(key=lambda m: (m[0], m[1]))
+
+    def inside(k, w):
+        r, a = polar_from_y(pieces[k].curve(np.array([w])))
+        in_tip = r[0] >= tip_radius if internal else r[0] <= tip_radius
+        return 0.0 < a[0] < half and in_tip
+
+    chosen = None
+    for m0, m1 in zip(marks[:-1], marks[1:]):
+        kinds = {m0[2], m1[2]}
+        if "S" not in kinds or kinds == {"S"}:
+            continue
+        if m0[0] == m1[0]:
+            probe = (m0[0], 0.5 * (m0[1] + m1[1]))
+        else:
+            probe = (m0[0], 0.5 * (m0[1] + pieces[m0[0]].w1))
+        if inside(*probe):
+            chosen = (m0, m1)
+            break
+    if chosen is None:
+        raise GeometryError("no tooth is left between the tooth centre line and the space centre line")
+    (ka, wa, kind_a), (kb, wb, kind_b) = chosen
+    sel, sel_joins = [], []
+    for k in range(ka, kb + 1):
+        a = wa if k == ka else pieces[k].w0
+        b = wb if k == kb else pieces[k].w1
+        if sel:
+            sel_joins.append(joins[k - 1])
+        sel.append(Piece(pieces[k].label, pieces[k].curve, a, b))
+    if kind_a == "S":  # orient from the tip to the space centre
+        sel = [p.reversed() for p in reversed(sel)]
+        sel_joins = sel_joins[::-1]
+        tip_kind, tip_piece = kind_b, sel[0]
+    else:
+        tip_kind, tip_piece = kind_a, sel[0]
+    pointed = False
+    if tip_kind == "R":
+        r_t, psi_t = polar_from_y(tip_piece(np.array([0.0])))
+        sel.insert(0, Piece("tip", CircleArc(float(tip_radius), 0.0, float(psi_t[0])), 0.0, 1.0))
+        sel_joins.insert(0, "corner")
+    else:  # reached the centre line: a smooth crest or a pointed tip
+        p = tip_piece(np.array([0.0, 1e-6]))
+        d = p[1] - p[0]
+        pointed = abs(d[1]) > 1e-4 * np.linalg.norm(d)
+    return HalfTooth(tuple(sel), tuple(sel_joins), bool(pointed), half)
+
+
+class ToothProfile:
+    """A generated gear: one exact half tooth, repeated ``teeth`` times.
+
+    Lengths in mm, transverse section. Everything is read off the generated geometry.
+    ``outline(tol)`` is the closed outline of all teeth as an ``(n, 2)`` array,
+    counter-clockwise, tooth 0 centred on +y.
+    """
+
+    def __init__(self, half: HalfTooth, teeth: int, internal: bool, module: float, *,
+                 family: str, spec=None, reference_diameter: float | None = None,
+                 base_diameter: float | None = None, blank_tip_diameter: float | None = None):
+        self.half = half
+        self.teeth = int(teeth)
+        self.internal = bool(internal)
+        self.module = float(module)
+        self.family = family
+        self.spec = spec
+        self.reference_diameter = reference_diameter
+        self.base_diameter = base_diameter
+        self.blank_tip_diameter = blank_tip_diameter
+        self._cache = {}
+
+    # -- key values read off the geometry ---------------------------------------------
+    def _end(self, which):
+        piece = self.half.pieces[0] if which == "tip" else self.half.pieces[-1]
+        return piece(np.array([0.0 if which == "tip" else 1.0]))[0]
+
+    @property
+    def pointed(self) -> bool:
+        return self.half.pointed
+
+    @property
+    def tip_diameter(self) -> float:
+        """Diameter of the generated tip (the blank's tip circle, or the point of a pointed tooth)."""
+        return 2.0 * float(np.hypot(*self._end("tip")))
+
+    @property
+    def root_diameter(self) -> float:
+        """Diameter at the centre of the tooth space (the root circle of a generated gear)."""
+        return 2.0 * float(np.hypot(*self._end("root")))
+
+    @property
+    def form_diameter(self) -> float:
+        """d_Nf: diameter where the flank ends and the fillet (or undercut) begins."""
+        pieces = self.half.pieces
+        k = 0
+        while k < len(pieces) and pieces[k].label != "flank":
+            k += 1
+        while k + 1 < len(pieces) and pieces[k + 1].label == "flank":
+            k += 1
+        k = min(k, len(pieces) - 1)
+        return 2.0 * float(np.hypot(*pieces[k](np.array([1.0]))[0]))
+
+    def _flank_joins(self):
+        labels = [p.label for p in self.half.pieces]
+        return [(labels[i], labels[i + 1], j) for i, j in enumerate(self.half.joins)]
+
+    @property
+    def undercut(self) -> bool:
+        """True when the fillet cuts into the flank (a loop of the envelope was removed there)."""
+        return any(j == "trim" and a == "flank" and b != "flank" for a, b, j in self._flank_joins())
+
+    @property
+    def trimmed(self) -> bool:
+        """True when the cutter removed part of the flank on the tip side (trimming)."""
+        return any(j == "trim" and b == "flank" for a, b, j in self._flank_joins())
+
+    def thickness_at(self, radius: float) -> float:
+        """Arc tooth thickness (mm) on the circle of ``radius``; 0 above a pointed tip.
+
+        Raises ``ValueError`` when the circle misses the tooth flank.
+        """
+        r = float(radius)
+        rs = [float(np.hypot(*self._end("tip"))), float(np.hypot(*self._end("root")))]
+        if not min(rs) - 1e-12 * max(rs) <= r <= max(rs) + 1e-12 * max(rs):
+            raise ValueError(f"radius {r} is outside the tooth ({min(rs)} .. {max(rs)})")
+        hits = _crossings(self.half.pieces, lambda p: polar_from_y(p)[0], r)
+        if not hits:
+            end = self._end("tip") if abs(np.hypot(*self._end("tip")) - r) < abs(np.hypot(*self._end("root")) - r) \
+                else self._end("root")
+            return 2.0 * r * float(polar_from_y(end[None])[1][0])
+        k, w = hits[0]
+        psi = polar_from_y(self.half.pieces[k].curve(np.array([w])))[1][0]
+        return 2.0 * r * float(psi)
+
+    @property
+    def tip_thickness(self) -> float:
+        """s_a: arc thickness on the tip circle (0 for a pointed tooth)."""
+        if self.pointed:
+            return 0.0
+        tip = self._end("tip")
+        first = self.half.pieces[0]
+        end = first(np.array([1.0]))[0] if first.label == "tip" else tip
+        return 2.0 * float(np.hypot(*end)) * float(polar_from_y(end[None])[1][0])
+
+    # -- sampled geometry ---------------------------------------------------------------
+    def half_points(self, tol: float):
+        """Half tooth from tip to space centre sampled to ``tol``; returns (points, achieved)."""
+        key = ("half", float(tol))
+        if key not in self._cache:
+            self._cache[key] = self.half.sample(tol)
+        return self._cache[key]
+
+    def tooth_points(self, tol: float):
+        """One whole tooth, counter-clockwise from the right space centre to the left one."""
+        half, _ = self.half_points(tol)
+        mirror = half * np.array([-1.0, 1.0])
+        return np.concatenate([half[::-1], mirror[1:]])
+
+    def outline(self, tol: float | None = None):
+        """Closed outline of all teeth, ``(n, 2)`` float64, counter-clockwise (no repeated end point)."""
+        tol = 1e-3 * self.module if tol is None else tol
+        tooth = self.tooth_points(tol)[:-1]
+        ang = 2.0 * np.pi * np.arange(self.teeth) / self.teeth
+        c, s = np.cos(ang)[:, None], np.sin(ang)[:, None]
+        x = c * tooth[None, :, 0] - s * tooth[None, :, 1]
+        y = s * tooth[None, :, 0] + c * tooth[None, :, 1]
+        return np.stack([x, y], -1).reshape(-1, 2)
+
+    def achieved(self, tol: float) -> float:
+        """Largest chord deviation (mm) of the outline sampled at ``tol``."""
+        return self.half_points(tol)[1]

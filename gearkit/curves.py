@@ -1,0 +1,155 @@
+"""Vectorised plane-curve primitives: the involute function and its inverse, rotations,
+polar angles, and polyline intersection.
+
+Angles are radians; points are ``(n, 2)`` float64 arrays (mm).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+# Taylor coefficients of tan(a) - a = sum c_k a^(2k+1), k >= 1 (odd Bernoulli-type series).
+_INV_SERIES = (
+    1.0 / 3.0,
+    2.0 / 15.0,
+    17.0 / 315.0,
+    62.0 / 2835.0,
+    1382.0 / 155925.0,
+    21844.0 / 6081075.0,
+    929569.0 / 638512875.0,
+    6404582.0 / 10854718875.0,
+)
+_SERIES_LIMIT = 0.05  # |a| below which the series beats tan(a) - a (cancellation)
+
+
+def inv(alpha):
+    """Involute function ``inv a = tan a - a``.
+
+    Accurate to a few ulp of the result for every ``a`` in ``[0, pi/2)``: below 0.05 rad
+    a series replaces the cancelling difference.
+
+    Parameters
+    ----------
+    alpha : array_like, rad
+
+    Returns
+    -------
+    ndarray or float, rad
+
+    Examples
+    --------
+    >>> round(float(inv(np.radians(20.0))), 7)
+    0.0149044
+    """
+    a = np.asarray(alpha, dtype=float)
+    small = np.abs(a) < _SERIES_LIMIT
+    a2 = a * a
+    series = np.zeros_like(a)
+    for c in reversed(_INV_SERIES):
+        series = series * a2 + c
+    series = series * a2 * a
+    with np.errstate(invalid="ignore"):
+        direct = np.tan(a) - a
+    out = np.where(small, series, direct)
+    return out if out.ndim else float(out)
+
+
+def inv_inverse(value):
+    """Inverse of the involute function: the angle ``a`` in ``[0, pi/2)`` with ``inv a = value``.
+
+    Newton's method from a start to the right of the root (``inv`` is convex there, so
+    the iteration decreases monotonically and cannot overshoot). Accurate to ~1e-15 rad
+    from 1e-6 rad to 85 degrees.
+
+    Examples
+    --------
+    >>> round(float(np.degrees(inv_inverse(0.0149044))), 4)
+    20.0
+    """
+    v = np.asarray(value, dtype=float)
+    if np.any(v < 0) or not np.all(np.isfinite(v)):
+        raise ValueError("inv_inverse needs finite values >= 0")
+    a = np.minimum(np.cbrt(3.0 * v), np.arctan(v + np.pi / 2.0))
+    for _ in range(60):
+        t = np.tan(a)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            step = np.where(t > 0, (inv(a) - v) / (t * t), 0.0)
+        a = a - step
+        if np.all(np.abs(step) <= 4e-16 * np.maximum(a, 1e-300)):
+            break
+    return a if a.ndim else float(a)
+
+
+def rotation(angle):
+    """2x2 rotation matrix (or stack ``(n, 2, 2)``) turning counter-clockwise by ``angle`` rad."""
+    c, s = np.cos(angle), np.sin(angle)
+    return np.stack([np.stack([c, -s], -1), np.stack([s, c], -1)], -2)
+
+
+def rotate(points, angle):
+    """Rotate ``(n, 2)`` points counter-clockwise about the origin by ``angle`` (scalar or ``(n,)``)."""
+    p = np.asarray(points, dtype=float)
+    c, s = np.cos(angle), np.sin(angle)
+    return np.stack([c * p[..., 0] - s * p[..., 1], s * p[..., 0] + c * p[..., 1]], -1)
+
+
+def polar_from_y(points):
+    """Radius and angle of points, the angle measured from +y towards +x (a tooth's centre line).
+
+    Returns
+    -------
+    rho : (n,) float64, mm
+    psi : (n,) float64, rad
+    """
+    p = np.asarray(points, dtype=float)
+    return np.hypot(p[..., 0], p[..., 1]), np.arctan2(p[..., 0], p[..., 1])
+
+
+def cross2(a, b):
+    """z-component of the cross product of 2-vectors (broadcasting)."""
+    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+
+
+def polyline_self_intersections(points):
+    """All proper crossings between non-adjacent edges of an open polyline.
+
+    Parameters
+    ----------
+    points : (n, 2) float64
+
+    Returns
+    -------
+    i, j : (k,) int
+        Edge indices with ``i < j - 1`` (edge ``i`` runs from ``points[i]`` to ``points[i+1]``).
+    ti, tj : (k,) float64
+        Fractions along each edge of the crossing point.
+    """
+    p = np.asarray(points, dtype=float)
+    a, b = p[:-1], p[1:]
+    lo = np.minimum(a, b)
+    hi = np.maximum(a, b)
+    order = np.argsort(lo[:, 0], kind="stable")
+    lo_s, hi_s = lo[order], hi[order]
+    # candidate pairs: x-ranges overlap (sweep over edges sorted by their left end)
+    reach = np.searchsorted(lo_s[:, 0], hi_s[:, 0], side="right")
+    counts = reach - np.arange(len(order)) - 1
+    counts = np.maximum(counts, 0)
+    first = np.repeat(np.arange(len(order)), counts)
+    offs = np.arange(counts.sum()) - np.repeat(np.cumsum(counts) - counts, counts)
+    second = first + 1 + offs
+    ei, ej = order[first], order[second]
+    swap = ei > ej
+    ei, ej = np.where(swap, ej, ei), np.where(swap, ei, ej)
+    keep = (ej - ei > 1) & (lo[ei, 1] <= hi[ej, 1]) & (lo[ej, 1] <= hi[ei, 1])
+    ei, ej = ei[keep], ej[keep]
+    d1 = b[ei] - a[ei]
+    d2 = b[ej] - a[ej]
+    den = cross2(d1, d2)
+    r = a[ej] - a[ei]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ti = cross2(r, d2) / den
+        tj = cross2(r, d1) / den
+    ok = (den != 0) & (ti >= 0) & (ti <= 1) & (tj >= 0) & (tj <= 1)
+    # edges that only touch end to end (a repeated vertex between them) do not cross
+    ok &= ~(((ti == 0) | (ti == 1)) & ((tj == 0) | (tj == 1)))
+    idx = np.lexsort((ej[ok], ei[ok]))
+    return ei[ok][idx], ej[ok][idx], ti[ok][idx], tj[ok][idx]

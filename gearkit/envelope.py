@@ -1,0 +1,96 @@
+"""The envelope solver: where each tool point touches the blank, for every tool segment.
+
+One implementation serves every family. For a tool segment and a generating motion, the
+meshing equation ``n . v_rel = 0`` is solved per tool point in closed form
+(:meth:`gearkit.motion.RollingMotion.contact`), and the point is carried into the blank
+frame at its contact roll. The result is a :class:`Branch`: an exact parametric curve in
+the blank frame, evaluated to machine precision wherever it is asked.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from gearkit.motion import RollingMotion
+from gearkit.tools import Segment
+
+
+@dataclass(frozen=True)
+class Branch:
+    """Envelope of one tool segment over a sub-range ``[u0, u1]`` of its parameter.
+
+    ``evaluate(w)`` with ``w in [0, 1]`` gives blank-frame points; ``label`` is the gear
+    feature this branch forms (from the tool segment).
+    """
+
+    segment: Segment
+    motion: RollingMotion
+    u0: float = 0.0
+    u1: float = 1.0
+    root: str = "near"
+
+    @property
+    def label(self) -> str:
+        return self.segment.label
+
+    def solve(self, w):
+        """Contact of the tool points at ``w``.
+
+        Returns
+        -------
+        points : (n, 2) float64, blank frame, mm
+        normals : (n, 2) float64, unit outward normals of the blank surface (into the tool)
+        s : (n,) float64, roll at contact, mm
+        valid : (n,) bool, False where the normal misses the tool centrode
+        """
+        w = np.atleast_1d(np.asarray(w, dtype=float))
+        u = self.u0 + w * (self.u1 - self.u0)
+        p, _, n = self.segment.evaluate(u)
+        s, valid = self.motion.contact(p, n, self.root)
+        s0 = np.where(valid, s, 0.0)
+        q = self.motion.to_blank(p, s0)
+        nb = -self.motion.rotate_to_blank(n, s0)
+        return q, nb, s, valid
+
+    def __call__(self, w):
+        """Blank-frame points at ``w`` (the exact curve)."""
+        return self.solve(w)[0]
+
+
+def _valid_runs(branch: Branch, n: int = 65):
+    """Sub-ranges of ``[0, 1]`` where the meshing equation has a solution, ends bisected."""
+    w = np.linspace(0.0, 1.0, n)
+    valid = branch.solve(w)[3]
+    if valid.all():
+        return [(0.0, 1.0)]
+    runs = []
+    edges = np.flatnonzero(np.diff(valid.astype(int)))
+
+    def bisect(a, b):  # valid(a) != valid(b)
+        va = bool(branch.solve([a])[3][0])
+        for _ in range(60):
+            m = 0.5 * (a + b)
+            if bool(branch.solve([m])[3][0]) == va:
+                a = m
+            else:
+                b = m
+        return a if va else b
+    bounds = [bisect(w[i], w[i + 1]) for i in edges]
+    marks = [0.0] + bounds + [1.0]
+    state = bool(valid[0])
+    for a, b in zip(marks[:-1], marks[1:]):
+        if state and b > a:
+            runs.append((a, b))
+        state = not state
+    return runs
+
+
+def chain_branches(chain, motion: RollingMotion, root: str = "near"):
+    """Branches for a chain of tool segments, split where the meshing equation has no root."""
+    out = []
+    for seg in chain:
+        whole = Branch(seg, motion, root=root)
+        for a, b in _valid_runs(whole):
+            out.append(Branch(seg, motion, a, b, root))
+    return tuple(out)

@@ -1,0 +1,151 @@
+"""Generating motions: a tool centrode rolling without slip on the blank's centrode.
+
+Every generating motion gearkit needs has constant ratio, so its centrodes are circles
+or straight lines: rack on gear (hobbing), gear on gear (shaper cutter, external or
+internal), pin ring on disc (cycloidal drive). :class:`RollingMotion` covers them all with
+signed centrode curvatures.
+
+Frames. The *tool frame* and the *fixed frame* coincide at ``s = 0``: origin at the pole
+(the centrodes' contact point), x along the common tangent, the blank centre at
+``(0, blank_centre)`` (negative: below the tangent), the tool centrode's centre at
+``(0, tool_centre)`` (positive: a tool on the far side, external mesh; negative: the tool
+centre on the blank's side, internal mesh). ``None`` means a straight centrode (rack).
+The *blank frame* has its origin at the blank centre (for a rack blank: at the pole at
+``s = 0``) and turns with the blank. ``s`` is the rolled arc length (mm).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from gearkit.curves import cross2, rotate
+from gearkit.errors import require
+
+
+def _centrode(c, s):
+    """Point and tangent angle at arc length ``s`` of a centrode through the origin,
+    tangent to +x there, centre ``(0, c)`` (``c = None``: the x axis)."""
+    if c is None:
+        return np.stack([s, np.zeros_like(s)], -1), np.zeros_like(s)
+    a = s / c
+    return np.stack([c * np.sin(a), c * (1.0 - np.cos(a))], -1), a
+
+
+@dataclass(frozen=True)
+class RollingMotion:
+    """Tool centrode rolling on the blank centrode.
+
+    Parameters
+    ----------
+    blank_centre : float or None, mm
+        y of the blank centre in the fixed frame (``-r_w`` for a gear blank; None: rack blank).
+    tool_centre : float or None, mm
+        y of the tool centrode's centre (``+r_w0`` external shaper, ``-r_w0`` internal shaper or
+        pin ring; None: rack cutter).
+    """
+
+    blank_centre: float | None
+    tool_centre: float | None
+
+    def __post_init__(self):
+        for name in ("blank_centre", "tool_centre"):
+            c = getattr(self, name)
+            require(c is None or (math.isfinite(c) and c != 0.0), name, "must be finite and non-zero, or None")
+        require(not (self.blank_centre is None and self.tool_centre is None), "tool_centre",
+                "a rack cannot generate a rack")
+        require(self.blank_centre != self.tool_centre, "tool_centre", "the centrodes must differ")
+
+    @property
+    def blank_offset(self) -> np.ndarray:
+        """Vector from the blank-frame origin to the pole at s = 0."""
+        return np.array([0.0, 0.0 if self.blank_centre is None else -self.blank_centre])
+
+    def to_blank(self, points, s):
+        """Tool-frame points at roll ``s`` expressed in the blank frame.
+
+        Parameters
+        ----------
+        points : (n, 2) float64, mm
+        s : (n,) or scalar float64, mm
+        """
+        s = np.asarray(s, dtype=float)
+        c_t, tau_t = _centrode(self.tool_centre, s)
+        c_b, tau_b = _centrode(self.blank_centre, s)
+        return rotate(np.asarray(points) - c_t, tau_b - tau_t) + c_b + self.blank_offset
+
+    def rotate_to_blank(self, vectors, s):
+        """Tool-frame direction vectors at roll ``s`` in the blank frame."""
+        s = np.asarray(s, dtype=float)
+        _, tau_t = _centrode(self.tool_centre, s)
+        _, tau_b = _centrode(self.blank_centre, s)
+        return rotate(vectors, tau_b - tau_t)
+
+    def contact(self, points, normals, root="near"):
+        """Closed-form solution of the meshing equation n . v_rel = 0 for tool points.
+
+        The relative velocity is a rotation about the pole, so a tool point is in contact
+        when its normal line passes through the pole: the roll is where that line meets the
+        tool centrode.
+
+        Parameters
+        ----------
+        points, normals : (n, 2) float64 in the tool frame
+        root : "near" or "far"
+            On a circular tool centrode the normal line meets it twice: "near" takes the
+            intersection closest to the point (the one the cutter actually passes through
+            in generation), "far" the other.
+
+        Returns
+        -------
+        s : (n,) float64, mm (NaN where the normal misses the centrode)
+        valid : (n,) bool
+        """
+        p = np.asarray(points, dtype=float)
+        n = np.asarray(normals, dtype=float)
+        c = self.tool_centre
+        if c is None:
+            with np.errstate(divide="ignore", invalid="ignore"):
+                t = -p[:, 1] / n[:, 1]
+            valid = np.abs(n[:, 1]) > 1e-14
+            hit = p + t[:, None] * n
+            s = np.where(valid, hit[:, 0], np.nan)
+            return s, valid
+        rel = p - np.array([0.0, c])
+        b = np.einsum("ij,ij->i", n, rel)
+        disc = b * b - (np.einsum("ij,ij->i", rel, rel) - c * c)
+        valid = disc >= 0
+        sq = np.sqrt(np.where(valid, disc, 0.0))
+        t1, t2 = -b - sq, -b + sq
+        near = np.where(np.abs(t1) <= np.abs(t2), t1, t2)
+        far = np.where(np.abs(t1) <= np.abs(t2), t2, t1)
+        t = near if root == "near" else far
+        hit = p + t[:, None] * n
+        sigma = np.arctan2(hit[:, 0] / c, 1.0 - hit[:, 1] / c)
+        return np.where(valid, c * sigma, np.nan), valid
+
+    def contact_newton(self, points, normals, s0=None, iterations=50):
+        """The same meshing equation solved by vectorised Newton iteration.
+
+        Solves ``g(s) = (C(s) - p) x n = 0`` with ``C(s)`` the pole in the tool frame. It is
+        the general path for motions without a closed form, and an independent check of
+        :meth:`contact`. ``s0`` defaults to where the normal line meets the centrode's
+        tangent at the pole.
+        """
+        p = np.asarray(points, dtype=float)
+        n = np.asarray(normals, dtype=float)
+        if s0 is None:
+            with np.errstate(divide="ignore", invalid="ignore"):
+                s0 = p[:, 0] - p[:, 1] * n[:, 0] / n[:, 1]
+        s = np.array(s0, dtype=float)
+        for _ in range(iterations):
+            c_t, tau = _centrode(self.tool_centre, s)
+            g = cross2(c_t - p, n)
+            dg = cross2(np.stack([np.cos(tau), np.sin(tau)], -1), n)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                step = g / dg
+            s = s - step
+            if np.all(np.abs(step) <= 1e-15 * (1.0 + np.abs(s))):
+                break
+        return s
