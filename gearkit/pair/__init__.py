@@ -1,0 +1,12 @@
+"""Involute gear pairs: specs, geometry and design from a centre distance.
+
+``PairSpec`` holds the inputs; :func:`pair_geometry` derives the mesh (working pressure angle,
+centre distance, tip diameters, path of contact, contact ratios, sliding, clearances, backlash);
+:func:`shifts_for_center_distance` solves the shifts that give a centre distance.
+"""
+from gearkit.pair.design import SPLITS, shifts_for_center_distance
+from gearkit.pair.geometry import GearGeometry, PairGeometry, pair_geometry
+from gearkit.pair.spec import KINDS, TIP_RULES, PairSpec
+
+__all__ = ["KINDS", "SPLITS", "TIP_RULES", "GearGeometry", "PairGeometry", "PairSpec", "pair_geometry",
+           "shifts_for_center_distance"]
