@@ -53,8 +53,11 @@ class PairGeometry:
     """Everything :func:`pair_geometry` derives (mm, radians, coefficients in m_n units).
 
     ``path`` holds the roll distances from N1 of the path-of-contact points A, B, C, D, E
-    (ISO 21771); ``path_real`` the ends of the real involute contact (the path clipped by the
-    form circles, e.g. shortened by undercut). ``contact_ratio`` (eps_alpha) is the real one;
+    (ISO 21771), of N1 and N2, and of the ends of the involute flanks: ``F1`` where gear 1's
+    involute begins (its form circle), ``F2`` where gear 2's ends (its form circle; for a rack,
+    the end of its straight flank), and for a ring ``T2``, where its involute begins on the tip
+    side (its tip circle, or O2N_u when the shaper trims it). ``path_real`` holds the ends of the
+    real involute contact: the path A..E clipped by F1, F2 (and T2), e.g. shortened by undercut. ``contact_ratio`` (eps_alpha) is the real one;
     ``contact_ratio_nominal`` that of the whole tip-to-tip path.
     """
 
@@ -218,7 +221,10 @@ def pair_geometry(spec: PairSpec, form_diameters: tuple | None = None) -> PairGe
         u_hi = u_c + (a_w + tool2.straight_height * mn - r1) / math.sin(at)
     p_bt = math.pi * mt * math.cos(at)
     path = {"A": u_a, "B": u_e - p_bt, "C": u_c, "D": u_a + p_bt, "E": u_e, "N1": 0.0,
-            "N2": {"external": g_line, "internal": -g_line, "rack": math.inf}[kind]}
+            "N2": {"external": g_line, "internal": -g_line, "rack": math.inf}[kind],
+            "F1": forms[0][1], "F2": u_hi}
+    if internal2:
+        path["T2"] = u_lo2
     lo = max(u_a, forms[0][1], u_lo2) if internal2 else max(u_a, forms[0][1])
     hi = min(u_e, u_hi)
     eps_real = max(hi - lo, 0.0) / p_bt

@@ -18,7 +18,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from gearkit.errors import require
+from gearkit.errors import SpecError, require
 from gearkit.tools import BasicRack, ShaperCutter
 
 __all__ = ["KINDS", "TIP_RULES", "PairSpec"]
@@ -147,6 +147,10 @@ class PairSpec:
         if self.kind == "rack":
             require(self.tool2 is None or isinstance(self.tool2, BasicRack), "tool2",
                     "the mate of a rack pair is a rack: give a BasicRack profile")
+        for n, thin in ((1, self.thinning1), (2, self.thinning2)):
+            if thin and isinstance(getattr(self, f"tool{n}"), ShaperCutter):
+                raise SpecError(f"thinning{n}", "applies to rack-cut gears; thin a shaper-cut gear by its "
+                                "cutter setting (its shift) instead")
         angles = {t.pressure_angle_deg for t in (self.tool1, self.tool2) if t is not None}
         if self.pressure_angle_deg is not None:
             angles.add(self.pressure_angle_deg)

@@ -1,0 +1,251 @@
+"""Design check of an involute pair: "will this pair work?", answered with numbers and reasons.
+
+:func:`check_pair` derives the pair geometry, generates both gears with the kernel (so the
+form circles, undercut and tip thickness are those the cutters really leave), and returns a
+:class:`PairCheck` whose :class:`~gearkit.checks.CheckReport` holds one finding per check:
+
+=========================  ======================================================  ==========
+id                         checks                                                  on failure
+=========================  ======================================================  ==========
+undercut.i                 the generated gear i is undercut (value x, limit x_min)  warn
+pointing.i                 normal tip thickness s_an (<= 0 fail)                    warn/fail
+contact_ratio              real eps_alpha (undercut/interference-shortened)         warn/fail
+interference.1             active profile start of gear 1 vs its form circle        fail
+interference.2             active profile end on gear 2 vs its form circle          fail
+tip_clearance.i            tip of gear i to the mate's root                         warn/fail
+min_teeth.i                z_i vs the undercut-free tooth number at its shift       warn
+backlash                   circumferential backlash on the working circle           fail
+internal pairs only:
+exit_jamming               closed-form tip interference on leaving mesh            fail
+tip_interference           sweep of the tip corners' trochoidal paths               fail
+trimming.plunge            ring trimmed by the shaper while plunging (3.108)        fail
+trimming.nu                ring's tip inside O2N_u: involute trimmed (3.110)        warn
+ring_tip.base              ring's tip circle inside its base circle                 warn
+min_teeth.difference       z2 - z1 vs (z_p)min (exit jamming)                       fail
+min_teeth.cutter           z2 - z0 vs (z_pc)min (plunge trimming)                   fail
+=========================  ======================================================  ==========
+
+Interference values are roll distances (mm) from N1 along the line of action: the active
+profile must lie inside the involute parts of both flanks, ``F1 <= A`` and ``E <= F2``.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from scipy.optimize import brentq
+
+from gearkit.checks.limits import CheckLimits, min_cutter_difference, min_teeth_undercut, min_tooth_difference
+from gearkit.checks.report import CheckReport, Finding, grade, json_number
+from gearkit.errors import SpecError, require
+from gearkit.pair.geometry import PairGeometry, pair_geometry
+from gearkit.pair.spec import PairSpec
+from gearkit.pair.tooling import form_roll, section
+from gearkit.tools import BasicRack
+
+__all__ = ["PairCheck", "check_pair", "gear_specs", "min_shift_undercut"]
+
+GEOMETRY_MODES = ("generated", "formula")
+
+
+@dataclass(frozen=True)
+class PairCheck:
+    """Result of :func:`check_pair`: the geometry checked, the generated gears, the findings."""
+
+    geometry: PairGeometry
+    report: CheckReport
+    profiles: tuple = ()
+
+    @property
+    def ok(self) -> bool:
+        """True when no finding fails."""
+        return self.report.ok
+
+    def to_dict(self) -> dict:
+        """The JSON object of ``gearkit check --json`` (lengths in mm, angles in degrees)."""
+        g = self.geometry
+        gears = []
+        for i, gear in enumerate(g.gears):
+            prof = self.profiles[i] if self.profiles else None
+            gears.append({
+                "teeth": gear.teeth, "shift_coeff": gear.shift_coeff, "internal": g.kind == "internal" and i == 1,
+                "reference_diameter": gear.reference_diameter, "base_diameter": gear.base_diameter,
+                "working_diameter": gear.working_diameter, "tip_diameter": gear.tip_diameter,
+                "root_diameter": prof.root_diameter if prof else gear.root_diameter,
+                "form_diameter": gear.form_diameter,
+                "tip_thickness": prof.tip_thickness if prof else max(gear.tip_thickness, 0.0),
+                "tip_thickness_normal": gear.tip_thickness_normal,
+                "undercut": bool(prof.undercut) if prof else gear.undercut, "tool": gear.tool})
+        return {
+            "ok": self.report.ok, "status": self.report.status, "kind": g.kind,
+            "module": g.module, "transverse_module": g.transverse_module,
+            "pressure_angle_deg": math.degrees(g.pressure_angle), "helix_angle_deg": math.degrees(g.helix_angle),
+            "center_distance": g.center_distance, "reference_center_distance": g.reference_center_distance,
+            "working_pressure_angle_deg": math.degrees(g.working_pressure_angle),
+            "center_distance_modification_coeff": g.center_distance_modification_coeff,
+            "tip_shortening_coeff": g.tip_shortening_coeff, "sum_shift_coeff": g.sum_shift_coeff,
+            "contact_ratio": {"transverse": g.contact_ratio, "overlap": g.overlap_ratio,
+                              "total": g.total_contact_ratio, "transverse_nominal": g.contact_ratio_nominal},
+            "path_of_contact": {k: json_number(v) for k, v in g.path.items()},
+            "specific_sliding": {k: [json_number(v) for v in pair] for k, pair in g.specific_sliding.items()},
+            "pressure_coeff": g.pressure_coeff, "base_pitch": g.base_pitch,
+            "tip_clearance": list(g.tip_clearance),
+            "backlash": {"transverse": g.backlash, "normal": g.backlash_normal},
+            "gears": gears,
+            "findings": [f.to_dict() for f in self.report.findings],
+            "geometry": "generated" if self.profiles else "formula",
+        }
+
+
+def gear_specs(spec: PairSpec) -> tuple:
+    """The kernel's :class:`~gearkit.families.involute.GearSpec` of each gear (tips from the pair).
+
+    The wheel of an external pair has the opposite hand, a ring the same hand as the pinion.
+    A rack pair yields the pinion only.
+    """
+    from gearkit.families.involute import GearSpec
+
+    g = pair_geometry(spec)
+    beta = spec.helix_angle_deg
+    out = []
+    gears = [(spec.teeth1, spec.shift1, beta, False, spec.tools[0], spec.thinning1)]
+    if spec.kind != "rack":
+        internal = spec.kind == "internal"
+        gears.append((spec.teeth2, spec.shift2, beta if internal else -beta, internal, spec.tools[1], spec.thinning2))
+    for i, (z, x, b, internal, tool, thin) in enumerate(gears):
+        try:
+            out.append(GearSpec(z, spec.module, float(x), b, internal, tool, g.gears[i].tip_diameter, thin))
+        except SpecError as exc:  # name the gear of the pair the field belongs to
+            raise SpecError(f"gear{i + 1}.{exc.field}", str(exc).split(": ", 1)[-1]) from None
+    return tuple(out)
+
+
+def min_shift_undercut(spec: PairSpec, which: int) -> float:
+    """x_min of gear ``which`` (1 or 2): the smallest normal shift its tool cuts without undercut.
+
+    Rack: ``h_s - z sin^2(a_t) / (2 cos b)`` (textbook 3.106/3.107); shaper: root of ``rho_l(x) = 0``.
+    """
+    sec = section(spec.module, spec.alpha_n_deg, spec.helix_angle_deg)
+    tool = spec.tools[which - 1]
+    z = spec.teeth1 if which == 1 else spec.teeth2
+    if isinstance(tool, BasicRack):
+        return tool.straight_height - z * math.sin(sec.alpha_t) ** 2 / (2 * math.cos(sec.beta))
+    lo = -(z + tool.teeth) * (sec.mt / sec.mn) * (1 - math.cos(sec.alpha_t)) / 2 + 1e-9
+
+    def rho(x):
+        return form_roll(sec, z, x, tool, False)
+    if rho(lo) >= 0:
+        return lo
+    return brentq(rho, lo, 5.0, xtol=1e-13)
+
+
+def check_pair(spec: PairSpec, limits: CheckLimits = CheckLimits(), geometry: str = "generated") -> PairCheck:
+    """Check a pair: every finding of the module table, from the generated or the formula geometry.
+
+    Parameters
+    ----------
+    spec : PairSpec
+    limits : CheckLimits
+    geometry : {"generated", "formula"}
+        "generated" (default) generates both gears and reads their form circles, undercut and tip
+        thickness off them; "formula" uses the tool formulas only (fast, exact without undercut;
+        an undercut gear's form circle is then taken at its base circle).
+
+    Returns
+    -------
+    PairCheck
+    """
+    require(geometry in GEOMETRY_MODES, "geometry", f"{geometry!r} is not one of {', '.join(GEOMETRY_MODES)}")
+    profiles = ()
+    if geometry == "generated":
+        from gearkit.families.involute import tooth_profile
+
+        profiles = tuple(tooth_profile(s) for s in gear_specs(spec))
+        forms = tuple(p.form_diameter for p in profiles) + ((None,) if spec.kind == "rack" else ())
+        g = pair_geometry(spec, forms)
+    else:
+        g = pair_geometry(spec)
+    findings = _gear_findings(spec, g, profiles, limits)
+    findings += _mesh_findings(spec, g, limits)
+    if spec.kind == "internal":
+        from gearkit.checks.internal import internal_findings
+        findings += internal_findings(spec, g)
+    return PairCheck(g, CheckReport(tuple(findings)), profiles)
+
+
+def _gear_findings(spec, g, profiles, lim) -> list:
+    out = []
+    mn = g.module
+    names = ("pinion", "ring" if g.kind == "internal" else "wheel")
+    for i, gear in enumerate(g.gears):
+        n = i + 1
+        who = f"gear {n} ({names[i]}, z = {gear.teeth})"
+        ring = g.kind == "internal" and i == 1
+        prof = profiles[i] if profiles else None
+        if not ring:
+            x_min = min_shift_undercut(spec, n)
+            under = prof.undercut if prof else gear.undercut
+            if under:
+                depth = f"{prof.undercut_depth:.4g} mm into the flank; " if prof else ""
+                msg = (f"{who} is undercut: the fillet cuts {depth}the involute starts at d_F = "
+                       f"{gear.form_diameter:.4f} mm; no undercut needs x >= {x_min:.4f}")
+            else:
+                msg = f"{who}: no undercut (x = {gear.shift_coeff:.4f}, x_min = {x_min:.4f})"
+            out.append(Finding(f"undercut.{n}", "warn" if under else "ok", gear.shift_coeff, x_min, msg, "min"))
+        s = gear.tip_thickness_normal
+        pointed = s <= 0 or (prof is not None and prof.pointed)
+        need = lim.min_tip_thickness * mn
+        status = "fail" if pointed else grade(s, warn_below=need)
+        msg = (f"{who}: the flanks meet below the tip circle (pointed tooth, s_an = {s:.4f} mm)" if pointed else
+               f"{who}: normal tip thickness s_an = {s:.4f} mm = {s / mn:.3f} m_n (limit {lim.min_tip_thickness:g} m_n)")
+        out.append(Finding(f"pointing.{n}", status, s, need, msg, "min"))
+    return out
+
+
+def _mesh_findings(spec, g, lim) -> list:
+    mn = g.module
+    out = []
+    eps, nominal = g.contact_ratio, g.contact_ratio_nominal
+    short = "" if abs(eps - nominal) < 1e-9 else f", shortened from the tip-to-tip {nominal:.4f}"
+    beta = f"; eps_beta = {g.overlap_ratio:.4f}, eps_gamma = {g.total_contact_ratio:.4f}" if g.helix_angle else ""
+    if g.helix_angle and spec.face_width is None:
+        beta += " (no face width given: eps_beta taken as 0)"
+    out.append(Finding("contact_ratio", grade(eps, fail_below=1.0, warn_below=lim.min_contact_ratio), eps,
+                       lim.min_contact_ratio, f"transverse contact ratio eps_alpha = {eps:.4f}{short}{beta}", "min"))
+    tol = 1e-9 * mn
+    f1, f2 = g.path["F1"], g.path["F2"]
+    a, e = g.path["A"], g.path["E"]
+    mate = "rack" if g.kind == "rack" else "gear 2"
+    msg = (f"the tip of {mate} meets gear 1 at roll {a:.4f} mm from N1, "
+           + (f"inside its form circle (involute from {f1:.4f} mm, d_F1 = {g.gears[0].form_diameter:.4f} mm): "
+              "it digs into the fillet" if a < f1 - tol else f"on the involute (it begins at {f1:.4f} mm)"))
+    out.append(Finding("interference.1", "fail" if a < f1 - tol else "ok", a, f1, msg, "min"))
+    where = "the rack's straight flank ends" if g.kind == "rack" else "the involute of gear 2 ends"
+    msg = (f"the tip of gear 1 meets {mate} at roll {e:.4f} mm from N1; {where} at {f2:.4f} mm"
+           + (": it digs into the fillet" if e > f2 + tol else ""))
+    out.append(Finding("interference.2", "fail" if e > f2 + tol else "ok", e, f2, msg, "max"))
+    need = lim.min_tip_clearance * mn
+    for i, c in enumerate(g.tip_clearance):
+        n = i + 1
+        if g.kind == "rack" and n == 2:
+            who = "the rack's tip to the pinion's root"
+        else:
+            who = f"the tip of gear {n} to the root of {'the rack' if g.kind == 'rack' else f'gear {3 - n}'}"
+        status = grade(c, fail_below=0.0, warn_below=need)
+        out.append(Finding(f"tip_clearance.{n}", status, c, need,
+                           f"clearance from {who}: c = {c:.4f} mm = {c / mn:.3f} m_n (limit {lim.min_tip_clearance:g} m_n)"
+                           + ("; the tip hits the root" if c < 0 else ""), "min"))
+    for i, gear in enumerate(g.gears):
+        if g.kind == "internal" and i == 1:
+            continue
+        z_min = min_teeth_undercut(spec.tools[i], gear.shift_coeff, mn, spec.alpha_n_deg, spec.helix_angle_deg)
+        status = "warn" if gear.teeth < z_min else "ok"
+        out.append(Finding(f"min_teeth.{i + 1}", status, gear.teeth, z_min,
+                           f"gear {i + 1}: z = {gear.teeth}; its tool cuts without undercut from z = {z_min:.4f} "
+                           f"at x = {gear.shift_coeff:.4f}", "min"))
+    j = g.backlash
+    status = "fail" if j < -tol else "ok"
+    msg = (f"backlash j_wt = {j:.5f} mm on the working circle (normal j_bn = {g.backlash_normal:.5f} mm)"
+           + ("; negative: the centre distance is below the tight mesh of these teeth" if status == "fail" else ""))
+    out.append(Finding("backlash", status, j, 0.0, msg, "min"))
+    return out
