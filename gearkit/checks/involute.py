@@ -215,7 +215,7 @@ def _mesh_findings(spec, g, lim) -> list:
     tol = 1e-9 * mn
     f1, f2 = g.path["F1"], g.path["F2"]
     a, e = g.path["A"], g.path["E"]
-    mate = "rack" if g.kind == "rack" else "gear 2"
+    mate = "the rack" if g.kind == "rack" else "gear 2"
     msg = (f"the tip of {mate} meets gear 1 at roll {a:.4f} mm from N1, "
            + (f"inside its form circle (involute from {f1:.4f} mm, d_F1 = {g.gears[0].form_diameter:.4f} mm): "
               "it digs into the fillet" if a < f1 - tol else f"on the involute (it begins at {f1:.4f} mm)"))

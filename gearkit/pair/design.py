@@ -100,11 +100,21 @@ def _split_balanced(spec: PairSpec, total: float, center_distance: float) -> tup
     """Pinion shift with |zeta1(A)| = |zeta2(E)| on the nominal tip-to-tip path."""
 
     def imbalance(x1):
+        """log|zeta1(A)| - log|zeta2(E)|; None when an end of the path lies beyond N1 or N2."""
         x2 = _split_x1(spec, total, x1)[1]
         g = pair_geometry(spec.with_shifts(x1, x2, center_distance))
-        z1_a = -g.sliding_at(g.path["A"])[0]
-        z2_e = -g.sliding_at(g.path["E"])[1]
+        a, e = g.path["A"], g.path["E"]
+        if a <= 0 or (g.kind == "external" and e >= g.line_of_action):
+            return None
+        z1_a = -g.sliding_at(a)[0]
+        z2_e = -g.sliding_at(e)[1]
         return float(np.log(z1_a) - np.log(z2_e))
+
+    def root(x1):
+        value = imbalance(x1)
+        if value is None:  # brentq stays inside a bracket of valid designs
+            raise SpecError("split", "the balanced split left the admissible designs")
+        return value
 
     # scan for a bracket over designs that exist (both ends inside N1N2: finite sliding)
     values = []
@@ -113,13 +123,13 @@ def _split_balanced(spec: PairSpec, total: float, center_distance: float) -> tup
             value = imbalance(x1)
         except SpecError:  # outside the admissible design space for this centre distance
             continue
-        if np.isfinite(value):
+        if value is not None:
             values.append((x1, value))
     for (xa, fa), (xb, fb) in zip(values, values[1:]):
         if fa == 0:
             return _split_x1(spec, total, xa)
         if fa > 0 > fb or fa < 0 < fb:
-            x1 = brentq(imbalance, xa, xb, xtol=_XTOL, rtol=4 * np.finfo(float).eps, maxiter=200)
+            x1 = brentq(root, xa, xb, xtol=_XTOL, rtol=4 * np.finfo(float).eps, maxiter=200)
             return _split_x1(spec, total, x1)
     raise SpecError("split", "no shift split balances the specific sliding at this centre distance "
                     "(both ends must lie inside N1N2); use split 'equal' or 'x1'")
