@@ -100,15 +100,13 @@ def _split_balanced(spec: PairSpec, total: float, center_distance: float) -> tup
     """Pinion shift with |zeta1(A)| = |zeta2(E)| on the nominal tip-to-tip path."""
 
     def imbalance(x1):
-        """log|zeta1(A)| - log|zeta2(E)|; None when an end of the path lies beyond N1 or N2."""
+        """|zeta1(A)| - |zeta2(E)|; None when an end of the path lies beyond N1 or N2."""
         x2 = _split_x1(spec, total, x1)[1]
         g = pair_geometry(spec.with_shifts(x1, x2, center_distance))
         a, e = g.path["A"], g.path["E"]
         if a <= 0 or (g.kind == "external" and e >= g.line_of_action):
             return None
-        z1_a = -g.sliding_at(a)[0]
-        z2_e = -g.sliding_at(e)[1]
-        return float(np.log(z1_a) - np.log(z2_e))
+        return float(abs(g.sliding_at(a)[0]) - abs(g.sliding_at(e)[1]))
 
     def root(x1):
         value = imbalance(x1)
