@@ -186,8 +186,9 @@ def _gear_findings(spec, g, profiles, lim) -> list:
             x_min = min_shift_undercut(spec, n)
             under = prof.undercut if prof else gear.undercut
             if under:
-                depth = f"{prof.undercut_depth:.4g} mm into the flank; " if prof else ""
-                msg = (f"{who} is undercut: the fillet cuts {depth}the involute starts at d_F = "
+                depth = prof.undercut_depth if prof else 0.0
+                depth = f"the fillet cuts {depth:.4g} mm into the flank; " if depth > 0 else ""
+                msg = (f"{who} is undercut: {depth}the involute starts at d_F = "
                        f"{gear.form_diameter:.4f} mm; no undercut needs x >= {x_min:.4f}")
             else:
                 msg = f"{who}: no undercut (x = {gear.shift_coeff:.4f}, x_min = {x_min:.4f})"
