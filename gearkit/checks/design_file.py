@@ -73,7 +73,7 @@ def _tool(value, where: str, alpha):
         key = value.lower()
         if key == "rack":
             return BasicRack(20.0 if alpha is None else alpha)
-        if key.startswith("iso53"):
+        if key in ("iso53a", "iso53b", "iso53c", "iso53d"):
             return BasicRack.iso53(key[5:])
         raise SpecError(where, f"{value!r} is not rack, iso53a, iso53b, iso53c or iso53d")
     if not isinstance(value, dict):
