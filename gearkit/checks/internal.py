@@ -25,6 +25,7 @@ from scipy.optimize import minimize_scalar
 from gearkit.curves import inv
 from gearkit.pair.geometry import PairGeometry
 from gearkit.pair.tooling import cutter_machine, half_angle, section
+from gearkit.pair.tooling import nu_radius as tooling_nu_radius
 
 __all__ = ["exit_jamming_margin", "plunge_trimming", "nu_radius", "tip_sweep"]
 
@@ -70,12 +71,9 @@ def exit_jamming_margin(g: PairGeometry) -> float:
 
 
 def nu_radius(g: PairGeometry) -> float:
-    """O2 N_u (mm): the radius inside which the shaper trims the ring's involute (3.109/3.110)."""
-    sec = _sec(g)
-    z2, x2 = g.gears[1].teeth, g.gears[1].shift_coeff
-    a0, _, _, rb0, _ = cutter_machine(sec, z2, x2, g.spec.tools[1], True)
-    rb2 = g.gears[1].base_diameter / 2
-    return math.sqrt(a0 ** 2 + 2 * rb2 * rb0 - rb0 ** 2)
+    """O2 N_u (mm) of the ring of ``g``: inside it the shaper trims the ring's involute (3.109/3.110)."""
+    ring = g.gears[1]
+    return tooling_nu_radius(_sec(g), ring.teeth, ring.shift_coeff, g.spec.tools[1])
 
 
 def plunge_trimming(g: PairGeometry, samples: int = 801) -> tuple[float, float]:

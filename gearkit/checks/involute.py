@@ -35,7 +35,7 @@ from dataclasses import dataclass
 
 from scipy.optimize import brentq
 
-from gearkit.checks.limits import CheckLimits, min_cutter_difference, min_teeth_undercut, min_tooth_difference
+from gearkit.checks.limits import CheckLimits, min_teeth_undercut
 from gearkit.checks.report import CheckReport, Finding, grade, json_number
 from gearkit.errors import SpecError, require
 from gearkit.pair.geometry import PairGeometry, pair_geometry

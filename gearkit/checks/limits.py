@@ -18,7 +18,7 @@ from gearkit.errors import SpecError, require
 from gearkit.pair.geometry import pair_geometry
 from gearkit.pair.spec import PairSpec
 from gearkit.pair.tooling import form_roll, section
-from gearkit.tools import BasicRack, ShaperCutter
+from gearkit.tools import BasicRack
 
 __all__ = ["CheckLimits", "min_teeth_undercut", "min_tooth_difference", "min_cutter_difference"]
 

@@ -11,7 +11,6 @@ Exit status: 0 when no finding fails, 1 when one fails, 2 for bad input.
 """
 from __future__ import annotations
 
-import argparse
 import json
 import math
 import sys

@@ -21,8 +21,7 @@ import numpy as np
 from gearkit.curves import inv, inv_inverse
 from gearkit.errors import require
 from gearkit.pair.spec import PairSpec
-from gearkit.pair.tooling import (Section, cutter_machine, form_roll, root_radius, section,
-                                  thickness_coeff, tip_thickness)
+from gearkit.pair.tooling import form_roll, nu_radius, root_radius, section, thickness_coeff, tip_thickness
 from gearkit.tools import ShaperCutter
 
 __all__ = ["GearGeometry", "PairGeometry", "pair_geometry"]
@@ -115,7 +114,7 @@ def _sliding(g: PairGeometry, u):
     return z1, z2
 
 
-def _tight_alpha(kind: str, sec: Section, z1: int, z2: int | None, d_sum: float) -> float:
+def _tight_alpha(kind: str, sec, z1: int, z2: int | None, d_sum: float) -> float:
     """Zero-backlash transverse working pressure angle from the thickness coefficients."""
     if kind == "rack":
         return sec.alpha_t
@@ -212,7 +211,7 @@ def pair_geometry(spec: PairSpec, form_diameters: tuple | None = None) -> PairGe
         u_a = g_line - math.sqrt(ra2 ** 2 - rb2 ** 2)
         u_hi = g_line - forms[1][1]
     elif internal2:
-        inner2 = max(ra2, rb2, _nu_radius(sec, z2, x2, tool2))
+        inner2 = max(ra2, rb2, nu_radius(sec, z2, x2, tool2))
         u_a = -g_line + math.sqrt(max(ra2, rb2) ** 2 - rb2 ** 2)
         u_lo2 = -g_line + math.sqrt(inner2 ** 2 - rb2 ** 2)
         u_hi = forms[1][1] - g_line
@@ -295,13 +294,6 @@ def _forms(form_diameters, rho_l1, rho_l2, rb1, rb2, kind):
     for rho, rb in zip(rolls, (rb1, rb2)):
         out.append((2 * math.hypot(rb, rho) if math.isfinite(rb) else math.inf, rho))
     return tuple(out)
-
-
-def _nu_radius(sec: Section, z2: int, x2: float, cutter: ShaperCutter) -> float:
-    """Radius O2-N_u below which the shaper trims the ring's involute (textbook 3.109/3.110)."""
-    a0, _, _, rb0, _ = cutter_machine(sec, z2, x2, cutter, True)
-    rb2 = z2 * sec.mt * math.cos(sec.alpha_t) / 2
-    return math.sqrt(a0 ** 2 + 2 * rb2 * rb0 - rb0 ** 2)
 
 
 def _gear(sec, z, x, r, rb, rw, ra, rf, rho_l, d_form, t_actual, internal, tool) -> GearGeometry:

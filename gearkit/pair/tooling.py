@@ -18,7 +18,7 @@ from gearkit.errors import SpecError
 from gearkit.tools import BasicRack, ShaperCutter
 
 __all__ = ["Section", "section", "thickness_coeff", "cutter_machine", "root_radius", "form_roll",
-           "tip_thickness", "half_angle"]
+           "tip_thickness", "half_angle", "nu_radius"]
 
 
 @dataclass(frozen=True)
@@ -156,3 +156,14 @@ def tip_thickness(sec: Section, z: int, delta: float, ra: float, internal: bool)
     rb = z * sec.mt * math.cos(sec.alpha_t) / 2
     r = max(ra, rb)
     return float(2 * r * half_angle(sec, z, delta, r, internal))
+
+
+def nu_radius(sec: Section, z2: int, x2: float, cutter: ShaperCutter) -> float:
+    """O2 N_u (mm): inside this radius the shaper trims a ring's involute (textbook 3.109/3.110).
+
+    N_u is where the machine line of action touches the shaper's base circle:
+    ``O2N_u^2 = a_0^2 + 2 r_b2 r_b0 - r_b0^2``.
+    """
+    a0, _, _, rb0, _ = cutter_machine(sec, z2, x2, cutter, True)
+    rb2 = z2 * sec.mt * math.cos(sec.alpha_t) / 2
+    return math.sqrt(a0 ** 2 + 2 * rb2 * rb0 - rb0 ** 2)
