@@ -9,12 +9,14 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from scipy.optimize import brentq, minimize_scalar
 
 from gearkit.checks import CheckLimits, CheckReport, Finding, check_pair, min_teeth_undercut
 from gearkit.errors import SpecError
 from gearkit.pair import PairSpec, pair_geometry
-from gearkit.tools import BasicRack
+from gearkit.tools import BasicRack, ShaperCutter
 
 SIDE = 1e-3
 
@@ -214,3 +216,22 @@ def test_formula_and_generated_geometry_agree_without_undercut():
     a, b = check_pair(spec), check_pair(spec, geometry="formula")
     assert [f.status for f in a.report] == [f.status for f in b.report]
     assert [f.value for f in a.report] == pytest.approx([f.value for f in b.report], abs=1e-8)
+
+
+@settings(max_examples=60, deadline=None)
+@given(kind=st.sampled_from(["external", "internal", "rack"]), z1=st.integers(3, 60), dz=st.integers(1, 80),
+       x1=st.floats(-1.0, 1.5), x2=st.floats(-1.0, 1.5), beta=st.sampled_from([0.0, 12.0, 35.0]),
+       z0=st.integers(6, 40), mode=st.sampled_from(["formula", "generated"]))
+def test_every_spec_gives_a_report_or_a_spec_error(kind, z1, dz, x1, x2, beta, z0, mode):
+    """DESIGN 4 (extremes): a spec either yields a complete report or raises SpecError naming a field."""
+    z2 = None if kind == "rack" else z1 + dz
+    try:
+        tool2 = ShaperCutter(min(z0, z2 - 4), addendum=1.3) if kind == "internal" else None
+        res = check_pair(PairSpec(z1, z2, 2.0, x1, x2, kind, helix_angle_deg=beta, tool2=tool2), geometry=mode)
+    except SpecError as exc:
+        assert exc.field and str(exc).startswith(exc.field)
+        return
+    data = json.loads(json.dumps(res.to_dict(), allow_nan=False))
+    assert data["ok"] == all(f["status"] != "fail" for f in data["findings"])
+    assert {"undercut.1", "pointing.1", "contact_ratio", "interference.1", "interference.2"} <= \
+        {f["id"] for f in data["findings"]}

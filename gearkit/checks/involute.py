@@ -160,7 +160,13 @@ def check_pair(spec: PairSpec, limits: CheckLimits = CheckLimits(), geometry: st
     if geometry == "generated":
         from gearkit.families.involute import tooth_profile
 
-        profiles = tuple(tooth_profile(s) for s in gear_specs(spec))
+        profiles = []
+        for i, gspec in enumerate(gear_specs(spec)):
+            try:
+                profiles.append(tooth_profile(gspec))
+            except SpecError as exc:  # name the gear of the pair the field belongs to
+                raise SpecError(f"gear{i + 1}.{exc.field}", str(exc).split(": ", 1)[-1]) from None
+        profiles = tuple(profiles)
         forms = tuple(p.form_diameter for p in profiles) + ((None,) if spec.kind == "rack" else ())
         g = pair_geometry(spec, forms)
     else:

@@ -109,7 +109,7 @@ def min_cutter_difference(spec: PairSpec) -> int | None:
     cutter = spec.tools[1]
     g = pair_geometry(spec)
     tip2 = g.gears[1].tip_diameter
-    for z0 in range(spec.teeth2 - 1, 5, -1):
+    for z0 in range(spec.teeth2 - 4, 5, -1):  # a shaper needs z0 <= z2 - 4
         try:
             trial = replace(spec, tool2=replace(cutter, teeth=z0), tip_diameter2=tip2)
             trial_g = pair_geometry(trial)

@@ -142,8 +142,9 @@ class PairSpec:
         if self.kind == "internal":
             require(isinstance(self.tool2, ShaperCutter), "tool2",
                     "a ring (internal gear) is cut by a shaper cutter: give ShaperCutter(teeth=...)")
-            require(self.tool2.teeth < self.teeth2, "tool2",
-                    f"the shaper needs fewer teeth than the ring (z0 = {self.tool2.teeth} >= z2 = {self.teeth2})")
+            require(self.teeth2 - self.tool2.teeth >= 4, "tool2",
+                    f"a shaper with {self.tool2.teeth} teeth cannot cut a ring of {self.teeth2} teeth "
+                    f"(needs at most z2 - 4 = {self.teeth2 - 4})")
         if self.kind == "rack":
             require(self.tool2 is None or isinstance(self.tool2, BasicRack), "tool2",
                     "the mate of a rack pair is a rack: give a BasicRack profile")
