@@ -20,7 +20,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy.optimize import minimize_scalar
 
 from gearkit.curves import inv
 from gearkit.pair.geometry import PairGeometry
@@ -83,6 +82,7 @@ def plunge_trimming(g: PairGeometry, samples: int = 801) -> tuple[float, float]:
     shaper tooth's (sharp) tip corner; ``d2`` is half the ring's angular space width at its tip,
     ``d0`` half the shaper's angular tooth thickness at its tip. The minimum must be positive.
     """
+    from scipy.optimize import minimize_scalar  # lazy: keeps `import gearkit` light
     sec = _sec(g)
     ring = g.gears[1]
     cutter = g.spec.tools[1]

@@ -33,7 +33,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from scipy.optimize import brentq
 
 from gearkit.checks.limits import CheckLimits, min_teeth_undercut
 from gearkit.checks.report import CheckReport, Finding, grade, json_number
@@ -125,6 +124,7 @@ def min_shift_undercut(spec: PairSpec, which: int) -> float:
 
     Rack: ``h_s - z sin^2(a_t) / (2 cos b)`` (textbook 3.106/3.107); shaper: root of ``rho_l(x) = 0``.
     """
+    from scipy.optimize import brentq  # lazy: keeps `import gearkit` light
     sec = section(spec.module, spec.alpha_n_deg, spec.helix_angle_deg)
     tool = spec.tools[which - 1]
     z = spec.teeth1 if which == 1 else spec.teeth2
