@@ -90,17 +90,40 @@ def adaptive_sample(evaluate, tol: float, n_init: int = 5, max_rounds: int = 60)
     return w, pts, float(dev.max(initial=0.0))
 
 
-def polyline_deviation(polyline, exact_points) -> float:
-    """Largest distance from ``exact_points`` to a polyline: an independent deviation measure.
+def distances_to_polyline(points, polyline, closed: bool = False, neighbours: int = 6):
+    """Distance of each point to a (dense) polyline, via its nearest vertices' edges.
 
     Parameters
     ----------
+    points : (k, 2) float64
     polyline : (n, 2) float64
-    exact_points : (k, 2) float64, points known to lie on the exact curve
+    closed : bool, the last vertex joins the first
+
+    Returns
+    -------
+    (k,) float64, mm
     """
-    a, b = polyline[:-1], polyline[1:]
-    best = np.full(len(exact_points), np.inf)
-    for start in range(0, len(a), 2048):
-        d = _chord_deviation(a[None, start:start + 2048], b[None, start:start + 2048], exact_points[:, None, :])
-        best = np.minimum(best, d.min(axis=1))
-    return float(best.max(initial=0.0))
+    from scipy.spatial import cKDTree
+
+    a = np.asarray(polyline, dtype=float)
+    q = np.asarray(points, dtype=float)
+    n = len(a)
+    _, idx = cKDTree(a).query(q, k=min(neighbours, n))
+    idx = np.atleast_2d(idx.T).T if idx.ndim == 1 else idx
+    best = np.full(len(q), np.inf)
+    for col in range(idx.shape[1]):
+        for off in (0, -1):
+            i = idx[:, col] + off
+            if closed:
+                i = i % n
+                j = (i + 1) % n
+            else:
+                i = np.clip(i, 0, n - 2)
+                j = i + 1
+            best = np.minimum(best, _chord_deviation(a[i], a[j], q))
+    return best
+
+
+def polyline_deviation(polyline, exact_points, closed: bool = False) -> float:
+    """Largest distance from points on the exact curve to a polyline: an independent deviation measure."""
+    return float(distances_to_polyline(exact_points, polyline, closed).max(initial=0.0))

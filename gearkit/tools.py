@@ -401,7 +401,7 @@ class ShaperCutter:
         require(self.teeth / 2 + self.shift - self.dedendum > 0.5, "cutter.dedendum",
                 "the cutter root circle must have a positive radius")
 
-    def half_tooth(self, module: float, alpha: float, extend: float = 0.02):
+    def half_tooth(self, module: float, alpha: float, extend: float = 0.02, module_radial: float | None = None):
         """The right half of one cutter tooth in the cutter's own frame, mm.
 
         Frame: cutter centre at the origin, tooth centred on +y. The chain runs from the tip
@@ -410,17 +410,19 @@ class ShaperCutter:
         centre of the next tooth space.
 
         ``module`` and ``alpha`` are those of the section being generated (transverse for a
-        helical gear).
+        helical gear); radial sizes (addendum, dedendum, shift, tip radius) are in units of
+        ``module_radial`` (the normal module; default ``module``).
         """
         from gearkit.curves import inv
 
         m = module
+        mr = m if module_radial is None else module_radial
         z0 = self.teeth
         rb = m * z0 * math.cos(alpha) / 2
-        ra = m * (z0 / 2 + self.shift + self.addendum)
-        rf = m * (z0 / 2 + self.shift - self.dedendum)
-        rho = self.tip_radius * m
-        big_s = (math.pi / 2 + 2 * self.shift * math.tan(alpha)) / z0 + inv(alpha)
+        ra = m * z0 / 2 + mr * (self.shift + self.addendum)
+        rf = m * z0 / 2 + mr * (self.shift - self.dedendum)
+        rho = self.tip_radius * mr
+        big_s = (math.pi / 2 + 2 * self.shift * (mr / m) * math.tan(alpha)) / z0 + inv(alpha)
         gamma = math.pi / 2 - big_s
         t_a = math.sqrt((ra / rb) ** 2 - 1.0)
         d_ext = extend * 2 * math.pi / z0

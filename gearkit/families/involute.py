@@ -83,10 +83,10 @@ class GearSpec:
         if self.tip_diameter is not None:
             d = self.tip_diameter
             require(math.isfinite(d) and 0.0 < d, "tip_diameter", f"{d!r} must be a positive length in mm")
-            lo, hi = self.reference_diameter - 2.6 * m, self.reference_diameter + 2.6 * m + 2 * max(self.shift, 0) * m
-            if self.internal:
-                lo, hi = self.reference_diameter - 2.6 * m + 2 * min(self.shift, 0) * m, self.reference_diameter + 2.6 * m
-            require(lo <= d <= hi, "tip_diameter", f"{d!r} mm is outside [{lo:.6g}, {hi:.6g}] mm")
+            lo = self.reference_diameter - 2 * m * (4.0 + max(-self.shift, 0.0))
+            hi = self.reference_diameter + 2 * m * (4.0 + max(self.shift, 0.0))
+            require(lo <= d <= hi, "tip_diameter", f"{d!r} mm is outside [{lo:.6g}, {hi:.6g}] mm "
+                    "(reference diameter +- 8 modules, widened by the shift)")
 
     # -- derived values (transverse section unless said otherwise) -------------------------
     @property
@@ -148,7 +148,7 @@ def _tool_chain_and_motion(spec: GearSpec):
     require(a0 > 0, "shift", f"x = {spec.shift} puts the cutter axis past the gear axis")
     r_w = a0 * z / (z + sign * z0)
     r_w0 = a0 * z0 / (z + sign * z0)
-    chain = cutter.half_tooth(m_t, spec.alpha_t)
+    chain = cutter.half_tooth(m_t, spec.alpha_t, module_radial=m_n)
     if spec.thinning:
         raise SpecError("thinning", "is supported for rack-cut gears; for a shaper-cut gear set the cutter's "
                         "radial setting (shift) instead")
@@ -210,7 +210,7 @@ class InvoluteProfile(ToothProfile):
             return 0.0
         rb = self.base_diameter / 2.0
         rf = self.form_diameter / 2.0
-        pts, _ = self.half_points(1e-5 * self.module)
+        pts = np.concatenate([p(np.linspace(0.0, 1.0, 4001)) for p in self.half.pieces if p.label != "tip"])
         rho, psi = polar_from_y(pts)
         sel = (rho >= rb) & (rho <= rf)
         if not sel.any():
