@@ -197,7 +197,7 @@ class BasicRack:
     fillet_radius: float | None = None
     protuberance: float = 0.0
     protuberance_angle_deg: float | None = None
-    name: str = field(default="custom", compare=False)
+    name: str = field(default="basic rack", compare=False)
 
     def __post_init__(self):
         a = self.pressure_angle_deg

@@ -1,0 +1,109 @@
+"""Writing results to files: atomically, in the formats users load elsewhere.
+
+Every writer goes through :func:`atomic_write`: the file is written to a temporary file in
+the target directory and renamed over the target only when complete, so a failed export
+never leaves a partial or corrupt file behind.
+
+2D formats: SVG (a closed path, y up, viewBox in mm), DXF (a closed polyline in mm, R2010),
+CSV (x,y per line, mm) and JSON (points and key values).
+"""
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+from gearkit.errors import SpecError
+
+PROFILE_FORMATS = ("svg", "dxf", "csv", "json")
+
+
+def atomic_write(path, write) -> Path:
+    """Call ``write(tmp_path)`` then rename the temporary file over ``path``.
+
+    Parameters
+    ----------
+    path : str or Path
+    write : callable taking the temporary file's path (str); it writes the whole file.
+
+    Raises whatever ``write`` raises, after removing the temporary file.
+    """
+    target = Path(path)
+    directory = target.parent if str(target.parent) else Path(".")
+    if not directory.is_dir():
+        raise SpecError("output", f"directory {str(directory)!r} does not exist")
+    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".part", dir=directory)
+    os.close(fd)
+    try:
+        write(tmp)
+        os.replace(tmp, target)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+    return target
+
+
+def profile_format(path) -> str:
+    """The 2D format named by a file's extension, or a SpecError listing the allowed ones."""
+    ext = Path(path).suffix.lower().lstrip(".")
+    if ext not in PROFILE_FORMATS:
+        raise SpecError("output", f"unknown 2D format {ext!r} for {str(path)!r}; allowed: "
+                        + ", ".join("." + f for f in PROFILE_FORMATS))
+    return ext
+
+
+def _svg(loops, tmp):
+    allpts = np.concatenate(loops)
+    lo, hi = allpts.min(axis=0), allpts.max(axis=0)
+    pad = 0.02 * float((hi - lo).max())
+    w, h = hi - lo + 2 * pad
+    paths = []
+    for loop in loops:
+        d = "M " + " L ".join(f"{x:.9g} {-y:.9g}" for x, y in loop) + " Z"
+        paths.append(f'<path d="{d}"/>')
+    body = "\n".join(paths)
+    text = (f'<svg xmlns="http://www.w3.org/2000/svg" width="{w:.6g}mm" height="{h:.6g}mm" '
+            f'viewBox="{lo[0] - pad:.9g} {-hi[1] - pad:.9g} {w:.9g} {h:.9g}">\n'
+            f'<g fill="none" stroke="black" stroke-width="{max(w, h) / 1000:.3g}" fill-rule="evenodd">\n'
+            f"{body}\n</g>\n</svg>\n")
+    Path(tmp).write_text(text)
+
+
+def _dxf(loops, tmp):
+    import ezdxf
+
+    doc = ezdxf.new("R2010")
+    doc.units = ezdxf.units.MM
+    msp = doc.modelspace()
+    for loop in loops:
+        msp.add_lwpolyline([tuple(map(float, p)) for p in loop], close=True)
+    doc.saveas(tmp)
+
+
+def write_profile(path, loops, info: dict | None = None) -> Path:
+    """Write closed 2D loops (each an ``(n, 2)`` array, mm) in the format of ``path``'s extension."""
+    fmt = profile_format(path)
+    loops = [np.asarray(lp, dtype=float) for lp in loops]
+    if not loops or any(lp.ndim != 2 or lp.shape[1] != 2 or len(lp) < 3 for lp in loops):
+        raise SpecError("output", "nothing to write: a profile needs closed loops of at least 3 points")
+    if not all(np.isfinite(lp).all() for lp in loops):
+        raise SpecError("output", "the profile has non-finite points; nothing was written")
+    if fmt == "svg":
+        return atomic_write(path, lambda tmp: _svg(loops, tmp))
+    if fmt == "dxf":
+        return atomic_write(path, lambda tmp: _dxf(loops, tmp))
+    if fmt == "csv":
+        def csv(tmp):
+            with open(tmp, "w") as fh:
+                fh.write("loop,x_mm,y_mm\n")
+                for k, lp in enumerate(loops):
+                    np.savetxt(fh, np.column_stack([np.full(len(lp), k), lp]), fmt=["%d", "%.12g", "%.12g"],
+                               delimiter=",")
+        return atomic_write(path, csv)
+    payload = dict(info or {})
+    payload["loops"] = [lp.tolist() for lp in loops]
+    return atomic_write(path, lambda tmp: Path(tmp).write_text(json.dumps(payload)))
