@@ -21,10 +21,9 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
 
 from gearkit.accuracy import adaptive_sample
-from gearkit.curves import polar_from_y, polyline_self_intersections
+from gearkit.curves import bracketed_root, polar_from_y, polyline_self_intersections
 from gearkit.errors import GeometryError
 
 
@@ -185,7 +184,7 @@ def _crossings(pieces, func, target, n=48):
         for i in np.flatnonzero(sgn[:-1] * sgn[1:] < 0):
             def gw(x, _c=pc.curve):
                 return float(func(_c(np.array([x])))[0] - target)
-            out.append((k, brentq(gw, w[i], w[i + 1], xtol=1e-15, rtol=1e-15)))
+            out.append((k, bracketed_root(gw, float(w[i]), float(w[i + 1]), float(g[i]), float(g[i + 1]))))
         for i in np.flatnonzero(g == 0):
             out.append((k, float(w[i])))
     return out

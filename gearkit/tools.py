@@ -432,12 +432,12 @@ class ShaperCutter:
             return np.array([rb * (c + t * s), rb * (s - t * c)]), np.array([s, -c])
 
         if rho > 0:
-            from scipy.optimize import brentq
+            from gearkit.curves import bracketed_root
 
             def gap(t):
                 p, n = inv_pt(t)
                 return math.hypot(*(p - rho * n)) - (ra - rho)
-            t_c = brentq(gap, 0.0, t_a, xtol=1e-15, rtol=1e-15)
+            t_c = bracketed_root(gap, 0.0, t_a)
             p_c, n_c = inv_pt(t_c)
             centre = p_c - rho * n_c
             a_tip = math.atan2(centre[1], centre[0])
