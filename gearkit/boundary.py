@@ -174,12 +174,15 @@ def _pieces_of(branches, sections):
 def _crossings(pieces, func, target, n=48):
     """Refined parameters where ``func(points) = target`` along the pieces: [(piece index, w)]."""
     out = []
+    last = 0.0
     for k, pc in enumerate(pieces):
-        lo, hi = min(pc.w0, pc.w1), max(pc.w0, pc.w1)
-        if hi <= lo:
+        if pc.w0 == pc.w1:
             continue
-        w = np.linspace(lo, hi, n)
+        w = np.linspace(pc.w0, pc.w1, n)  # in the piece's own direction, so junctions line up
         g = func(pc.curve(w)) - target
+        if last * g[0] < 0:  # the sign flips exactly at the junction with the previous piece
+            out.append((k, float(w[0])))
+        last = float(g[-1])
         sgn = np.sign(g)
         for i in np.flatnonzero(sgn[:-1] * sgn[1:] < 0):
             def gw(x, _c=pc.curve):
@@ -230,8 +233,14 @@ def trim_half_tooth(branches, teeth_or_angle, tip_radius: float, internal: bool,
             continue
         if m0[0] == m1[0]:
             probe = (m0[0], 0.5 * (m0[1] + m1[1]))
-        else:
-            probe = (m0[0], 0.5 * (m0[1] + pieces[m0[0]].w1))
+        elif m1[0] > m0[0] + 1:  # a whole piece lies between the marks
+            mid = pieces[m0[0] + 1]
+            probe = (m0[0] + 1, 0.5 * (mid.w0 + mid.w1))
+        else:  # probe the larger remaining share of the two pieces
+            a, b = pieces[m0[0]], pieces[m1[0]]
+            share_a = (a.w1 - m0[1]) / (a.w1 - a.w0) if a.w1 > a.w0 else 0.0
+            share_b = (m1[1] - b.w0) / (b.w1 - b.w0) if b.w1 > b.w0 else 0.0
+            probe = (m0[0], 0.5 * (m0[1] + a.w1)) if share_a >= share_b else (m1[0], 0.5 * (b.w0 + m1[1]))
         if inside(*probe):
             chosen = (m0, m1)
             break
@@ -327,8 +336,13 @@ class ToothProfile:
 
     @property
     def trimmed(self) -> bool:
-        """True when the cutter removed part of the flank on the tip side (trimming)."""
-        return any(j == "trim" and b == "flank" for a, b, j in self._flank_joins())
+        """True when the cutter removed part of the flank on the tip side (trimming): the tooth
+        between the tip circle and the flank was formed by a non-flank part of the cutter, or a
+        loop of the envelope was cut away there."""
+        pieces = self.half.pieces
+        k_f = next((i for i, p in enumerate(pieces) if p.label == "flank"), len(pieces))
+        cut_by_other = any(not isinstance(p.curve, CircleArc) for p in pieces[:k_f])
+        return cut_by_other or any(j == "trim" for j in self.half.joins[:k_f])
 
     def thickness_at(self, radius: float) -> float:
         """Arc tooth thickness (mm) on the circle of ``radius``; 0 above a pointed tip.

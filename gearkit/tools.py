@@ -224,6 +224,9 @@ class BasicRack:
                     f"{math.degrees(ap)!r} must be in [0, {a}) degrees (steeper than the flank)")
             require(self._protuberance_top() < self.dedendum + self.addendum, "protuberance",
                     "the protuberance flank does not meet the main flank inside the cutter")
+            require(self.fillet * (1 - math.sin(ap)) < self._protuberance_top(), "fillet_radius",
+                    f"rho_fP* = {self.fillet:.6f} reaches above the protuberance flank (needs < "
+                    f"{self._protuberance_top() / (1 - math.sin(ap)):.6f})")
 
     @classmethod
     def iso53(cls, profile: str) -> "BasicRack":

@@ -177,6 +177,9 @@ def tooth_profile(spec: GearSpec) -> ToothProfile:
                                detect_tol=2e-4 * spec.module)
     except GeometryError as exc:
         raise SpecError("shift", f"x = {spec.shift} with this tool and tip diameter leaves no tooth ({exc})") from None
+    if not any(p.label == "flank" for p in half.pieces):
+        raise SpecError("shift", f"x = {spec.shift} leaves no involute flank on a {spec.teeth}-tooth gear "
+                        "(the cutter's tip cuts the whole tooth away)")
     prof = InvoluteProfile(half, spec.teeth, spec.internal, spec.module, family="involute", spec=spec,
                            reference_diameter=spec.reference_diameter, base_diameter=spec.base_diameter,
                            blank_tip_diameter=spec.blank_tip_diameter)

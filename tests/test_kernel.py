@@ -1,0 +1,118 @@
+"""Kernel building blocks against closed forms: involute function, tool chains, the meshing
+equation (closed form vs Newton), loop removal."""
+import math
+
+import numpy as np
+import pytest
+
+from gearkit.curves import bracketed_root, inv, inv_inverse, polyline_self_intersections
+from gearkit.errors import SpecError
+from gearkit.motion import RollingMotion
+from gearkit.tools import BasicRack, ShaperCutter, transform_chain
+
+DEG = math.pi / 180
+
+
+def test_involute_function_reference_values():
+    # reference digest §1.1: inv 20° = 0.0149044, inv 26°13'49" = 0.0349129, inv 41°12'02" = 0.156365
+    assert inv(20 * DEG) == pytest.approx(0.0149044, abs=5e-8)
+    assert inv((26 + 13 / 60 + 49 / 3600) * DEG) == pytest.approx(0.0349129, abs=5e-8)
+    assert inv((41 + 12 / 60 + 2 / 3600) * DEG) == pytest.approx(0.156365, abs=1e-6)  # angle printed to 1"
+
+
+def test_inverse_involute_accurate_from_micro_radian_to_85_degrees():
+    alpha = np.concatenate([np.geomspace(1e-6, 0.05, 200), np.linspace(0.05, 85 * DEG, 400)])
+    back = inv_inverse(inv(alpha))
+    assert np.max(np.abs(back - alpha)) < 1e-14
+    # the small-angle series agrees with the direct formula where both are accurate
+    a = np.linspace(0.02, 0.05, 50)
+    assert np.allclose(inv(a), np.tan(a) - a, rtol=1e-12, atol=0)
+
+
+def test_bracketed_root_converges_and_rejects_bad_bracket():
+    r = bracketed_root(lambda x: math.cos(x) - x, 0.0, 1.0)
+    assert abs(math.cos(r) - r) < 1e-15
+    with pytest.raises(ValueError):
+        bracketed_root(lambda x: x * x + 1, -1.0, 1.0)
+
+
+def _chain_is_continuous(chain, atol=1e-12):
+    ends = [s.endpoints()[0] for s in chain]
+    return all(np.allclose(a[1], b[0], atol=atol) for a, b in zip(ends[:-1], ends[1:]))
+
+
+@pytest.mark.parametrize("rack", [BasicRack(), BasicRack.iso53("D"), BasicRack(25.0, 1.0, 1.3, 0.2),
+                                  BasicRack(20.0, 1.0, 1.4, 0.1, protuberance=0.02)])
+def test_rack_chain_is_continuous_with_material_on_the_right(rack):
+    chain = rack.half_tooth(2.0, 0.6, 0.05)
+    assert _chain_is_continuous(chain)
+    # the flank's outward normal points away from the cutter tooth centre (u = p/2), i.e. to -u
+    flank = next(s for s in chain if s.label == "flank")
+    _, _, n = flank.evaluate(np.array([0.5]))
+    assert n[0, 0] < 0
+    # G1 at the rounding: flank direction equals the rounding's end direction (no corner there)
+    k = [s.label for s in chain].index("fillet")
+    t_end = chain[k].evaluate(np.array([1.0]))[1][0]
+    t_next = chain[k + 1].evaluate(np.array([0.0]))[1][0]
+    assert np.allclose(t_end, t_next, atol=1e-12)
+
+
+def test_cutter_chain_is_continuous_and_transforms_keep_it_so():
+    chain = ShaperCutter(20, tip_radius=0.1).half_tooth(2.0, 20 * DEG)
+    assert _chain_is_continuous(chain)
+    mirrored = transform_chain(chain, np.diag([-1.0, 1.0]), (3.0, -1.0))
+    assert _chain_is_continuous(mirrored)
+    # reflection keeps the material on the right: normals are mirrored too
+    p0, _, n0 = chain[2].evaluate(np.array([0.3]))
+    last = mirrored[len(chain) - 1 - 2]
+    p1, _, n1 = last.evaluate(np.array([0.7]))
+    assert np.allclose(p1, p0 * [-1, 1] + [3, -1])
+    assert np.allclose(n1, n0 * [-1, 1])
+
+
+@pytest.mark.parametrize("motion", [RollingMotion(-20.0, None), RollingMotion(-20.0, 8.0),
+                                    RollingMotion(-30.0, -12.0), RollingMotion(-12.0, -30.0)])
+def test_meshing_equation_closed_form_equals_newton_and_normal_passes_through_pole(motion):
+    rng = np.random.default_rng(1)
+    p = rng.uniform([-1.5, -1.5], [1.5, 1.5], (200, 2))
+    ang = rng.uniform(-math.pi, math.pi, 200)
+    n = np.stack([np.cos(ang), np.sin(ang)], -1)
+    s, valid = motion.contact(p, n)
+    keep = valid & (np.abs(n[:, 1]) > 0.2)
+    s_newton = motion.contact_newton(p[keep], n[keep], s0=s[keep] + 0.05)
+    assert np.allclose(s_newton, s[keep], atol=1e-10)
+    # Willis / envelope condition: in the blank frame the normal at the contact passes through the pole
+    q = motion.to_blank(p[keep], s[keep])
+    nb = motion.rotate_to_blank(n[keep], s[keep])
+    pole = motion.to_blank(np.zeros((keep.sum(), 2)) + 0.0, np.zeros(keep.sum()))  # pole at s = 0 ...
+    # ... moves along the blank centrode: recompute it at each s from the tool side
+    from gearkit.motion import _centrode
+    c_t, _ = _centrode(motion.tool_centre, s[keep])
+    pole = motion.to_blank(c_t, s[keep])
+    cross = (pole - q)[:, 0] * nb[:, 1] - (pole - q)[:, 1] * nb[:, 0]
+    assert np.max(np.abs(cross)) < 1e-12
+
+
+def test_polyline_self_intersections_finds_a_figure_eight_crossing():
+    t = np.linspace(0, 2 * np.pi, 401)
+    pts = np.stack([np.sin(t), np.sin(2 * t) / 2], -1)
+    i, j, ti, tj = polyline_self_intersections(pts[:-1])
+    hits = pts[i] + ti[:, None] * (pts[i + 1] - pts[i])
+    assert len(i) >= 1 and np.allclose(hits, 0.0, atol=1e-3)
+    # a straight line has none
+    assert len(polyline_self_intersections(np.stack([t, 2 * t], -1))[0]) == 0
+
+
+@pytest.mark.parametrize("kwargs, field", [
+    (dict(pressure_angle_deg=0.0), "pressure_angle_deg"),
+    (dict(pressure_angle_deg=45.0), "pressure_angle_deg"),
+    (dict(dedendum=0.9), "dedendum"),
+    (dict(fillet_radius=0.6), "fillet_radius"),
+    (dict(pressure_angle_deg=40.0, dedendum=1.25), "dedendum"),
+    (dict(dedendum=1.4, fillet_radius=0.3, protuberance=0.02), "fillet_radius"),
+])
+def test_bad_racks_name_the_field(kwargs, field):
+    with pytest.raises(SpecError) as exc:
+        BasicRack(**kwargs)
+    assert exc.value.field == field
+    assert str(exc.value).startswith(field + ": ") and len(str(exc.value)) > len(field) + 20
