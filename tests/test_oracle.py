@@ -45,4 +45,4 @@ def test_shaper_oracle_converges_to_the_envelope_at_first_order_for_a_sharp_cutt
     coarse, fine = _oracle_error(spec, 0.32), _oracle_error(spec, 0.16)
     order = math.log2(coarse / fine)
     assert 0.8 < order < 1.3
-    assert fine < 1e-4
+    assert fine < 1e-3  # a corner's scallops: ~ step/60 at a step of 0.02 m
