@@ -5,6 +5,8 @@ Angles are radians; points are ``(n, 2)`` float64 arrays (mm).
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 # Taylor coefficients of tan(a) - a = sum c_k a^(2k+1), k >= 1 (odd Bernoulli-type series).
@@ -19,6 +21,22 @@ _INV_SERIES = (
     6404582.0 / 10854718875.0,
 )
 _SERIES_LIMIT = 0.05  # |a| below which the series beats tan(a) - a (cancellation)
+
+
+def _is_scalar(x) -> bool:
+    """True for a finite Python/NumPy real scalar (not bool, not an array)."""
+    return isinstance(x, (float, int)) and not isinstance(x, bool) and math.isfinite(x)
+
+
+def _inv_scalar(a: float) -> float:
+    """``inv`` of one float, with the same series below ``_SERIES_LIMIT``."""
+    if abs(a) < _SERIES_LIMIT:
+        a2 = a * a
+        series = 0.0
+        for c in reversed(_INV_SERIES):
+            series = series * a2 + c
+        return series * a2 * a
+    return math.tan(a) - a
 
 
 def inv(alpha):
@@ -40,6 +58,8 @@ def inv(alpha):
     >>> round(float(inv(np.radians(20.0))), 7)
     0.0149044
     """
+    if _is_scalar(alpha):  # plain-float fast path (pair formulas call this per point)
+        return _inv_scalar(float(alpha))
     a = np.asarray(alpha, dtype=float)
     small = np.abs(a) < _SERIES_LIMIT
     a2 = a * a
@@ -65,6 +85,18 @@ def inv_inverse(value):
     >>> round(float(np.degrees(inv_inverse(0.0149044))), 4)
     20.0
     """
+    if _is_scalar(value):  # plain-float fast path, the same iteration
+        v = float(value)
+        if v < 0 or not math.isfinite(v):
+            raise ValueError("inv_inverse needs finite values >= 0")
+        a = min((3.0 * v) ** (1.0 / 3.0), math.atan(v + math.pi / 2.0))
+        for _ in range(60):
+            t = math.tan(a)
+            step = (_inv_scalar(a) - v) / (t * t) if t > 0 else 0.0
+            a -= step
+            if abs(step) <= 4e-16 * max(a, 1e-300):
+                break
+        return a
     v = np.asarray(value, dtype=float)
     if np.any(v < 0) or not np.all(np.isfinite(v)):
         raise ValueError("inv_inverse needs finite values >= 0")

@@ -42,7 +42,7 @@ from gearkit.pair.spec import PairSpec
 from gearkit.pair.tooling import form_roll, section
 from gearkit.tools import BasicRack
 
-__all__ = ["PairCheck", "check_pair", "gear_specs", "min_shift_undercut"]
+__all__ = ["PairCheck", "check_pair", "fail_margins", "gear_specs", "min_shift_undercut"]
 
 GEOMETRY_MODES = ("generated", "formula")
 
@@ -139,6 +139,29 @@ def min_shift_undercut(spec: PairSpec, which: int) -> float:
     return brentq(rho, lo, 5.0, xtol=1e-13)
 
 
+def fail_margins(g: PairGeometry) -> dict:
+    """Signed margins of the findings that can fail, read off the pair geometry: each of them
+    fails exactly when its margin is negative.
+
+    Keys and units (mm unless said): ``pointing.i`` (normal tip thickness s_an; a zero thickness
+    counts as pointed), ``contact_ratio`` (eps_alpha - 1, real ratio), ``interference.1``
+    (A - F1 + tol), ``interference.2`` (F2 - E + tol), ``tip_clearance.i``, ``backlash``
+    (j_wt + tol), with ``tol = 1e-9 m_n``. The blocking contours trace these same margins.
+    """
+    tol = 1e-9 * g.module
+    out = {}
+    for i, gear in enumerate(g.gears):
+        s = gear.tip_thickness_normal
+        out[f"pointing.{i + 1}"] = s if s != 0 else -5e-324
+    out["contact_ratio"] = g.contact_ratio - 1.0
+    out["interference.1"] = g.path["A"] - g.path["F1"] + tol
+    out["interference.2"] = g.path["F2"] - g.path["E"] + tol
+    for i, c in enumerate(g.tip_clearance):
+        out[f"tip_clearance.{i + 1}"] = c
+    out["backlash"] = g.backlash + tol
+    return out
+
+
 def check_pair(spec: PairSpec, limits: CheckLimits = CheckLimits(), geometry: str = "generated") -> PairCheck:
     """Check a pair: every finding of the module table, from the generated or the formula geometry.
 
@@ -180,6 +203,7 @@ def check_pair(spec: PairSpec, limits: CheckLimits = CheckLimits(), geometry: st
 
 
 def _gear_findings(spec, g, profiles, lim) -> list:
+    margins = fail_margins(g)
     out = []
     mn = g.module
     names = ("pinion", "ring" if g.kind == "internal" else "wheel")
@@ -200,7 +224,7 @@ def _gear_findings(spec, g, profiles, lim) -> list:
                 msg = f"{who}: no undercut (x = {gear.shift_coeff:.4f}, x_min = {x_min:.4f})"
             out.append(Finding(f"undercut.{n}", "warn" if under else "ok", gear.shift_coeff, x_min, msg, "min"))
         s = gear.tip_thickness_normal
-        pointed = s <= 0 or (prof is not None and prof.pointed)
+        pointed = margins[f"pointing.{n}"] < 0 or (prof is not None and prof.pointed)
         need = lim.min_tip_thickness * mn
         status = "fail" if pointed else grade(s, warn_below=need)
         msg = (f"{who}: the flanks meet below the tip circle (pointed tooth, s_an = {s:.4f} mm)" if pointed else
@@ -211,13 +235,15 @@ def _gear_findings(spec, g, profiles, lim) -> list:
 
 def _mesh_findings(spec, g, lim) -> list:
     mn = g.module
+    margins = fail_margins(g)
     out = []
     eps, nominal = g.contact_ratio, g.contact_ratio_nominal
     short = "" if abs(eps - nominal) < 1e-9 else f", shortened from the tip-to-tip {nominal:.4f}"
     beta = f"; eps_beta = {g.overlap_ratio:.4f}, eps_gamma = {g.total_contact_ratio:.4f}" if g.helix_angle else ""
     if g.helix_angle and spec.face_width is None:
         beta += " (no face width given: eps_beta taken as 0)"
-    out.append(Finding("contact_ratio", grade(eps, fail_below=1.0, warn_below=lim.min_contact_ratio), eps,
+    status = "fail" if margins["contact_ratio"] < 0 else grade(eps, warn_below=lim.min_contact_ratio)
+    out.append(Finding("contact_ratio", status, eps,
                        lim.min_contact_ratio, f"transverse contact ratio eps_alpha = {eps:.4f}{short}{beta}", "min"))
     tol = 1e-9 * mn
     f1, f2 = g.path["F1"], g.path["F2"]
@@ -226,11 +252,11 @@ def _mesh_findings(spec, g, lim) -> list:
     msg = (f"the tip of {mate} meets gear 1 at roll {a:.4f} mm from N1, "
            + (f"inside its form circle (involute from {f1:.4f} mm, d_F1 = {g.gears[0].form_diameter:.4f} mm): "
               "it digs into the fillet" if a < f1 - tol else f"on the involute (it begins at {f1:.4f} mm)"))
-    out.append(Finding("interference.1", "fail" if a < f1 - tol else "ok", a, f1, msg, "min"))
+    out.append(Finding("interference.1", "fail" if margins["interference.1"] < 0 else "ok", a, f1, msg, "min"))
     where = "the rack's straight flank ends" if g.kind == "rack" else "the involute of gear 2 ends"
     msg = (f"the tip of gear 1 meets {mate} at roll {e:.4f} mm from N1; {where} at {f2:.4f} mm"
            + (": it digs into the fillet" if e > f2 + tol else ""))
-    out.append(Finding("interference.2", "fail" if e > f2 + tol else "ok", e, f2, msg, "max"))
+    out.append(Finding("interference.2", "fail" if margins["interference.2"] < 0 else "ok", e, f2, msg, "max"))
     need = lim.min_tip_clearance * mn
     for i, c in enumerate(g.tip_clearance):
         n = i + 1
@@ -238,7 +264,7 @@ def _mesh_findings(spec, g, lim) -> list:
             who = "the rack's tip to the pinion's root"
         else:
             who = f"the tip of gear {n} to the root of {'the rack' if g.kind == 'rack' else f'gear {3 - n}'}"
-        status = grade(c, fail_below=0.0, warn_below=need)
+        status = "fail" if margins[f"tip_clearance.{n}"] < 0 else grade(c, warn_below=need)
         out.append(Finding(f"tip_clearance.{n}", status, c, need,
                            f"clearance from {who}: c = {c:.4f} mm = {c / mn:.3f} m_n (limit {lim.min_tip_clearance:g} m_n)"
                            + ("; the tip hits the root" if c < 0 else ""), "min"))
@@ -251,7 +277,7 @@ def _mesh_findings(spec, g, lim) -> list:
                            f"gear {i + 1}: z = {gear.teeth}; its tool cuts without undercut from z = {z_min:.4f} "
                            f"at x = {gear.shift_coeff:.4f}", "min"))
     j = g.backlash
-    status = "fail" if j < -tol else "ok"
+    status = "fail" if margins["backlash"] < 0 else "ok"
     msg = (f"backlash j_wt = {j:.5f} mm on the working circle (normal j_bn = {g.backlash_normal:.5f} mm)"
            + ("; negative: the centre distance is below the tight mesh of these teeth" if status == "fail" else ""))
     out.append(Finding("backlash", status, j, 0.0, msg, "min"))

@@ -142,7 +142,10 @@ def half_angle(sec: Section, z: int, delta: float, radius, internal: bool):
     import numpy as np
 
     rb = z * sec.mt * math.cos(sec.alpha_t) / 2
-    ay = np.arccos(np.clip(rb / np.asarray(radius, dtype=float), -1.0, 1.0))
+    if isinstance(radius, (float, int)):  # one radius: plain floats (called per point by the pair formulas)
+        ay = math.acos(min(max(rb / radius, -1.0), 1.0))
+    else:
+        ay = np.arccos(np.clip(rb / np.asarray(radius, dtype=float), -1.0, 1.0))
     sign = -1.0 if internal else 1.0
     return (math.pi / 2 + delta) / z + sign * (inv(sec.alpha_t) - inv(ay))
 
