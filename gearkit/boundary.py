@@ -193,28 +193,56 @@ def _crossings(pieces, func, target, n=48):
     return out
 
 
-def trim_half_tooth(branches, teeth_or_angle, tip_radius: float, internal: bool, detect_tol: float) -> HalfTooth:
+def linear_coords(points):
+    """Rack frame counterpart of :func:`polar_from_y`: "radius" y (height) and "angle" x."""
+    p = np.asarray(points, dtype=float)
+    return p[..., 1], p[..., 0]
+
+
+@dataclass(frozen=True)
+class TipLine:
+    """Tip of a rack tooth: the line y = ``height`` from x = ``x0`` to ``x1``."""
+
+    height: float
+    x0: float
+    x1: float
+    label: str = "tip"
+
+    def __call__(self, w):
+        x = self.x0 + np.asarray(w, dtype=float) * (self.x1 - self.x0)
+        return np.stack([x, np.full_like(x, self.height)], -1)
+
+
+def trim_half_tooth(branches, teeth_or_angle, tip_radius: float, internal: bool, detect_tol: float,
+                    pitch: float | None = None) -> HalfTooth:
     """Uncut right half-tooth from the envelope branches of the cutter's facing half tooth.
 
     Parameters
     ----------
     branches : sequence of Branch, in the tool chain's order
     teeth_or_angle : int (z: the wedge is pi/z wide) or float (the half pitch angle, rad)
-    tip_radius : float, mm (the blank's tip circle)
+    tip_radius : float, mm (the blank's tip circle; for a rack the tip line's height)
     internal : bool (tip circle inside the teeth)
     detect_tol : float, mm
         Chord tolerance of the polyline used to find loops and crossings (refined exactly).
+    pitch : float or None, mm
+        Given for a rack blank (straight centrode): the wedge is then the strip
+        0 <= x <= pitch/2 below the tip line, and ``teeth_or_angle`` is ignored.
     """
-    half = math.pi / teeth_or_angle if isinstance(teeth_or_angle, (int, np.integer)) else float(teeth_or_angle)
+    if pitch is not None:
+        coords, half = linear_coords, pitch / 2.0
+    else:
+        coords = polar_from_y
+        half = math.pi / teeth_or_angle if isinstance(teeth_or_angle, (int, np.integer)) else float(teeth_or_angle)
     pts, owner, ws = _sample_chain(branches, detect_tol)
     sections = _remove_loops(branches, pts, owner, ws, significant=1e-6 * detect_tol)
     pieces, joins = _pieces_of(branches, sections)
 
     def psi(p):
-        return polar_from_y(p)[1]
+        return coords(p)[1]
 
     def rho(p):
-        return polar_from_y(p)[0]
+        return coords(p)[0]
 
     marks = [(k, w, "S") for k, w in _crossings(pieces, psi, half)]
     marks += [(k, w, "C") for k, w in _crossings(pieces, psi, 0.0)]
@@ -222,7 +250,7 @@ def trim_half_tooth(branches, teeth_or_angle, tip_radius: float, internal: bool,
     marks.sort(key=lambda m: (m[0], m[1]))
 
     def inside(k, w):
-        r, a = polar_from_y(pieces[k].curve(np.array([w])))
+        r, a = coords(pieces[k].curve(np.array([w])))
         in_tip = r[0] >= tip_radius if internal else r[0] <= tip_radius
         return 0.0 < a[0] < half and in_tip
 
@@ -262,8 +290,10 @@ def trim_half_tooth(branches, teeth_or_angle, tip_radius: float, internal: bool,
         tip_kind, tip_piece = kind_a, sel[0]
     pointed = False
     if tip_kind == "R":
-        r_t, psi_t = polar_from_y(tip_piece(np.array([0.0])))
-        sel.insert(0, Piece("tip", CircleArc(float(tip_radius), 0.0, float(psi_t[0])), 0.0, 1.0))
+        r_t, psi_t = coords(tip_piece(np.array([0.0])))
+        tip = TipLine(float(tip_radius), 0.0, float(psi_t[0])) if pitch is not None \
+            else CircleArc(float(tip_radius), 0.0, float(psi_t[0]))
+        sel.insert(0, Piece("tip", tip, 0.0, 1.0))
         sel_joins.insert(0, "corner")
     else:  # reached the centre line: a smooth crest or a pointed tip
         p = tip_piece(np.array([0.0, 1e-6]))
@@ -341,7 +371,7 @@ class ToothProfile:
         loop of the envelope was cut away there."""
         pieces = self.half.pieces
         k_f = next((i for i, p in enumerate(pieces) if p.label == "flank"), len(pieces))
-        cut_by_other = any(not isinstance(p.curve, CircleArc) for p in pieces[:k_f])
+        cut_by_other = any(not isinstance(p.curve, (CircleArc, TipLine)) for p in pieces[:k_f])
         return cut_by_other or any(j == "trim" for j in self.half.joins[:k_f])
 
     def thickness_at(self, radius: float) -> float:
