@@ -44,15 +44,23 @@ class RollingMotion:
     tool_centre : float or None, mm
         y of the tool centrode's centre (``+r_w0`` external shaper, ``-r_w0`` internal shaper or
         pin ring; None: rack cutter).
+    roll_centre : float, mm
+        On a circular tool centrode a contact's roll is defined only up to whole turns of the
+        tool; :meth:`contact` returns the one within half a turn of ``roll_centre`` (default 0:
+        the turn centred on the start position). A tool whose contacts span more than half a
+        turn on one side of the start (a pin touching near the root and again near the crest
+        of a cycloidal disc) centres the turn on its own pass so its envelope stays continuous.
     """
 
     blank_centre: float | None
     tool_centre: float | None
+    roll_centre: float = 0.0
 
     def __post_init__(self):
         for name in ("blank_centre", "tool_centre"):
             c = getattr(self, name)
             require(c is None or (math.isfinite(c) and c != 0.0), name, "must be finite and non-zero, or None")
+        require(math.isfinite(self.roll_centre), "roll_centre", "must be a finite roll in mm")
         require(not (self.blank_centre is None and self.tool_centre is None), "tool_centre",
                 "a rack cannot generate a rack")
         require(self.blank_centre != self.tool_centre, "tool_centre", "the centrodes must differ")
@@ -92,10 +100,13 @@ class RollingMotion:
         Parameters
         ----------
         points, normals : (n, 2) float64 in the tool frame
-        root : "near" or "far"
+        root : "near", "far", "front" or "back"
             On a circular tool centrode the normal line meets it twice: "near" takes the
             intersection closest to the point (the one the cutter actually passes through
-            in generation), "far" the other.
+            in generation), "far" the other; "front" takes the one farther along the
+            outward normal (into the blank), "back" the other. The signed rule is the one to
+            use when the point's distances to the two intersections cross over along the
+            tool (a pin centred on the tool centrode: one root is always the pin centre).
 
         Returns
         -------
@@ -118,11 +129,20 @@ class RollingMotion:
         valid = disc >= 0
         sq = np.sqrt(np.where(valid, disc, 0.0))
         t1, t2 = -b - sq, -b + sq
-        near = np.where(np.abs(t1) <= np.abs(t2), t1, t2)
-        far = np.where(np.abs(t1) <= np.abs(t2), t2, t1)
-        t = near if root == "near" else far
+        if root in ("near", "far"):
+            # a tie (the normal is perpendicular to the line of centres through the point, e.g. an
+            # involute's base point) goes to the root along the outward normal, the one its
+            # neighbours on the involute take
+            first = np.abs(t1) < np.abs(t2) - 1e-12 * (np.abs(t1) + np.abs(t2))
+            t = np.where(first, t1, t2) if root == "near" else np.where(first, t2, t1)
+        elif root in ("front", "back"):
+            t = t2 if root == "front" else t1
+        else:
+            raise ValueError(f"root must be 'near', 'far', 'front' or 'back', not {root!r}")
         hit = p + t[:, None] * n
         sigma = np.arctan2(hit[:, 0] / c, 1.0 - hit[:, 1] / c)
+        if self.roll_centre:
+            sigma = sigma - 2.0 * np.pi * np.round((sigma - self.roll_centre / c) / (2.0 * np.pi))
         return np.where(valid, c * sigma, np.nan), valid
 
     def contact_newton(self, points, normals, s0=None, iterations=50):
