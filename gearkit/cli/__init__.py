@@ -13,7 +13,7 @@ import sys
 from gearkit.errors import GearkitError
 
 #: command modules, in the order ``gearkit --help`` lists them
-COMMANDS = ("demo", "gear", "check")
+COMMANDS = ("demo", "gear", "rack", "check")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -39,6 +39,10 @@ def main(argv: list[str] | None = None) -> int:
     except GearkitError as exc:
         print(f"gearkit {args.command}: error: {exc}", file=sys.stderr)
         return 2
+    except BrokenPipeError:  # output piped into a reader that stopped early (e.g. `| head`)
+        import os
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 0
 
 
 if __name__ == "__main__":  # pragma: no cover
