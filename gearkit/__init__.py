@@ -3,6 +3,16 @@ from gearkit.errors import GearkitError, GeometryError, SpecError
 
 __all__ = ["GearkitError", "GeometryError", "SpecError"]
 
+# -- the generating kernel and the involute family ------------------------------------------
+from gearkit.accuracy import Accuracy  # noqa: E402
+from gearkit.boundary import ToothProfile  # noqa: E402
+from gearkit.families.involute import GearSpec, InvoluteProfile, tooth_profile  # noqa: E402
+from gearkit.families.rack import RackProfile, RackSpec, rack_profile  # noqa: E402
+from gearkit.tools import BasicRack, ShaperCutter  # noqa: E402
+
+__all__ += ["Accuracy", "BasicRack", "GearSpec", "InvoluteProfile", "RackProfile", "RackSpec", "ShaperCutter",
+            "ToothProfile", "rack_profile", "tooth_profile"]
+
 # -- gear pairs and design checks ---------------------------------------------------------
 from gearkit.checks import CheckLimits, CheckReport, Finding, PairCheck, check_pair, load_design  # noqa: E402
 from gearkit.pair import PairGeometry, PairSpec, pair_geometry, shifts_for_center_distance  # noqa: E402

@@ -186,3 +186,23 @@ def tooth_zone_points(contours, teeth, tip_radius, margin=0.0, internal=False):
     psi = np.arctan2(pts[:, 0], pts[:, 1])
     keep = (np.abs(psi) <= math.pi / teeth - margin) & (np.abs(rho - tip_radius) > 1e-5 * tip_radius)
     return pts[keep]
+
+
+def swept_gear(spec, step: float, chord: float | None = None):
+    """The swept-tool cut of an involute gear spec (rack- or shaper-cut): boundary contours, mm.
+
+    Slow and approximate by design (scallops shrink with ``step``, mm of roll); use it to see
+    the cut a real cutter's discrete strokes make, or to check the envelope.
+    """
+    from gearkit.families.involute import GearSpec
+
+    if not isinstance(spec, GearSpec):
+        raise TypeError("swept_gear takes a GearSpec")
+    ra = spec.blank_tip_diameter / 2
+    if isinstance(spec.tool, BasicRack):
+        return swept_rack_gear(spec.teeth, spec.module, spec.shift, spec.tool, ra, step,
+                               helix_angle_deg=spec.helix_angle_deg, thinning=spec.thinning, chord=chord)
+    if spec.beta:
+        raise ValueError("the oracle cuts spur gears with shaper cutters only")
+    return swept_shaper_gear(spec.teeth, spec.module, spec.shift, spec.tool, ra, step, internal=spec.internal,
+                             chord=chord)
