@@ -1,7 +1,7 @@
 """Accuracy as a length: adaptive sampling of exact curves to a chord tolerance.
 
 Nothing in gearkit hard-codes a point count. A curve is known exactly as a function
-``w -> points`` on ``[0, 1]``; :func:`adaptive_sample` bisects parameter intervals until
+``w -> points`` on ``[0, 1]``; :func:`adaptive_sample` splits parameter intervals until
 every chord lies within ``tol`` (mm) of the curve and reports the deviation it achieved.
 """
 from __future__ import annotations
@@ -49,8 +49,14 @@ def _chord_deviation(a, b, q):
     return np.linalg.norm(q - foot, axis=-1)
 
 
-def adaptive_sample(evaluate, tol: float, n_init: int = 5, max_rounds: int = 60):
+def adaptive_sample(evaluate, tol: float, n_init: int = 5, max_rounds: int = 60, max_split: int = 16):
     """Sample an exact curve so that every chord is within ``tol`` of it.
+
+    Each round probes every interval at its quarter points; an interval whose chord deviates
+    by ``dev > tol`` is split into ``k = ceil(1.1 sqrt(dev / tol))`` equal parameter parts
+    (at most ``max_split``): a chord's deviation shrinks as the square of its length, so one
+    round usually settles an interval and the rounds (each a call of ``evaluate``, the cost
+    that dominates for short chains) stay few. Intervals still too coarse split again.
 
     Parameters
     ----------
@@ -59,6 +65,8 @@ def adaptive_sample(evaluate, tol: float, n_init: int = 5, max_rounds: int = 60)
     tol : float, mm
     n_init : int
         Starting uniform samples (enough to see the curve's shape; refinement does the rest).
+    max_split : int
+        Most parts one interval is split into in one round (bisection: 2).
 
     Returns
     -------
@@ -77,10 +85,22 @@ def adaptive_sample(evaluate, tol: float, n_init: int = 5, max_rounds: int = 60)
         bad = dev > tol
         if not bad.any():
             return w, pts, float(dev.max(initial=0.0))
-        mids = probes[bad, 1]
-        mid_pts = q[bad, 1]
-        w = np.concatenate([w, mids])
-        pts = np.concatenate([pts, mid_pts])
+        k = np.clip(np.ceil(1.1 * np.sqrt(dev[bad] / tol)), 2, max(2, max_split)).astype(int)
+        new_w = [probes[bad, 1]]
+        new_p = [q[bad, 1]]
+        if (k > 2).any():  # the midpoint is already evaluated; other split points are new
+            many = k > 2
+            kk = k[many]
+            rows = np.repeat(np.arange(len(kk)), kk - 1)
+            j = np.arange(len(rows)) - np.repeat(np.cumsum(kk - 1) - (kk - 1), kk - 1) + 1
+            frac = j / kk[rows]
+            keep = np.abs(frac - 0.5) > 1e-12
+            a, h = lo[bad][many][rows][keep], (hi - lo)[bad][many][rows][keep]
+            extra = a + h * frac[keep]
+            new_w.append(extra)
+            new_p.append(evaluate(extra))
+        w = np.concatenate([w] + new_w)
+        pts = np.concatenate([pts] + new_p)
         order = np.argsort(w, kind="stable")
         w, pts = w[order], pts[order]
     lo, hi = w[:-1], w[1:]
