@@ -1,0 +1,76 @@
+"""Whole-process time of the ``gearkit`` command, as a user runs it (interpreter start included).
+
+The three reference gears (tol 0.001 mm) are the ones a script-based CAD gear library was
+timed on: spur z = 12 m = 2 b = 5, helical z = 20 m = 2 b = 10 beta = 20 deg, spur z = 200 m = 1
+b = 5. With a mesh export the command writes STL; without one it writes the 2D profile
+(DXF), and the row says so.
+"""
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+#: (name, gear flags, face width b in mm)
+REFERENCE_GEARS = (
+    ("spur z=12 m=2 b=5", ["-z", "12", "-m", "2"], 5.0),
+    ("helical z=20 m=2 b=10 beta=20", ["-z", "20", "-m", "2", "--helix-angle-deg", "20"], 10.0),
+    ("spur z=200 m=1 b=5", ["-z", "200", "-m", "1"], 5.0),
+)
+TOL_MM = 0.001
+
+
+def _gearkit_command():
+    exe = os.path.join(os.path.dirname(sys.executable), "gearkit")
+    return [exe] if os.path.exists(exe) else [sys.executable, "-m", "gearkit.cli"]
+
+
+def mesh_export_available() -> bool:
+    """True when ``gearkit gear`` can write an STL (the solids module exists)."""
+    try:
+        from gearkit.cli import gear as gear_cli
+        import inspect
+
+        return "stl" in inspect.getsource(gear_cli).lower()
+    except Exception:  # noqa: BLE001 - any failure means: not available
+        return False
+
+
+def _face_width_flag():
+    from gearkit.cli import gear as gear_cli
+    import inspect
+
+    src = inspect.getsource(gear_cli)
+    for flag in ("--face-width", "--width", "-b"):
+        if f'"{flag}"' in src:
+            return flag
+    return None
+
+
+def process_times(runs: int = 5):
+    """Median whole-process wall time (s) over ``runs`` runs for each reference gear."""
+    stl = mesh_export_available()
+    width_flag = _face_width_flag() if stl else None
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for name, flags, b in REFERENCE_GEARS:
+            out = os.path.join(tmp, "gear.stl" if stl else "gear.dxf")
+            cmd = _gearkit_command() + ["gear"] + flags + ["--tol", str(TOL_MM), "-o", out]
+            if stl and width_flag:
+                cmd += [width_flag, str(b)]
+            times, ok, err = [], True, ""
+            for _ in range(runs):
+                t0 = time.perf_counter()
+                proc = subprocess.run(cmd, capture_output=True, text=True)
+                times.append(time.perf_counter() - t0)
+                if proc.returncode != 0:
+                    ok, err = False, proc.stderr.strip().splitlines()[-1:] or [""]
+                    break
+            rows.append({"gear": name, "output": "stl" if stl else "dxf (2D; no mesh export yet)",
+                         "tol": TOL_MM, "seconds": float(np.median(times)), "runs": len(times), "ok": ok,
+                         **({"error": err[0]} if not ok else {})})
+    return rows

@@ -1,0 +1,166 @@
+"""2D profiles: the accuracy ladder, scaling in z, and the kernel's overhead over the bare closed form.
+
+The achieved deviation is measured **independently** of the sampler: every exact piece of
+tooth 1's boundary (``ToothProfile.half.pieces``, mirrored for the left flank, rotated to
+where tooth 1 sits) is evaluated at many parameters, and the largest distance from those
+exact points to the gear's output outline is taken (:func:`gearkit.accuracy.distances_to_polyline`).
+The sampler's own number is not used.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from gearkit.accuracy import distances_to_polyline
+from gearkit.bench.timing import baseline_seconds, median_time
+
+#: requested tolerances of the ladder, in modules
+LADDER_TOLS = (1e-1, 1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7)
+#: tooth counts of the scaling run
+SCALING_TEETH = (10, 100, 1000, 10000)
+#: the exact pieces are evaluated at this many times as many parameters as the half tooth has vertices
+DENSITY = 24
+#: geometric grading of the dense parameters towards each piece's ends (the sampler refines there most)
+_ENDS = np.geomspace(1e-9, 1e-2, 60)
+
+
+def _dense_parameters(n: int):
+    w = np.concatenate([np.linspace(0.0, 1.0, n), _ENDS, 1.0 - _ENDS])
+    return np.unique(w)
+
+
+def exact_tooth_points(prof, n_half: int, tooth: int = 1):
+    """Dense points on the exact boundary of tooth ``tooth`` (both halves), ``(k, 2)`` float64, mm."""
+    pieces = prof.half.pieces
+    per_piece = int(min(max(DENSITY * n_half // len(pieces), 400), 200_000))
+    w = _dense_parameters(per_piece)
+    right = np.concatenate([p(w) for p in pieces])
+    pts = np.concatenate([right, right * np.array([-1.0, 1.0])])
+    ang = 2.0 * math.pi * tooth / prof.teeth
+    c, s = math.cos(ang), math.sin(ang)
+    return np.stack([c * pts[:, 0] - s * pts[:, 1], s * pts[:, 0] + c * pts[:, 1]], -1)
+
+
+def measured_deviation(prof, outline, n_half: int, tooth: int = 1) -> float:
+    """Largest distance (mm) from the exact boundary of tooth ``tooth`` to the output ``outline``.
+
+    Only the outline vertices of that tooth and its neighbours' halves are searched (the outline
+    is ``teeth`` copies of one tooth polyline of ``len(outline) // teeth`` vertices).
+    """
+    z = prof.teeth
+    n_t = len(outline) // z
+    idx = np.arange(tooth * n_t - n_t // 2, (tooth + 1) * n_t + n_t // 2 + 1) % len(outline)
+    window = outline[idx]
+    exact = exact_tooth_points(prof, n_half, tooth)
+    return float(distances_to_polyline(exact, window).max())
+
+
+def _involute_cases(quick: bool):
+    from gearkit.families.involute import GearSpec
+    from gearkit.tools import ShaperCutter
+
+    cases = [("spur z=40", GearSpec(40, 1.0))]
+    if not quick:
+        cases += [("helical z=20 beta=20", GearSpec(20, 1.0, 0.2, helix_angle_deg=20.0)),
+                  ("undercut z=8", GearSpec(8, 1.0)),
+                  ("internal z=60 z0=20", GearSpec(60, 1.0, internal=True, tool=ShaperCutter(20)))]
+    return cases
+
+
+def _generate_and_sample(spec, tol):
+    from gearkit.families.involute import tooth_profile
+
+    prof = tooth_profile.__wrapped__(spec)  # bypass the cache: time the whole path
+    return prof, prof.outline(tol)
+
+
+def profile_row(family, case, spec, tol_m, repeats):
+    """One ladder rung: generate + sample at ``tol_m`` modules; time, count, measure."""
+    tol = tol_m * spec.module
+    seconds, (prof, outline) = median_time(lambda: _generate_and_sample(spec, tol), repeats)
+    n_half = len(prof.half_points(tol)[0])
+    achieved = measured_deviation(prof, outline, n_half)
+    return {"family": family, "product": "profile", "case": case, "tol": tol, "tol_m": tol_m,
+            "achieved": achieved, "ratio": achieved / tol, "sampler_achieved": prof.achieved(tol),
+            "vertices": int(len(outline)), "seconds": seconds}
+
+
+def involute_ladder(quick: bool, repeats: int):
+    rows = []
+    for case, spec in _involute_cases(quick):
+        for tol_m in LADDER_TOLS:
+            rows.append(profile_row("involute", case, spec, tol_m, repeats))
+    return rows
+
+
+def involute_scaling(quick: bool, repeats: int):
+    """Time and vertex count for z = 10 ... 10000 (tol 1e-3 m; also 1e-6 m unless quick)."""
+    from gearkit.families.involute import GearSpec
+
+    rows = []
+    for tol_m in ((1e-3,) if quick else (1e-3, 1e-6)):
+        for z in SCALING_TEETH:
+            spec = GearSpec(z, 1.0)
+            seconds, (prof, outline) = median_time(lambda: _generate_and_sample(spec, tol_m), repeats)
+            n_half = len(prof.half_points(tol_m)[0])
+            rows.append({"family": "involute", "product": "profile", "teeth": z, "tol": tol_m,
+                         "achieved": measured_deviation(prof, outline, n_half), "vertices": int(len(outline)),
+                         "seconds": seconds})
+    rows += rack_scaling(quick, repeats)
+    return rows
+
+
+def rack_scaling(quick: bool, repeats: int):
+    """The rack (z = infinity) row: one tooth of the rack a 20-tooth shaper cutter generates."""
+    try:
+        from gearkit.families.rack import RackSpec, rack_profile
+    except ImportError:
+        return [{"family": "involute", "product": "profile", "teeth": "rack", "available": False,
+                 "note": "the kernel has no rack (z = infinity) profile"}]
+    from gearkit.tools import ShaperCutter
+
+    spec = RackSpec(1.0, tool=ShaperCutter(20))
+    rows = []
+    for tol_m in ((1e-3,) if quick else (1e-3, 1e-6)):
+        def run():
+            prof = rack_profile.__wrapped__(spec)
+            return prof, prof.outline(tol_m)
+
+        seconds, (prof, outline) = median_time(run, repeats)
+        pieces = prof.half.pieces
+        w = _dense_parameters(int(min(max(DENSITY * len(prof.half_points(tol_m)[0]), 400), 200_000)))
+        right = np.concatenate([p(w) for p in pieces])
+        exact = np.concatenate([right, right * np.array([-1.0, 1.0])])
+        achieved = float(distances_to_polyline(exact, outline).max())
+        rows.append({"family": "involute", "product": "profile", "teeth": "rack", "tol": tol_m,
+                     "achieved": achieved, "vertices": int(len(outline)), "seconds": seconds,
+                     "note": "one tooth of a rack cut by a 20-tooth shaper cutter"})
+    return rows
+
+
+def overhead(repeats: int = 21):
+    """Kernel time for the z = 40 involute outline at tol 1e-6 m over numpy's time for the same
+    number of closed-form involute points.
+
+    Returns a dict with ``overhead_ratio`` (whole path: spec -> outline, uncached),
+    ``overhead_ratio_sampling`` (outline of an already generated profile), the two times, the
+    baseline time and the point count.
+    """
+    from gearkit.families.involute import GearSpec, tooth_profile
+
+    spec = GearSpec(40, 1.0)
+    tol = 1e-6 * spec.module
+    kernel, (prof, outline) = median_time(lambda: _generate_and_sample(spec, tol), repeats, budget=3.0)
+    gen = tooth_profile.__wrapped__(spec)
+
+    def sample_only():
+        gen._cache.clear()
+        return gen.outline(tol)
+
+    sampling, _ = median_time(sample_only, repeats, budget=3.0)
+    n = len(outline)
+    base = baseline_seconds(n, spec.base_diameter / 2.0, spec.blank_tip_diameter / 2.0, repeats)
+    return {"overhead_ratio": kernel / base, "overhead_ratio_sampling": sampling / base, "kernel_seconds": kernel,
+            "sampling_seconds": sampling, "baseline_seconds": base, "points": int(n), "teeth": 40,
+            "tol": tol, "target": 5.0}

@@ -1,0 +1,48 @@
+"""Wall-clock timing for the bench: the median of repeats, and the closed-form baseline.
+
+The median (not the mean, not the minimum) of several repeats is what a user sees on a
+warm interpreter; the spread is reported beside it so a noisy machine shows as noise.
+"""
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+
+
+def median_time(fn, repeats: int = 5, budget: float = 2.0):
+    """Median wall time (s) of ``fn()`` over ``repeats`` calls (fewer if they exceed ``budget`` s).
+
+    Returns
+    -------
+    seconds : float, the median
+    result : whatever the last call returned
+    """
+    times, result = [], None
+    start = time.perf_counter()
+    for i in range(max(1, repeats)):
+        t0 = time.perf_counter()
+        result = fn()
+        times.append(time.perf_counter() - t0)
+        if i >= 2 and time.perf_counter() - start > budget:
+            break
+    return float(np.median(times)), result
+
+
+def closed_form_involute(n: int, base_radius: float, roll_max: float):
+    """The bare closed form: ``n`` points of an involute of the base circle, ``(n, 2)`` float64, mm.
+
+    x = r_b (cos t + t sin t), y = r_b (sin t - t cos t) for roll angles t in [0, roll_max]:
+    the least work any method must do to put ``n`` involute points in an array.
+    """
+    t = np.linspace(0.0, roll_max, n)
+    c, s = np.cos(t), np.sin(t)
+    return np.stack([base_radius * (c + t * s), base_radius * (s - t * c)], -1)
+
+
+def baseline_seconds(n: int, base_radius: float = 1.0, tip_radius: float = 1.1, repeats: int = 21) -> float:
+    """Median time (s) numpy needs to evaluate ``n`` points of the closed-form involute."""
+    roll_max = math.sqrt(max((tip_radius / base_radius) ** 2 - 1.0, 1e-12))
+    seconds, _ = median_time(lambda: closed_form_involute(n, base_radius, roll_max), repeats, budget=1.0)
+    return seconds
