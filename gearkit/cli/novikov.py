@@ -1,0 +1,168 @@
+"""``gearkit novikov``: generate and check a Novikov (circular-arc) pair.
+
+Usage::
+
+    gearkit novikov --z1 20 --z2 60 -m 4 --helix-angle-deg 15 --width 60
+                    [--rack dca24|single-arc|FILE.toml] [--center-distance A] [--json]
+                    [-o profile.svg|profile.dxf|profile.csv|profile.json|pair.obj|gear.stl]
+
+Exit status: 0 when no finding fails, 1 when one fails, 2 for bad input.
+"""
+from __future__ import annotations
+
+import json
+import math
+import sys
+from pathlib import Path
+
+from gearkit.errors import SpecError
+
+_3D = (".obj", ".stl", ".glb", ".ply", ".off", ".3mf")
+
+
+def register(subparsers) -> None:
+    p = subparsers.add_parser(
+        "novikov", help="generate and check a Novikov (circular-arc) pair: overlap, arcs, sensitivity, mesh",
+        description="Generate a Novikov (Wildhaber-Novikov) circular-arc gear pair with its racks and check it "
+                    "(lengths in mm, angles in degrees). The preset racks are NOT verified against the "
+                    "standards: verify against the standard before production.",
+        epilog="Exit status: 0 no finding fails, 1 a finding fails, 2 bad input.")
+    g = p.add_argument_group("pair")
+    g.add_argument("--z1", type=int, help="pinion teeth (required)")
+    g.add_argument("--z2", type=int, help="wheel teeth (required)")
+    g.add_argument("-m", "--module", type=float, help="normal module m_n, mm (required)")
+    g.add_argument("--helix-angle-deg", type=float, help="helix angle beta, degrees (required; 0 fails the "
+                   "overlap check)")
+    g.add_argument("--width", type=float, help="face width b, mm (required)")
+    g.add_argument("--rack", default="dca24", help="rack system: dca24 (double arc, 24 deg), single-arc, or a "
+                   "TOML rack file (default dca24)")
+    g.add_argument("--center-distance", type=float, help="operating centre distance a_w, mm (default: the "
+                   "reference a = m_n (z1 + z2) / (2 cos beta))")
+    lim = p.add_argument_group("limits")
+    lim.add_argument("--min-overlap-ratio", type=float, help="warn below this eps_beta (default 1.1; fail below 1)")
+    out = p.add_argument_group("output")
+    out.add_argument("--no-mesh", action="store_true", help="skip the simulated mesh (contact and interference)")
+    out.add_argument("--tol", type=float, help="sampling tolerance of outlines, mm (default 1e-3 m_n for files)")
+    out.add_argument("--json", action="store_true", help="print one JSON object")
+    out.add_argument("-o", "--output", help="write the pair in mesh: 2D .svg .dxf .csv .json, or 3D .obj .stl "
+                     "(a 3D file of one gear when named gear*.stl|obj)")
+    p.set_defaults(run=run)
+
+
+def _spec(args):
+    from gearkit.families.novikov import NovikovPairSpec
+
+    for name, flag in (("z1", "--z1"), ("z2", "--z2"), ("module", "-m/--module"),
+                       ("helix_angle_deg", "--helix-angle-deg"), ("width", "--width")):
+        if getattr(args, name) is None:
+            raise SpecError(flag, "is required")
+    return NovikovPairSpec(args.z1, args.z2, args.module, args.helix_angle_deg, args.width, args.rack,
+                           args.center_distance)
+
+
+def _placed_outlines(spec, tol):
+    """Both outlines in mesh (zone 0's contact), gear 1 at the origin, gear 2 at (0, a_w)."""
+    import numpy as np
+
+    from gearkit.families.novikov import tooth_profile
+    from gearkit.families.novikov_mesh import mesh_contact
+
+    c = mesh_contact(spec, 0, interference=False)
+    loops = []
+    for k in (0, 1):
+        a = c.rotations[k]
+        rot = np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]])
+        pts = tooth_profile(spec.gear(k + 1)).outline(tol) @ rot.T
+        loops.append(pts + (np.array([0.0, c.center_distance]) if k else 0.0))
+    return loops
+
+
+def _write(spec, path, tol, info):
+    suffix = Path(path).suffix.lower()
+    if suffix in _3D:
+        try:
+            from gearkit import solids  # noqa: F401  (built by the solids module when available)
+        except ImportError:
+            raise SpecError("output", f"3D export ({suffix}) needs gearkit.solids, which this installation "
+                            "does not have yet; write a 2D profile (.svg .dxf .csv .json)") from None
+        return _write_3d(spec, path, tol)
+    from gearkit.export import write_profile
+
+    return write_profile(path, _placed_outlines(spec, tol), info)
+
+
+def _write_3d(spec, path, tol):  # pragma: no cover - depends on gearkit.solids
+    from gearkit import solids
+
+    gear_only = Path(path).name.lower().startswith("gear")
+    writer = getattr(solids, "export_pair", None) if not gear_only else getattr(solids, "export_gear", None)
+    if writer is None:
+        raise SpecError("output", "gearkit.solids has no helical export for this file yet")
+    from gearkit.families.novikov import tooth_profile
+
+    profiles = [tooth_profile(spec.gear(k)) for k in (1, 2)]
+    return writer(path, profiles[0] if gear_only else profiles, spec)
+
+
+def run(args) -> int:
+    from gearkit.checks.novikov import NovikovLimits, check_novikov
+
+    spec = _spec(args)
+    limits = NovikovLimits() if args.min_overlap_ratio is None else NovikovLimits(args.min_overlap_ratio)
+    if args.tol is not None and not (math.isfinite(args.tol) and args.tol > 0):
+        raise SpecError("--tol", f"{args.tol!r} must be a positive length in mm")
+    result = check_novikov(spec, limits, simulate=not args.no_mesh)
+    info = result.to_dict()
+    if args.output:
+        tol = args.tol if args.tol is not None else 1e-3 * spec.module
+        _write(spec, args.output, tol, {k: info[k] for k in ("center_distance", "overlap_ratio", "contact_radii")})
+        info["output"] = args.output
+    print(json.dumps(info, indent=2) if args.json else format_report(result))
+    return 0 if result.ok else 1
+
+
+def _fmt(v, width) -> str:
+    if not math.isfinite(v):
+        return f"{v:>{width}}"
+    return f"{v:{width}.2e}" if 0 < abs(v) < 5e-4 else f"{v:{width}.4f}"
+
+
+def format_report(result) -> str:
+    """The compact human report of ``gearkit novikov``."""
+    g = result.geometry
+    s = g.spec
+    deg = math.degrees
+    lines = [
+        f"gearkit novikov: {g.kind} pair, z1 = {s.teeth1}, z2 = {s.teeth2}, m_n = {g.module:g} mm, "
+        f"beta = {deg(g.helix_angle):g} deg, b = {s.face_width:g} mm, racks {s.racks.name}"
+        + ("" if s.racks.verified else " (UNVERIFIED)"),
+        f"  a {g.reference_center_distance:.4f} mm   a_w {g.center_distance:.4f} mm   m_t {g.transverse_module:.5f}"
+        f"   p_x {g.axial_pitch:.4f} mm   eps_beta {g.overlap_ratio:.5f}   eps_alpha 0 (by design)",
+        f"  alpha_k {deg(g.contact_angle):.4f} deg   alpha_t {deg(g.contact_angle_transverse):.4f} deg   "
+        f"+0.01 m_n -> {deg(g.sensitivity):+.3f} deg   backlash {g.backlash:.4f} mm",
+        "",
+        "  zone  convex   height     R_K1       R_K2       lead1       lead2",
+    ]
+    for c in g.contacts:
+        lead = ["%11.3f" % v if math.isfinite(v) else "        inf" for v in c.leads]
+        lines.append(f"  {c.zone:<6}gear {c.convex_gear}{c.height:9.4f}{c.radii[0]:11.4f}{c.radii[1]:11.4f}"
+                     f"{lead[0]} {lead[1]}")
+    lines += ["", "  gear   z      d_a        d_f       s_a", ]
+    for k, prof in enumerate(result.profiles, start=1):
+        lines.append(f"  {k:<5}{prof.teeth:>3}{prof.tip_diameter:11.4f}{prof.root_diameter:11.4f}"
+                     f"{prof.tip_thickness:10.4f}")
+    lines += ["", "     status  check                          value      limit  note"]
+    for f in result.report:
+        mark = {"fail": "!! FAIL  ", "warn": " ! warn  ", "ok": "   ok    "}[f.status]
+        bound = {"min": ">=", "max": "<="}.get(f.sense, "  ")
+        val, lim = _fmt(f.value, 10), (_fmt(f.limit, 9) if f.limit is not None else " " * 9)
+        lines.append(f"  {mark}{f.id:<27}{val} {bound}{lim}  {f.message}")
+    r = result.report
+    lines.append(f"result: {r.status.upper()} ({len(r.failures)} failing, {len(r.warnings)} warning"
+                 f"{'' if len(r.warnings) == 1 else 's'})")
+    return "\n".join(lines)
+
+
+if __name__ == "__main__":  # pragma: no cover
+    from gearkit.cli import main
+    sys.exit(main(["novikov", *sys.argv[1:]]))
