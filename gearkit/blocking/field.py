@@ -1,0 +1,349 @@
+"""The design check of a pair as functions of the shifts: margins at any point (x1, x2).
+
+A :class:`PairField` holds a pair without shifts (a :class:`~gearkit.pair.PairSpec` whose shifts
+are ignored) and evaluates, at any (x1, x2), the margins the blocking lines are level sets of.
+Every margin is read off the same :func:`~gearkit.pair.pair_geometry` and the same check functions
+as :func:`~gearkit.checks.check_pair` (:func:`~gearkit.checks.involute.fail_margins`,
+:func:`~gearkit.checks.internal.exit_jamming_margin`, :func:`~gearkit.checks.internal.plunge_trimming`,
+:func:`~gearkit.checks.min_shift_undercut`): there is one implementation of each check.
+
+Form circles. The check reads each gear's form circle off the generated gear. A rack- or
+shaper-cut gear that is not undercut (``rho_l >= 0``) has its form circle where the closed form
+puts it (the generated one agrees to rounding), so the closed form is used there; an undercut
+gear's form circle comes from the generated gear, cached per (gear, x): it does not depend on
+the tip diameter. Only the margins that depend on a form circle (real contact ratio,
+interference, sliding at the ends of the real path) ask for it.
+
+Units: lengths in module units (margin / m_n), angles in radians, ratios as they are.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+from gearkit.checks.involute import fail_margins, min_shift_undercut
+from gearkit.checks.limits import CheckLimits
+from gearkit.errors import SpecError, require
+from gearkit.pair.geometry import pair_geometry
+from gearkit.pair.spec import PairSpec
+from gearkit.pair.tooling import form_roll, section
+
+__all__ = ["LineDef", "PairField"]
+
+NAN = float("nan")
+FORM_NODES = 16  #: Chebyshev nodes of the undercut form-circle interpolant
+FORM_GAP = 0.005  #: the interpolant ends this far below the undercut onset
+FORM_CHECKS = 3  #: test shifts of the interpolant
+FORM_MARGIN = 0.1  #: the interpolant reaches this far below the window
+
+
+@dataclass(frozen=True)
+class LineDef:
+    """One line of a blocking contour: the level ``margin = 0`` of a named quantity.
+
+    Parameters
+    ----------
+    name : str
+        Stable id, e.g. ``"interference.1"``, ``"tip_thickness.1=0.25"``.
+    code : str
+        Short tag for pictures: ``B1`` ... ``B6`` for the hard lines (reference digest 2.2), ``Q`` for
+        quality lines, ``R`` for reference lines, ``C`` for lines of constant centre distance.
+    label : str
+        Plain-language meaning, with the admissible side.
+    hard : bool
+        True when crossing it makes :func:`~gearkit.checks.check_pair` fail.
+    finding : str or None
+        The id of the check finding this line is the limit of.
+    needs : (bool, bool)
+        Whether the margin needs the generated form circle of gear 1 / gear 2.
+    """
+
+    name: str
+    code: str
+    label: str
+    hard: bool
+    finding: str | None
+    needs: tuple = (False, False)
+
+
+class PairField:
+    """Margins of the design check of ``template`` at any shifts (x1, x2) (module units).
+
+    Parameters
+    ----------
+    template : PairSpec
+        External or internal pair; its shifts, centre distance and tip diameters are ignored
+        (each point gets the tight mesh and the tips of ``template.tip_rule``).
+    limits : CheckLimits
+        The check's limits (warn levels: tip thickness, contact ratio).
+    tip_levels : tuple of float
+        Tip-thickness quality levels s_an / m_n (default 0.25 and 0.4).
+    contact_levels : tuple of float
+        Contact-ratio quality levels (default 1.2).
+    center_distances : tuple of float, mm
+        Centre distances whose lines (constant a_w) are wanted.
+    """
+
+    def __init__(self, template: PairSpec, limits: CheckLimits = CheckLimits(), tip_levels=(0.25, 0.4),
+                 contact_levels=(1.2,), center_distances=(), x_ranges=None):
+        require(isinstance(template, PairSpec), "pair", "must be a PairSpec")
+        require(template.kind in ("external", "internal"), "kind",
+                "a blocking contour needs two gears with shifts (external or internal, not a rack pair)")
+        self.template = replace(template, shift1=0.0, shift2=0.0, center_distance=None,
+                                tip_diameter1=None, tip_diameter2=None)
+        self.limits = limits
+        self.internal = template.kind == "internal"
+        self.module = float(template.module)
+        self.tip_levels = tuple(sorted({float(v) for v in tip_levels}))
+        self.contact_levels = tuple(sorted({float(v) for v in contact_levels}))
+        for v in self.tip_levels:
+            require(math.isfinite(v) and 0.0 < v < 2.0, "tip_levels", f"{v!r} must be in (0, 2) (module units)")
+        for v in self.contact_levels:
+            require(math.isfinite(v) and 1.0 < v < 3.0, "contact_levels", f"{v!r} must be in (1, 3)")
+        self.center_distances = tuple(float(a) for a in center_distances)
+        for a in self.center_distances:
+            require(math.isfinite(a) and a > 0, "center_distances", f"{a!r} must be a positive length in mm")
+        self._sec = section(template.module, template.alpha_n_deg, template.helix_angle_deg)
+        self._forms = {}
+        self._fits = {}
+        self._points = {}
+        self.exact_forms = x_ranges is None
+        self.x_ranges = None if x_ranges is None else ((x_ranges[0], x_ranges[1]), (x_ranges[2], x_ranges[3]))
+        # undercut onset of each external gear (x_min of the check's undercut finding)
+        self.x_min = tuple(None if (self.internal and i == 2) else min_shift_undercut(self.template, i)
+                           for i in (1, 2))
+        self.lines = self._line_defs()
+        self.by_name = {d.name: d for d in self.lines}
+        self.hard = tuple(d.name for d in self.lines if d.hard)
+
+    # -- lines ------------------------------------------------------------------------------
+    def _line_defs(self) -> tuple:
+        ring = self.internal
+        out = [
+            LineDef("interference.1", "B1", "tip of gear 2 in the fillet of gear 1 (interference; admissible: "
+                    "the active profile of gear 1 starts on its involute)", True, "interference.1", (True, False)),
+            LineDef("interference.2", "B2", "tip of gear 1 in the fillet of gear 2 (interference)", True,
+                    "interference.2", (False, True)),
+            LineDef("contact_ratio=1", "B3", "eps_alpha = 1 (the check's contact ratio; admissible above)", True,
+                    "contact_ratio"),
+            LineDef("pointing.1", "B4", "s_a1 = 0: gear 1 pointed (admissible: thicker tips)", True, "pointing.1"),
+            LineDef("pointing.2", "B5", "s_a2 = 0: gear 2 pointed", True, "pointing.2"),
+            LineDef("tip_clearance.1", "B", "tip of gear 1 hits the root of gear 2", True, "tip_clearance.1"),
+            LineDef("tip_clearance.2", "B", "tip of gear 2 hits the root of gear 1", True, "tip_clearance.2"),
+        ]
+        if ring:
+            out += [LineDef("exit_jamming", "B6", "exit jamming: tip interference on leaving mesh", True,
+                            "exit_jamming"),
+                    LineDef("trimming.plunge", "B6", "the shaper trims the ring while plunging", True,
+                            "trimming.plunge")]
+        for i in (1, 2):
+            if self.x_min[i - 1] is not None:
+                out.append(LineDef(f"undercut.{i}", "Q", f"undercut onset of gear {i}: x{i} = x{i},min "
+                                   "(admissible: no undercut on the larger side)", False, f"undercut.{i}"))
+        for i in (1, 2):
+            for v in self.tip_levels:
+                out.append(LineDef(f"tip_thickness.{i}={v:g}", "Q", f"s_a{i} = {v:g} m_n", False, f"pointing.{i}"))
+        for v in self.contact_levels:
+            out.append(LineDef(f"contact_ratio={v:g}", "Q", f"eps_alpha = {v:g}", False, "contact_ratio"))
+        for v in (1.0,) + self.contact_levels:
+            out.append(LineDef(f"contact_ratio_tip={v:g}", "R", f"eps_alpha = {v:g} tip to tip (the atlas' "
+                               "line; equals the real one wherever B1 and B2 hold" + (" and the ring is not "
+                               "trimmed)" if ring else ")"), False, None))
+        out.append(LineDef("sliding", "Q", "equal specific sliding at the ends of the path, |zeta1| = |zeta2|",
+                           False, None))
+        if ring:
+            out.append(LineDef("trimming.nu", "Q", "ring tip circle on O2N_u (inside it the shaper trims the "
+                               "ring's involute)", False, "trimming.nu"))
+        for a in self.center_distances:
+            out.append(LineDef(f"center_distance={a:g}", "C", f"a_w = {a:g} mm", False, None))
+        return tuple(out)
+
+    # -- evaluation -------------------------------------------------------------------------
+    def spec(self, x1: float, x2: float) -> PairSpec:
+        """The pair at shifts (x1, x2) (tight mesh)."""
+        return replace(self.template, shift1=float(x1), shift2=float(x2))
+
+    def undercut(self, which: int, x: float) -> bool:
+        """True when the closed form says gear ``which`` is undercut at shift ``x`` (rho_l < 0)."""
+        if which == 2 and self.internal:
+            return False
+        t = self.template
+        z = t.teeth1 if which == 1 else t.teeth2
+        return form_roll(self._sec, z, float(x), t.tools[which - 1], False) < 0
+
+    def form_diameter(self, which: int, x: float, exact: bool = True):
+        """d_F (mm) of gear ``which`` at shift ``x`` as generated, or None where the closed form is exact.
+
+        ``exact=False`` reads an undercut gear's form circle off a Chebyshev interpolant of the
+        generated ones over ``x_ranges`` (see :meth:`form_interpolant`) instead of generating the gear.
+        """
+        if not self.undercut(which, x):
+            return None
+        if not exact and self.x_ranges is not None:
+            fit = self.form_interpolant(which)
+            if fit is not None and fit[0] <= x <= self.x_min[which - 1]:
+                return fit[3](x)
+        key = (which, float(x))
+        if key not in self._forms:
+            from gearkit.families.involute import tooth_profile
+
+            from gearkit.families.involute import GearSpec
+
+            t = self.template
+            # the check's gear (gear_specs) with its own blank tip: the form circle does not depend on it
+            z, beta, thin = ((t.teeth1, t.helix_angle_deg, t.thinning1) if which == 1 else
+                             (t.teeth2, -t.helix_angle_deg, t.thinning2))
+            try:
+                gspec = GearSpec(z, t.module, float(x), beta, False, t.tools[which - 1], None, thin)
+                self._forms[key] = tooth_profile(gspec).form_diameter
+            except SpecError:
+                self._forms[key] = math.nan
+        return self._forms[key]
+
+    def form_interpolant(self, which: int):
+        """(lo, hi, error, d_F(x)) interpolating the generated form circle of an undercut gear.
+
+        Chebyshev interpolation, ``FORM_NODES`` nodes, of the roll length rho_F(x) over the undercut
+        part ``[lo, hi]`` of ``x_ranges[which - 1]`` that ends ``FORM_GAP`` below the undercut onset
+        (closer to it the generated form circle is not smooth); ``error`` is the largest deviation
+        (mm) from the generated gears at ``FORM_CHECKS`` test shifts. None without undercut.
+        """
+        if which in self._fits:
+            return self._fits[which]
+        fit = None
+        x_min = self.x_min[which - 1]
+        lo, hi = self.x_ranges[which - 1]
+        lo -= FORM_MARGIN
+        hi = min(hi, x_min - FORM_GAP) if x_min is not None else lo
+        if x_min is not None and hi > lo:
+            import numpy as np
+
+            t = self.template
+            z = t.teeth1 if which == 1 else t.teeth2
+            rb = z * self._sec.mt * math.cos(self._sec.alpha_t) / 2
+
+            def roll(x):
+                d = self.form_diameter(which, float(x))
+                return math.sqrt(max((d / 2) ** 2 - rb ** 2, 0.0))
+
+            n = FORM_NODES
+            nodes = np.cos(math.pi * (np.arange(n) + 0.5) / n)
+            xs = (lo + hi) / 2 + (hi - lo) / 2 * nodes
+            coef = np.polynomial.chebyshev.chebfit(nodes, [roll(x) for x in xs], n - 1)
+
+            r_hi = float(np.polynomial.chebyshev.chebval(1.0, coef))
+
+            def interp(x, _c=coef, _lo=lo, _hi=hi, _rb=rb, _x0=x_min, _r_hi=r_hi):
+                if x > _hi:  # the last FORM_GAP: straight to rho_F = 0 at the onset
+                    r = _r_hi * (_x0 - x) / (_x0 - _hi)
+                else:
+                    r = float(np.polynomial.chebyshev.chebval((2 * x - _lo - _hi) / (_hi - _lo), _c))
+                return 2.0 * math.hypot(_rb, r)
+
+            tests = lo + (hi - lo) * (np.arange(FORM_CHECKS) + 0.5) / FORM_CHECKS
+            err = max(abs(interp(x) - self.form_diameter(which, float(x))) / 2 for x in tests)
+            fit = (lo, hi, err, interp)
+        self._fits[which] = fit
+        return fit
+
+    def point(self, x1: float, x2: float, exact: bool | None = None) -> "FieldPoint":
+        """The lazily evaluated pair at (x1, x2); ``exact``: generated form circles (default: the
+        field's setting; the check's own, exact ones when no ``x_ranges`` were given)."""
+        exact = self.exact_forms if exact is None else bool(exact)
+        key = (float(x1), float(x2), exact)
+        pt = self._points.get(key)
+        if pt is None:
+            if len(self._points) > 50000:
+                self._points.clear()
+            pt = self._points[key] = FieldPoint(self, *key)
+        return pt
+
+    def margin(self, name: str, x1: float, x2: float) -> float:
+        """Margin of line ``name`` at (x1, x2): >= 0 on the admissible side; NaN where no pair exists."""
+        return self.point(x1, x2).margin(name)
+
+
+class FieldPoint:
+    """Lazy evaluation of one shift pair: geometry and margins computed on first use, then kept."""
+
+    __slots__ = ("field", "x1", "x2", "exact", "_geo", "_m", "_invalid")
+
+    def __init__(self, field: PairField, x1: float, x2: float, exact: bool = True):
+        self.field, self.x1, self.x2, self.exact = field, x1, x2, exact
+        self._geo, self._m, self._invalid = {}, {}, None
+
+    @property
+    def valid(self) -> bool:
+        """False where no pair exists at these shifts (the check raises a SpecError there)."""
+        if self._invalid is None:
+            try:
+                self.geometry()
+                self._invalid = ""
+            except SpecError as exc:
+                self._invalid = str(exc)
+        return not self._invalid
+
+    def geometry(self, needs=(False, False)):
+        """The pair geometry, with the generated form circles of the gears flagged in ``needs``."""
+        f = self.field
+        forms = tuple(f.form_diameter(i + 1, x, exact=self.exact) if need else None
+                      for i, (need, x) in enumerate(zip(needs, (self.x1, self.x2))))
+        if any(d is not None and math.isnan(d) for d in forms):
+            raise SpecError("shift", "the generated gear has no tooth at this shift")
+        key = forms if any(d is not None for d in forms) else None
+        g = self._geo.get(key)
+        if g is None:
+            g = self._geo[key] = pair_geometry(f.spec(self.x1, self.x2), key)
+        return g
+
+    def margin(self, name: str) -> float:
+        m = self._m.get(name)
+        if m is None:
+            try:
+                m = self._compute(name)
+            except SpecError:
+                m = NAN
+            self._m[name] = m
+        return m
+
+    def _compute(self, name: str) -> float:
+        f = self.field
+        mn = f.module
+        base, _, level = name.partition("=")
+        if base.startswith("undercut."):
+            i = int(base[-1])
+            return (self.x1, self.x2)[i - 1] - f.x_min[i - 1]
+        d = f.by_name.get(name)
+        g = self.geometry(d.needs if d is not None else (False, False))
+        if base in ("interference.1", "interference.2", "pointing.1", "pointing.2", "tip_clearance.1",
+                    "tip_clearance.2"):
+            return fail_margins(g)[base] / mn
+        if name == "contact_ratio=1":
+            return fail_margins(g)["contact_ratio"]
+        if base == "contact_ratio":
+            return g.contact_ratio - float(level)
+        if base == "contact_ratio_tip":
+            return g.contact_ratio_nominal - float(level)
+        if base.startswith("tip_thickness."):
+            return g.gears[int(base[-1]) - 1].tip_thickness_normal / mn - float(level)
+        if base == "sliding":
+            z1 = g.specific_sliding["start"][0]
+            z2 = g.specific_sliding["end"][1]
+            return abs(z1) - abs(z2)
+        if base == "exit_jamming":
+            from gearkit.checks.internal import exit_jamming_margin
+            return exit_jamming_margin(g)
+        if base == "trimming.plunge":
+            from gearkit.checks.internal import plunge_trimming
+            gap = plunge_trimming(g)[0]
+            return gap / mn if gap > 0 else min(gap / mn, -5e-324)
+        if base == "trimming.nu":
+            from gearkit.checks.internal import nu_radius
+            return (g.gears[1].tip_diameter / 2 - nu_radius(g)) / mn
+        if base == "center_distance":
+            return (g.center_distance - float(level)) / mn
+        raise KeyError(name)
+
+    def hard_margins(self) -> dict:
+        """Every hard margin (module units / ratio / rad), NaN where no pair exists."""
+        return {n: self.margin(n) for n in self.field.hard}
