@@ -1,0 +1,136 @@
+"""``gearkit blocking``: the blocking contour of a pair -- admissible shifts, lines, recommendation.
+
+Usage::
+
+    gearkit blocking --z1 13 --z2 16 [--rack iso53a] [--helix-angle-deg 0]
+                     [--internal --cutter-teeth 20] [--mark 0.5,0.3] [-o contour.png|.svg|.json] [--json]
+
+Exit status: 0 (1 when ``--mark`` is outside the region), 2 for bad input.
+"""
+from __future__ import annotations
+
+import json
+import sys
+
+from gearkit.errors import SpecError
+
+
+def register(subparsers) -> None:
+    p = subparsers.add_parser(
+        "blocking", help="blocking contour: the map of admissible profile shifts (x1, x2) of a pair",
+        description="Trace the blocking contour of an involute pair: the lines where the design check starts "
+                    "to fail (interference B1/B2, eps_alpha = 1 B3, pointed tips B4/B5, internal jamming and "
+                    "trimming B6) and quality lines inside; shade the admissible region; recommend shifts.",
+        epilog="Exit status: 0 ok, 1 the --mark point is outside the region, 2 bad input.")
+    g = p.add_argument_group("pair")
+    g.add_argument("--z1", type=int, required=True, help="pinion teeth")
+    g.add_argument("--z2", type=int, required=True, help="wheel (or ring) teeth")
+    g.add_argument("-m", "--module", type=float, default=1.0, help="normal module m_n, mm (default 1)")
+    g.add_argument("--pressure-angle-deg", type=float, help="normal pressure angle, degrees (default 20)")
+    g.add_argument("--helix-angle-deg", type=float, default=0.0, help="helix angle beta, degrees")
+    g.add_argument("--internal", action="store_true", help="pinion inside a ring (needs --cutter-teeth)")
+    g.add_argument("--addendum", type=float, default=1.0, help="addendum coefficient h_a* (default 1)")
+    t = p.add_argument_group("tools")
+    t.add_argument("--rack", choices=("iso53a", "iso53b", "iso53c", "iso53d"), help="ISO 53 basic rack")
+    t.add_argument("--cutter-teeth", type=int, help="teeth z0 of the shaper cutter that cuts the ring")
+    t.add_argument("--cutter-addendum", type=float, default=1.25, help="the shaper's addendum h_a0* (default 1.25)")
+    t.add_argument("--pinion-cutter-teeth", type=int, help="cut the pinion with a shaper of this many teeth")
+    c = p.add_argument_group("contour")
+    c.add_argument("--window", help="x1_lo,x1_hi,x2_lo,x2_hi (default: from the undercut and pointing limits)")
+    c.add_argument("--xtol", type=float, default=1e-6, help="accuracy in x of the traced lines (default 1e-6)")
+    c.add_argument("--points", type=int, default=200, help="tracing step = window diagonal / points (default 200)")
+    c.add_argument("--criterion", choices=("balanced", "strength", "center_distance"), default="balanced",
+                   help="recommendation criterion (default balanced: equal sliding, s_a >= 0.25 m, eps >= 1.2)")
+    c.add_argument("--center-distance", type=float, help="mm: draw a_w = const and use it with "
+                   "--criterion center_distance")
+    c.add_argument("--mark", help="x1,x2: a design point to mark and test")
+    o = p.add_argument_group("output")
+    o.add_argument("-o", "--output", help="write contour.png, contour.svg or contour.json (atomically)")
+    o.add_argument("--json", action="store_true", help="print one JSON object")
+    p.set_defaults(run=run)
+
+
+def _floats(text, n, flag):
+    try:
+        vals = [float(v) for v in text.split(",")]
+    except ValueError:
+        raise SpecError(flag, f"{text!r} is not {n} comma-separated numbers") from None
+    if len(vals) != n:
+        raise SpecError(flag, f"{text!r} must have {n} comma-separated numbers")
+    return vals
+
+
+def _spec(args):
+    from gearkit.pair import PairSpec
+    from gearkit.tools import BasicRack, ShaperCutter
+
+    alpha = args.pressure_angle_deg
+    rack = BasicRack.iso53(args.rack[-1]) if args.rack else BasicRack(20.0 if alpha is None else alpha)
+    tool1 = rack
+    if args.pinion_cutter_teeth is not None:
+        tool1 = ShaperCutter(args.pinion_cutter_teeth, rack.pressure_angle_deg, 0.0, args.cutter_addendum)
+    tool2 = rack
+    if args.internal:
+        if args.cutter_teeth is None:
+            raise SpecError("--cutter-teeth", "an internal gear is cut by a shaper: give its tooth number z0")
+        tool2 = ShaperCutter(args.cutter_teeth, rack.pressure_angle_deg, 0.0, args.cutter_addendum)
+    elif args.cutter_teeth is not None:
+        raise SpecError("--cutter-teeth", "applies to internal pairs (use --pinion-cutter-teeth)")
+    return PairSpec(args.z1, args.z2, args.module, kind="internal" if args.internal else "external",
+                    pressure_angle_deg=alpha, helix_angle_deg=args.helix_angle_deg, tool1=tool1, tool2=tool2,
+                    addendum=args.addendum)
+
+
+def run(args) -> int:
+    from gearkit.blocking import blocking_contour
+
+    spec = _spec(args)
+    window = _floats(args.window, 4, "--window") if args.window else None
+    cds = (args.center_distance,) if args.center_distance else ()
+    contour = blocking_contour(spec, window=window, xtol=args.xtol, points=args.points, center_distances=cds)
+    rec = None
+    if not contour.empty:
+        rec = contour.recommend(args.criterion, args.center_distance)
+    marked = None
+    if args.mark:
+        x1, x2 = _floats(args.mark, 2, "--mark")
+        marked = contour.mark(x1, x2)
+    if args.output:
+        contour.save(args.output, rec, marked)
+    if args.json:
+        print(json.dumps(contour.to_dict(rec, marked), allow_nan=False))
+    else:
+        print(format_summary(contour, rec, marked, args.output))
+    return 1 if marked is not None and not marked["inside"] else 0
+
+
+def format_summary(contour, rec, marked, output=None) -> str:
+    t = contour.field.template
+    w = contour.window
+    out = [f"gearkit blocking: {t.kind} pair z1 = {t.teeth1}, z2 = {t.teeth2}, alpha_n = {t.alpha_n_deg:g} deg, "
+           f"beta = {t.helix_angle_deg:g} deg; window x1 [{w[0]:.3f}, {w[1]:.3f}], x2 [{w[2]:.3f}, {w[3]:.3f}]; "
+           f"lines to {contour.xtol:g} in x; {contour.seconds:.2f} s", "", "  code  line                        vertices"]
+    for ln in contour.lines:
+        n = sum(len(c) for c in ln.components)
+        out.append(f"  {ln.code:<5} {ln.name:<27} {n:>6}" + ("" if n else "   (not in the window)"))
+    out.append("")
+    if contour.empty:
+        out.append(f"region: EMPTY -- {contour.empty_reason}")
+    else:
+        from gearkit.blocking.contour import _polygon_area
+        area = sum(abs(_polygon_area(p)) for p in contour.region)
+        out.append(f"region: {len(contour.region)} polygon(s), area {area:.4f}")
+    if rec is not None:
+        out.append(f"recommended: x1 = {rec.x1:.4f}, x2 = {rec.x2:.4f} -- {rec.reason}")
+    if marked is not None:
+        verdict = "inside" if marked["inside"] else "OUTSIDE"
+        why = ", ".join(marked["binding"]) or "none"
+        out.append(f"marked x1 = {marked['x1']:g}, x2 = {marked['x2']:g}: {verdict}; violates: {why}")
+    if output:
+        out.append(f"wrote {output}")
+    return "\n".join(out)
+
+
+if __name__ == "__main__":  # pragma: no cover
+    from gearkit.cli import main
+    sys.exit(main(["blocking", *sys.argv[1:]]))
