@@ -1,4 +1,10 @@
-"""``gearkit gear``: generate one involute gear, print its key values, export its profile."""
+"""``gearkit gear``: generate one involute gear, print its key values, export its profile or solid.
+
+``-o`` with a 2D extension (.svg .dxf .csv .json) writes the transverse profile; with a mesh
+extension (.stl .obj .glb) it writes the solid (``--width`` required): spur or helical,
+``--herringbone [--gap G]``, ``--bore D [--keyway WxD]``, a ring's ``--outer-diameter`` or
+``--rim``. The mesh path imports only numpy and manifold3d for STL (trimesh for OBJ/GLB).
+"""
 from __future__ import annotations
 
 import json
@@ -35,11 +41,58 @@ def register(subparsers) -> None:
     add_tool_flags(p)
     p.add_argument("--tip-diameter", type=float, default=None, help="tip diameter d_a, mm (default d +- 2m(h_a* +- x))")
     p.add_argument("--thinning", type=float, default=0.0, help="tooth thinning for backlash, mm (normal, reference)")
-    p.add_argument("--tol", type=float, default=None, help="accuracy: max deviation of any output point or chord "
-                                                          "from the exact profile, mm (default 0.001*m)")
-    p.add_argument("-o", "--output", default=None, help="write the profile: .svg .dxf .csv .json")
+    p.add_argument("--tol", type=float, default=None, help="accuracy: max deviation of any output point, chord or "
+                   "facet from the exact profile or tooth surface, mm (default 0.001*m for 2D, 0.005*m for meshes)")
+    p.add_argument("-o", "--output", default=None, help="write the profile (.svg .dxf .csv .json) or the solid "
+                   "(.stl .obj .glb; needs --width)")
     p.add_argument("--json", action="store_true", help="print one JSON object instead of the table")
+    add_solid_flags(p)
     p.set_defaults(run=run)
+
+
+def add_solid_flags(p) -> None:
+    """Flags of the solid a mesh output builds (face width, herringbone, bore, ring rim)."""
+    g = p.add_argument_group("solid (mesh output)")
+    g.add_argument("--width", type=float, default=None, help="face width b, mm (a herringbone's total, gap included)")
+    g.add_argument("--herringbone", action="store_true", help="two helical halves of opposite hand")
+    g.add_argument("--gap", type=float, default=0.0, help="central gap of a double-helical gear, mm (with "
+                   "--herringbone; grooved a module below the root)")
+    g.add_argument("--bore", type=float, default=None, help="bore diameter, mm")
+    g.add_argument("--keyway", default=None, metavar="WxD", help="keyway width x depth in the bore, mm (e.g. 3x1.4)")
+    rim = g.add_mutually_exclusive_group()
+    rim.add_argument("--outer-diameter", type=float, default=None, help="ring gear's outer diameter, mm")
+    rim.add_argument("--rim", type=float, default=None, help="ring gear's rim thickness beyond the root, mm "
+                     "(default 2 modules)")
+    g.add_argument("--ascii", action="store_true", help="ASCII STL instead of binary")
+
+
+def keyway_from_arg(text):
+    """``"3x1.4"`` -> (3.0, 1.4); None stays None."""
+    if text is None:
+        return None
+    try:
+        w, d = (float(v) for v in text.lower().split("x"))
+    except ValueError:
+        raise SpecError("--keyway", f"{text!r} must be WIDTHxDEPTH in mm, e.g. 3x1.4") from None
+    return (w, d)
+
+
+def solid_spec_from_args(args, helix_angle_deg=None):
+    """The :class:`~gearkit.solids.SolidSpec` of the solid flags (``--width`` required)."""
+    from gearkit.solids import SolidSpec
+
+    if args.width is None:
+        raise SpecError("--width", "a mesh output needs the face width (--width, mm)")
+    return SolidSpec(args.width, helix_angle_deg, args.herringbone, args.gap, args.bore,
+                     keyway_from_arg(args.keyway), args.outer_diameter, args.rim)
+
+
+def _solid_only_flags(args) -> list:
+    flags = [("--width", args.width is not None), ("--herringbone", args.herringbone), ("--gap", bool(args.gap)),
+             ("--bore", args.bore is not None), ("--keyway", args.keyway is not None),
+             ("--outer-diameter", args.outer_diameter is not None), ("--rim", args.rim is not None),
+             ("--ascii", args.ascii)]
+    return [name for name, given in flags if given]
 
 
 def tool_from_args(args, internal: bool):
@@ -83,8 +136,35 @@ def format_summary(info: dict) -> str:
     return "\n".join(rows)
 
 
+def format_solid(info: dict) -> str:
+    """Table rows of a written solid (``Solid.summary()``)."""
+    lo, hi = info["bbox"]
+    return "\n".join([
+        f"  solid                    {info['kind']}, b = {info['width']:g} mm, {info['layers']} layer"
+        f"{'s' if info['layers'] != 1 else ''}, {info['points_per_tooth']} points per tooth",
+        f"  volume                   {info['volume']:12.3f} mm^3",
+        f"  faces                    {info['faces']:12d}",
+        f"  bounding box             " + " x ".join(f"{h - l:.4f}" for l, h in zip(lo, hi)) + " mm",
+        f"  mesh accuracy            requested {info['tol']:.3g} mm, achieved {info['achieved']:.3g} mm "
+        "(every vertex and facet from the exact tooth surface)",
+    ])
+
+
 def run(args) -> int:
+    from gearkit.export import profile_format
+
+    mesh = False
+    if args.output:
+        from gearkit.solids.export import mesh_format
+
+        mesh = mesh_format(args.output) is not None
+        if not mesh:
+            profile_format(args.output)  # reject unknown extensions before any work
+    if not mesh and _solid_only_flags(args):
+        raise SpecError(_solid_only_flags(args)[0], "applies to a mesh output (-o .stl, .obj or .glb)")
     spec, prof = build(args)
+    if mesh:
+        return _run_solid(args, spec, prof)
     tol = args.tol if args.tol is not None else 1e-3 * spec.module
     if not tol > 0:
         raise SpecError("--tol", f"{tol!r} must be a positive length in mm")
@@ -95,4 +175,23 @@ def run(args) -> int:
         write_profile(args.output, [prof.outline(tol)], info)
         info["output"] = args.output
     print(json.dumps(info, indent=2) if args.json else format_summary(info))
+    return 0
+
+
+def _run_solid(args, spec, prof) -> int:
+    from gearkit.solids import default_mesh_tol, gear_solid
+    from gearkit.solids.export import write_mesh
+
+    tol = args.tol if args.tol is not None else default_mesh_tol(spec.module)
+    if not tol > 0:
+        raise SpecError("--tol", f"{tol!r} must be a positive length in mm")
+    solid = gear_solid(prof, solid_spec_from_args(args), tol, name="gear")
+    write_mesh(args.output, [solid], ascii=args.ascii)
+    info = prof.summary(tol)
+    info["solid"] = solid.summary()
+    info["output"] = args.output
+    if args.json:
+        print(json.dumps(info, indent=2))
+    else:
+        print(format_summary(info) + "\n" + format_solid(info["solid"]))
     return 0

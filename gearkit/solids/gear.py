@@ -1,0 +1,280 @@
+"""Gear solids from any generated profile: spur, helical, herringbone, double-helical, ring.
+
+The mesh is built directly (numpy) and handed to manifold3d, which checks it:
+
+* **Side:** the tooth polyline of :mod:`gearkit.solids.surface`, repeated over the teeth, at
+  every layer height turned by ``theta(z)``; each quad split along its planned diagonal.
+* **Caps:** an external gear's end face is cut into one cell per tooth (the tooth polyline
+  closed by the chord between its space centres, triangulated once and repeated) and a core
+  (the polygon of space centres, with the bore as a hole), so the cost stays linear in the
+  teeth. A ring's end face (outer circle, teeth as a hole) is triangulated whole.
+* **Walls:** the bore (with keyway) and a ring's outer circle are straight prisms.
+
+Frame: axis z, from 0 to the face width; tooth 0 centred on +y at z = 0.
+"""
+from __future__ import annotations
+
+import math
+
+import manifold3d as m3
+import numpy as np
+
+from gearkit.errors import GeometryError, SpecError
+from gearkit.solids.solid import Solid, SolidSpec, default_mesh_tol
+from gearkit.solids.surface import plan_layers, tooth_polyline
+
+
+def circle_points(radius: float, tol: float, start: float = 0.0, multiple: int = 1) -> np.ndarray:
+    """Counter-clockwise polygon on a circle with every chord within ``tol`` (count a multiple of ``multiple``)."""
+    step = 2.0 * math.acos(max(1.0 - tol / radius, -1.0))
+    n = max(8, math.ceil(2.0 * math.pi / step))
+    n = multiple * math.ceil(n / multiple)
+    a = start + 2.0 * math.pi * np.arange(n) / n
+    return radius * np.stack([np.cos(a), np.sin(a)], -1)
+
+
+def bore_points(diameter: float, keyway, tol: float) -> np.ndarray:
+    """Counter-clockwise bore outline (mm), a keyway (width, depth) centred on +y."""
+    r = diameter / 2.0
+    if keyway is None:
+        return circle_points(r, tol)
+    w, depth = keyway
+    half = w / 2.0
+    a0 = math.atan2(math.sqrt(r * r - half * half), half)  # the keyway's right edge on the circle
+    sweep = 2.0 * math.pi - 2.0 * (math.pi / 2 - a0)
+    n = max(8, math.ceil(sweep / (2.0 * math.acos(max(1.0 - tol / r, -1.0)))))
+    a = math.pi - a0 + sweep * np.arange(n + 1) / n  # from the left edge, round the bottom
+    arc = r * np.stack([np.cos(a), np.sin(a)], -1)
+    top = r + depth
+    return np.concatenate([[[half, top], [-half, top]], arc])
+
+
+def _rotate(p, angle):
+    c, s = math.cos(angle), math.sin(angle)
+    return p @ np.array([[c, s], [-s, c]])
+
+
+def _triangulate(polygons) -> np.ndarray:
+    tri = np.asarray(m3.triangulate([np.ascontiguousarray(p, dtype=np.float64) for p in polygons]), dtype=np.int64)
+    if len(tri) == 0:
+        raise GeometryError("an end face could not be triangulated")
+    return tri.reshape(-1, 3)
+
+
+class _Section:
+    """The transverse section of one gear: tooth polyline repeated over the teeth, end faces."""
+
+    def __init__(self, poly, teeth: int, internal: bool):
+        self.tooth = poly.points  # (n + 1, 2)
+        self.n = poly.edges
+        self.z = teeth
+        self.internal = internal
+        ang = 2.0 * math.pi * np.arange(teeth) / teeth
+        c, s = np.cos(ang)[:, None], np.sin(ang)[:, None]
+        t = self.tooth[:-1]
+        self.outline = np.stack([c * t[None, :, 0] - s * t[None, :, 1],
+                                 s * t[None, :, 0] + c * t[None, :, 1]], -1).reshape(-1, 2)
+        self.count = teeth * self.n
+        self._cells = None
+        t = self.tooth
+        if not internal and (t[1:-1, 1] > t[0, 1]).all():  # the chord between space centres is inside
+            self._cells = _triangulate([t])
+            self.inradius = float(np.hypot(t[0, 0], t[0, 1])) * math.cos(math.pi / teeth)
+
+    def face(self, theta: float, base: int, wall, wall_base: int) -> np.ndarray:
+        """Triangles (counter-clockwise seen from +z) of an end face, teeth turned by ``theta``.
+
+        ``base``: index of the slice's first outline vertex; ``wall``: the CCW polygon of the
+        bore or groove (external gear: a hole, may be None) or of the rim or groove (ring),
+        whose vertices start at ``wall_base``.
+        """
+        n, count = self.n, self.count
+        fits = wall is None or np.hypot(wall[:, 0], wall[:, 1]).max() < getattr(self, "inradius", 0.0)
+        if self._cells is not None and fits:
+            k = np.arange(self.z)[:, None, None]
+            cells = ((k * n + self._cells[None]) % count + base).reshape(-1, 3)
+            zgon = _rotate(self.outline[::n], theta)
+            if wall is None:
+                return np.concatenate([cells, _triangulate([zgon]) * n + base])
+            tri = _triangulate([zgon, wall[::-1]])
+            core = np.where(tri < self.z, tri * n + base, wall_base + (len(wall) - 1 - (tri - self.z)))
+            return np.concatenate([cells, core])
+        turned = _rotate(self.outline, theta)
+        if self.internal:
+            tri = _triangulate([wall, turned[::-1]])
+            nw = len(wall)
+            return np.where(tri < nw, wall_base + tri, base + (count - 1 - (tri - nw)))
+        if wall is None:
+            return _triangulate([turned]) + base
+        tri = _triangulate([turned, wall[::-1]])
+        return np.where(tri < count, tri + base, wall_base + (len(wall) - 1 - (tri - count)))
+
+
+class _Mesh:
+    """Vertices and faces accumulated by parts; indices are global."""
+
+    def __init__(self):
+        self.vertices, self.faces, self.size = [], [], 0
+
+    def add(self, points2d, z) -> int:
+        base = self.size
+        self.vertices.append(np.column_stack([points2d, np.full(len(points2d), float(z))]))
+        self.size += len(points2d)
+        return base
+
+    def band(self, sec: _Section, zs, thetas, diagonals) -> tuple:
+        """Swept teeth through the slices; returns the first and last slice's base index."""
+        bases = [self.add(_rotate(sec.outline, th), z) for z, th in zip(zs, thetas)]
+        j = np.arange(sec.count)
+        jn = (j + 1) % sec.count
+        for s in range(len(zs) - 1):
+            a, b = bases[s] + j, bases[s] + jn
+            c, d = bases[s + 1] + j, bases[s + 1] + jn
+            diag = np.tile(diagonals[1 if thetas[s + 1] >= thetas[s] else -1], sec.z).astype(bool)[:, None]
+            t1 = np.where(diag, np.stack([a, b, c], 1), np.stack([a, b, d], 1))
+            t2 = np.where(diag, np.stack([b, d, c], 1), np.stack([a, d, c], 1))
+            tris = np.concatenate([t1, t2])
+            self.faces.append(tris[:, ::-1] if sec.internal else tris)
+        return bases[0], bases[-1]
+
+    def wall(self, poly, z0: float, z1: float, hole: bool) -> tuple:
+        """A straight prism wall over a CCW polygon; returns the bottom and top ring's base index."""
+        b0, b1 = self.add(poly, z0), self.add(poly, z1)
+        j = np.arange(len(poly))
+        a, b = b0 + j, b0 + (j + 1) % len(poly)
+        c, d = a + (b1 - b0), b + (b1 - b0)
+        tris = np.concatenate([np.stack([a, b, d], 1), np.stack([a, d, c], 1)])
+        self.faces.append(tris[:, ::-1] if hole else tris)
+        return b0, b1
+
+    def cap(self, tris, up: bool):
+        self.faces.append(tris if up else tris[:, ::-1])
+
+    def solid(self, name: str, info: dict) -> Solid:
+        return Solid.from_arrays(np.concatenate(self.vertices), np.concatenate(self.faces), name, info)
+
+
+def _helix(profile, spec: SolidSpec) -> float:
+    """The helix angle (degrees) of the solid: the spec's, else the profile's own."""
+    own = getattr(getattr(profile, "spec", None), "helix_angle_deg", None)
+    if spec.helix_angle_deg is None:
+        return float(own or 0.0)
+    if own is not None and not math.isclose(spec.helix_angle_deg, own, abs_tol=1e-12):
+        raise SpecError("helix_angle_deg", f"{spec.helix_angle_deg} degrees, but the profile was generated for "
+                        f"{own} degrees (its transverse section depends on it)")
+    return float(spec.helix_angle_deg)
+
+
+def _reference_radius(profile, beta: float) -> float:
+    d = getattr(profile, "reference_diameter", None)
+    if d is None:
+        d = profile.teeth * profile.module / math.cos(beta)
+    return d / 2.0
+
+
+def gear_solid(profile, spec: SolidSpec, tol: float | None = None, name: str = "gear") -> Solid:
+    """The solid of a generated gear.
+
+    Parameters
+    ----------
+    profile : ToothProfile (any family): ``half.pieces``, ``teeth``, ``internal``, ``module``
+    spec : SolidSpec
+    tol : float, mm
+        Largest deviation of any vertex or facet from the exact tooth surface (default
+        :func:`~gearkit.solids.solid.default_mesh_tol`). ``info["achieved"]`` is the measured one.
+    name : str
+
+    Returns
+    -------
+    Solid
+
+    Examples
+    --------
+    >>> from gearkit.families.involute import GearSpec, tooth_profile
+    >>> s = gear_solid(tooth_profile(GearSpec(12, 2.0)), SolidSpec(width=5.0), tol=0.01)
+    >>> s.achieved <= 0.01, s.volume > 0
+    (True, True)
+    """
+    tol = default_mesh_tol(profile.module) if tol is None else float(tol)
+    if not (math.isfinite(tol) and tol > 0):
+        raise SpecError("tol", f"{tol!r} must be a positive length in mm")
+    beta_deg = _helix(profile, spec)
+    beta = math.radians(beta_deg)
+    k = math.tan(beta) / _reference_radius(profile, abs(beta))
+    internal = bool(profile.internal)
+    if internal and spec.bore is not None:
+        raise SpecError("bore", "a ring gear has no bore (give --outer-diameter or --rim)")
+    if not internal and (spec.outer_diameter is not None or spec.rim is not None):
+        raise SpecError("outer_diameter" if spec.rim is None else "rim", "applies to ring (internal) gears")
+    b, gap = spec.width, spec.gap
+    run = (b - gap) / 2.0 if spec.herringbone else b
+    plan = plan_layers(lambda t: tooth_polyline(profile, t), tol, k * run, both_hands=spec.herringbone)
+    poly = plan.polyline
+    radii = np.hypot(poly.points[:, 0], poly.points[:, 1])
+    bore = outer = None
+    if spec.bore is not None:
+        bore = bore_points(spec.bore, spec.keyway, tol)
+        if np.hypot(bore[:, 0], bore[:, 1]).max() >= radii.min():
+            raise SpecError("bore", f"the bore (and keyway) must stay inside the root circle "
+                            f"(d = {2 * radii.min():.6g} mm)")
+    if internal:
+        r_root = float(radii.max())
+        r_out = spec.outer_diameter / 2.0 if spec.outer_diameter else r_root + (spec.rim or 2.0 * profile.module)
+        if r_out <= r_root:
+            raise SpecError("outer_diameter", f"{2 * r_out:.6g} mm must exceed the ring's root diameter "
+                            f"{2 * r_root:.6g} mm")
+        outer = circle_points(r_out, tol)
+    sec = _Section(poly, profile.teeth, internal)
+    n = plan.layers if k else 1
+    info = {"kind": _kind(spec, beta, internal), "teeth": int(profile.teeth), "module": float(profile.module),
+            "width": float(b), "helix_angle_deg": beta_deg, "hand": _hand(beta), "tol": tol,
+            "achieved": plan.achieved, "polyline_tol": poly.tol, "layers": n, "points_per_tooth": poly.edges}
+    wall = bore if bore is not None else outer
+    mesh = _Mesh()
+    if spec.herringbone and gap > 0.0:
+        zs = np.linspace(0.0, run, n + 1)
+        lo = mesh.band(sec, zs, k * zs, plan.diagonals)
+        hi = mesh.band(sec, b - zs[::-1], k * zs[::-1], plan.diagonals)
+        groove = _groove(profile, radii, wall, internal, tol)
+        g0, g1 = mesh.wall(groove, run, b - run, hole=internal)
+        mesh.cap(sec.face(k * run, lo[1], groove, g0), up=True)
+        mesh.cap(sec.face(k * run, hi[0], groove, g1), up=False)
+        top = 0.0
+    else:
+        if spec.herringbone:
+            zs = np.linspace(0.0, b, 2 * n + 1)
+            thetas = k * (b / 2.0 - np.abs(zs - b / 2.0))
+        else:
+            zs = np.linspace(0.0, b, n + 1)
+            thetas = k * zs
+        lo = hi = mesh.band(sec, zs, thetas, plan.diagonals)
+        top = float(thetas[-1])
+    w0 = w1 = 0
+    if wall is not None:
+        w0, w1 = mesh.wall(wall, 0.0, b, hole=not internal)
+    mesh.cap(sec.face(0.0, lo[0], wall, w0), up=False)
+    mesh.cap(sec.face(top, hi[1], wall, w1), up=True)
+    return mesh.solid(name, info)
+
+
+def _groove(profile, radii, wall, internal: bool, tol: float):
+    """The groove between the halves of a double-helical gear: a module below the root circle."""
+    if internal:
+        r = float(radii.max()) + profile.module
+        if r >= np.hypot(*wall[0]):
+            raise SpecError("gap", "the rim is too thin for the groove of a double-helical ring")
+    else:
+        r = float(radii.min()) - profile.module
+        if r <= 0 or (wall is not None and np.hypot(wall[:, 0], wall[:, 1]).max() >= r):
+            raise SpecError("gap", "no room for the groove of a double-helical gear above the bore")
+    return circle_points(r, tol)
+
+
+def _kind(spec: SolidSpec, beta: float, internal: bool) -> str:
+    base = "herringbone" if spec.herringbone and not spec.gap else "double-helical" if spec.herringbone \
+        else "helical" if beta else "spur"
+    return f"{base} ring" if internal else base
+
+
+def _hand(beta: float) -> str:
+    return "right" if beta > 0 else "left" if beta < 0 else "none"
