@@ -99,7 +99,27 @@ class HalfTooth:
             _, pts, dev = adaptive_sample(piece, tol)
             chunks.append(pts if k == 0 else pts[1:])
             worst = max(worst, dev)
-        return np.concatenate(chunks), worst
+        return _drop_coincident(np.concatenate(chunks)), worst
+
+
+def _drop_coincident(pts, rel=1e-13):
+    """Drop vertices within ``rel`` (relative to the largest coordinate) of the previous one.
+
+    Pieces of zero length (a sharp cutter corner's envelope, the dust of a loop far below the
+    detection tolerance next to a cusp) sample to repeated points; repeated points make
+    zero-length edges, and edges that cross at round-off scale, in the outline. The first and
+    last points (tip and space centre) are kept exactly.
+    """
+    if len(pts) < 3:
+        return pts
+    eps = rel * float(np.abs(pts).max())
+    keep = np.ones(len(pts), dtype=bool)
+    keep[1:] = np.linalg.norm(np.diff(pts, axis=0), axis=1) > eps
+    keep[-1] = True
+    kept = np.flatnonzero(keep)
+    if len(kept) > 2 and np.linalg.norm(pts[kept[-1]] - pts[kept[-2]]) <= eps:
+        keep[kept[-2]] = False
+    return pts[keep]
 
 
 # Parameters graded geometrically towards both ends of every branch. A loop of the envelope
@@ -124,6 +144,21 @@ def _sample_chain(branches, tol):
     return np.concatenate(pts), np.concatenate(owner), np.concatenate(ws)
 
 
+def _edge_window(owner, ws, edge, reach=3):
+    """Parameter window for refining a crossing found on polyline edge ``edge``: that edge and
+    ``reach`` edges either side on the same branch. The polyline is only within the detection
+    tolerance of the exact curves, so the exact crossing may lie on a neighbouring edge; a
+    window of one edge would clamp Newton short of it and leave a gap at the trim."""
+    k = owner[edge]
+    lo = edge
+    while lo > 0 and lo > edge - reach and owner[lo - 1] == k:
+        lo -= 1
+    hi = edge + 1
+    while hi + 1 < len(ws) and hi < edge + 1 + reach and owner[hi + 1] == k:
+        hi += 1
+    return float(ws[lo]), float(ws[hi])
+
+
 def _remove_loops(branches, pts, owner, ws, significant):
     """Cut the loops out of the chained envelope; returns sections [(k_a, w_a), (k_b, w_b)]."""
     ii, jj, ti, tj = polyline_self_intersections(pts)
@@ -144,7 +179,7 @@ def _remove_loops(branches, pts, owner, ws, significant):
         wa = ws[e_a] + ti[pick] * (ws[e_a + 1] - ws[e_a])
         wb = ws[e_b] + tj[pick] * (ws[e_b + 1] - ws[e_b])
         wa, wb = _refine_crossing(branches[ka], branches[kb], wa, wb,
-                                  (ws[e_a], ws[e_a + 1]), (ws[e_b], ws[e_b + 1]))
+                                  _edge_window(owner, ws, e_a), _edge_window(owner, ws, e_b))
         # a loop smaller than `significant` is numerical dust at a junction: cut it, but it is no trim
         extent = np.linalg.norm(pts[e_a + 1:e_b + 1] - pts[e_a], axis=1).max(initial=0.0)
         sections.append((start, (ka, wa), extent > significant))
