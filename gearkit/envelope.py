@@ -86,11 +86,28 @@ def _valid_runs(branch: Branch, n: int = 65):
     return runs
 
 
-def chain_branches(chain, motion: RollingMotion, root: str = "near"):
-    """Branches for a chain of tool segments, split where the meshing equation has no root."""
+def chain_branches(chain, motion: RollingMotion, root: str = "near", return_root: str | None = None):
+    """Branches for a chain of tool segments, split where the meshing equation has no root.
+
+    With ``return_root`` the chain is walked twice, once with each root, and the two walks are
+    joined into one continuous curve where they meet: at the chain's end (out with ``root``,
+    back with ``return_root``) or at its start (back with ``return_root``, then out with
+    ``root``), whichever end the two walks share. This is the envelope of a tool whose points
+    touch the blank twice per pass (a pin cutting a cycloidal disc touches near the root with
+    the near root and near the crest with the far one); the walks meet where the normal line
+    is tangent to the tool centrode, which must be an end of the chain.
+    """
     out = []
     for seg in chain:
         whole = Branch(seg, motion, root=root)
         for a, b in _valid_runs(whole):
             out.append(Branch(seg, motion, a, b, root))
-    return tuple(out)
+    if return_root is None:
+        return tuple(out)
+    back = chain_branches(chain, motion, return_root)
+    if not out or not back:
+        return tuple(out) + tuple(back)
+    returning = [Branch(br.segment, motion, br.u1, br.u0, return_root) for br in reversed(back)]
+    gap_end = np.linalg.norm(out[-1](1.0)[0] - back[-1](1.0)[0])
+    gap_start = np.linalg.norm(out[0](0.0)[0] - back[0](0.0)[0])
+    return tuple(out + returning) if gap_end <= gap_start else tuple(returning + out)

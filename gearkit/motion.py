@@ -83,6 +83,14 @@ class RollingMotion:
         c_b, tau_b = _centrode(self.blank_centre, s)
         return rotate(np.asarray(points) - c_t, tau_b - tau_t) + c_b + self.blank_offset
 
+    def tool_pole(self, s):
+        """The pole (instant centre of the relative motion) in the tool frame at roll ``s``, ``(n, 2)``.
+
+        A tool point's normal passes through it exactly when the point is in contact, so for a
+        circular tool this gives the contact point at any roll directly.
+        """
+        return _centrode(self.tool_centre, np.asarray(s, dtype=float))[0]
+
     def rotate_to_blank(self, vectors, s):
         """Tool-frame direction vectors at roll ``s`` in the blank frame."""
         s = np.asarray(s, dtype=float)
