@@ -33,7 +33,7 @@ def run_bench(quick: bool = False, process: bool = True, progress=None) -> dict:
     ``scaling``, ``oracle``, ``oracle_order``, ``products``, ``unmeasured``, ``process``,
     ``overhead``, ``overhead_ratio`` and ``meta`` (lengths in mm, times in s).
     """
-    from gearkit.bench import oracle, process as proc, products, profiles
+    from gearkit.bench import meshes, oracle, process as proc, products, profiles
 
     def say(msg):
         if progress is not None:
@@ -46,8 +46,14 @@ def run_bench(quick: bool = False, process: bool = True, progress=None) -> dict:
     say("overhead against the closed-form involute")
     out["overhead"] = profiles.overhead(11 if quick else 31)
     out["overhead_ratio"] = out["overhead"]["overhead_ratio"]
-    say("accuracy ladder")
-    out["ladder"] = profiles.involute_ladder(quick, repeats)
+    say("accuracy ladder: 2D profiles")
+    out["ladder"] = profiles.involute_ladder(quick, repeats) + profiles.novikov_ladder(quick, repeats)
+    if products.available("gearkit.solids"):
+        say("accuracy ladder: meshes")
+        out["ladder"] += meshes.mesh_ladder(quick, repeats)
+    if products.available("gearkit.blocking.contour"):
+        say("blocking contour")
+        out["ladder"] += products.blocking_rows(quick)
     say("scaling in z")
     out["scaling"] = profiles.involute_scaling(quick, repeats)
     say("swept-tool oracle convergence")
@@ -76,13 +82,15 @@ def format_table(res: dict) -> str:
     lines.append("gearkit bench" + (" (quick)" if res["meta"]["quick"] else "")
                  + f"  -- lengths in mm, times median of {res['meta']['repeats']} repeats")
     lines.append("")
-    lines.append("accuracy ladder (2D profile; achieved = max distance of the exact curve from the output, "
-                 "measured by dense re-evaluation)")
-    lines.append(f"  {'family':9} {'case':22} {'tol':>9} {'achieved':>10} {'ach/tol':>7} {'vertices':>9} "
-                 f"{'time':>11}")
+    lines.append("accuracy ladder (achieved = max distance of the exact curve/surface from the output, measured by "
+                 "dense re-evaluation; mesh: on sections; blocking: tol and achieved in shift units)")
+    lines.append(f"  {'product':16} {'family':9} {'case':26} {'tol':>9} {'achieved':>10} {'ach/tol':>7} "
+                 f"{'count':>9} {'time':>11}")
     for r in res["ladder"]:
-        lines.append(f"  {r['family']:9} {r['case']:22} {r['tol']:9.1e} {r['achieved']:10.3e} "
-                     f"{r['achieved'] / r['tol']:7.3f} {r['vertices']:9d} {_fmt_s(r['seconds']):>11}")
+        ach = "" if r["achieved"] is None else f"{r['achieved']:10.3e}"
+        ratio = "" if r["achieved"] is None else f"{r['achieved'] / r['tol']:7.3f}"
+        lines.append(f"  {r['product']:16} {r['family']:9} {r['case']:26} {r['tol']:9.1e} {ach:>10} {ratio:>7} "
+                     f"{r['vertices']:9d} {_fmt_s(r['seconds']):>11}")
     lines.append("")
     lines.append("scaling in z (involute spur, m = 1)")
     lines.append(f"  {'z':>6} {'tol':>9} {'achieved':>10} {'vertices':>9} {'time':>11}")

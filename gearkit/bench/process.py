@@ -3,7 +3,7 @@
 The three reference gears (tol 0.001 mm) are the ones a script-based CAD gear library was
 timed on: spur z = 12 m = 2 b = 5, helical z = 20 m = 2 b = 10 beta = 20 deg, spur z = 200 m = 1
 b = 5. With a mesh export the command writes STL; without one it writes the 2D profile
-(DXF), and the row says so.
+(SVG), and the row says so.
 """
 from __future__ import annotations
 
@@ -58,7 +58,7 @@ def process_times(runs: int = 5):
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         for name, flags, b in REFERENCE_GEARS:
-            out = os.path.join(tmp, "gear.stl" if stl else "gear.dxf")
+            out = os.path.join(tmp, "gear.stl" if stl else "gear.svg")
             cmd = _gearkit_command() + ["gear"] + flags + ["--tol", str(TOL_MM), "-o", out]
             if stl and width_flag:
                 cmd += [width_flag, str(b)]
@@ -70,7 +70,7 @@ def process_times(runs: int = 5):
                 if proc.returncode != 0:
                     ok, err = False, proc.stderr.strip().splitlines()[-1:] or [""]
                     break
-            rows.append({"gear": name, "output": "stl" if stl else "dxf (2D; no mesh export yet)",
+            rows.append({"gear": name, "output": "stl" if stl else "svg (2D; no mesh export yet)",
                          "tol": TOL_MM, "seconds": float(np.median(times)), "runs": len(times), "ok": ok,
                          **({"error": err[0]} if not ok else {})})
     return rows

@@ -68,17 +68,19 @@ def _involute_cases(quick: bool):
     return cases
 
 
-def _generate_and_sample(spec, tol):
-    from gearkit.families.involute import tooth_profile
+def _generate_and_sample(spec, tol, generate=None):
+    if generate is None:
+        from gearkit.families.involute import tooth_profile
 
-    prof = tooth_profile.__wrapped__(spec)  # bypass the cache: time the whole path
+        generate = tooth_profile.__wrapped__  # bypass the cache: time the whole path
+    prof = generate(spec)
     return prof, prof.outline(tol)
 
 
-def profile_row(family, case, spec, tol_m, repeats):
+def profile_row(family, case, spec, tol_m, repeats, generate=None):
     """One ladder rung: generate + sample at ``tol_m`` modules; time, count, measure."""
     tol = tol_m * spec.module
-    seconds, (prof, outline) = median_time(lambda: _generate_and_sample(spec, tol), repeats)
+    seconds, (prof, outline) = median_time(lambda: _generate_and_sample(spec, tol, generate), repeats)
     n_half = len(prof.half_points(tol)[0])
     achieved = measured_deviation(prof, outline, n_half)
     return {"family": family, "product": "profile", "case": case, "tol": tol, "tol_m": tol_m,
@@ -92,6 +94,19 @@ def involute_ladder(quick: bool, repeats: int):
         for tol_m in LADDER_TOLS:
             rows.append(profile_row("involute", case, spec, tol_m, repeats))
     return rows
+
+
+def novikov_ladder(quick: bool, repeats: int):
+    """The Novikov pinion of the preset double-circular-arc rack system (z = 20, beta = 15 deg)."""
+    try:
+        from gearkit.families import novikov
+        from gearkit.families.novikov_presets import rack_system
+    except ImportError:
+        return []
+    spec = novikov.NovikovGearSpec(20, 1.0, rack_system("dca24").rack1, 15.0)
+    generate = getattr(novikov.tooth_profile, "__wrapped__", novikov.tooth_profile)
+    tols = LADDER_TOLS[::2] if quick else LADDER_TOLS
+    return [profile_row("novikov", "dca24 z=20 beta=15", spec, t, repeats, generate) for t in tols]
 
 
 def involute_scaling(quick: bool, repeats: int):

@@ -1,0 +1,88 @@
+"""The bench's measuring tools and JSON structure (no timing is asserted: speed lives in the bench).
+
+The ladder's "achieved" must be an independent measurement: it must track the requested tol
+(within 2x, monotone over the ladder) and it must see a polyline that is too coarse.
+"""
+import math
+
+import numpy as np
+import pytest
+
+from gearkit.bench.meshes import distances_to_segments, plane_section
+from gearkit.bench.profiles import measured_deviation, profile_row
+from gearkit.families.involute import GearSpec, tooth_profile
+
+#: the ladder's promise: achieved within this factor of the requested tol
+FACTOR = 2.0
+
+
+def test_ladder_rows_track_the_requested_tol_and_grow_monotonically():
+    spec = GearSpec(40, 1.0)
+    rows = [profile_row("involute", "spur z=40", spec, t, repeats=1) for t in (1e-2, 1e-4, 1e-6)]
+    for r in rows:
+        assert set(r) >= {"family", "product", "tol", "achieved", "vertices", "seconds"}
+        assert 0 < r["achieved"] <= FACTOR * r["tol"]
+        assert r["seconds"] > 0
+    assert [r["vertices"] for r in rows] == sorted(r["vertices"] for r in rows)
+    assert rows[0]["achieved"] > rows[1]["achieved"] > rows[2]["achieved"]
+
+
+def test_the_independent_measure_sees_a_polyline_that_is_too_coarse():
+    spec = GearSpec(20, 1.0)
+    tol = 1e-4
+    prof = tooth_profile(spec)
+    outline = prof.outline(tol)
+    n_half = len(prof.half_points(tol)[0])
+    good = measured_deviation(prof, outline, n_half)
+    assert good <= FACTOR * tol
+    # keep every 4th vertex of the whole outline (teeth stay aligned: one tooth has len/z vertices)
+    n_t = len(outline) // spec.teeth
+    coarse = outline.reshape(spec.teeth, n_t, 2)[:, ::4].reshape(-1, 2)
+    assert measured_deviation(prof, coarse, n_half) > 4 * tol  # chords 4x longer sag ~16x more
+
+
+def test_plane_section_of_a_prism_and_distances_to_its_segments():
+    # a square prism 2 x 2 x 1 as a triangle mesh: its section at z = 0.5 is the square
+    sq = np.array([[-1, -1], [1, -1], [1, 1], [-1, 1]], dtype=float)
+    v = np.concatenate([np.c_[sq, np.zeros(4)], np.c_[sq, np.ones(4)]])
+    faces = []
+    for i in range(4):
+        j = (i + 1) % 4
+        faces += [[i, j, 4 + j], [i, 4 + j, 4 + i]]
+    faces += [[0, 2, 1], [0, 3, 2], [4, 5, 6], [4, 6, 7]]
+    a, b = plane_section(v, np.array(faces), 0.5)
+    assert len(a) == 8
+    assert np.allclose(np.abs(np.concatenate([a, b])).max(axis=1), 1.0)
+    pts = np.array([[0.0, 0.0], [1.5, 0.0], [0.3, 1.0]])
+    assert np.allclose(distances_to_segments(pts, a, b), [1.0, 0.5, 0.0], atol=1e-15)
+
+
+def test_markdown_block_replaces_only_the_marked_region():
+    import importlib.util
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parent.parent / "examples" / "bench_table.py"
+    spec = importlib.util.spec_from_file_location("bench_table", path)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    text = f"# t\n\nbefore\n{mod.START}\nold\n{mod.END}\nafter\n"
+    out = mod.replace_block(text, "new table")
+    assert out == f"# t\n\nbefore\n{mod.START}\nnew table\n{mod.END}\nafter\n"
+
+
+def test_bench_is_a_registered_command():
+    from gearkit.cli import COMMANDS, build_parser
+
+    assert "bench" in COMMANDS
+    args = build_parser().parse_args(["bench", "--quick", "--json", "x.json"])
+    assert args.quick and args.json == "x.json"
+
+
+def test_closed_form_baseline_is_the_involute():
+    from gearkit.bench.timing import closed_form_involute
+
+    pts = closed_form_involute(50, 2.0, 0.8)
+    t = np.linspace(0, 0.8, 50)
+    # an involute point's distance from the centre is r_b sqrt(1 + t^2)
+    assert np.allclose(np.hypot(*pts.T), 2.0 * np.sqrt(1 + t * t), rtol=1e-14)
+    assert math.isclose(float(pts[0, 0]), 2.0)
