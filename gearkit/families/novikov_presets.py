@@ -25,7 +25,7 @@ same keys at its top level::
 from __future__ import annotations
 
 import sys
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
 
@@ -65,10 +65,10 @@ class RackSystem:
 
     rack1: ArcRack
     rack2: ArcRack
-    name: str = field(default="custom", compare=False)
-    title: str = field(default="", compare=False)
-    provenance: str = field(default="user", compare=False)
-    verified: bool = field(default=False, compare=False)
+    name: str = "custom"
+    title: str = ""
+    provenance: str = "user"
+    verified: bool = False
 
     def __post_init__(self):
         for k in (1, 2):
@@ -101,14 +101,14 @@ class RackSystem:
             if cvx.convex is None or ccv.concave is None:
                 continue
             field_ = f"rack{3 - cg}.concave"
-            h_a, h_f = cvx.contact_height("convex"), ccv.contact_height("concave")
-            require(abs(h_a - h_f) <= HEIGHT_TOL, field_ + ".centre_shift",
-                    f"the contact heights of the mating arcs disagree: convex {h_a:.6f}, concave {h_f:.6f} "
-                    f"(module units); they must agree within {HEIGHT_TOL:g}")
             d_rho = ccv.concave.radius - cvx.convex.radius
             require(d_rho > 0.0, field_ + ".radius",
                     f"rho_f = {ccv.concave.radius} must exceed the mating rho_a = {cvx.convex.radius}: the concave "
                     "arc must be larger than the convex one (equal radii run in line contact)")
+            h_a, h_f = cvx.contact_height("convex"), ccv.contact_height("concave")
+            require(abs(h_a - h_f) <= HEIGHT_TOL, field_ + ".centre_shift",
+                    f"the contact heights of the mating arcs disagree: convex {h_a:.6f}, concave {h_f:.6f} "
+                    f"(module units); they must agree within {HEIGHT_TOL:g}")
             j = ccv.contact_space() - cvx.contact_thickness()
             require(j > 0.0, field_ + ".centre_offset",
                     f"the built-in backlash j* = {j:.6f} must be positive (thin the convex tooth: larger l_a, or "

@@ -29,7 +29,7 @@ one hob), or a convex pinion rack and a concave wheel rack (single-arc). Presets
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
@@ -125,7 +125,8 @@ class ArcRack:
     root_radius : float or None
         Root fillet radius r_g*; None = the full radius.
     name, title, provenance : str
-        Labels (not part of the geometry).
+        Labels shown in reports. They are inputs like the rest (two racks that differ only in their
+        labels are different specs), so a cached result never carries another rack's labels.
     verified : bool
         False for parameters not checked against the standard text.
     """
@@ -139,10 +140,10 @@ class ArcRack:
     transition_radius: float | None = None
     transition_angle_deg: float | None = None
     root_radius: float | None = None
-    name: str = field(default="custom", compare=False)
-    title: str = field(default="", compare=False)
-    provenance: str = field(default="user", compare=False)
-    verified: bool = field(default=False, compare=False)
+    name: str = "custom"
+    title: str = ""
+    provenance: str = "user"
+    verified: bool = False
 
     def __post_init__(self):
         a = self.contact_angle_deg
@@ -181,14 +182,14 @@ class ArcRack:
             require(_num(self.root_radius) and self.root_radius > 0.0, "root_radius",
                     f"r_g* = {self.root_radius!r} must be positive (or None for the full radius)")
         if both:
+            require(self.concave.radius > self.convex.radius, "concave.radius",
+                    f"rho_f = {self.concave.radius} must exceed rho_a = {self.convex.radius}: the concave arc "
+                    f"must be larger than the convex one it mates with (equal radii run in line contact)")
             ha, hf = self.contact_height("convex"), self.contact_height("concave")
             require(abs(ha - hf) <= HEIGHT_TOL, "concave.centre_shift",
                     f"the contact heights disagree: convex {ha:.6f}, concave {hf:.6f} (module units); they must "
                     f"agree within {HEIGHT_TOL:g} (x_f = rho_f sin a_k - h_k = "
                     f"{self.concave.radius * math.sin(self.alpha) - ha:.6f} matches the convex arc)")
-            require(self.concave.radius > self.convex.radius, "concave.radius",
-                    f"rho_f = {self.concave.radius} must exceed rho_a = {self.convex.radius}: the concave arc "
-                    f"must be larger than the convex one it mates with (equal radii run in line contact)")
             j = self.backlash
             require(j > 0.0, "concave.centre_offset",
                     f"the built-in backlash j* = {j:.6f} must be positive (j = 2 (rho_f - rho_a) cos a_k - "
