@@ -19,3 +19,17 @@ from gearkit.pair import PairGeometry, PairSpec, pair_geometry, shifts_for_cente
 
 __all__ += ["CheckLimits", "CheckReport", "Finding", "PairCheck", "PairGeometry", "PairSpec", "check_pair",
             "load_design", "pair_geometry", "shifts_for_center_distance"]
+
+# -- solids, meshes and export (lazy: `import gearkit` does not load manifold3d) -------------
+_SOLIDS = ("Assembly", "Solid", "SolidSpec", "gear_solid", "pair_assembly", "rack_solid", "write_mesh")
+
+
+def __getattr__(name):
+    if name in _SOLIDS:
+        import gearkit.solids
+
+        return getattr(gearkit.solids, name)
+    raise AttributeError(f"module 'gearkit' has no attribute {name!r}")
+
+
+__all__ += list(_SOLIDS)

@@ -20,13 +20,15 @@ def register(subparsers) -> None:
 
 def run_demo(args) -> int:
     """Generate a 13/40 spur pair (m = 2 mm, x1 = 0.3, x2 = 0) by simulating the rack cutter, write the
-    profiles (SVG, DXF) and print gear values and the design check (lengths in mm)."""
+    profiles (SVG, DXF) and the solids (STL, face width 20 mm), and print gear values and the design
+    check (lengths in mm)."""
     from gearkit.checks import check_pair
     from gearkit.cli.check import format_report
     from gearkit.cli.gear import format_summary
     from gearkit.export import write_profile
     from gearkit.families.involute import GearSpec, tooth_profile
     from gearkit.pair import PairSpec
+    from gearkit.solids import SolidSpec, default_mesh_tol, gear_solid
 
     out = Path(args.out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -40,6 +42,8 @@ def run_demo(args) -> int:
         print()
         for ext in ("svg", "dxf"):
             written.append(write_profile(out / f"{name}.{ext}", [prof.outline(tol)], info))
+        solid = gear_solid(prof, SolidSpec(width=d["width"]), default_mesh_tol(d["module"]), name=name)
+        written.append(solid.export(out / f"{name}.stl"))
     result = check_pair(PairSpec(d["z1"], d["z2"], d["module"], d["x1"], d["x2"], face_width=d["width"]))
     print(format_report(result))
     print()

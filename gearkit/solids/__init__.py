@@ -1,16 +1,22 @@
 """Solids, meshes and export: watertight gears, racks, pairs and 3D interference.
 
 Any generated profile (every family, through :class:`~gearkit.boundary.ToothProfile`) becomes
-a solid: spur, helical, herringbone / double-helical, ring gears, racks; bores with keyways.
-manifold3d builds and checks the solids; the mesh writers are numpy (STL) or trimesh (OBJ
-with named parts, GLB). The same ``tol`` (mm) bounds the deviation of every vertex and facet
-from the exact tooth surface, twist included, and every solid reports the deviation it
-achieved (``Solid.info["achieved"]``).
+a solid: spur, helical, herringbone / double-helical, ring gears (:func:`gear_solid`), rack bars
+(:func:`rack_solid`); bores with keyways. Pairs are placed at their centre distance, phased,
+and tested for 3D interference (:func:`pair_assembly`). manifold3d builds and checks every
+solid; STL is written with numpy, OBJ (named parts) and GLB through trimesh
+(:func:`write_mesh`, atomic). The same ``tol`` (mm) bounds the deviation of every vertex and
+facet from the exact tooth surface, twist included, and every solid reports the deviation it
+achieved (``Solid.achieved``).
 
 This package (with :mod:`gearkit.oracle`) is the only place that imports manifold3d; trimesh
 is imported only where a format or a check needs it.
 """
+from gearkit.solids.export import MESH_FORMATS, mesh_format, write_mesh
 from gearkit.solids.gear import gear_solid
+from gearkit.solids.pair import Assembly, pair_assembly
+from gearkit.solids.rack import rack_solid
 from gearkit.solids.solid import Solid, SolidSpec, default_mesh_tol
 
-__all__ = ["Solid", "SolidSpec", "default_mesh_tol", "gear_solid"]
+__all__ = ["Assembly", "MESH_FORMATS", "Solid", "SolidSpec", "default_mesh_tol", "gear_solid", "mesh_format",
+           "pair_assembly", "rack_solid", "write_mesh"]

@@ -22,7 +22,7 @@ import numpy as np
 from gearkit.errors import SpecError
 from gearkit.solids.gear import gear_solid
 from gearkit.solids.rack import rack_solid
-from gearkit.solids.solid import Solid, SolidSpec, default_mesh_tol
+from gearkit.solids.solid import SolidSpec, default_mesh_tol
 
 PART_NAMES = {"external": ("pinion", "wheel"), "internal": ("pinion", "ring"), "rack": ("pinion", "rack")}
 
@@ -152,4 +152,4 @@ def pinion_pitch_angle(assembly: Assembly) -> float:
     return 2.0 * math.pi / assembly.teeth[0]
 
 
-__all__ = ["Assembly", "PART_NAMES", "pair_assembly", "pinion_pitch_angle", "Solid"]
+__all__ = ["Assembly", "PART_NAMES", "pair_assembly", "pinion_pitch_angle"]

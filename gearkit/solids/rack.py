@@ -17,7 +17,7 @@ import manifold3d as m3
 import numpy as np
 
 from gearkit.errors import SpecError, require
-from gearkit.solids.solid import Solid, checked, default_mesh_tol
+from gearkit.solids.solid import Solid, checked, default_mesh_tol, manifold_from_arrays
 from gearkit.solids.surface import plan_layers, tooth_polyline
 
 
@@ -90,5 +90,4 @@ def _sheared_prism(polygon, width: float, shear: float):
     a, b = j, (j + 1) % n
     side = np.concatenate([np.stack([a, b, b + n], 1), np.stack([a, b + n, a + n], 1)])
     f = np.concatenate([cap[:, ::-1], cap + n, side])
-    return checked(m3.Manifold(m3.Mesh64(vert_properties=np.ascontiguousarray(v),
-                                         tri_verts=np.ascontiguousarray(f, dtype=np.uint64))), "rack bar")
+    return checked(manifold_from_arrays(v, f), "rack bar")

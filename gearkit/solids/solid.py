@@ -108,9 +108,7 @@ class Solid:
     @classmethod
     def from_arrays(cls, vertices, faces, name: str, info: dict) -> "Solid":
         """Build from a triangle mesh; raise :class:`GeometryError` unless it is a valid solid."""
-        v = np.ascontiguousarray(vertices, dtype=np.float64)
-        f = np.ascontiguousarray(faces, dtype=np.uint64)
-        return cls(checked(m3.Manifold(m3.Mesh64(vert_properties=v, tri_verts=f)), name), name, info)
+        return cls(checked(manifold_from_arrays(vertices, faces), name), name, info)
 
     # -- invariants ---------------------------------------------------------------------
     @property
@@ -183,13 +181,22 @@ class Solid:
         return f"Solid({self.name!r}, faces={self.faces}, volume={self.volume:.6g} mm^3, achieved={self.achieved:.3g} mm)"
 
 
+def manifold_from_arrays(vertices, faces):
+    """manifold3d ``Manifold`` of a triangle mesh (vertices (n, 3) mm, faces (m, 3)); not yet checked."""
+    v = np.require(vertices, dtype=np.float64, requirements=("C", "W"))
+    f = np.require(faces, dtype=np.uint64, requirements=("C", "W"))
+    if v.ndim != 2 or v.shape[1] != 3 or f.ndim != 2 or f.shape[1] != 3:
+        raise GeometryError("a mesh needs (n, 3) vertices and (m, 3) faces")
+    return m3.Manifold(m3.Mesh64(vert_properties=v, tri_verts=f))
+
+
 def checked(manifold, what: str):
     """Return ``manifold`` if it is a valid, non-empty solid of positive volume; else raise GeometryError."""
     status = manifold.status()
     if status != m3.Error.NoError:
         raise GeometryError(f"{what}: the mesh is not a valid solid ({status.name})")
     if manifold.is_empty() or not manifold.volume() > 0.0:
-        raise GeometryError(f"{what}: the solid is empty")
+        raise GeometryError(f"{what}: the solid is empty or inside out (volume {manifold.volume():.6g} mm^3)")
     mesh = manifold.to_mesh64()
     v = np.asarray(mesh.vert_properties)[:, :3].astype(np.float32).astype(np.float64)
     f = np.asarray(mesh.tri_verts)
