@@ -58,23 +58,43 @@ class Piece:
 
 
 def _refine_crossing(fa, fb, wa, wb, bounds_a, bounds_b):
-    """Newton on ``fa(wa) = fb(wb)`` (exact curves); returns refined ``(wa, wb)``."""
+    """Damped Newton on ``fa(wa) = fb(wb)`` (exact curves) within the given parameter windows.
+
+    Central differences over a fixed parameter step (a step scaled to a tiny window drowns the
+    derivative in rounding near a cusp); a step that does not reduce the gap is halved, so the
+    iteration cannot jump to the nearly coincident branch on the other side of a cusp.
+    """
+    h = 1e-8
     x = np.array([wa, wb], dtype=float)
-    for _ in range(30):
-        ha = 1e-7 * max(bounds_a[1] - bounds_a[0], 1e-12)
-        hb = 1e-7 * max(bounds_b[1] - bounds_b[0], 1e-12)
-        pa = fa(np.array([x[0] - ha, x[0], x[0] + ha]))
-        pb = fb(np.array([x[1] - hb, x[1], x[1] + hb]))
-        f = pa[1] - pb[1]
-        jac = np.column_stack([(pa[2] - pa[0]) / (2 * ha), -(pb[2] - pb[0]) / (2 * hb)])
+    lo = np.array([bounds_a[0], bounds_b[0]])
+    hi = np.array([bounds_a[1], bounds_b[1]])
+
+    def gap(v):
+        return fa(np.array([v[0]]))[0] - fb(np.array([v[1]]))[0]
+
+    f = gap(x)
+    for _ in range(60):
+        pa = fa(np.array([x[0] - h, x[0] + h]))
+        pb = fb(np.array([x[1] - h, x[1] + h]))
+        jac = np.column_stack([(pa[1] - pa[0]) / (2 * h), -(pb[1] - pb[0]) / (2 * h)])
         try:
             step = np.linalg.solve(jac, f)
         except np.linalg.LinAlgError:
             break
-        x = x - step
-        x[0] = min(max(x[0], bounds_a[0]), bounds_a[1])
-        x[1] = min(max(x[1], bounds_b[0]), bounds_b[1])
-        if np.abs(step).max() < 1e-16:
+        if not np.all(np.isfinite(step)):
+            break
+        norm = np.linalg.norm(f)
+        for _ in range(40):
+            trial = np.clip(x - step, lo, hi)
+            f_trial = gap(trial)
+            if np.linalg.norm(f_trial) < norm or not np.any(step):
+                break
+            step = 0.5 * step
+        else:
+            break
+        moved = np.abs(trial - x).max()
+        x, f = trial, f_trial
+        if moved < 1e-17 or not np.any(f):
             break
     return float(x[0]), float(x[1])
 

@@ -213,7 +213,10 @@ class InvoluteProfile(ToothProfile):
             return 0.0
         rb = self.base_diameter / 2.0
         rf = self.form_diameter / 2.0
-        pts = np.concatenate([p(np.linspace(0.0, 1.0, 4001)) for p in self.half.pieces if p.label != "tip"])
+        # pieces run from the tip to the root, so the undercut region starts at t = 0 of the piece
+        # after the flank: sample densely there (the region can be a few micrometres tall)
+        t = np.unique(np.concatenate([np.geomspace(1e-12, 1.0, 3000), np.linspace(0.0, 1.0, 1001)]))
+        pts = np.concatenate([p(t) for p in self.half.pieces if p.label != "tip"])
         rho, psi = polar_from_y(pts)
         sel = (rho >= rb) & (rho <= rf)
         if not sel.any():
