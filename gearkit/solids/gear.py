@@ -262,11 +262,13 @@ def _groove(profile, radii, wall, internal: bool, tol: float):
     if internal:
         r = float(radii.max()) + profile.module
         if r >= np.hypot(*wall[0]):
-            raise SpecError("gap", "the rim is too thin for the groove of a double-helical ring")
+            raise SpecError("gap", f"the groove of a double-helical ring is cut a module beyond the root (to "
+                            f"d = {2 * r:.6g} mm): the outer diameter must exceed it")
     else:
         r = float(radii.min()) - profile.module
         if r <= 0 or (wall is not None and np.hypot(wall[:, 0], wall[:, 1]).max() >= r):
-            raise SpecError("gap", "no room for the groove of a double-helical gear above the bore")
+            raise SpecError("gap", f"the groove of a double-helical gear is cut a module below the root (to "
+                            f"d = {2 * r:.6g} mm): the bore must stay inside it")
     return circle_points(r, tol)
 
 

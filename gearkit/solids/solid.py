@@ -104,6 +104,7 @@ class Solid:
         self.manifold = manifold
         self.name = name
         self.info = dict(info)
+        self._arrays = None
 
     @classmethod
     def from_arrays(cls, vertices, faces, name: str, info: dict) -> "Solid":
@@ -137,9 +138,11 @@ class Solid:
 
     def arrays(self):
         """(vertices (n, 3) float64 mm, faces (m, 3) int64), outward (counter-clockwise) winding."""
-        mesh = self.manifold.to_mesh64()
-        v = np.asarray(mesh.vert_properties, dtype=np.float64)[:, :3]
-        return v, np.asarray(mesh.tri_verts, dtype=np.int64)
+        if self._arrays is None:
+            mesh = self.manifold.to_mesh64()
+            v = np.asarray(mesh.vert_properties, dtype=np.float64)[:, :3]
+            self._arrays = (v, np.asarray(mesh.tri_verts, dtype=np.int64))
+        return self._arrays
 
     def invariants(self) -> dict:
         """JSON-ready invariants: volume, area, bounding box, face count, requested and achieved tol."""

@@ -125,15 +125,28 @@ def _rotate(p, angle):
 
 
 def _distance_to_fine(q, fine):
-    """Distance of points ``q`` (n, g, 2) to the dense exact polyline of their edge (n, FINE+1, 2)."""
-    a, d = fine[:, :-1], np.diff(fine, axis=1)
-    dd = np.einsum("nmi,nmi->nm", d, d)
-    rel = q[:, :, None, :] - a[:, None, :, :]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        t = np.einsum("ngmi,nmi->ngm", rel, d) / dd[:, None, :]
-    t = np.clip(np.nan_to_num(t), 0.0, 1.0)
-    gap = rel - t[..., None] * d[:, None, :, :]
-    return np.sqrt(np.einsum("ngmi,ngmi->ngm", gap, gap).min(axis=2))
+    """Distance of points ``q`` (n, g, 2) to the dense exact polyline of their edge (n, FINE+1, 2).
+
+    Only the segments around each point's position along the edge are searched (the nearest and
+    one on either side): a distance to fewer segments can only be larger, never hide a deviation.
+    """
+    a = fine[:, :1, :]
+    chord = fine[:, -1:, :] - a
+    norm = np.maximum(np.einsum("nki,nki->nk", chord, chord), 1e-300)
+    t_fine = np.einsum("nmi,nki->nm", fine - a, chord) / norm
+    t_q = np.einsum("ngi,nki->ng", q - a, chord) / norm
+    j = (t_fine[:, None, 1:-1] <= t_q[:, :, None]).sum(axis=2)  # segment holding the point's position
+    rows = np.arange(len(fine))[:, None]
+    best = np.full(q.shape[:2], np.inf)
+    for off in (-1, 0, 1):
+        k = np.clip(j + off, 0, FINE - 1)
+        p0, p1 = fine[rows, k], fine[rows, k + 1]
+        d = p1 - p0
+        dd = np.maximum(np.einsum("ngi,ngi->ng", d, d), 1e-300)
+        t = np.clip(np.einsum("ngi,ngi->ng", q - p0, d) / dd, 0.0, 1.0)
+        gap = q - p0 - t[..., None] * d
+        best = np.minimum(best, np.einsum("ngi,ngi->ng", gap, gap))
+    return np.sqrt(best)
 
 
 def layer_deviation(poly: ToothPolyline, dtheta: float) -> np.ndarray:
