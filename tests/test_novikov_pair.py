@@ -39,8 +39,12 @@ def test_worked_helical_pair_of_the_digest():
     assert list(c0.radii) == pytest.approx([43.8472, 122.1445], abs=PRINTED)  # gear 1 addendum, gear 2 dedendum
     assert list(c1.radii) == pytest.approx([39.5149, 126.5018], abs=2 * PRINTED)  # 126.50185 rounds either way
     assert c0.leads[0] == pytest.approx(math.pi * 4 * 20 / math.sin(D(15)))
-    assert g.contact_axial_distance == pytest.approx(44.3848, abs=PRINTED)
-    assert g.contact_axial_distance / g.axial_pitch == pytest.approx(0.91416, abs=0.6e-5)
+    # the digest's q_TA = Delta m_n / sin(beta): where the two contacts' normals cross the instantaneous axis
+    assert g.pole_axial_distance == pytest.approx(44.3848, abs=PRINTED)
+    assert g.pole_axial_distance / g.axial_pitch == pytest.approx(0.91416, abs=0.6e-5)
+    # the contact points themselves are 2 h_k m cot(a_k) sin(beta) closer (checked by simulation below)
+    assert g.pole_axial_distance - g.contact_axial_distance == pytest.approx(
+        2 * c0.height / math.tan(D(24)) * math.sin(D(15)), rel=1e-4)
     assert g.transverse_contact_ratio == 0.0
 
 
@@ -54,11 +58,47 @@ def test_textbook_formula_vectors():
     assert novikov_pair_geometry(worked(face_width=58.26)).overlap_ratio == pytest.approx(1.2, abs=1e-4)
 
 
-def test_double_arc_contact_offset_is_a_fixed_fraction_of_the_axial_pitch():
+def test_double_arc_pole_offset_is_a_fixed_fraction_of_the_axial_pitch():
     for beta in (10.0, 15.0, 30.0):
         g = novikov_pair_geometry(worked(helix_angle_deg=beta))
-        assert g.contact_axial_distance / g.axial_pitch == pytest.approx(2.87191 / math.pi, abs=0.6e-5)
-    assert novikov_pair_geometry(worked(racks="single-arc")).contact_axial_distance is None
+        assert g.pole_axial_distance / g.axial_pitch == pytest.approx(2.87191 / math.pi, abs=0.6e-5)
+    single = novikov_pair_geometry(worked(racks="single-arc"))
+    assert single.contact_axial_distance is None and single.pole_axial_distance is None
+
+
+def consistent_dca():
+    """The dca24 rack with x_f recomputed so that both arcs reach exactly the same contact height."""
+    r = rack_system("dca24").rack1
+    a = r.alpha
+    x_f = r.concave.radius * math.sin(a) - r.contact_height("convex")
+    rack = ArcRack(24.0, 0.9, 1.1, r.convex, ArcSpec(r.concave.radius, x_f, r.concave.centre_offset), "relief-arc",
+                   r.transition_radius, r.transition_angle_deg, name="dca24-exact")
+    return RackSystem(rack, rack, name="dca24-exact")
+
+
+def test_slices_across_the_face_touch_at_the_designed_height():
+    """The helical pair set up at a contact: every transverse section is the mesh at another phase. The
+    sections through the contact points touch (to the sampling tolerance) at the designed contact radius,
+    one axial pitch apart for each zone and the double-arc zones contact_axial_distance apart; the
+    sections between them do not touch."""
+    from gearkit.families.novikov_mesh import section_clearance
+
+    spec = worked(racks=consistent_dca())
+    g = novikov_pair_geometry(spec)
+    c0, c1 = mesh_contact(spec, 0, interference=False), mesh_contact(spec, 1, interference=False)
+    dz = (c1.rotations[0] - c0.rotations[0]) * g.pitch_radii[0] / math.tan(g.helix_angle)
+    assert dz == pytest.approx(g.contact_axial_distance, abs=1e-9 * spec.module)
+    tol = 1e-5 * spec.module
+    d_kappa = (1 / spec.racks.rack1.convex.radius - 1 / spec.racks.rack1.concave.radius) / spec.module
+    reach = 2 * math.sqrt(2 * 2 * tol / d_kappa)  # sampled points within 2 tol of touching lie this close
+    for contact, z_shift, design in ((c0, 0.0, g.contacts[0]), (c0, dz, g.contacts[1])):
+        zs = contact_trace(spec, contact) + z_shift
+        for z in zs[(zs >= 0) & (zs <= spec.face_width)]:
+            d, p = section_clearance(spec, contact, z, tol)
+            assert abs(d) <= 2 * tol
+            assert abs(np.hypot(*p) - design.radii[0]) <= reach
+        for z in (0.25 * g.axial_pitch, 0.5 * g.axial_pitch):
+            assert section_clearance(spec, contact, z + z_shift, tol)[0] > 100 * tol
 
 
 @pytest.mark.parametrize("da,expected", [(-0.02, 34.99), (-0.01, 29.35), (-0.005, 26.64), (0.005, 21.41),

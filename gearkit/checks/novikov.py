@@ -243,8 +243,9 @@ def check_novikov(spec: NovikovPairSpec, limits: NovikovLimits = NovikovLimits()
         frac = g.contact_axial_distance / g.axial_pitch
         lo, hi = math.floor(g.overlap_ratio), math.ceil(g.overlap_ratio)
         findings.append(Finding("contact_axial_distance", "ok", g.contact_axial_distance, None,
-                                f"q_TA = {g.contact_axial_distance:.4f} mm between the convex and the concave "
-                                f"contact of one flank ({frac:.5f} p_x); {2 * lo}..{2 * hi} contact points at a time "
+                                f"{g.contact_axial_distance:.4f} mm along the axis between the convex and the "
+                                f"concave contact of one flank ({frac:.5f} p_x; their normals cross the axis "
+                                f"{g.pole_axial_distance:.4f} mm apart); {2 * lo}..{2 * hi} contact points at a time "
                                 f"(mean {g.mean_contacts:.3f})"))
     contacts = ()
     if simulate:

@@ -17,9 +17,6 @@ from pathlib import Path
 
 from gearkit.errors import SpecError
 
-_3D = (".obj", ".stl", ".glb", ".ply", ".off", ".3mf")
-
-
 def register(subparsers) -> None:
     p = subparsers.add_parser(
         "novikov", help="generate and check a Novikov (circular-arc) pair: overlap, arcs, sensitivity, mesh",
@@ -42,10 +39,12 @@ def register(subparsers) -> None:
     lim.add_argument("--min-overlap-ratio", type=float, help="warn below this eps_beta (default 1.1; fail below 1)")
     out = p.add_argument_group("output")
     out.add_argument("--no-mesh", action="store_true", help="skip the simulated mesh (contact and interference)")
-    out.add_argument("--tol", type=float, help="sampling tolerance of outlines, mm (default 1e-3 m_n for files)")
+    out.add_argument("--tol", type=float, help="tolerance of written outlines/meshes, mm (default 1e-3 m_n in 2D, "
+                     "the solids' default in 3D)")
     out.add_argument("--json", action="store_true", help="print one JSON object")
-    out.add_argument("-o", "--output", help="write the pair in mesh: 2D .svg .dxf .csv .json, or 3D .obj .stl "
-                     "(a 3D file of one gear when named gear*.stl|obj)")
+    out.add_argument("-o", "--output", help="write the pair in mesh: 2D .svg .dxf .csv .json, or helical solids "
+                     ".obj .stl .glb (one gear when the file is named gear*, or with --gear)")
+    out.add_argument("--gear", type=int, choices=(1, 2), help="3D output of this gear only (1 pinion, 2 wheel)")
     p.set_defaults(run=run)
 
 
@@ -60,48 +59,42 @@ def _spec(args):
                            args.center_distance)
 
 
-def _placed_outlines(spec, tol):
-    """Both outlines in mesh (zone 0's contact), gear 1 at the origin, gear 2 at (0, a_w)."""
-    import numpy as np
+def _write(spec, args, info):
+    from gearkit.solids.export import mesh_format
 
+    path = args.output
+    if mesh_format(path) is not None:
+        return _write_3d(spec, args)
+    from gearkit.export import write_profile
+    from gearkit.families.novikov_mesh import meshed_outlines
+
+    tol = args.tol if args.tol is not None else 1e-3 * spec.module
+    return write_profile(path, meshed_outlines(spec, tol), info)
+
+
+def _write_3d(spec, args) -> dict:
+    """Helical solids through :mod:`gearkit.solids`: the pair placed in mesh at zone 0's contact (the
+    transverse sections at z = 0 are those of the 2D mesh; the opposite hands keep them in mesh along
+    the face), or one gear when the file is named gear*."""
     from gearkit.families.novikov import tooth_profile
     from gearkit.families.novikov_mesh import mesh_contact
+    from gearkit.solids import SolidSpec, default_mesh_tol, gear_solid, write_mesh
 
+    tol = args.tol if args.tol is not None else default_mesh_tol(spec.module)
+    body = SolidSpec(width=spec.face_width)
+    stem = Path(args.output).name.lower()
+    which = args.gear if args.gear is not None else (1 if stem.startswith("gear") else None)
+    if which is not None:
+        solid = gear_solid(tooth_profile(spec.gear(which)), body, tol, name=f"gear{which}")
+        write_mesh(args.output, [solid])
+        return {"parts": [solid.name], "achieved": solid.achieved}
     c = mesh_contact(spec, 0, interference=False)
-    loops = []
-    for k in (0, 1):
-        a = c.rotations[k]
-        rot = np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]])
-        pts = tooth_profile(spec.gear(k + 1)).outline(tol) @ rot.T
-        loops.append(pts + (np.array([0.0, c.center_distance]) if k else 0.0))
-    return loops
-
-
-def _write(spec, path, tol, info):
-    suffix = Path(path).suffix.lower()
-    if suffix in _3D:
-        try:
-            from gearkit import solids  # noqa: F401  (built by the solids module when available)
-        except ImportError:
-            raise SpecError("output", f"3D export ({suffix}) needs gearkit.solids, which this installation "
-                            "does not have yet; write a 2D profile (.svg .dxf .csv .json)") from None
-        return _write_3d(spec, path, tol)
-    from gearkit.export import write_profile
-
-    return write_profile(path, _placed_outlines(spec, tol), info)
-
-
-def _write_3d(spec, path, tol):  # pragma: no cover - depends on gearkit.solids
-    from gearkit import solids
-
-    gear_only = Path(path).name.lower().startswith("gear")
-    writer = getattr(solids, "export_pair", None) if not gear_only else getattr(solids, "export_gear", None)
-    if writer is None:
-        raise SpecError("output", "gearkit.solids has no helical export for this file yet")
-    from gearkit.families.novikov import tooth_profile
-
-    profiles = [tooth_profile(spec.gear(k)) for k in (1, 2)]
-    return writer(path, profiles[0] if gear_only else profiles, spec)
+    parts = [gear_solid(tooth_profile(spec.gear(k)), body, tol, name=f"gear{k}") for k in (1, 2)]
+    placed = [parts[0].placed(c.rotations[0]), parts[1].placed(c.rotations[1], (0.0, c.center_distance, 0.0))]
+    write_mesh(args.output, placed)
+    overlap = float((placed[0].manifold ^ placed[1].manifold).volume())
+    return {"parts": [p.name for p in placed], "achieved": max(p.achieved for p in placed),
+            "interference_volume": overlap}
 
 
 def run(args) -> int:
@@ -114,9 +107,8 @@ def run(args) -> int:
     result = check_novikov(spec, limits, simulate=not args.no_mesh)
     info = result.to_dict()
     if args.output:
-        tol = args.tol if args.tol is not None else 1e-3 * spec.module
-        _write(spec, args.output, tol, {k: info[k] for k in ("center_distance", "overlap_ratio", "contact_radii")})
-        info["output"] = args.output
+        written = _write(spec, args, {k: info[k] for k in ("center_distance", "overlap_ratio", "contact_radii")})
+        info["output"] = {"path": args.output, **(written if isinstance(written, dict) else {})}
     print(json.dumps(info, indent=2) if args.json else format_report(result))
     return 0 if result.ok else 1
 

@@ -12,7 +12,9 @@ the trochoid the centre describes.
 Pair geometry (no profile shift, as in Novikov practice; normal module m_n):
 ``a = m_n (z1 + z2) / (2 cos beta)``, transverse contact angle ``tan a_t = tan a_k / cos beta``,
 contact point at ``h_k m_n`` from the pitch line and ``X = h_k m_n cot(a_k) cos(beta)`` from the pole,
-contact-helix radius ``R_K = sqrt((r +- h_k m_n)^2 + X^2)``, lead ``pi m_n z / sin(beta)``, axial
+contact-helix radius ``R_K = sqrt((r +- h_k m_n)^2 + X^2)``, lead ``pi m_n z / sin(beta)``; the two
+contacts of a double-arc flank ``((x_Kf - x_Ka) + 2 h_k cot(a_k) cos^2(beta)) m_n / sin(beta)`` apart along
+the axis (their normals cross the axis ``Delta m_n / sin(beta)`` apart, Delta the pierce-point distance); axial
 overlap ``eps_beta = b sin(beta) / (pi m_n)`` (the transverse ratio is zero by design),
 centre-distance sensitivity ``sin a_k' = sin a_k - da / (rho_f - rho_a)`` (rack approximation).
 """
@@ -305,7 +307,10 @@ class NovikovPairGeometry:
     ``operating_contact_angle`` is the normal contact angle at the operating centre distance (rack
     formula), None when the contact has run off the working arcs; ``center_distance_window`` the
     range of a_w - a (mm) that keeps every contact on the racks' working arcs; ``contact_axial_distance``
-    the axial distance q_TA between the convex and concave contact of one flank (double-arc only).
+    the axial distance between the convex and the concave contact point of one flank (double-arc
+    only), ``pole_axial_distance`` the axial distance between the points where those two contacts'
+    normals cross the instantaneous axis (Delta m_n / sin(beta), Delta the distance of the arcs'
+    pierce points on the pitch line; the two differ by 2 h_k m_n cot(a_k) sin(beta)).
     """
 
     spec: NovikovPairSpec
@@ -326,6 +331,7 @@ class NovikovPairGeometry:
     operating_contact_angle: float | None
     contacts: tuple
     contact_axial_distance: float | None
+    pole_axial_distance: float | None
     sensitivity: float
     center_distance_window: tuple
     tip_clearances: tuple
@@ -362,6 +368,7 @@ class NovikovPairGeometry:
                           "leads": [_finite_or_none(v) for v in c.leads],
                           "helix_angles_deg": [deg(v) for v in c.helix_angles]} for c in self.contacts],
             "contact_axial_distance": _finite_or_none(self.contact_axial_distance),
+            "pole_axial_distance": _finite_or_none(self.pole_axial_distance),
             "sensitivity_deg_per_0.01m": deg(self.sensitivity),
             "center_distance_window": list(self.center_distance_window),
             "tip_clearances": list(self.tip_clearances), "backlash": self.backlash,
@@ -417,12 +424,19 @@ def novikov_pair_geometry(spec: NovikovPairSpec) -> NovikovPairGeometry:
         helix = tuple(math.atan(math.tan(beta) * radii[k] / r[k]) for k in (0, 1))
         contacts.append(ContactGeometry(zone.index, zone.convex_gear, h, x, h / math.sin(alpha_t), radii, leads,
                                         helix))
-    q_ta = None
+    q_k = q_p = None
     if racks.kind == "double-arc":
+        # contact at the phase where the transverse normal meets the pole: a rack point at normal-section
+        # x and height y touches in the section z = (x_P cos(b) + y cot(a_k) cos^2(b) - x) / sin(b) (x_P the
+        # pole's transverse position), so the two contacts of one flank lie
+        # ((x_Kf - x_Ka) + 2 h_k cot(a_k) cos^2(b)) / sin(b) apart; their normals cross the axis
+        # h_k cot(a_k) sin(b) further out on each side
         rk = racks.rack1
-        oa, of = rk.centre("convex"), rk.centre("concave")
-        delta = (of[0] - of[1] / math.tan(alpha)) - (oa[0] - oa[1] / math.tan(alpha))
-        q_ta = delta * m / sin_b if sin_b else math.inf
+        h = racks.zones[0].height
+        d_x = float(rk.contact_point("concave")[0] - rk.contact_point("convex")[0])
+        cot = 1.0 / math.tan(alpha)
+        q_k = m * (d_x + 2 * h * cot * math.cos(beta) ** 2) / sin_b if sin_b else math.inf
+        q_p = m * (d_x + 2 * h * cot) / sin_b if sin_b else math.inf
     lo, hi = _window(spec)
     d_rho = min(zn.rho_diff for zn in racks.zones)
     s = math.sin(alpha) - (a_w - a) / m / d_rho
@@ -436,6 +450,6 @@ def novikov_pair_geometry(spec: NovikovPairSpec) -> NovikovPairGeometry:
         axial_pitch=math.pi * m / sin_b if sin_b else math.inf,
         overlap_ratio=spec.face_width * sin_b / (math.pi * m), transverse_contact_ratio=0.0,
         contact_angle=alpha, contact_angle_transverse=alpha_t, operating_contact_angle=op,
-        contacts=tuple(contacts), contact_axial_distance=q_ta,
+        contacts=tuple(contacts), contact_axial_distance=q_k, pole_axial_distance=q_p,
         sensitivity=-0.01 / (d_rho * math.cos(alpha)), center_distance_window=(lo * m, hi * m),
         tip_clearances=clear, backlash=min(zn.backlash for zn in racks.zones) * m)

@@ -27,7 +27,7 @@ from gearkit.accuracy import distances_to_polyline
 from gearkit.errors import GeometryError
 from gearkit.families.novikov import NovikovPairSpec, novikov_pair_geometry, tooth_profile
 
-__all__ = ["MeshContact", "mesh_contact", "contact_trace", "signed_clearance"]
+__all__ = ["MeshContact", "mesh_contact", "meshed_outlines", "contact_trace", "section_clearance", "signed_clearance"]
 
 
 @dataclass(frozen=True)
@@ -238,3 +238,39 @@ def contact_trace(spec: NovikovPairSpec, contact: MeshContact, rotation: float =
     k = np.arange(math.floor(-z0 / p_x) - 1, math.ceil((spec.face_width - z0) / p_x) + 2)
     z = z0 + k * p_x
     return z[(z >= 0) & (z <= spec.face_width)]
+
+
+def meshed_outlines(spec: NovikovPairSpec, tol: float | None = None, zone: int = 0,
+                    center_distance: float | None = None):
+    """Both outlines placed in mesh at ``zone``'s contact: gear 1 about the origin, gear 2 about
+    ``(0, a_w)``; a list of two ``(n, 2)`` float64 arrays (mm), counter-clockwise, within ``tol``
+    (default 1e-3 m_n) of the generated teeth."""
+    tol = 1e-3 * spec.module if tol is None else tol
+    c = mesh_contact(spec, zone, center_distance, interference=False)
+    loops = []
+    for k in (0, 1):
+        pts = tooth_profile(spec.gear(k + 1)).outline(tol) @ _rot(c.rotations[k]).T
+        loops.append(pts + np.array([0.0, c.center_distance]) if k else pts)
+    return loops
+
+
+def section_clearance(spec: NovikovPairSpec, contact: MeshContact, z: float, tol: float | None = None):
+    """The transverse section at axial position ``z`` (mm) of the helical pair set up at ``contact``.
+
+    At ``z = 0`` the sections are those of ``contact``; along the face gear 1 (right hand) turns by
+    ``z tan(beta) / r_1`` and gear 2 (left hand) by ``-z tan(beta) / r_2``, i.e. every section is the
+    transverse mesh at another phase. Returns the smallest signed distance (mm) of gear 2's outline
+    from gear 1's near the mesh, and the point (fixed frame, mm) where it occurs.
+    """
+    geo = novikov_pair_geometry(spec)
+    tol = 1e-5 * spec.module if tol is None else tol
+    k = math.tan(geo.helix_angle) * z
+    rot = (contact.rotations[0] + k / geo.pitch_radii[0], contact.rotations[1] - k / geo.pitch_radii[1])
+    out = [tooth_profile(spec.gear(j + 1)).outline(tol) @ _rot(rot[j]).T for j in (0, 1)]
+    out[1] = out[1] + np.array([0.0, contact.center_distance])
+    window = 3.0 * math.pi * geo.transverse_module
+    pole_y = contact.center_distance * spec.teeth1 / (spec.teeth1 + spec.teeth2)
+    near = (np.abs(out[1][:, 0]) < window) & (np.abs(out[1][:, 1] - pole_y) < window)
+    d = signed_clearance(out[1][near], out[0])
+    i = int(np.argmin(d))
+    return float(d[i]), out[1][near][i]
