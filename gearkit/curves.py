@@ -238,3 +238,56 @@ def bracketed_root(f, a: float, b: float, fa: float | None = None, fb: float | N
         if width <= xtol * (1.0 + abs(a)):
             break
     return a if abs(fa) < abs(fb) else b
+
+
+def roulette(s, base_curvature: float, a: float, ratio: float = 1.0, side: float = 1.0):
+    """Cycloids, epicycloids and hypocycloids (and their curtate/prolate trochoids) in one form.
+
+    A circle of radius ``|a|`` rolls without slip on a base curve through the origin tangent to
+    +x: the x axis (``base_curvature = 0``) or the circle of radius ``1/base_curvature`` centred
+    at ``(0, -1/base_curvature)``. The rolling circle lies on the +y side of the base for
+    ``a > 0`` (outside a base circle: epicycloid) and on the -y side for ``a < 0`` (inside:
+    hypocycloid). The traced point is at ``ratio * |a|`` from the rolling circle's centre and
+    starts at the origin's side of it (``ratio = 1``: on the circle, a cusp at the origin).
+    ``s`` is the rolled arc length on the base (mm, positive towards +x).
+
+    Parameters
+    ----------
+    s : (n,) float64, mm
+    base_curvature : float, 1/mm (0: straight base)
+    a : float, mm, non-zero (signed)
+    ratio : float, traced-point distance / |a|
+    side : +1 or -1
+        Which way the tangent points at a cusp (``s = 0``, ``ratio = 1``), where it is the limit
+        from ``s * side > 0``.
+
+    Returns
+    -------
+    points, tangents : (n, 2) float64 (tangents along increasing ``s``, not normalised)
+
+    Examples
+    --------
+    >>> p, t = roulette(np.array([np.pi]), 0.0, 1.0)   # cycloid: the arch's top at (pi, 2)
+    >>> np.round(p, 12).tolist(), np.round(t / np.linalg.norm(t), 12).tolist()
+    ([[3.14159265359, 2.0]], [[1.0, 0.0]])
+    """
+    s = np.asarray(s, dtype=float)
+    kb = float(base_curvature)
+    phi = kb * s
+    theta = phi + s / a
+    if kb == 0.0:
+        base = np.stack([s, np.zeros_like(s)], -1)
+    else:
+        base = np.stack([np.sin(phi) / kb, (np.cos(phi) - 1.0) / kb], -1)
+    centre = base + a * np.stack([np.sin(phi), np.cos(phi)], -1)
+    p = centre - ratio * a * np.stack([np.sin(theta), np.cos(theta)], -1)
+    scale = 1.0 + a * kb
+    if ratio == 1.0:
+        # u(phi) - u(theta) = 2 sin((theta - phi)/2) (sin m, cos m), m = (phi + theta)/2: exact at the cusp
+        half = np.sin(0.5 * (theta - phi))
+        half = np.where(half == 0.0, side * np.sign(1.0 / a) * 1e-300, half)
+        m = 0.5 * (phi + theta)
+        t = (scale * np.sign(half))[..., None] * np.stack([np.sin(m), np.cos(m)], -1)
+    else:
+        t = scale * (np.stack([np.cos(phi), -np.sin(phi)], -1) - ratio * np.stack([np.cos(theta), -np.sin(theta)], -1))
+    return p, t

@@ -35,6 +35,10 @@ class Segment:
     kind ``"involute"``: data ``(cx, cy, rb, gamma, hand, t0, t1)``; involute of the circle of radius
     ``rb`` unwound from polar angle ``gamma`` (``hand`` +1 counter-clockwise, -1 clockwise), roll
     parameter ``t = tan(profile angle)`` linear in ``u``.
+    kind ``"roulette"``: data ``(kb, a, ratio, s0, s1)``; cycloid (base curvature ``kb = 0``),
+    epicycloid (``a > 0``) or hypocycloid (``a < 0``) traced by a circle of radius ``|a|`` rolling on
+    a base of curvature ``kb`` through the origin, rolled length ``s`` linear in ``u``
+    (:func:`gearkit.curves.roulette`; a cusp may only be an end, ``s0 = 0`` or ``s1 = 0``).
 
     ``affine = (a11, a12, a21, a22, b1, b2)`` maps the primitive into the tool frame;
     ``reverse`` walks it from ``u = 1`` to ``u = 0``.
@@ -67,6 +71,13 @@ class Segment:
             p = np.stack([cx + rb * (c + hand * tt * s), cy + rb * (s - hand * tt * c)], -1)
             sign = 1.0 if t1 >= t0 else -1.0
             t = sign * np.stack([c, s], -1)
+        elif self.kind == "roulette":
+            from gearkit.curves import roulette
+
+            kb, a, ratio, s0, s1 = d
+            p, t = roulette(s0 + u * (s1 - s0), kb, a, ratio, side=1.0 if s0 + s1 >= 0 else -1.0)
+            if s1 < s0:
+                t = -t
         else:  # pragma: no cover - constructor guards this
             raise ValueError(f"unknown segment kind {self.kind!r}")
         return p, t

@@ -1,0 +1,247 @@
+"""The simulated mesh of a pin-wheel drive: which pins touch the generated disc, which carry load,
+and how far the disc turns before the first contact (backlash).
+
+The disc is the generated one (the exact envelope pieces of its half tooth); the pins are the nominal ones (``R_Z``, ``r_Z``, running eccentricity ``e``), placed in the disc's
+frame for a relative angle ``psi0`` (reference digest §1.3): the pin ring's centre sits at
+``-e (sin Z_e psi0, cos Z_e psi0)`` and pin k at polar angle ``psi0 - 2 pi k/Z_b`` about it
+(in the digest's frame, turned into gearkit's by the same phase as the closed forms). A
+pin's clearance is its centre's distance from the exact generated disc minus ``r_Z``; it touches
+when the clearance is within ``contact_tol``. It carries load in direction ``+1`` when its contact
+force (along the common normal, pushing the disc) turns the disc counter-clockwise.
+
+The mesh repeats, turned by one disc pitch, after ``Delta psi0 = 2 pi |dz| / (Z_b Z_g)``, so time
+averages are taken over that period; uniform ``psi0`` is uniform crank angle.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+
+from gearkit.families.cycloidal.disc import disc_profile
+from gearkit.families.cycloidal.drive import DriveSpec, _phase, _turn
+
+__all__ = ["CONTACT_TOL", "MeshState", "MeshStats", "pin_centres", "mesh_state", "simulate_mesh", "backlash"]
+
+#: a pin touches when its clearance is below this fraction of the pin-circle radius (clearances
+#: are exact to ~1e-13 of it; a pin leaving a pointed tip does so tangentially, its clearance
+#: growing with the square of the angle, so the threshold must be far below the sampling)
+CONTACT_TOL = 1e-11
+
+
+def pin_centres(spec: DriveSpec, psi0, turn: float = 0.0):
+    """Nominal pin centres in the disc frame at relative angle ``psi0`` (rad), ``(Z_b, 2)`` mm
+    (``(n, Z_b, 2)`` for ``n`` angles).
+
+    ``turn`` rotates the disc counter-clockwise by that angle (rad) about its centre with the
+    crank held (the pins move clockwise relative to it).
+    """
+    psi = np.asarray(psi0, dtype=float)[..., None]
+    z_e = spec.equivalent_pins
+    e, big_r = spec.eccentricity, spec.pin_circle_radius
+    beta = psi - 2.0 * math.pi * np.arange(spec.pins) / spec.pins
+    c = np.stack([big_r * np.sin(beta) - e * np.sin(z_e * psi), big_r * np.cos(beta) - e * np.cos(z_e * psi)], -1)
+    return _turn(c, _phase(spec) + turn)
+
+
+class _Outline:
+    """Nearest points on the generated disc, exact to machine precision.
+
+    A query point is turned into tooth 0's sector and folded into the half tooth's wedge by the
+    disc's symmetry; its nearest disc point is then on the half tooth or on the half tooth's
+    mirror image in the tooth's or the space's centre line. The half tooth is the generating
+    pin's envelope over the rolls the kernel kept (:meth:`CycloidalDisc.flank_rolls`), plus the
+    tip arc of a truncated disc; ``samples`` points per roll interval find a start and Newton's
+    method in the roll finds the foot of the perpendicular.
+    """
+
+    def __init__(self, spec: DriveSpec, samples: int = 128):
+        from scipy.spatial import cKDTree
+
+        disc = disc_profile(spec)
+        self.disc = disc
+        self.half = math.pi / disc.teeth
+        rolls = [np.linspace(a, b, samples) for a, b in disc.flank_rolls()]
+        self.rolls = np.concatenate(rolls)
+        self.bounds = np.concatenate([np.repeat([[a[0], a[-1]]], len(a), axis=0) for a in rolls])
+        pts = disc.at_roll(self.rolls)
+        self.tree = cKDTree(pts)
+        self.spacing = float(np.linalg.norm(np.diff(pts, axis=0), axis=1).max())
+        first = disc.half.pieces[0]
+        self.tip = first.curve if not hasattr(first.curve, "solve") else None
+
+    def _start(self, q):
+        """Distance to the sampled flank and the nearest sample's index."""
+        return self.tree.query(q)
+
+    def _refine(self, q, idx):
+        """Newton in the roll from the samples ``idx``: exact distance to the flank and foot point."""
+        x = self.rolls[idx].copy()
+        lo, hi = self.bounds[idx, 0], self.bounds[idx, 1]
+        span = hi - lo
+        h1, h2 = 1e-5 * span, 1e-3 * span
+        act = np.arange(len(q))
+        for _ in range(40):
+            xa, qa = x[act], q[act]
+            h1a, h2a = h1[act], h2[act]
+            p = self.disc.at_roll(np.concatenate([xa - h2a, xa - h1a, xa, xa + h1a, xa + h2a])).reshape(5, len(xa), 2)
+            d1 = (p[3] - p[1]) / (2 * h1a[:, None])
+            dd = (p[4] - 2 * p[2] + p[0]) / (h2a * h2a)[:, None]
+            r = p[2] - qa
+            f = np.einsum("ij,ij->i", r, d1)
+            gn = np.einsum("ij,ij->i", d1, d1)
+            x_new = np.clip(xa - f / np.maximum(gn + np.einsum("ij,ij->i", r, dd), 0.1 * gn), lo[act], hi[act])
+            moved = np.abs(x_new - xa)
+            x[act] = x_new
+            act = act[moved > 1e-8 * span[act]]
+            if not len(act):
+                break
+        foot = self.disc.at_roll(x)
+        best = np.linalg.norm(foot - q, axis=1)
+        if self.tip is not None:  # truncated disc: the tip arc about the centre
+            psi = np.arctan2(q[:, 0], q[:, 1])
+            ang = np.clip(psi, min(self.tip.psi0, self.tip.psi1), max(self.tip.psi0, self.tip.psi1))
+            p = self.tip.radius * np.stack([np.sin(ang), np.cos(ang)], -1)
+            dist = np.linalg.norm(p - q, axis=1)
+            better = dist < best
+            best = np.where(better, dist, best)
+            foot = np.where(better[:, None], p, foot)
+        return best, foot
+
+    def nearest(self, q):
+        """Distance to the disc outline and the nearest outline point for each query point."""
+        flip_x = np.array([-1.0, 1.0])
+        k = np.round(np.arctan2(q[:, 0], q[:, 1]) / (2.0 * self.half))
+        local = _turn(q, -k * 2.0 * self.half)
+        flip = np.where(local[:, :1] < 0, flip_x, 1.0)
+        local = local * flip
+
+        def mirror_s(p):  # mirror image in the space centre line (polar pi/z)
+            return _turn(_turn(p, -self.half) * flip_x, self.half)
+        cands = (local, mirror_s(local), local * flip_x)
+        starts = [self._start(p) for p in cands]
+        coarse = np.stack([st[0] for st in starts])
+        keep = coarse <= coarse.min(axis=0) + 2.0 * self.spacing
+        dist = np.full(coarse.shape, np.inf)
+        feet = np.zeros(coarse.shape + (2,))
+        for c, (p, (_, idx)) in enumerate(zip(cands, starts)):
+            sel = np.flatnonzero(keep[c])
+            dist[c, sel], feet[c, sel] = self._refine(p[sel], idx[sel])
+        feet[1] = mirror_s(feet[1])
+        feet[2] = feet[2] * flip_x
+        which = np.argmin(dist, axis=0)
+        n = np.arange(len(q))
+        return dist[which, n], _turn(feet[which, n] * flip, k * 2.0 * self.half)
+
+
+@dataclass(frozen=True)
+class MeshState:
+    """One instant of the mesh (disc frame, mm), or ``n`` instants stacked along a first axis.
+
+    centres, contact : (Z_b, 2) float64, mm (pin centres, nearest disc points); clearance :
+    (Z_b,) float64, mm; touching : (Z_b,) bool; arm : (Z_b,) float64, mm, the signed moment arm
+    about the disc centre of each pin's push on the disc (positive: counter-clockwise).
+    """
+
+    psi0: float | np.ndarray
+    centres: np.ndarray
+    clearance: np.ndarray
+    contact: np.ndarray
+    touching: np.ndarray
+    arm: np.ndarray
+
+    @property
+    def spec_scale(self) -> float:
+        return float(np.abs(self.centres).max())
+
+    def load_carrying(self, direction: int = 1) -> np.ndarray:
+        """Pins that touch and push the disc in ``direction`` (+1 counter-clockwise, -1 clockwise)."""
+        return self.touching & (direction * self.arm > 1e-9 * self.spec_scale)
+
+
+def _state(spec, outline, psi0, turn, contact_tol):
+    c = pin_centres(spec, psi0, turn)
+    shape = c.shape[:-1]
+    dist, foot = outline.nearest(c.reshape(-1, 2))
+    foot = foot.reshape(c.shape)
+    clearance = dist.reshape(shape) - spec.pin_radius
+    push = foot - c  # the pin pushes the disc along the common normal, from the pin's centre
+    push /= np.linalg.norm(push, axis=-1, keepdims=True)
+    arm = foot[..., 0] * push[..., 1] - foot[..., 1] * push[..., 0]
+    return MeshState(psi0, c, clearance, foot, clearance <= contact_tol, arm)
+
+
+def _tols(spec, contact_tol):
+    contact_tol = CONTACT_TOL * spec.pin_circle_radius if contact_tol is None else float(contact_tol)
+    return _outline(spec), contact_tol
+
+
+@lru_cache(maxsize=16)
+def _outline(spec):
+    return _Outline(spec)
+
+
+def mesh_state(spec: DriveSpec, psi0: float = 0.0, contact_tol: float | None = None):
+    """The mesh at relative angle ``psi0`` (rad, scalar or ``(n,)``); pins touch within
+    ``contact_tol`` (mm, default ``CONTACT_TOL * R_Z``)."""
+    outline, contact_tol = _tols(spec, contact_tol)
+    return _state(spec, outline, psi0, 0.0, contact_tol)
+
+
+@dataclass(frozen=True)
+class MeshStats:
+    """Counts over one mesh period (``samples`` instants, uniform in crank angle).
+
+    ``touching`` and ``loaded`` are ``(mean, min, max)``; ``loaded`` is for the counter-clockwise
+    push (direction +1), ``loaded_reverse`` for the clockwise one.
+    """
+
+    samples: int
+    touching: tuple
+    loaded: tuple
+    loaded_reverse: tuple
+
+
+def simulate_mesh(spec: DriveSpec, samples: int = 4000, contact_tol: float | None = None):
+    """Run the disc through one mesh period and count touching and load-carrying pins.
+
+    The mesh repeats, turned by one disc pitch, after ``Delta psi0 = 2 pi |dz| / (Z_b Z_g)``; that
+    period is sampled at ``samples`` midpoints.
+    """
+    outline, contact_tol = _tols(spec, contact_tol)
+    period = 2.0 * math.pi * abs(spec.tooth_difference) / (spec.pins * spec.lobes)
+    psis = (np.arange(samples) + 0.5) / samples * period
+    st = _state(spec, outline, psis, 0.0, contact_tol)
+
+    def stats(v):
+        v = v.sum(axis=-1)
+        return float(v.mean()), int(v.min()), int(v.max())
+    return MeshStats(samples, stats(st.touching), stats(st.load_carrying(1)), stats(st.load_carrying(-1)))
+
+
+def backlash(spec: DriveSpec, psi0: float = 0.0, direction: int = 1, contact_tol: float | None = None):
+    """Angle (rad) the disc turns, crank held, before a pin touches: the backlash of the mesh.
+
+    Returns ``(angle, state)`` with the mesh state at first contact. ``direction`` +1 turns the disc
+    counter-clockwise. 0 when a pin already touches (or interferes) at ``psi0``; ``inf`` when no pin
+    is met within one disc pitch.
+    """
+    from scipy.optimize import brentq
+
+    outline, contact_tol = _tols(spec, contact_tol)
+
+    def gap(turn):
+        return float(_state(spec, outline, psi0, direction * turn, contact_tol).clearance.min())
+
+    g0 = gap(0.0)
+    if g0 <= contact_tol:
+        return 0.0, _state(spec, outline, psi0, 0.0, contact_tol)
+    lo, hi = 0.0, g0 / abs(spec.disc_pitch_radius)
+    while gap(hi) > 0.0:
+        lo, hi = hi, 2.0 * hi
+        if lo > 2.0 * math.pi / spec.lobes:
+            return math.inf, _state(spec, outline, psi0, 0.0, contact_tol)
+    angle = brentq(gap, lo, hi, xtol=1e-16, rtol=1e-15)
+    return angle, _state(spec, outline, psi0, direction * angle, contact_tol)
