@@ -33,3 +33,8 @@ def __getattr__(name):
 
 
 __all__ += list(_SOLIDS)
+
+# -- the speed-accuracy bench (`gearkit bench`) ----------------------------------------------
+from gearkit.bench import run_bench  # noqa: E402
+
+__all__ += ["run_bench"]

@@ -88,7 +88,8 @@ def format_table(res: dict) -> str:
                  f"{'count':>9} {'time':>11}")
     for r in res["ladder"]:
         ach = "" if r["achieved"] is None else f"{r['achieved']:10.3e}"
-        ratio = "" if r["achieved"] is None else f"{r['achieved'] / r['tol']:7.3f}"
+        ratio = "" if r["achieved"] is None or r["product"] == "blocking contour" else \
+            f"{r['achieved'] / r['tol']:7.3f}"
         lines.append(f"  {r['product']:16} {r['family']:9} {r['case']:26} {r['tol']:9.1e} {ach:>10} {ratio:>7} "
                      f"{r['vertices']:9d} {_fmt_s(r['seconds']):>11}")
     lines.append("")
@@ -124,7 +125,8 @@ def format_table(res: dict) -> str:
         lines.append("whole process (gearkit gear ... -o FILE, tol 0.001 mm, median of 5 runs)")
         for r in res["process"]:
             status = "" if r["ok"] else f"  FAILED: {r.get('error', '')}"
-            lines.append(f"  {r['gear']:32} {r['output']:30} {_fmt_s(r['seconds']):>11}{status}")
+            ach = "" if r.get("achieved") is None else f"  achieved {r['achieved'] * 1e3:.2f} um"
+            lines.append(f"  {r['gear']:32} {r['output']:30} {_fmt_s(r['seconds']):>11}{ach}{status}")
     lines.append("")
     lines.append(f"bench time {res['meta']['seconds']:.1f} s")
     return "\n".join(lines)

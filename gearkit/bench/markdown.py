@@ -24,7 +24,8 @@ def render(res: dict) -> str:
     out.append("|---|---|---|---:|---:|---:|---:|---:|")
     for r in res["ladder"]:
         ach = "" if r["achieved"] is None else f"{r['achieved']:.2e}"
-        ratio = "" if r["achieved"] is None else f"{r['achieved'] / r['tol']:.2f}"
+        ratio = "" if r["achieved"] is None or r["product"] == "blocking contour" else \
+            f"{r['achieved'] / r['tol']:.2f}"
         out.append(f"| {r['product']} | {r['family']} | {r['case']} | {r['tol']:.0e} | {ach} | {ratio} "
                    f"| {r['vertices']} | {_ms(r['seconds'])} |")
     out.append("")
@@ -69,10 +70,12 @@ def render(res: dict) -> str:
         out.append("")
         ref = {"spur z=12 m=2 b=5": "0.27 s (1.1 µm)", "helical z=20 m=2 b=10 beta=20": "0.49 s (2.3 µm)",
                "spur z=200 m=1 b=5": "0.57 s (14 µm)"}
-        out.append("| gear | output | gearkit | script-based CAD library |")
+        out.append("| gear | output | gearkit (achieved) | script-based CAD library (flank deviation) |")
         out.append("|---|---|---:|---:|")
         for r in res["process"]:
             t = _ms(r["seconds"]) if r["ok"] else "failed"
+            if r.get("achieved") is not None:
+                t += f" ({r['achieved'] * 1e3:.2f} µm)"
             out.append(f"| {r['gear']} | {r['output']} | {t} | {ref.get(r['gear'], '')} |")
     if res.get("unmeasured"):
         out.append("")

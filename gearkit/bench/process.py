@@ -72,5 +72,24 @@ def process_times(runs: int = 5):
                     break
             rows.append({"gear": name, "output": "stl" if stl else "svg (2D; no mesh export yet)",
                          "tol": TOL_MM, "seconds": float(np.median(times)), "runs": len(times), "ok": ok,
-                         **({"error": err[0]} if not ok else {})})
+                         "achieved": _achieved(flags, b, stl), **({"error": err[0]} if not ok else {})})
     return rows
+
+
+def _achieved(flags, width, stl: bool):
+    """The deviation (mm) of the same gear built in-process, measured independently on mesh sections
+    (2D: on the outline); None if it cannot be built here."""
+    from gearkit.bench.meshes import mesh_deviation
+    from gearkit.bench.profiles import measured_deviation
+    from gearkit.families.involute import GearSpec, tooth_profile
+
+    opts = dict(zip(flags[::2], flags[1::2]))
+    spec = GearSpec(int(opts["-z"]), float(opts["-m"]), helix_angle_deg=float(opts.get("--helix-angle-deg", 0.0)))
+    prof = tooth_profile(spec)
+    if not stl:
+        outline = prof.outline(TOL_MM)
+        return measured_deviation(prof, outline, len(prof.half_points(TOL_MM)[0]))
+    from gearkit.solids import SolidSpec, gear_solid
+
+    solid = gear_solid(prof, SolidSpec(width), tol=TOL_MM)
+    return mesh_deviation(prof, solid, width, spec.helix_angle_deg)
