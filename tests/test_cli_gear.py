@@ -38,7 +38,7 @@ def test_herringbone_ring_obj_and_table(tmp_path, capsys):
                  "--width", "12", "--herringbone", "--gap", "2", "--outer-diameter", "72", "--tol", "0.01",
                  "-o", str(out)]) == 0
     text = capsys.readouterr().out
-    assert "double-helical ring" in text and "mesh accuracy" in text
+    assert "double-helical ring" in text and "accuracy                 requested 0.01 mm" in text
     mesh = trimesh.load(out, force="mesh")
     assert mesh.is_watertight
     assert mesh.bounds[1][0] == pytest.approx(36.0, abs=1e-6)

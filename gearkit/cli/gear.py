@@ -145,8 +145,6 @@ def format_solid(info: dict) -> str:
         f"  volume                   {info['volume']:12.3f} mm^3",
         f"  faces                    {info['faces']:12d}",
         f"  bounding box             " + " x ".join(f"{h - l:.4f}" for l, h in zip(lo, hi)) + " mm",
-        f"  mesh accuracy            requested {info['tol']:.3g} mm, achieved {info['achieved']:.3g} mm "
-        "(every vertex and facet from the exact tooth surface)",
     ])
 
 
@@ -188,6 +186,8 @@ def _run_solid(args, spec, prof) -> int:
     solid = gear_solid(prof, solid_spec_from_args(args), tol, name="gear")
     write_mesh(args.output, [solid], ascii=args.ascii)
     info = prof.summary(tol)
+    info["tolerance"] = {"requested": tol, "achieved": solid.achieved,
+                         "of": "every vertex and facet of the mesh from the exact surface"}
     info["solid"] = solid.summary()
     info["output"] = args.output
     if args.json:

@@ -24,13 +24,21 @@ from gearkit.solids.solid import Solid, SolidSpec, default_mesh_tol
 from gearkit.solids.surface import plan_layers, tooth_polyline
 
 
-def circle_points(radius: float, tol: float, start: float = 0.0, multiple: int = 1) -> np.ndarray:
-    """Counter-clockwise polygon on a circle with every chord within ``tol`` (count a multiple of ``multiple``)."""
+def circle_points(radius: float, tol: float) -> np.ndarray:
+    """Counter-clockwise polygon on a circle with every chord within ``tol`` of it."""
     step = 2.0 * math.acos(max(1.0 - tol / radius, -1.0))
     n = max(8, math.ceil(2.0 * math.pi / step))
-    n = multiple * math.ceil(n / multiple)
-    a = start + 2.0 * math.pi * np.arange(n) / n
+    a = 2.0 * math.pi * np.arange(n) / n
     return radius * np.stack([np.cos(a), np.sin(a)], -1)
+
+
+def _sag(polygon, radius: float) -> float:
+    """Largest sag (mm) of the polygon's chords between vertices on the circle of ``radius`` (the
+    other edges, such as a keyway's, are exact)."""
+    on = np.isclose(np.hypot(polygon[:, 0], polygon[:, 1]), radius, rtol=1e-12)
+    chord = on & np.roll(on, -1)
+    mid = 0.5 * (polygon + np.roll(polygon, -1, axis=0))
+    return float((radius - np.hypot(mid[:, 0], mid[:, 1]))[chord].max(initial=0.0))
 
 
 def bore_points(diameter: float, keyway, tol: float) -> np.ndarray:
@@ -230,12 +238,15 @@ def gear_solid(profile, spec: SolidSpec, tol: float | None = None, name: str = "
             "width": float(b), "helix_angle_deg": beta_deg, "hand": _hand(beta), "tol": tol,
             "achieved": plan.achieved, "polyline_tol": poly.tol, "layers": n, "points_per_tooth": poly.edges}
     wall = bore if bore is not None else outer
+    if wall is not None:
+        info["achieved"] = max(info["achieved"], _sag(wall, spec.bore / 2.0 if bore is not None else r_out))
     mesh = _Mesh()
     if spec.herringbone and gap > 0.0:
         zs = np.linspace(0.0, run, n + 1)
         lo = mesh.band(sec, zs, k * zs, plan.diagonals)
         hi = mesh.band(sec, b - zs[::-1], k * zs[::-1], plan.diagonals)
         groove = _groove(profile, radii, wall, internal, tol)
+        info["achieved"] = max(info["achieved"], _sag(groove, float(np.hypot(*groove[0]))))
         g0, g1 = mesh.wall(groove, run, b - run, hole=internal)
         mesh.cap(sec.face(k * run, lo[1], groove, g0), up=True)
         mesh.cap(sec.face(k * run, hi[0], groove, g1), up=False)
