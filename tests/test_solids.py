@@ -220,6 +220,30 @@ def test_rack_bar_volume_is_whole_pitches_of_the_exact_profile(beta):
     assert bar.achieved <= 5e-3
 
 
+def densify(poly, step):
+    """The same polyline with extra vertices on long edges (the distance helper searches near vertices)."""
+    out = [poly[:1]]
+    for a, b in zip(poly[:-1], poly[1:]):
+        n = max(1, math.ceil(np.linalg.norm(b - a) / step))
+        out.append(a + (b - a) * (np.arange(1, n + 1) / n)[:, None])
+    return np.concatenate(out)
+
+
+def test_helical_rack_facets_lie_on_the_sheared_exact_profile():
+    prof = rack_profile(RackSpec(2.0, helix_angle_deg=25.0))
+    bar = rack_solid(prof, 30.0, 8.0, 10.0, 5e-3)
+    v, f = bar.arrays()
+    tri = v[f]
+    planar = np.ptp(tri[:, :, 2], axis=1) < 1e-9  # the end faces z = 0 and z = b
+    for axis, value in ((0, 0.0), (0, 30.0), (1, prof.tip_height - 8.0)):  # the bar's ends and its back
+        planar |= np.isclose(tri[:, :, axis], value, atol=1e-9).all(axis=1)
+    pts = sample_points(v, f[~planar])
+    x = pts[:, 0] - pts[:, 2] * math.tan(math.radians(25.0))  # undo the shear
+    row = densify(prof.outline(REF, teeth=12) - (4 * prof.pitch, 0.0), 0.02)
+    d = distances_to_polyline(np.column_stack([x, pts[:, 1]]), row)
+    assert len(pts) > 1000 and d.max() <= 5e-3 + REF
+
+
 def test_an_invalid_mesh_raises_and_is_never_built():
     import manifold3d as m3
 
