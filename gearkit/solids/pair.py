@@ -15,6 +15,7 @@ boolean), mm^3: zero for a pair that runs freely.
 from __future__ import annotations
 
 import math
+from contextlib import contextmanager
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -124,7 +125,8 @@ def pair_assembly(spec, width: float | None = None, tol: float | None = None, *,
     names = PART_NAMES[spec.kind]
     specs = gear_specs(spec)
     pinion_prof = tooth_profile(specs[0])
-    pinion = gear_solid(pinion_prof, SolidSpec(b, None, herringbone, gap, bores[0], keyways[0]), tol, names[0])
+    with _naming(1):
+        pinion = gear_solid(pinion_prof, SolidSpec(b, None, herringbone, gap, bores[0], keyways[0]), tol, names[0])
     r1 = pinion_prof.reference_diameter / 2.0
     if spec.kind == "rack":
         if herringbone:
@@ -143,8 +145,18 @@ def pair_assembly(spec, width: float | None = None, tol: float | None = None, *,
         raise SpecError("bores", "a ring gear has no bore")
     body = SolidSpec(b, None, herringbone, gap, None if internal else bores[1], None if internal else keyways[1],
                      outer_diameter if internal else None, rim if internal else None)
-    other = gear_solid(tooth_profile(specs[1]), body, tol, names[1])
+    with _naming(2):
+        other = gear_solid(tooth_profile(specs[1]), body, tol, names[1])
     return Assembly(spec.kind, (pinion, other), geo.center_distance, (spec.teeth1, spec.teeth2), r1)
+
+
+@contextmanager
+def _naming(gear: int):
+    """Name the gear a SpecError's field belongs to (``gear2.bore``)."""
+    try:
+        yield
+    except SpecError as exc:
+        raise SpecError(f"gear{gear}.{exc.field}", str(exc).split(": ", 1)[-1]) from None
 
 
 def pinion_pitch_angle(assembly: Assembly) -> float:
