@@ -14,7 +14,7 @@ from gearkit.solids.solid import Solid
 from gearkit.tools import ShaperCutter
 
 M = 1.0  # module, mm
-B = 10.0  # face width, mm
+B = 6.0  # face width, mm
 TOL = 5e-3 * M  # mesh tolerance under test, mm
 REF = TOL / 200  # chord tolerance of the dense reference outline, mm
 TEETH = (8, 20, 97)
