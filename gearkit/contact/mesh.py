@@ -1,0 +1,228 @@
+"""Two profiles placed in mesh: frames, ideal motion, pitch point and the teeth that can touch.
+
+Fixed frame: the driver (gear 1) turns about the origin; the mesh is at the top, on +y. At
+driver angle ``phi = 0`` the driver's tooth 0 is centred on +y and the mate (gear 2) shows a
+tooth space there.
+
+=============  ==============================================  ===========================
+kind           mate                                            mate centre / datum
+=============  ==============================================  ===========================
+external       external gear                                   ``O2 = (0, a)``
+internal       ring (internal gear), driver inside it          ``O2 = (0, -a)``
+ring-driver    external gear inside the driver (a ring)        ``O2 = (0, a)``
+rack           rack (teeth towards the driver)                 datum line ``y = a``
+=============  ==============================================  ===========================
+
+The driver turns counter-clockwise by ``phi``. The mate's position ``delta`` is its rotation
+(rad, counter-clockwise) or, for a rack, its displacement along +x (mm), measured from the
+ideal motion ``k phi`` (``k = -z1/z2`` external, ``+z1/z2`` internal and ring-driver,
+``-r1`` rack with ``r1 = z1 p / 2 pi``). A driver point in a mate's space at offset ``u``
+from the space centre (mate units, at ``delta = 0``) stays clear while ``|u + delta| <= w``:
+each point bounds ``delta`` to ``[-w - u, w - u]``.
+
+The driven mate lags behind its driver: it rests against the *working* bound, the upper one
+when it moves towards negative ``delta`` (``k < 0``) and the lower one otherwise.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from gearkit.contact.tooth import Boundary, HalfWidth, linear_from_y
+from gearkit.curves import polar_from_y
+from gearkit.errors import GeometryError, SpecError, require
+
+__all__ = ["Mesh", "KINDS"]
+
+KINDS = ("external", "internal", "ring-driver", "rack")
+
+
+def _is_rack(profile) -> bool:
+    return getattr(profile, "teeth", None) is None and hasattr(profile, "pitch")
+
+
+class Mesh:
+    """Two generated profiles in mesh at a centre distance.
+
+    Parameters
+    ----------
+    gear1 : ToothProfile
+        The driver (external or internal), any family.
+    gear2 : ToothProfile or rack profile
+        The mate. A rack profile has ``pitch`` (mm) and no ``teeth``, its half tooth in the
+        rack frame (datum line y = 0, teeth towards +y, tooth 0 centred on x = 0).
+    center_distance : float, mm
+        a; for a rack, from the driver's axis to the rack's datum line.
+    tol : float or None, mm
+        Chord tolerance of the polylines that locate contacts before they are refined on the
+        exact pieces (default 1e-3 module): features smaller than about ``tol`` may be missed,
+        values found are exact.
+
+    Examples
+    --------
+    >>> from gearkit.families.involute import GearSpec, tooth_profile
+    >>> m = Mesh(tooth_profile(GearSpec(20, 1.0)), tooth_profile(GearSpec(40, 1.0)), 30.0)
+    >>> m.kind, round(m.pitch_radii[0], 12), m.working
+    ('external', 10.0, 1)
+    """
+
+    def __init__(self, gear1, gear2, center_distance: float, tol: float | None = None):
+        require(getattr(gear1, "teeth", None) is not None, "gear1", "the driver must be a gear (a rack cannot turn)")
+        a = center_distance
+        require(isinstance(a, (int, float, np.floating)) and math.isfinite(a) and a > 0, "center_distance",
+                f"{a!r} must be a positive length in mm")
+        self.gear1, self.gear2 = gear1, gear2
+        self.a = float(a)
+        self.module = float(gear1.module)
+        self.tol = 1e-3 * self.module if tol is None else float(tol)
+        require(math.isfinite(self.tol) and 0 < self.tol <= 0.1 * self.module, "tol",
+                f"{tol!r} must be in (0, {0.1 * self.module:g}] mm (a tenth of the module)")
+        self.z1 = int(gear1.teeth)
+        self.pitch1 = 2.0 * math.pi / self.z1
+        if _is_rack(gear2):
+            require(not gear1.internal, "gear1", "a ring cannot mesh with a rack")
+            self.kind = "rack"
+            self.z2 = None
+            self.pitch2 = float(gear2.pitch)
+            self.ratio = -self.z1 * self.pitch2 / (2.0 * math.pi)
+            r_w1 = -self.ratio
+            self.centre2 = None
+            self.beta0 = self.pitch2 / 2.0
+            coords = linear_from_y
+        else:
+            require(not (gear1.internal and gear2.internal), "gear2", "two rings cannot mesh")
+            self.z2 = int(gear2.teeth)
+            self.pitch2 = 2.0 * math.pi / self.z2
+            if gear2.internal:
+                require(self.z2 > self.z1, "gear2", f"the ring needs more teeth than the pinion ({self.z2} <= {self.z1})")
+                self.kind, d, toward = "internal", -self.a, 0.0
+                r_w1 = self.a * self.z1 / (self.z2 - self.z1)
+            elif gear1.internal:
+                require(self.z1 > self.z2, "gear2", f"the ring needs more teeth than the pinion ({self.z1} <= {self.z2})")
+                self.kind, d, toward = "ring-driver", self.a, 0.0
+                r_w1 = self.a * self.z1 / (self.z1 - self.z2)
+            else:
+                self.kind, d, toward = "external", self.a, math.pi
+                r_w1 = self.a * self.z1 / (self.z1 + self.z2)
+            self.ratio = (-1.0 if self.kind == "external" else 1.0) * self.z1 / self.z2
+            self.centre2 = np.array([0.0, d])
+            self.beta0 = self.pitch2 / 2.0 - toward  # mate frame turned so a space faces the mesh
+            coords = polar_from_y
+        self.working = 1 if self.ratio < 0 else -1
+        self.pitch_point = np.array([0.0, r_w1])
+        r_w2 = (self.a - r_w1 if self.kind == "rack" else
+                float(np.hypot(*(self.pitch_point - self.centre2))))
+        self.pitch_radii = (float(r_w1), float(r_w2))
+        self.driver = Boundary(gear1, self.tol)
+        self.mate = HalfWidth(gear2, self.pitch2, coords, min(self.tol, 1e-4 * self.module))
+        self.offsets = self._window()
+        #: a lower bound of the contact normal's arm about the mate's centre (mm; 1 for a rack, whose
+        #: unit is mm), turning normal distances into mate units for the search's safety margins
+        self.arm_scale = 0.25 * (1.0 if self.kind == "rack" else min(abs(self.mate.rho_tip), abs(self.mate.rho_root)))
+        #: round-off of a contact's position along its normal (mm): a few units in the last place of
+        #: the largest coordinate involved
+        self.noise = 1e-13 * max(abs(self.mate.rho_tip), abs(self.mate.rho_root), self.driver.radius_range[1], self.a)
+
+    # -- frames -----------------------------------------------------------------------------------
+    def teeth(self, phi):
+        """Absolute indices ``(n, K)`` of the driver teeth that can touch at ``phi`` ``(n,)``, and their
+        frame angles ``theta = phi + 2 pi i / z1`` (rad, counter-clockwise)."""
+        phi = np.asarray(phi, dtype=float)
+        i0 = np.round(-phi / self.pitch1).astype(int)
+        idx = i0[:, None] + self.offsets[None, :]
+        return idx, phi[:, None] + idx * self.pitch1
+
+    def to_mate(self, points, phi):
+        """Fixed-frame points ``(..., 2)`` at driver angle ``phi`` (broadcast over ``...``): the mate's
+        radial coordinate ``rho`` and the offset ``u`` from the nearest space centre (mate units,
+        at ``delta = 0``)."""
+        p = np.asarray(points, dtype=float)
+        phi = np.asarray(phi, dtype=float)
+        if self.kind == "rack":
+            rho = self.a - p[..., 1]
+            psi = self.beta0 + self.ratio * phi - p[..., 0]
+        else:
+            beta = self.beta0 + self.ratio * phi
+            c, s = np.cos(beta), np.sin(beta)
+            x, y = p[..., 0] - self.centre2[0], p[..., 1] - self.centre2[1]
+            q = np.stack([c * x + s * y, -s * x + c * y], -1)
+            rho, psi = polar_from_y(q)
+        return rho, np.mod(psi, self.pitch2) - self.pitch2 / 2.0
+
+    def mate_velocity(self, points):
+        """Velocity of mate points at fixed-frame ``points`` per unit ``delta`` (mm/rad or 1 for a rack)."""
+        p = np.asarray(points, dtype=float)
+        if self.kind == "rack":
+            return np.broadcast_to(np.array([1.0, 0.0]), p.shape).copy()
+        r = p - self.centre2
+        return np.stack([-r[..., 1], r[..., 0]], -1)
+
+    def mate_to_fixed(self, points, phi, delta=0.0):
+        """Mate-frame points at driver angle ``phi`` and mate position ``delta`` in the fixed frame."""
+        p = np.asarray(points, dtype=float)
+        if self.kind == "rack":
+            shift = self.beta0 + self.ratio * phi + delta
+            return np.stack([shift - p[..., 0], self.a - p[..., 1]], -1)
+        beta = self.beta0 + self.ratio * phi + delta
+        c, s = np.cos(beta), np.sin(beta)
+        return np.stack([c * p[..., 0] - s * p[..., 1], s * p[..., 0] + c * p[..., 1]], -1) + self.centre2
+
+    # -- the teeth that can touch --------------------------------------------------------------
+    def _window(self):
+        """Driver teeth that can reach the mate's teeth, as offsets from the tooth nearest +y."""
+        r_lo, r_hi = self.driver.radius_range
+        r = np.linspace(r_lo, r_hi, 257)
+        rt = self.mate.rho_tip
+        if self.kind == "rack":
+            c = (self.a - rt) / r
+        elif self.kind == "internal":
+            c = (rt ** 2 - r ** 2 - self.a ** 2) / (2 * self.a * r)
+        else:
+            c = (r ** 2 + self.a ** 2 - rt ** 2) / (2 * self.a * r)
+        if not (c <= 1.0).any():
+            raise SpecError("center_distance", f"a = {self.a:g} mm: the teeth of the two gears do not reach "
+                            "each other")
+        reach = float(np.arccos(np.clip(c[c <= 1.0], -1.0, 1.0)).max())
+        half = int(math.ceil(reach / self.pitch1 + 1.0))
+        if 2 * half + 1 >= self.z1:
+            return np.arange(self.z1) - self.z1 // 2
+        return np.arange(-half, half + 1)
+
+    def root_clearances(self):
+        """Radial clearances (mm) of the driver's tip circle to the mate's root circle and of the mate's
+        tip circle to the driver's root circle (negative: they overlap)."""
+        r_lo, r_hi = self.driver.radius_range
+        rt, rr = abs(self.mate.rho_tip), abs(self.mate.rho_root)
+        if self.kind == "rack":
+            return (self.a - self.mate.rho_root) - r_hi, (self.a - self.mate.rho_tip) - r_lo
+        if self.kind == "external":
+            return self.a - r_hi - rr, self.a - rt - r_lo
+        if self.kind == "internal":  # driver inside the ring
+            return rr - self.a - r_hi, rt - self.a - r_lo
+        return r_lo - self.a - rr, r_hi - self.a - rt  # ring-driver: driver tips inward
+
+    # -- the ideal position ---------------------------------------------------------------------
+    def reference(self) -> float | None:
+        """``delta`` at which the working flanks touch at the pitch point (None if a flank misses it).
+
+        The driver's working flank (its left flank, facing the turning direction) is brought to
+        the pitch point; the mate's position puts its flank through the same point. For
+        conjugate profiles this is the position of every flank contact: transmission error and
+        interference are measured from it.
+        """
+        try:
+            own = HalfWidth(self.gear1, self.pitch1, polar_from_y, min(self.tol, 1e-4 * self.module))
+        except GeometryError:
+            return None
+        r_w1, r_w2 = self.pitch_radii
+        w1 = own.exact(np.array([r_w1]))
+        w2 = self.mate.exact(np.array([r_w2]))  # for a rack r_w2 is the pitch point's height
+        if w1[1][0] < 0 or w2[1][0] < 0:
+            return None
+        if own.labels[w1[1][0]] != "flank" or self.mate.labels[w2[1][0]] != "flank":
+            return None
+        half1 = self.pitch1 / 2.0 - float(w1[0][0])
+        phi_p = -half1  # the left flank point at r_w1 turned onto +y
+        _, u = self.to_mate(self.pitch_point, phi_p)
+        return float(self.working * float(w2[0][0]) - float(u))

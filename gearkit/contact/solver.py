@@ -1,0 +1,340 @@
+"""Where the mate must stop, for a batch of driver angles: a search on polylines, then exact.
+
+For every driver angle, driver tooth ``i`` (of those that can touch) and half ``s`` (right,
+left), the bounds that its boundary puts on the mate's position (see :mod:`gearkit.contact.mesh`):
+
+* upper: ``min over the half of (w(rho) - u)``,
+* lower: ``max over the half of (-w(rho) - u)``, kept as ``min (w(rho) + u)``.
+
+1. **Search.** The bound functions are evaluated at the polyline samples (exact points; the
+   mate's ``w`` interpolated). Candidates: local minima, and the places where the boundary
+   crosses the mate's tip circle (the mate's tip corner), of every half within ``margin`` of the
+   best bound.
+2. **Refinement**, on the exact pieces, one polyline interval at a time: the crossing of the tip
+   circle by root finding (Illinois), the minimum by Brent's method, and ``w`` by
+   :meth:`HalfWidth.exact`. A smooth
+   contact ends at a stationary point (the flanks touch tangentially); a corner contact at an
+   interval end (the driver's corner) or at the tip crossing (the mate's corner).
+
+Work per angle depends on the window of teeth that can touch, not on the tooth counts.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["Bounds", "solve"]
+
+#: Brent iterations of the minimum, crossing iterations (both converge long before)
+_MIN_ITER = 60
+_GOLD = 0.3819660112501051
+#: interior samples of an interval before the bracket is narrowed
+_PROBES = 7
+_CROSS_ITER = 40
+#: search-array size per chunk of driver angles (memory ~ 40 bytes each)
+_CHUNK = 1_500_000
+
+
+@dataclass
+class Bounds:
+    """Bounds on the mate's position from each driver half, for ``n`` driver angles.
+
+    Axes: ``(n, K, half, bound)`` with ``half`` 0 = right, 1 = left and ``bound`` 0 = upper,
+    1 = lower. ``value`` holds ``min (w - u)`` (bound 0) and ``min (w + u)`` (bound 1): the upper
+    bound is ``value[..., 0]``, the lower one ``-value[..., 1]``. Only halves within the search
+    margin of the best are refined (``exact``); the others keep their search value and are
+    farther than ``margin`` from contact.
+    """
+
+    phi: np.ndarray
+    teeth: np.ndarray
+    value: np.ndarray
+    exact: np.ndarray
+    point: np.ndarray
+    normal: np.ndarray
+    arm: np.ndarray
+    piece1: np.ndarray
+    piece2: np.ndarray
+    rho2: np.ndarray
+    corner1: np.ndarray
+    corner2: np.ndarray
+
+    @property
+    def upper(self):
+        return self.value[..., 0].min(axis=(1, 2))
+
+    @property
+    def lower(self):
+        return -self.value[..., 1].min(axis=(1, 2))
+
+
+def _driver_fixed(mesh, k, t, sigma, theta):
+    p = mesh.driver.evaluate(k, t)
+    x, y = sigma * p[..., 0], p[..., 1]
+    c, s = np.cos(theta), np.sin(theta)
+    return np.stack([c * x - s * y, s * x + c * y], -1)
+
+
+class _Task:
+    """Exact bound function along one polyline interval per row."""
+
+    def __init__(self, mesh, phi, theta, sigma, sb, piece):
+        self.mesh, self.phi, self.theta, self.sigma, self.sb, self.piece = mesh, phi, theta, sigma, sb, piece
+        self.k2 = np.full(len(phi), -1)  # the mate's last solution per row: the secant's first point
+        self.t2 = np.zeros(len(phi))
+        self.r2 = np.zeros(len(phi))
+
+    def rho(self, t, rows=slice(None)):
+        q = _driver_fixed(self.mesh, self.piece[rows], t, self.sigma[rows], self.theta[rows])
+        return self.mesh.to_mate(q, self.phi[rows])[0]
+
+    def value(self, t, rows=slice(None), tangent=False):
+        q = _driver_fixed(self.mesh, self.piece[rows], t, self.sigma[rows], self.theta[rows])
+        rho, u = self.mesh.to_mate(q, self.phi[rows])
+        w, k2, t2, tan2 = self.mesh.mate.exact(rho, (self.k2[rows], self.t2[rows], self.r2[rows]), tangent)
+        self.k2[rows], self.t2[rows], self.r2[rows] = k2, t2, rho
+        return w - self.sb[rows] * u, q, rho, k2, tan2
+
+
+def _crossing(task, a, b):
+    """Parameter where the interval meets the mate's tip circle, on its finite side (Illinois)."""
+    mate = task.mesh.mate
+    ga = mate.outward * (task.rho(a) - mate.rho_tip)
+    gb = mate.outward * (task.rho(b) - mate.rho_tip)
+    side = 0
+    for _ in range(_CROSS_ITER):
+        with np.errstate(divide="ignore", invalid="ignore"):
+            c = np.where(gb != ga, b - gb * (b - a) / (gb - ga), 0.5 * (a + b))
+        c = np.where(np.isfinite(c) & ((c - a) * (c - b) <= 0), c, 0.5 * (a + b))
+        gc = mate.outward * (task.rho(c) - mate.rho_tip)
+        left = np.sign(gc) == np.sign(ga)
+        a, ga, b, gb = (np.where(left, c, a), np.where(left, gc, ga),
+                        np.where(left, b, c), np.where(left, gb, gc))
+        ga = np.where(~left & (side == -1), ga / 2, ga)
+        gb = np.where(left & (side == 1), gb / 2, gb)
+        side = np.where(left, 1, -1)
+        if np.all(np.abs(b - a) <= 1e-15 * np.maximum(1.0, np.abs(a))):
+            break
+    return np.where(ga <= 0, a, b)  # the end on the finite side (g <= 0)
+
+
+def _minimise(task, a, b):
+    """Minimum of the bound function on ``[a, b]`` (finite there): value and parameter.
+
+    The function is sampled at the ends and at ``_PROBES`` interior points. The best sample brackets
+    the minimum with its neighbours (an end sample is the minimum when the function rises from
+    it: second-order one-sided slope, step 1e-7 of the interval); the bracket is then narrowed by
+    Brent's method (parabolic steps from the three best points, golden-section steps when a
+    parabola is not trusted), which compares values only.
+    """
+    width = b - a
+    h = 1e-7 * width
+    n = len(a)
+    frac = np.linspace(0.0, 1.0, _PROBES + 2)
+    grid = a[None, :] + frac[:, None] * width[None, :]  # (P, n)
+    pts = np.concatenate([grid.ravel(), a + h, a + 2 * h, b - h, b - 2 * h])
+    rows_all = np.concatenate([np.tile(np.arange(n), len(frac)), np.tile(np.arange(n), 4)])
+    v = task.value(pts, rows_all)[0]
+    vg = v[:grid.size].reshape(grid.shape)
+    va1, va2, vb1, vb2 = v[grid.size:].reshape(4, n)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        da = (-3 * vg[0] + 4 * va1 - va2) / (2 * h)
+        db = (3 * vg[-1] - 4 * vb1 + vb2) / (2 * h)
+    j = np.argmin(vg, axis=0)
+    best_v = vg[j, np.arange(n)]
+    best_t = grid[j, np.arange(n)]
+    at_a, at_b = j == 0, j == len(frac) - 1
+    settled = (width <= 0) | (at_a & ~(da < 0)) | (at_b & ~(db > 0))
+    rows = np.flatnonzero(~settled)
+    if rows.size == 0:
+        return best_v, best_t
+    jr = j[rows]
+    lo = grid[np.maximum(jr - 1, 0), rows]
+    hi = grid[np.minimum(jr + 1, len(frac) - 1), rows]
+    x = np.where(at_a[rows] | at_b[rows], 0.5 * (lo + hi), grid[jr, rows])
+    fx = np.where(at_a[rows] | at_b[rows], task.value(0.5 * (lo + hi), rows)[0], vg[jr, rows])
+    xw, fw, xv, fv = x.copy(), fx.copy(), x.copy(), fx.copy()
+    d = np.zeros(rows.size)
+    e = np.zeros(rows.size)
+    todo = np.arange(rows.size)
+    for _ in range(_MIN_ITER):
+        tol1 = 1e-10 * np.abs(x[todo]) + 1e-12 * width[rows[todo]]
+        todo = todo[np.abs(x[todo] - 0.5 * (lo[todo] + hi[todo])) > 2 * tol1 - 0.5 * (hi[todo] - lo[todo])]
+        if todo.size == 0:
+            break
+        x_, fx_, w_, fw_, v_, fv_ = x[todo], fx[todo], xw[todo], fw[todo], xv[todo], fv[todo]
+        lo_, hi_, d_, e_ = lo[todo], hi[todo], d[todo], e[todo]
+        mid = 0.5 * (lo_ + hi_)
+        tol1 = 1e-10 * np.abs(x_) + 1e-12 * width[rows[todo]]
+        r = (x_ - w_) * (fx_ - fv_)
+        q = (x_ - v_) * (fx_ - fw_)
+        p = (x_ - v_) * q - (x_ - w_) * r
+        q = 2 * (q - r)
+        p = np.where(q > 0, -p, p)
+        q = np.abs(q)
+        e_old = e_
+        para = (np.abs(e_old) > tol1) & (np.abs(p) < np.abs(0.5 * q * e_old)) & (p > q * (lo_ - x_)) \
+            & (p < q * (hi_ - x_))
+        with np.errstate(invalid="ignore", divide="ignore"):
+            step_p = p / q
+        golden_e = np.where(x_ >= mid, lo_ - x_, hi_ - x_)
+        e_new = np.where(para, d_, golden_e)
+        d_new = np.where(para, step_p, _GOLD * golden_e)
+        u = x_ + d_new
+        near_end = para & ((u - lo_ < 2 * tol1) | (hi_ - u < 2 * tol1))
+        d_new = np.where(near_end, np.copysign(tol1, mid - x_), d_new)
+        u = np.where(np.abs(d_new) >= tol1, x_ + d_new, x_ + np.copysign(tol1, d_new))
+        fu = task.value(u, rows[todo])[0]
+        better = fu <= fx_
+        lo_n = np.where(better, np.where(u >= x_, x_, lo_), np.where(u < x_, u, lo_))
+        hi_n = np.where(better, np.where(u >= x_, hi_, x_), np.where(u < x_, hi_, u))
+        shift_w = ~better & ((fu <= fw_) | (w_ == x_))
+        shift_v = ~better & ~shift_w & ((fu <= fv_) | (v_ == x_) | (v_ == w_))
+        xv[todo] = np.where(better | shift_w, w_, np.where(shift_v, u, v_))
+        fv[todo] = np.where(better | shift_w, fw_, np.where(shift_v, fu, fv_))
+        xw[todo] = np.where(better, x_, np.where(shift_w, u, w_))
+        fw[todo] = np.where(better, fx_, np.where(shift_w, fu, fw_))
+        x[todo] = np.where(better, u, x_)
+        fx[todo] = np.where(better, fu, fx_)
+        lo[todo], hi[todo], d[todo], e[todo] = lo_n, hi_n, d_new, e_new
+    better = fx < best_v[rows]
+    best_v[rows] = np.where(better, fx, best_v[rows])
+    best_t[rows] = np.where(better, x, best_t[rows])
+    return best_v, best_t
+
+
+def _refine(mesh, phi, theta, sigma, sb, m, fa, fb):
+    """Exact minima of the bound function over polyline intervals ``m`` (one row each)."""
+    drv = mesh.driver
+    piece, a, b = drv.piece[m], drv.ta[m].copy(), drv.tb[m].copy()
+    task = _Task(mesh, phi, theta, sigma, sb, piece)
+    cross = fa != fb
+    at_tip = np.zeros(len(m), bool)
+    if cross.any():
+        rows = np.flatnonzero(cross)
+        sub = _Task(mesh, phi[rows], theta[rows], sigma[rows], sb[rows], piece[rows])
+        tc = _crossing(sub, a[rows], b[rows])
+        a[rows] = np.where(fa[rows], a[rows], tc)
+        b[rows] = np.where(fa[rows], tc, b[rows])
+        at_tip[rows] = True
+    value, t = _minimise(task, a, b)
+    corner2 = at_tip & (((t == b) & fa) | ((t == a) & fb))
+    # contact point, normal and arm
+    _, q, rho, k2, tan2 = task.value(t, tangent=True)
+    h = 1e-7
+    ts = np.clip(t, h, 1 - h)
+    d = _driver_fixed(mesh, piece, ts + h, sigma, theta) - _driver_fixed(mesh, piece, ts - h, sigma, theta)
+    normal = np.stack([-d[:, 1], d[:, 0]], -1)
+    at_end = ((t <= drv.ta[m]) | (t >= drv.tb[m])) & ~corner2
+    piece_end = at_end & ((t <= 0.0) | (t >= 1.0))
+    corner1 = at_end & np.where(t <= drv.ta[m], drv.corner_end[m], drv.corner_end[m + 1])
+    use_mate = piece_end & (k2 >= 0) & (np.linalg.norm(tan2, axis=-1) > 0)
+    if use_mate.any():
+        delta = sb * value  # the mate's position at this contact (upper bound w - u; lower -(w + u))
+        n2 = _mate_direction(mesh, tan2, phi, delta)
+        normal = np.where(use_mate[:, None], np.stack([-n2[:, 1], n2[:, 0]], -1), normal)
+    norm = np.linalg.norm(normal, axis=-1, keepdims=True)
+    normal = np.divide(normal, norm, out=np.zeros_like(normal), where=norm > 0)
+    vel = mesh.mate_velocity(q)
+    dot = np.einsum("ij,ij->i", normal, vel)
+    normal = np.where((sb * dot > 0)[:, None], -normal, normal)
+    return value, q, normal, np.abs(dot), piece, k2, rho, corner1, corner2
+
+
+def _mate_direction(mesh, tangent, phi, delta):
+    if mesh.kind == "rack":
+        return -tangent
+    beta = mesh.beta0 + mesh.ratio * phi + delta
+    c, s = np.cos(beta), np.sin(beta)
+    return np.stack([c * tangent[:, 0] - s * tangent[:, 1], s * tangent[:, 0] + c * tangent[:, 1]], -1)
+
+
+def solve(mesh, phi, contact_tol: float) -> Bounds:
+    """Bounds on the mate's position from every driver half at driver angles ``phi`` ``(n,)``.
+
+    Parameters
+    ----------
+    mesh : Mesh
+    phi : (n,) float64, rad
+    contact_tol : float, mm
+        Every half that may come within this of the extreme bound is refined.
+    """
+    phi = np.atleast_1d(np.asarray(phi, dtype=float))
+    per_angle = len(mesh.offsets) * 4 * len(mesh.driver.points)
+    step = max(1, _CHUNK // per_angle)
+    parts = [_solve_chunk(mesh, phi[i:i + step], contact_tol) for i in range(0, len(phi), step)]
+    if len(parts) == 1:
+        return parts[0]
+    return Bounds(*(np.concatenate([getattr(p, f) for p in parts]) for f in Bounds.__dataclass_fields__))
+
+
+def _solve_chunk(mesh, phi, contact_tol) -> Bounds:
+    drv, mate = mesh.driver, mesh.mate
+    arm_scale = mesh.arm_scale
+    teeth, theta = mesh.teeth(phi)
+    n, kk = teeth.shape
+    loc = np.stack([drv.points, drv.points * np.array([-1.0, 1.0])])  # (2, M1, 2)
+    c, s = np.cos(theta)[:, :, None, None], np.sin(theta)[:, :, None, None]
+    x, y = loc[None, None, :, :, 0], loc[None, None, :, :, 1]
+    q = np.stack([c * x - s * y, s * x + c * y], -1)  # (n, K, 2, M1, 2)
+    rho, u = mesh.to_mate(q, phi[:, None, None, None])
+    w = mate.coarse(rho)
+    sb = np.array([1.0, -1.0])
+    big_u = w[:, :, :, None, :] - sb[None, None, None, :, None] * u[:, :, :, None, :]  # (n, K, 2, 2, M1)
+    finite = np.isfinite(w)
+    cross = finite[..., :-1] != finite[..., 1:]  # (n, K, 2, M)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        frac = np.clip((mate.rho_tip - rho[..., :-1]) / (rho[..., 1:] - rho[..., :-1]), 0.0, 1.0)
+    du = np.mod(u[..., 1:] - u[..., :-1] + mesh.pitch2 / 2, mesh.pitch2) - mesh.pitch2 / 2  # across a wrap
+    u_c = np.mod(u[..., :-1] + frac * du + mesh.pitch2 / 2, mesh.pitch2) - mesh.pitch2 / 2
+    big_c = np.where(cross[:, :, :, None, :], mate.w_tip - sb[None, None, None, :, None] * u_c[:, :, :, None, :],
+                     np.inf)
+    best = np.minimum(big_u.min(-1), big_c.min(-1))  # (n, K, 2, 2)
+    # how far the exact function can dip below an interval's ends: the driver's chord deviation
+    # plus the mate's bending over the chord, as a normal distance over the arm scale
+    rho_mid = 0.5 * (rho[..., :-1] + rho[..., 1:])
+    bend = mate.curvature(rho_mid)
+    arm = mate.arm(rho)
+    arm = np.minimum(np.minimum(arm[..., :-1], arm[..., 1:]), mate.arm(rho_mid))
+    dip = (mesh.tol + bend * drv.chord ** 2 / 8.0) / np.maximum(arm, 1e-12 * arm_scale)  # (n, K, 2, M)
+    if mate.crest:  # next to a rounded crest the bound falls like a square root: always look
+        dip = np.where(cross, np.inf, dip)
+    glob = best.min(axis=(1, 2))  # (n, 2)
+    active = best - dip.max(-1)[..., None] <= glob[:, None, None, :] + contact_tol / arm_scale
+    ends = np.minimum(big_u[..., :-1], big_u[..., 1:])
+    reach = (best[..., None] + dip[:, :, :, None, :])
+    pick = ((ends <= reach) | (big_c <= reach)) & active[..., None]
+    i_n, i_k, i_h, i_b, i_m = np.nonzero(pick)
+    value = best.copy()
+    exact = np.zeros(best.shape, bool)
+    point = np.full(best.shape + (2,), np.nan)
+    normal = np.full(best.shape + (2,), np.nan)
+    arm = np.full(best.shape, np.nan)
+    piece1 = np.full(best.shape, -1)
+    piece2 = np.full(best.shape, -1)
+    rho2 = np.full(best.shape, np.nan)
+    corner1 = np.zeros(best.shape, bool)
+    corner2 = np.zeros(best.shape, bool)
+    if i_n.size:
+        sigma = np.where(i_h == 0, 1.0, -1.0)
+        res = _refine(mesh, phi[i_n], theta[i_n, i_k], sigma, sb[i_b], i_m,
+                      finite[i_n, i_k, i_h, i_m], finite[i_n, i_k, i_h, i_m + 1])
+        v = res[0]
+        half = ((i_n * kk + i_k) * 2 + i_h) * 2 + i_b
+        order = np.lexsort((v, half))
+        first = np.ones(order.size, bool)
+        first[1:] = half[order][1:] != half[order][:-1]
+        sel = order[first]
+        at = (i_n[sel], i_k[sel], i_h[sel], i_b[sel])
+        value[at] = v[sel]
+        exact[at] = True
+        point[at] = res[1][sel]
+        normal[at] = res[2][sel]
+        arm[at] = res[3][sel]
+        piece1[at] = res[4][sel]
+        piece2[at] = res[5][sel]
+        rho2[at] = res[6][sel]
+        corner1[at] = res[7][sel]
+        corner2[at] = res[8][sel]
+    return Bounds(phi, teeth, value, exact, point, normal, arm, piece1, piece2, rho2, corner1, corner2)
