@@ -47,7 +47,8 @@ def run_bench(quick: bool = False, process: bool = True, progress=None) -> dict:
     out["overhead"] = profiles.overhead(11 if quick else 31)
     out["overhead_ratio"] = out["overhead"]["overhead_ratio"]
     say("accuracy ladder: 2D profiles")
-    out["ladder"] = profiles.involute_ladder(quick, repeats) + profiles.novikov_ladder(quick, repeats)
+    out["ladder"] = (profiles.involute_ladder(quick, repeats) + profiles.novikov_ladder(quick, repeats)
+                     + profiles.cycloidal_ladder(quick, repeats))
     if products.available("gearkit.solids"):
         say("accuracy ladder: meshes")
         out["ladder"] += meshes.mesh_ladder(quick, repeats)
@@ -58,8 +59,8 @@ def run_bench(quick: bool = False, process: bool = True, progress=None) -> dict:
     out["scaling"] = profiles.involute_scaling(quick, repeats)
     say("swept-tool oracle convergence")
     out["oracle"], out["oracle_order"] = oracle.oracle_convergence(quick, repeats)
-    say("pair check")
-    out["products"] = products.pair_check_rows(quick, repeats)
+    say("pair check, simulated meshes")
+    out["products"] = products.pair_check_rows(quick, repeats) + products.cycloidal_mesh_rows(quick, repeats)
     measured = {(r["family"], r["product"]) for r in out["ladder"] + out["products"]}
     out["unmeasured"] = products.unmeasured_products(measured)
     if process:
@@ -117,7 +118,7 @@ def format_table(res: dict) -> str:
     lines.append("")
     lines.append("other products")
     for r in res["products"]:
-        lines.append(f"  {r['family']:9} {r['product']:12} {r['case']:38} {_fmt_s(r['seconds']):>11}")
+        lines.append(f"  {r['family']:9} {r['product']:18} {r['case']:38} {_fmt_s(r['seconds']):>11}")
     for r in res["unmeasured"]:
         lines.append(f"  {r['family']:9} {r['product']:18} -- {r['note']} ({r['module']})")
     if res["process"]:

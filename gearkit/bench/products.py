@@ -17,6 +17,7 @@ PRODUCT_MODULES = {
     ("involute", "blocking contour"): "gearkit.blocking.contour",
     ("involute", "contact simulation"): "gearkit.contact",
     ("cycloidal", "profile"): "gearkit.families.cycloidal.disc",
+    ("cycloidal", "contact simulation"): "gearkit.families.cycloidal.mesh",
     ("novikov", "profile"): "gearkit.families.novikov",
     ("novikov", "contact simulation"): "gearkit.families.novikov_mesh",
 }
@@ -101,4 +102,19 @@ def blocking_rows(quick: bool):
         rows.append({"family": "involute", "product": "blocking contour", "case": "12/30 m=1", "tol": xtol,
                      "achieved": achieved, "vertices": int(sum(len(ln.points) for ln in contour.lines)),
                      "evaluations": int(contour.evaluations), "seconds": seconds})
+    return rows
+
+
+def cycloidal_mesh_rows(quick: bool, repeats: int):
+    """Time of the cycloid drive's simulated pin mesh (one mesh period, ``samples`` disc positions)."""
+    try:
+        from gearkit.families.cycloidal import DriveSpec, simulate_mesh
+    except ImportError:
+        return []
+    spec = DriveSpec(12, 11, 90.0, 7.0, 4.0)
+    rows = []
+    for samples in ((400,) if quick else (400, 4000)):
+        seconds, stats = median_time(lambda: simulate_mesh(spec, samples), repeats)
+        rows.append({"family": "cycloidal", "product": "contact simulation",
+                     "case": f"12-pin drive, {samples} positions", "seconds": seconds})
     return rows

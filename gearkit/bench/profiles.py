@@ -77,9 +77,9 @@ def _generate_and_sample(spec, tol, generate=None):
     return prof, prof.outline(tol)
 
 
-def profile_row(family, case, spec, tol_m, repeats, generate=None):
-    """One ladder rung: generate + sample at ``tol_m`` modules; time, count, measure."""
-    tol = tol_m * spec.module
+def profile_row(family, case, spec, tol_m, repeats, generate=None, unit=None):
+    """One ladder rung: generate + sample at ``tol_m`` modules (or ``unit`` mm); time, count, measure."""
+    tol = tol_m * (spec.module if unit is None else unit)
     seconds, (prof, outline) = median_time(lambda: _generate_and_sample(spec, tol, generate), repeats)
     n_half = len(prof.half_points(tol)[0])
     achieved = measured_deviation(prof, outline, n_half)
@@ -107,6 +107,20 @@ def novikov_ladder(quick: bool, repeats: int):
     generate = getattr(novikov.tooth_profile, "__wrapped__", novikov.tooth_profile)
     tols = LADDER_TOLS[::2] if quick else LADDER_TOLS
     return [profile_row("novikov", "dca24 z=20 beta=15", spec, t, repeats, generate) for t in tols]
+
+
+def cycloidal_ladder(quick: bool, repeats: int):
+    """The cycloid disc of a 12-pin drive (11 lobes, pin circle 90 mm, pin 7 mm, e = 4 mm);
+    tolerances in units of the eccentricity (the disc's tooth height is 2e)."""
+    try:
+        from gearkit.families.cycloidal import DriveSpec, disc_profile
+    except ImportError:
+        return []
+    spec = DriveSpec(12, 11, 90.0, 7.0, 4.0)
+    generate = getattr(disc_profile, "__wrapped__", disc_profile)
+    tols = LADDER_TOLS[::2] if quick else LADDER_TOLS
+    return [profile_row("cycloidal", "disc 12 pins, 11 lobes, e=4", spec, t, repeats, generate,
+                        unit=spec.eccentricity) for t in tols]
 
 
 def involute_scaling(quick: bool, repeats: int):
