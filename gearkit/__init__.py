@@ -38,3 +38,16 @@ __all__ += list(_SOLIDS)
 from gearkit.bench import run_bench  # noqa: E402
 
 __all__ += ["run_bench"]
+
+# -- Novikov (circular-arc) gears: racks, gears, pairs, checks, transverse mesh -----------------
+from gearkit.checks.novikov import NovikovCheck, NovikovLimits, check_novikov  # noqa: E402
+from gearkit.families.novikov import (NovikovGearSpec, NovikovPairGeometry, NovikovPairSpec,  # noqa: E402
+                                      NovikovProfile, novikov_pair_geometry)
+from gearkit.families.novikov import tooth_profile as novikov_tooth_profile  # noqa: E402
+from gearkit.families.novikov_mesh import mesh_contact, meshed_outlines  # noqa: E402
+from gearkit.families.novikov_presets import RackSystem, load_rack_system, rack_presets, rack_system  # noqa: E402
+from gearkit.families.novikov_racks import ArcRack, ArcSpec  # noqa: E402
+
+__all__ += ["ArcRack", "ArcSpec", "NovikovCheck", "NovikovGearSpec", "NovikovLimits", "NovikovPairGeometry",
+            "NovikovPairSpec", "NovikovProfile", "RackSystem", "check_novikov", "load_rack_system", "mesh_contact",
+            "meshed_outlines", "novikov_pair_geometry", "novikov_tooth_profile", "rack_presets", "rack_system"]
