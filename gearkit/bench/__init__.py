@@ -16,6 +16,7 @@ For every family and product that exists, the bench measures
 """
 from __future__ import annotations
 
+import os
 import platform
 import time
 
@@ -42,7 +43,8 @@ def run_bench(quick: bool = False, process: bool = True, progress=None) -> dict:
     repeats = 3 if quick else 7
     t0 = time.perf_counter()
     out = {"meta": {"quick": quick, "repeats": repeats, "python": platform.python_version(),
-                    "numpy": np.__version__, "machine": platform.machine()}}
+                    "numpy": np.__version__, "machine": platform.machine(), "cpus": os.cpu_count(),
+                    "load_before": _load()}}
     say("overhead against the closed-form involute")
     out["overhead"] = profiles.overhead(11 if quick else 31)
     out["overhead_ratio"] = out["overhead"]["overhead_ratio"]
@@ -60,7 +62,8 @@ def run_bench(quick: bool = False, process: bool = True, progress=None) -> dict:
     say("swept-tool oracle convergence")
     out["oracle"], out["oracle_order"] = oracle.oracle_convergence(quick, repeats)
     say("pair check, simulated meshes")
-    out["products"] = products.pair_check_rows(quick, repeats) + products.cycloidal_mesh_rows(quick, repeats)
+    out["products"] = (products.pair_check_rows(quick, repeats) + products.involute_contact_rows(quick, repeats)
+                       + products.cycloidal_mesh_rows(quick, repeats))
     measured = {(r["family"], r["product"]) for r in out["ladder"] + out["products"]}
     out["unmeasured"] = products.unmeasured_products(measured)
     if process:
@@ -69,7 +72,16 @@ def run_bench(quick: bool = False, process: bool = True, progress=None) -> dict:
     else:
         out["process"] = []
     out["meta"]["seconds"] = time.perf_counter() - t0
+    out["meta"]["load_after"] = _load()
     return out
+
+
+def _load():
+    """1-minute load average (None where the platform has none): other work inflates every time."""
+    try:
+        return round(os.getloadavg()[0], 2)
+    except (AttributeError, OSError):
+        return None
 
 
 def _fmt_s(s):
@@ -118,7 +130,9 @@ def format_table(res: dict) -> str:
     lines.append("")
     lines.append("other products")
     for r in res["products"]:
-        lines.append(f"  {r['family']:9} {r['product']:18} {r['case']:38} {_fmt_s(r['seconds']):>11}")
+        extra = (f"  contact ratio {r['contact_ratio']:.6f} (closed form +- {r['contact_ratio_error']:.1e}), "
+                 f"max |TE| {r['transmission_error_max_rad']:.1e} rad" if "contact_ratio" in r else "")
+        lines.append(f"  {r['family']:9} {r['product']:18} {r['case']:38} {_fmt_s(r['seconds']):>11}{extra}")
     for r in res["unmeasured"]:
         lines.append(f"  {r['family']:9} {r['product']:18} -- {r['note']} ({r['module']})")
     if res["process"]:
@@ -129,7 +143,9 @@ def format_table(res: dict) -> str:
             ach = "" if r.get("achieved") is None else f"  achieved {r['achieved'] * 1e3:.2f} um"
             lines.append(f"  {r['gear']:32} {r['output']:30} {_fmt_s(r['seconds']):>11}{ach}{status}")
     lines.append("")
-    lines.append(f"bench time {res['meta']['seconds']:.1f} s")
+    lines.append(f"bench time {res['meta']['seconds']:.1f} s; load average {res['meta'].get('load_before')} before, "
+                 f"{res['meta'].get('load_after')} after, on {res['meta'].get('cpus')} CPUs (load from other work "
+                 "inflates every time above)")
     return "\n".join(lines)
 
 

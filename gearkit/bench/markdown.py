@@ -10,8 +10,11 @@ def render(res: dict) -> str:
     """Markdown tables for the README: ladder (z = 40 spur), scaling, oracle, overhead, whole process."""
     out = []
     ov = res["overhead"]
-    out.append("Measured by `gearkit bench" + (" --quick" if res["meta"]["quick"] else "") + "` on a 2-core machine "
-               f"(Python {res['meta']['python']}, numpy {res['meta']['numpy']}); lengths in mm, times are medians "
+    meta = res["meta"]
+    out.append("Measured by `gearkit bench" + (" --quick" if meta["quick"] else "") + f"` on a {meta.get('cpus', 2)}-core "
+               f"machine (Python {meta['python']}, numpy {meta['numpy']}; load average {meta.get('load_before')} "
+               f"before, {meta.get('load_after')} after: other work running meanwhile inflates the times); "
+               "lengths in mm, times are medians "
                "of repeats and include generating the gear from its spec. *Achieved* is measured independently: "
                "the exact boundary is re-evaluated densely and its largest distance from the output polyline "
                "is taken.")
@@ -58,10 +61,13 @@ def render(res: dict) -> str:
         out.append("")
         out.append("**Other products**")
         out.append("")
-        out.append("| family | product | case | time |")
-        out.append("|---|---|---|---:|")
+        out.append("| family | product | case | time | result |")
+        out.append("|---|---|---|---:|---|")
         for r in res["products"]:
-            out.append(f"| {r['family']} | {r['product']} | {r['case']} | {_ms(r['seconds'])} |")
+            extra = (f"contact ratio {r['contact_ratio']:.6f} (closed form ± {r['contact_ratio_error']:.0e}), "
+                     f"max transmission error {r['transmission_error_max_rad']:.0e} rad"
+                     if "contact_ratio" in r else "")
+            out.append(f"| {r['family']} | {r['product']} | {r['case']} | {_ms(r['seconds'])} | {extra} |")
     if res.get("process"):
         out.append("")
         out.append("**Whole process** (`gearkit gear ... -o FILE --tol 0.001`, interpreter start included, "
