@@ -191,3 +191,47 @@ def test_cli_json_and_export(tmp_path, capsys):
     assert main(["blocking", "--z1", "13", "--z2", "16", "--mark", "1.5,0", "--points", "40"]) == 1
     assert main(["blocking", "--z1", "13", "--z2", "16", "-o", str(tmp_path / "x.txt")]) == 2
     assert main(["blocking", "--z1", "46", "--z2", "49", "--internal"]) == 2
+
+
+# ------------------------------------------------------------------------------ criteria, CLI help, atlas
+def test_center_distance_criterion_lies_on_the_shift_sum(c1316):
+    """The recommendation by centre distance lies on x1 + x2 = the shift sum of that centre distance
+    (rack-cut gears: the sum does not depend on the split; shifts_for_center_distance solves it)."""
+    from gearkit.pair import shifts_for_center_distance
+
+    a_w = 14.8  # mm, a_ref = 14.5 for m = 1
+    s = shifts_for_center_distance(PairSpec(13, 16, 1.0), a_w, split="equal")
+    rec = c1316.recommend("center_distance", center_distance=a_w)
+    assert rec.criterion == "center_distance"
+    # the vertex is within XTOL of the a_w line, whose x1 + x2 changes ~1:1 with a_w / m
+    assert rec.x1 + rec.x2 == pytest.approx(s.shift1 + s.shift2, abs=4 * XTOL)
+    assert c1316.contains(rec.x1, rec.x2)
+    with pytest.raises(SpecError):
+        c1316.recommend("center_distance")
+
+
+def test_cli_help_states_the_ring_shift_sign(capsys):
+    assert main(["blocking", "--help"]) == 0
+    text = " ".join(capsys.readouterr().out.split())
+    assert "x2 > 0 moves the ring's teeth outward" in text
+
+
+def test_atlas_cell_equals_the_single_contour():
+    """Two cells in two worker processes; a cell is exactly the contour computed alone."""
+    from gearkit.blocking import blocking_atlas
+
+    opts = dict(points=40, lines=["pointing.1", "undercut.1"])
+    atlas = blocking_atlas([13], [16, 17], workers=2, **opts)
+    assert sorted(atlas.cells) == [(13, 16), (13, 17)] and atlas.errors == {}
+    alone = blocking_contour(PairSpec(13, 16, 1.0), **opts)
+    cell = atlas[(13, 16)]
+    assert cell.window == alone.window
+    for a, b in zip(cell.lines, alone.lines):
+        assert a.name == b.name and len(a.components) == len(b.components)
+        assert all(np.array_equal(p, q) for p, q in zip(a.components, b.components))
+    assert len(cell.region) == len(alone.region)
+    assert all(np.array_equal(p, q) for p, q in zip(cell.region, alone.region))
+    assert cell.contains(0.5, 0.3) and not cell.contains(1.5, 0.0)
+    ring = PairSpec(46, 49, 1.0, kind="internal", tool1=SHAPER, tool2=SHAPER)
+    with pytest.raises(SpecError, match="ring needs more teeth"):  # no cell is a pair: said, not empty
+        blocking_atlas([50], [49], ring, workers=1, **opts)

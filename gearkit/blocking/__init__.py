@@ -12,9 +12,10 @@ accuracy in x from the same pair geometry and check functions as ``gearkit check
 >>> round(float(c.line("undercut.1").points[0, 0]), 6), c.contains(0.5, 0.3)
 (0.239644, True)
 """
+from gearkit.blocking.atlas import BlockingAtlas, blocking_atlas
 from gearkit.blocking.contour import BlockingContour, Line, blocking_contour, default_window
 from gearkit.blocking.field import LineDef, PairField
 from gearkit.blocking.recommend import CRITERIA, Recommendation, recommend
 
-__all__ = ["CRITERIA", "BlockingContour", "Line", "LineDef", "PairField", "Recommendation", "blocking_contour",
-           "default_window", "recommend"]
+__all__ = ["CRITERIA", "BlockingAtlas", "BlockingContour", "Line", "LineDef", "PairField", "Recommendation",
+           "blocking_atlas", "blocking_contour", "default_window", "recommend"]

@@ -24,7 +24,7 @@ from gearkit.pair.tooling import half_angle, section, thickness_coeff
 __all__ = ["BlockingContour", "Line", "blocking_contour", "default_window"]
 
 GRID = 17  # seed grid nodes per side
-REGION_GRID = 41  # grid of the region's topology
+REGION_GRID = GRID  # grid of the region's topology (the lines' seed grid: evaluated already)
 
 
 @dataclass(frozen=True)
@@ -208,17 +208,19 @@ def _region_function(field: PairField, window: Window):
     return f
 
 
-def _region(field: PairField, w: Window, xtol: float):
+def _region(field: PairField, w: Window, xtol: float, n: int = REGION_GRID):
     """Polygons of the admissible region and, when empty, the reason.
 
-    The zero set of ``min(hard margins, window margins)`` is contoured on a ``REGION_GRID``
-    grid (its topology), and every vertex is then moved onto the exact boundary by a bracketed
-    root along the grid edge it lies on (to ``xtol``); corners are cut within one grid cell.
+    The zero set of ``min(hard margins, window margins)`` is contoured on an ``n`` x ``n`` grid
+    (its topology; the lines' seed grid, whose margins are already evaluated), every vertex is
+    moved onto the exact boundary by a bracketed root along the grid edge it lies on (to
+    ``xtol``), and where two neighbouring vertices are bound by different margins the corner
+    between them (both margins zero) is solved by Newton's method and inserted: the polygon's
+    vertices lie on the boundary, its chords cut no corner.
     """
     import contourpy
 
     fr = _region_function(field, w)
-    n = REGION_GRID
     xs = np.linspace(w.lo[0], w.hi[0], n)
     ys = np.linspace(w.lo[1], w.hi[1], n)
     vals = np.array([[fr(x, y) for x in xs] for y in ys])
@@ -251,11 +253,72 @@ def _region(field: PairField, w: Window, xtol: float):
                 fa, fb = fr(x, a), fr(x, b)
                 if (fa > 0) != (fb > 0):
                     v[1] = bracketed_root(lambda t: fr(x, t), a, b, fa, fb, xtol=0.5 * xtol / (1 + abs(a)))
+        loop = _with_corners(field, w, loop, xtol, max(dx, dy))
         np.clip(loop, w.lo, w.hi, out=loop)
         poly = _ccw(loop)
         if abs(_polygon_area(poly)) > (10 * xtol) ** 2:
             polys.append(poly)
     return tuple(polys), None
+
+
+def _named_margins(field: PairField, w: Window, p) -> dict:
+    """Hard margins and the four window margins at ``p`` (empty where no pair exists)."""
+    pt = field.point(p[0], p[1])
+    if not pt.valid:
+        return {}
+    out = dict(pt.hard_margins())
+    out.update({"window.x1_lo": p[0] - w.lo[0], "window.x1_hi": w.hi[0] - p[0],
+                "window.x2_lo": p[1] - w.lo[1], "window.x2_hi": w.hi[1] - p[1]})
+    return out
+
+
+def _binding_name(field, w, p):
+    m = _named_margins(field, w, p)
+    m = {k: v for k, v in m.items() if math.isfinite(v)}
+    return min(m, key=m.get) if m else None
+
+
+def _corner(field, w, a, b, name_a, name_b, xtol, cell):
+    """The point near the chord a-b where margins ``name_a`` and ``name_b`` both vanish, or None."""
+    def both(p):
+        m = _named_margins(field, w, p)
+        return np.array([m.get(name_a, math.nan), m.get(name_b, math.nan)])
+
+    p = 0.5 * (a + b)
+    e = 1e-7
+    for _ in range(12):
+        v = both(p)
+        if not np.all(np.isfinite(v)):
+            return None
+        jac = np.column_stack([(both(p + [e, 0.0]) - v) / e, (both(p + [0.0, e]) - v) / e])
+        if not np.all(np.isfinite(jac)) or abs(np.linalg.det(jac)) < 1e-12:
+            return None
+        step = np.linalg.solve(jac, -v)
+        p = p + step
+        if np.hypot(*step) <= xtol:
+            break
+    else:
+        return None
+    if np.hypot(*(p - 0.5 * (a + b))) > 1.5 * cell or not w.inside(p, 1e-9):
+        return None
+    m = _named_margins(field, w, p)
+    if not m or min(m.values()) < -10 * xtol * max(1.0, np.abs(jac).max()):
+        return None  # a third margin is violated there: not a corner of the region
+    return p
+
+
+def _with_corners(field, w, loop, xtol, cell):
+    """``loop`` with the corners between differently bound neighbouring vertices inserted."""
+    names = [_binding_name(field, w, v) for v in loop]
+    out = [loop[0]]
+    for i in range(1, len(loop)):
+        na, nb = names[i - 1], names[i]
+        if na is not None and nb is not None and na != nb:
+            c = _corner(field, w, loop[i - 1], loop[i], na, nb, xtol, cell)
+            if c is not None:
+                out.append(c)
+        out.append(loop[i])
+    return np.array(out)
 
 
 def _prefer(field: PairField, needs):
@@ -348,7 +411,7 @@ def blocking_contour(pair: PairSpec, *, window=None, limits: CheckLimits = Check
         def f(x1, x2, _n=d.name):
             return field.margin(_n, x1, x2)
         vals = np.array([[f(x, y) for x in xs] for y in ys])
-        seeds = grid_seeds(f, xs, ys, vals, xtol)
+        seeds = grid_seeds(f, xs, ys, vals, xtol, refine=False)
         comps = trace_curves(f, w, seeds, h, xtol, prefer=_prefer(field, d.needs)) if seeds else []
         traced.append(Line(d.name, d.code, d.label, d.hard, d.finding, tuple(comps)))
     region, reason = _region(field, w, xtol)

@@ -25,15 +25,17 @@ from gearkit.checks.involute import fail_margins, min_shift_undercut
 from gearkit.checks.limits import CheckLimits
 from gearkit.errors import SpecError, require
 from gearkit.pair.geometry import pair_geometry
+
+_pair_geometry = getattr(pair_geometry, "__wrapped__", pair_geometry)
 from gearkit.pair.spec import PairSpec
 from gearkit.pair.tooling import form_roll, section
 
 __all__ = ["LineDef", "PairField"]
 
 NAN = float("nan")
-FORM_NODES = 16  #: Chebyshev nodes of the undercut form-circle interpolant
+FORM_NODES = 10  #: Chebyshev nodes of the undercut form-circle interpolant (error ~1e-9 m_n)
 FORM_GAP = 0.005  #: the interpolant ends this far below the undercut onset
-FORM_CHECKS = 3  #: test shifts of the interpolant
+FORM_CHECKS = 2  #: test shifts of the interpolant
 FORM_MARGIN = 0.1  #: the interpolant reaches this far below the window
 
 
@@ -89,8 +91,9 @@ class PairField:
         require(isinstance(template, PairSpec), "pair", "must be a PairSpec")
         require(template.kind in ("external", "internal"), "kind",
                 "a blocking contour needs two gears with shifts (external or internal, not a rack pair)")
+        tools = template.tools  # explicit: the pair formulas then need not build default tools per point
         self.template = replace(template, shift1=0.0, shift2=0.0, center_distance=None,
-                                tip_diameter1=None, tip_diameter2=None)
+                                tip_diameter1=None, tip_diameter2=None, tool1=tools[0], tool2=tools[1])
         self.limits = limits
         self.internal = template.kind == "internal"
         self.module = float(template.module)
@@ -104,7 +107,10 @@ class PairField:
         for a in self.center_distances:
             require(math.isfinite(a) and a > 0, "center_distances", f"{a!r} must be a positive length in mm")
         self._sec = section(template.module, template.alpha_n_deg, template.helix_angle_deg)
+        self._tools = self.template.tools
+        self._fields = dict(self.template.__dict__)
         self._forms = {}
+        self._under = {}
         self._fits = {}
         self._points = {}
         self.exact_forms = x_ranges is None
@@ -115,6 +121,13 @@ class PairField:
         self.lines = self._line_defs()
         self.by_name = {d.name: d for d in self.lines}
         self.hard = tuple(d.name for d in self.lines if d.hard)
+
+    def __getstate__(self):
+        """Pickled (e.g. from an atlas worker) without the evaluation caches: the evaluated points,
+        the undercut flags and the form-circle interpolants (closures) are rebuilt on demand."""
+        state = dict(self.__dict__)
+        state["_points"], state["_under"], state["_fits"] = {}, {}, {}
+        return state
 
     # -- lines ------------------------------------------------------------------------------
     def _line_defs(self) -> tuple:
@@ -160,16 +173,35 @@ class PairField:
 
     # -- evaluation -------------------------------------------------------------------------
     def spec(self, x1: float, x2: float) -> PairSpec:
-        """The pair at shifts (x1, x2) (tight mesh)."""
-        return replace(self.template, shift1=float(x1), shift2=float(x2))
+        """The pair at shifts (x1, x2) (tight mesh).
+
+        The template is validated once; a point only changes the shifts, which the window keeps
+        inside the range :class:`~gearkit.pair.PairSpec` accepts, so the copy skips re-validation
+        (``dataclasses.replace`` would repeat it at every point). Out-of-range shifts still go
+        through ``replace`` and raise.
+        """
+        x1, x2 = float(x1), float(x2)
+        if not (-3.0 <= x1 <= 3.0 and -3.0 <= x2 <= 3.0):
+            return replace(self.template, shift1=x1, shift2=x2)
+        out = object.__new__(PairSpec)
+        d = out.__dict__
+        d.update(self._fields)
+        d["shift1"], d["shift2"] = x1, x2
+        return out
 
     def undercut(self, which: int, x: float) -> bool:
         """True when the closed form says gear ``which`` is undercut at shift ``x`` (rho_l < 0)."""
         if which == 2 and self.internal:
             return False
-        t = self.template
-        z = t.teeth1 if which == 1 else t.teeth2
-        return form_roll(self._sec, z, float(x), t.tools[which - 1], False) < 0
+        key = (which, float(x))
+        u = self._under.get(key)
+        if u is None:
+            if len(self._under) > 50000:
+                self._under.clear()
+            t = self.template
+            z = t.teeth1 if which == 1 else t.teeth2
+            u = self._under[key] = form_roll(self._sec, z, float(x), self._tools[which - 1], False) < 0
+        return u
 
     def form_diameter(self, which: int, x: float, exact: bool = True):
         """d_F (mm) of gear ``which`` at shift ``x`` as generated, or None where the closed form is exact.
@@ -285,6 +317,10 @@ class FieldPoint:
 
     def geometry(self, needs=(False, False)):
         """The pair geometry, with the generated form circles of the gears flagged in ``needs``."""
+        needs = (bool(needs[0]), bool(needs[1]))
+        g = self._geo.get(needs)
+        if g is not None:
+            return g
         f = self.field
         forms = tuple(f.form_diameter(i + 1, x, exact=self.exact) if need else None
                       for i, (need, x) in enumerate(zip(needs, (self.x1, self.x2))))
@@ -293,8 +329,19 @@ class FieldPoint:
         key = forms if any(d is not None for d in forms) else None
         g = self._geo.get(key)
         if g is None:
-            g = self._geo[key] = pair_geometry(f.spec(self.x1, self.x2), key)
+            # the function itself, not its cache: a point keeps its own geometries (and thousands of
+            # traced points would only evict the check's entries)
+            g = self._geo[key] = _pair_geometry(f.spec(self.x1, self.x2), key)
+        self._geo[needs] = g
         return g
+
+    def _fail(self, g) -> dict:
+        """:func:`~gearkit.checks.involute.fail_margins` of ``g``, kept per geometry."""
+        key = ("fail", id(g))
+        out = self._geo.get(key)
+        if out is None:
+            out = self._geo[key] = fail_margins(g)
+        return out
 
     def margin(self, name: str) -> float:
         m = self._m.get(name)
@@ -317,9 +364,9 @@ class FieldPoint:
         g = self.geometry(d.needs if d is not None else (False, False))
         if base in ("interference.1", "interference.2", "pointing.1", "pointing.2", "tip_clearance.1",
                     "tip_clearance.2"):
-            return fail_margins(g)[base] / mn
+            return self._fail(g)[base] / mn
         if name == "contact_ratio=1":
-            return fail_margins(g)["contact_ratio"]
+            return self._fail(g)["contact_ratio"]
         if base == "contact_ratio":
             return g.contact_ratio - float(level)
         if base == "contact_ratio_tip":

@@ -16,10 +16,26 @@ import math
 
 import numpy as np
 
-from gearkit.accuracy import distances_to_polyline
 from gearkit.curves import bracketed_root
 
-__all__ = ["Window", "grid_seeds", "trace_curves"]
+__all__ = ["EdgeSeed", "Window", "grid_seeds", "trace_curves"]
+
+
+def _distances(points, line, closed=False):
+    """Distance of each of ``points`` (k, 2) to the polyline ``line`` (n, 2), brute force in numpy
+    (a traced line has a few hundred vertices; no spatial index, no scipy import on this path)."""
+    pts = np.asarray(points, dtype=float).reshape(-1, 2)
+    if closed:
+        line = np.vstack([line, line[:1]])
+    if len(line) == 1:
+        return np.hypot(*(pts - line[0]).T)
+    a, b = line[:-1], line[1:]
+    ab = b - a
+    L2 = np.maximum((ab ** 2).sum(1), 1e-300)
+    ap = pts[:, None, :] - a[None, :, :]
+    t = np.clip((ap * ab[None]).sum(2) / L2[None], 0.0, 1.0)
+    d = ap - t[..., None] * ab[None]
+    return np.sqrt((d ** 2).sum(2).min(1))
 
 
 class Window:
@@ -40,8 +56,30 @@ class Window:
         return (float(self.lo[0]), float(self.hi[0]), float(self.lo[1]), float(self.hi[1]))
 
 
-def grid_seeds(f, xs, ys, values, xtol: float) -> list:
-    """Points of ``f = 0`` on the edges of the grid ``xs`` x ``ys`` with node values ``values[j, i]``."""
+class EdgeSeed:
+    """A sign change of ``f`` on the grid edge ``a -> b`` (node values ``va``, ``vb``), refined on demand.
+
+    :func:`trace_curves` refines a seed (a bracketed root along the edge) only when no curve traced
+    so far crosses its edge: one root per component instead of one per grid edge it crosses.
+    """
+
+    __slots__ = ("a", "b", "va", "vb")
+
+    def __init__(self, a, b, va, vb):
+        self.a, self.b, self.va, self.vb = a, b, va, vb
+
+    def point(self, f, xtol: float):
+        a, b = self.a, self.b
+        t = bracketed_root(lambda s: f(*(a + s * (b - a))), 0.0, 1.0, self.va, self.vb,
+                           xtol=xtol / max(float(np.abs(b - a).max()), 1e-300))
+        return a + t * (b - a)
+
+
+def grid_seeds(f, xs, ys, values, xtol: float, refine: bool = True) -> list:
+    """Points of ``f = 0`` on the edges of the grid ``xs`` x ``ys`` with node values ``values[j, i]``.
+
+    ``refine=False`` returns :class:`EdgeSeed` s (refined later, and only when needed, by
+    :func:`trace_curves`)."""
     seeds = []
     ny, nx = values.shape
     for j in range(ny):
@@ -54,12 +92,25 @@ def grid_seeds(f, xs, ys, values, xtol: float) -> list:
                 w = values[jj, ii]
                 if not (math.isfinite(v) and math.isfinite(w)) or (v > 0) == (w > 0) or (v == 0 and w == 0):
                     continue
-                a = np.array([xs[i], ys[j]])
-                b = np.array([xs[ii], ys[jj]])
-                t = bracketed_root(lambda s: f(*(a + s * (b - a))), 0.0, 1.0, v, w,
-                                   xtol=xtol / max(float(np.abs(b - a).max()), 1e-300))
-                seeds.append(a + t * (b - a))
+                seed = EdgeSeed(np.array([xs[i], ys[j]]), np.array([xs[ii], ys[jj]]), v, w)
+                seeds.append(seed.point(f, xtol) if refine else seed)
     return seeds
+
+
+def _crosses(line, a, b) -> bool:
+    """True when the polyline ``line`` (n, 2) meets the segment ``a -> b`` (touching counts)."""
+    p, q = line[:-1], line[1:]
+    d = b - a
+    e = q - p
+
+    def side(o, u, pts):
+        return u[..., 0] * (pts[..., 1] - o[..., 1]) - u[..., 1] * (pts[..., 0] - o[..., 0])
+
+    s1 = side(a, d, p)
+    s2 = side(a, d, q)
+    s3 = side(p, e, a)
+    s4 = side(p, e, b)
+    return bool(np.any((s1 * s2 <= 0) & (s3 * s4 <= 0)))
 
 
 def _axis_root(f, p, k, d, xtol, h):
@@ -143,9 +194,12 @@ def _trace_one(f, window, seed, direction, grad, h0, xtol, max_points, prefer=No
     d = np.array(grad, dtype=float)
     h = h0
     closed = False
+    turned = False
+    bend = 0.0  # turn of the last chord per unit length (half the curvature): the predictor follows it
     while len(pts) < max_points:
         p = pts[-1]
-        q = p + h * t
+        b = bend * h
+        q = p + h * np.array([t[0] * math.cos(b) - t[1] * math.sin(b), t[0] * math.sin(b) + t[1] * math.cos(b)])
         if not window.inside(q):
             e = _edge_end(f, window, p, q, d, xtol, h)
             if e is not None and np.hypot(*(e - p)) > 1e-12:
@@ -169,11 +223,28 @@ def _trace_one(f, window, seed, direction, grad, h0, xtol, max_points, prefer=No
         corner = c is not None and h < 0.02 * h0  # a kink of f's zero set: step through it
         if not (smooth or corner):
             h *= 0.5
+            if h < 0.02 * h0 and not turned:  # a sharp corner the axis corrector cannot turn
+                e = _circle_step(f, p, t, 0.02 * h0, xtol)
+                turned = True
+                if e is not None and window.inside(e):
+                    pts.append(e)
+                    c = (e - p) / np.hypot(*(e - p))
+                    bend = 0.0
+                    h = 0.02 * h0
+                    d = _gradient(f, e, h)
+                    if not (np.all(np.isfinite(d)) and d.any()):
+                        break
+                    t = np.array([-d[1], d[0]]) / np.hypot(*d)  # the new branch's tangent, onwards
+                    if t @ c < 0:
+                        t = -t
+                    continue
             if h < 1e-4 * h0:
                 break
             continue
+        turned = False
         if not smooth:
             turn = 0.0
+        bend = turn / dist
         d[k] = dk
         if abs(c[1 - k]) > 1e-3:  # gradient is normal to the chord
             d[1 - k] = -dk * c[k] / c[1 - k]
@@ -187,6 +258,42 @@ def _trace_one(f, window, seed, direction, grad, h0, xtol, max_points, prefer=No
             break
         h = min(h0, 1.5 * h)
     return np.array(pts), closed
+
+
+CIRCLE_SAMPLES = 36  #: samples of f on the circle around a corner
+
+
+def _circle_step(f, p, t, r, xtol):
+    """Across a sharp corner: the zero of ``f`` on the circle of radius ``r`` about ``p`` nearest
+    ahead of the unit tangent ``t`` (within +-0.9 pi of it), solved in angle to ``xtol``; None if none."""
+    a0 = math.atan2(t[1], t[0])
+    offs = np.linspace(-0.9 * math.pi, 0.9 * math.pi, CIRCLE_SAMPLES + 1)
+    order = np.argsort(np.abs(offs), kind="stable")
+
+    def g(off):
+        return f(p[0] + r * math.cos(a0 + off), p[1] + r * math.sin(a0 + off))
+
+    vals = {}
+    best = None
+    for i in order:  # ahead first: stop at the first sign change found
+        for j in (i - 1, i + 1):
+            if not 0 <= j < len(offs):
+                continue
+            for k in (i, j):
+                if k not in vals:
+                    vals[k] = g(offs[k])
+            vi, vj = vals[i], vals[j]
+            if math.isfinite(vi) and math.isfinite(vj) and (vi > 0) != (vj > 0):
+                lo, hi = (i, j) if i < j else (j, i)
+                best = (lo, hi)
+                break
+        if best is not None:
+            break
+    if best is None:
+        return None
+    lo, hi = best
+    off = bracketed_root(g, offs[lo], offs[hi], vals[lo], vals[hi], xtol=0.5 * xtol / r)
+    return p + r * np.array([math.cos(a0 + off), math.sin(a0 + off)])
 
 
 def _gradient(f, p, h):
@@ -207,9 +314,14 @@ def trace_curves(f, window: Window, seeds, h: float, xtol: float, max_points: in
     A seed within ``near`` (default ``0.05 h``) of a traced component is taken as lying on it."""
     near = 0.05 * h + 10 * xtol if near is None else near
     curves = []
-    todo = [np.asarray(s, dtype=float) for s in seeds]
+    todo = list(seeds)
     while todo:
         seed = todo.pop(0)
+        if isinstance(seed, EdgeSeed):
+            seed = seed.point(f, xtol)
+            if any(_distances(seed[None], c)[0] < near for c in curves):
+                continue
+        seed = np.asarray(seed, dtype=float)
         g = _gradient(f, seed, h)
         if not np.all(np.isfinite(g)) or not g.any():
             continue
@@ -222,7 +334,18 @@ def trace_curves(f, window: Window, seeds, h: float, xtol: float, max_points: in
             line = np.concatenate([back[::-1], fwd[1:]])
         if len(line) >= 2:
             curves.append(line)
-            if todo:
-                close = distances_to_polyline(np.array(todo), line, closed=closed) < near
-                todo = [s for s, n in zip(todo, close) if not n]
+            rest = []
+            pts = [s for s in todo if not isinstance(s, EdgeSeed)]
+            close = (_distances(np.array(pts, dtype=float), line, closed=closed) < near
+                     if pts else [])
+            k = 0
+            for s in todo:
+                if isinstance(s, EdgeSeed):
+                    if not _crosses(line, s.a, s.b):
+                        rest.append(s)
+                else:
+                    if not close[k]:
+                        rest.append(s)
+                    k += 1
+            todo = rest
     return curves

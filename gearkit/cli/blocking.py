@@ -20,7 +20,10 @@ def register(subparsers) -> None:
         "blocking", help="blocking contour: the map of admissible profile shifts (x1, x2) of a pair",
         description="Trace the blocking contour of an involute pair: the lines where the design check starts "
                     "to fail (interference B1/B2, eps_alpha = 1 B3, pointed tips B4/B5, internal jamming and "
-                    "trimming B6) and quality lines inside; shade the admissible region; recommend shifts.",
+                    "trimming B6) and quality lines inside; shade the admissible region; recommend shifts. "
+                    "Shifts are normal coefficients x_n. Internal pairs (--internal) use the textbook sign for "
+                    "the ring: x2 > 0 moves the ring's teeth outward (thinner ring teeth, larger tip (inner) "
+                    "diameter); the shift of a shaper-cut gear (every ring) is the cutter's radial setting.",
         epilog="Exit status: 0 ok, 1 the --mark point is outside the region, 2 bad input.")
     g = p.add_argument_group("pair")
     g.add_argument("--z1", type=int, required=True, help="pinion teeth")
