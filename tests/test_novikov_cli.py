@@ -86,3 +86,17 @@ def test_helical_solids_through_the_solids_interface(tmp_path, capsys):
     assert code == 0 and out["output"]["parts"] == ["gear1"] and (tmp_path / "gear.stl").stat().st_size > 1000
     code, out = _json(capsys, PAIR + ["--width", "60", "--no-mesh", "--gear", "2", "-o", str(tmp_path / "w.stl")])
     assert out["output"]["parts"] == ["gear2"]
+
+
+def test_example_script_runs(tmp_path, capsys):
+    import importlib.util
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[1] / "examples" / "novikov_pair.py"
+    spec = importlib.util.spec_from_file_location("novikov_pair_example", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    module.main(tmp_path)
+    out = capsys.readouterr().out
+    assert "result: WARN" in out and "b = 40 mm: fail" in out
+    assert (tmp_path / "novikov_pair.svg").read_text().startswith("<svg")
