@@ -151,25 +151,22 @@ def _runs(mask):
 
 
 def _interference(profiles, rotations, a_w, tol, window):
+    """Smallest signed clearance (mm) between the placed outlines within ``window`` of the pole, and the
+    number of separate places along gear 2's outline that touch (within 20 tol)."""
     outs = []
     for k, prof in enumerate(profiles):
         pts = prof.outline(tol) @ _rot(rotations[k]).T
-        if k == 1:
-            pts = pts + np.array([0.0, a_w])
-        outs.append(pts)
+        outs.append(pts + np.array([0.0, a_w]) if k == 1 else pts)
+    pole_y = a_w * profiles[0].teeth / (profiles[0].teeth + profiles[1].teeth)
     worst, touches = math.inf, 0
     touch_eps = max(20 * tol, 1e-6 * profiles[0].module)
     for k in (0, 1):
         mine, other = outs[k], outs[1 - k]
-        near = np.abs(mine[:, 0]) < window
-        near &= np.abs(mine[:, 1] - a_w * (profiles[0].spec.teeth / (profiles[0].spec.teeth
-                                                                       + profiles[1].spec.teeth))) < window
-        sel = np.flatnonzero(near)
+        sel = np.flatnonzero((np.abs(mine[:, 0]) < window) & (np.abs(mine[:, 1] - pole_y) < window))
         if not len(sel):
             continue
-        other_near = other[(np.abs(other[:, 0]) < 2 * window)]
         d = np.full(len(mine), np.inf)
-        d[sel] = signed_clearance(mine[sel], other) if len(other_near) else np.inf
+        d[sel] = signed_clearance(mine[sel], other)
         worst = min(worst, float(d[sel].min()))
         if k == 1:
             touches = _runs(d <= touch_eps)
