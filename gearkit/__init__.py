@@ -51,3 +51,8 @@ from gearkit.families.novikov_racks import ArcRack, ArcSpec  # noqa: E402
 __all__ += ["ArcRack", "ArcSpec", "NovikovCheck", "NovikovGearSpec", "NovikovLimits", "NovikovPairGeometry",
             "NovikovPairSpec", "NovikovProfile", "RackSystem", "check_novikov", "load_rack_system", "mesh_contact",
             "meshed_outlines", "novikov_pair_geometry", "novikov_tooth_profile", "rack_presets", "rack_system"]
+
+# -- blocking contours (issue 5): admissible shifts of a pair, atlases of them ------------------
+from gearkit.blocking import BlockingAtlas, BlockingContour, blocking_atlas, blocking_contour  # noqa: E402
+
+__all__ += ["BlockingAtlas", "BlockingContour", "blocking_atlas", "blocking_contour"]

@@ -4,6 +4,12 @@
 window of the (x1, x2) plane and the boundary of the admissible region (all hard margins >= 0:
 the shifts at which :func:`~gearkit.checks.check_pair` does not fail), and returns a
 :class:`BlockingContour`.
+
+Speed: every evaluation is one call of the pair formulas (:func:`~gearkit.pair.pair_geometry`)
+at one shift pair; a full contour of z1 = 13, z2 = 16 (about 200 points per line, 17 lines)
+takes some 8,000 of them. The seed grid is shared by all lines and the region, seeds are refined
+only where needed, and the region's vertices are solved on the seed grid's edges and at its
+corners. :func:`~gearkit.blocking.blocking_atlas` spreads many contours over processes.
 """
 from __future__ import annotations
 

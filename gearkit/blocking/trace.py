@@ -1,14 +1,21 @@
 """Level sets ``f(x1, x2) = 0`` in a window, traced by continuation and root finding.
 
-Seeds are the sign changes of ``f`` on the edges of a coarse grid, each refined by a bracketed
-root. From a seed the curve is followed in both directions: a predictor steps ``h`` along the
-tangent (extrapolated from the last chords, constant curvature), and a corrector solves
-``f = 0`` along the coordinate axis most transverse to the curve (secant/Newton, falling back to
-a bracketed root). A point is accepted when the last correction is at most ``xtol``, so every
-vertex lies within ``xtol`` (in x) of the exact curve. A curve ends on the window's edge (its end
-solved on the edge), where ``f`` is undefined (NaN: no pair exists there), or where it closes.
+Seeds are the sign changes of ``f`` on the edges of a coarse grid; a seed is refined (a
+bracketed root along its edge) only when no curve traced so far crosses that edge, so each
+component costs one root, not one per grid edge. From a seed the curve is followed in both
+directions: a predictor steps ``h`` along an arc that turns like the last chord did (constant
+curvature), and a corrector solves ``f = 0`` along the coordinate axis most transverse to the
+curve (secant/Newton with the derivative carried from the last point, falling back to a
+bracketed root). A point is accepted when the last correction is at most ``xtol``, so every
+vertex lies within ``xtol`` (in x) of the exact curve. Where the step has to shrink below
+``h / 50`` (a sharp corner of the zero set, e.g. where a margin switches formulas) the curve is
+continued from the zero of ``f`` on a circle of radius ``h / 50`` about the last point, the one
+nearest ahead. A curve ends on the window's edge (its end solved on the edge), where ``f`` is
+undefined (NaN: no pair exists there), or where it closes.
 
 ``f`` may have kinks (a margin that switches between two formulas); it must be continuous.
+
+Cost (z1 = 13, z2 = 16, 200 points per line): about 2 to 3.5 evaluations of ``f`` per vertex.
 """
 from __future__ import annotations
 

@@ -36,6 +36,7 @@ from dataclasses import dataclass
 
 from gearkit.checks.limits import CheckLimits, min_teeth_undercut
 from gearkit.checks.report import CheckReport, Finding, grade, json_number
+from gearkit.curves import bracketed_root
 from gearkit.errors import SpecError, require
 from gearkit.pair.geometry import PairGeometry, pair_geometry
 from gearkit.pair.spec import PairSpec
@@ -124,7 +125,6 @@ def min_shift_undercut(spec: PairSpec, which: int) -> float:
 
     Rack: ``h_s - z sin^2(a_t) / (2 cos b)`` (textbook 3.106/3.107); shaper: root of ``rho_l(x) = 0``.
     """
-    from scipy.optimize import brentq  # lazy: keeps `import gearkit` light
     sec = section(spec.module, spec.alpha_n_deg, spec.helix_angle_deg)
     tool = spec.tools[which - 1]
     z = spec.teeth1 if which == 1 else spec.teeth2
@@ -136,7 +136,7 @@ def min_shift_undercut(spec: PairSpec, which: int) -> float:
         return form_roll(sec, z, x, tool, False)
     if rho(lo) >= 0:
         return lo
-    return brentq(rho, lo, 5.0, xtol=1e-13)
+    return bracketed_root(rho, lo, 5.0, xtol=1e-13)
 
 
 def fail_margins(g: PairGeometry) -> dict:

@@ -101,17 +101,22 @@ class PairGeometry:
 
 
 def _sliding(g: PairGeometry, u):
-    c = g.path["C"]
+    if isinstance(u, float):  # one roll distance (the ends of the path, per pair): plain floats
+        try:
+            return _sliding_formula(g, u)
+        except ZeroDivisionError:
+            u = np.asarray(u)
     with np.errstate(divide="ignore", invalid="ignore"):
-        if g.kind == "rack":
-            z1 = 1.0 - c / u
-            z2 = 1.0 - u / c
-        else:
-            ratio = g.gears[1].teeth / g.gears[0].teeth
-            rho2 = g.line_of_action - u if g.kind == "external" else u + g.line_of_action
-            z1 = 1.0 - rho2 / (ratio * u)
-            z2 = 1.0 - ratio * u / rho2
-    return z1, z2
+        return _sliding_formula(g, u)
+
+
+def _sliding_formula(g: PairGeometry, u):
+    c = g.path["C"]
+    if g.kind == "rack":
+        return 1.0 - c / u, 1.0 - u / c
+    ratio = g.gears[1].teeth / g.gears[0].teeth
+    rho2 = g.line_of_action - u if g.kind == "external" else u + g.line_of_action
+    return 1.0 - rho2 / (ratio * u), 1.0 - ratio * u / rho2
 
 
 def _tight_alpha(kind: str, sec, z1: int, z2: int | None, d_sum: float) -> float:
@@ -278,8 +283,8 @@ def pair_geometry(spec: PairSpec, form_diameters: tuple | None = None) -> PairGe
         contact_ratio_nominal=(u_e - u_a) / p_bt, contact_ratio=eps_real, overlap_ratio=eps_beta,
         specific_sliding={}, pressure_coeff=theta, tip_clearance=clear, backlash=backlash,
         backlash_normal=backlash_n)
-    z_lo, z_hi = _sliding(geo, np.array([lo, hi]))
-    geo.specific_sliding.update({"start": (float(z_lo[0]), float(z_hi[0])), "end": (float(z_lo[1]), float(z_hi[1]))})
+    start, end = _sliding(geo, float(lo)), _sliding(geo, float(hi))
+    geo.specific_sliding.update({"start": (float(start[0]), float(start[1])), "end": (float(end[0]), float(end[1]))})
     return geo
 
 

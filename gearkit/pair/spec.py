@@ -172,6 +172,8 @@ class PairSpec:
     @property
     def tools(self) -> tuple:
         """(tool1, tool2) with defaults filled in; tool2 of a rack pair is the mating rack."""
+        if self.tool1 is not None and self.tool2 is not None:  # called per evaluation: no default to build
+            return (self.tool1, self.tool2)
         rack = BasicRack(pressure_angle_deg=self.alpha_n_deg)
         return (self.tool1 or rack, self.tool2 or rack)
 

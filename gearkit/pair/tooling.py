@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 
 from gearkit.curves import inv
 from gearkit.errors import SpecError
@@ -33,6 +34,7 @@ class Section:
     beta_b: float
 
 
+@lru_cache(maxsize=256)
 def section(module: float, alpha_n_deg: float, helix_deg: float) -> Section:
     """Transverse section of the normal system (ISO 21771): m_t = m_n/cos b, tan a_t = tan a_n/cos b.
 
