@@ -19,19 +19,36 @@ def render(res: dict) -> str:
                "the exact boundary is re-evaluated densely and its largest distance from the output polyline "
                "is taken.")
     out.append("")
-    out.append("**Accuracy ladder** (m = 1 mm; time = spec to output: outline of all teeth, watertight solid, "
-               "traced contour; mesh deviation measured on transverse sections, count = faces; blocking contour "
-               "tol and achieved in shift units)")
+    out.append("**Accuracy ladder**: requested tol (in modules; the cycloid disc in units of its eccentricity, the "
+               "blocking contour in shift units) against achieved / requested, vertex (mesh: face) count and the "
+               "time from spec to output (outline of all teeth, watertight solid, traced contour). Meshes are "
+               "measured on transverse sections of the mesh.")
     out.append("")
-    out.append("| product | family | case | requested tol | achieved | achieved / tol | vertices or faces | time |")
-    out.append("|---|---|---|---:|---:|---:|---:|---:|")
-    for r in res["ladder"]:
-        ach = "" if r["achieved"] is None else f"{r['achieved']:.2e}"
-        ratio = "" if r["achieved"] is None or r["product"] == "blocking contour" else \
-            f"{r['achieved'] / r['tol']:.2f}"
-        out.append(f"| {r['product']} | {r['family']} | {r['case']} | {r['tol']:.0e} | {ach} | {ratio} "
-                   f"| {r['vertices']} | {_ms(r['seconds'])} |")
-    out.append("")
+    for product in dict.fromkeys(r["product"] for r in res["ladder"]):
+        rows = [r for r in res["ladder"] if r["product"] == product]
+        cases = list(dict.fromkeys((r["family"], r["case"]) for r in rows))
+        tols = sorted({r.get("tol_m", r["tol"]) for r in rows}, reverse=True)
+        out.append(f"*{product}* (cells: " + ("achieved (largest distance, in x, of a 1e-10 trace from the lines "
+                                                "traced at tol)" if product == "blocking contour"
+                                                else "achieved / tol") + " · count · time)")
+        out.append("")
+        out.append("| tol | " + " | ".join(f"{fam}: {case}" for fam, case in cases) + " |")
+        out.append("|---:|" + "---:|" * len(cases))
+        for t in tols:
+            cells = []
+            for fam, case in cases:
+                r = next((r for r in rows if (r["family"], r["case"]) == (fam, case)
+                          and r.get("tol_m", r["tol"]) == t), None)
+                if r is None:
+                    cells.append("")
+                elif r["achieved"] is None:
+                    cells.append(f"{r['vertices']} · {_ms(r['seconds'])}")
+                elif product == "blocking contour":
+                    cells.append(f"{r['achieved']:.1e} · {r['vertices']} · {_ms(r['seconds'])}")
+                else:
+                    cells.append(f"{r['achieved'] / r['tol']:.2f} · {r['vertices']} · {_ms(r['seconds'])}")
+            out.append(f"| {t:.0e} | " + " | ".join(cells) + " |")
+        out.append("")
     out.append("**Scaling in the tooth count** (spur, m = 1 mm)")
     out.append("")
     out.append("| z | tol | achieved | vertices | time |")
