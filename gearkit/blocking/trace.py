@@ -258,6 +258,10 @@ def _trace_one(f, window, seed, direction, grad, h0, xtol, max_points, prefer=No
         # tangent at the new point: the chord turned on by the same angle again (constant curvature)
         ang = math.atan2(c[1], c[0]) + turn
         t = np.array([math.cos(ang), math.sin(ang)])
+        if len(pts) > 4 and _distances(seed, np.array([p, new]))[0] < 0.05 * h0 + 10 * xtol:
+            pts.append(seed.copy())  # the step passed the seed: the curve is closed
+            closed = True
+            break
         pts.append(new)
         if len(pts) > 4 and np.hypot(*(new - seed)) < 0.75 * h and (seed - new) @ t > 0:
             pts.append(seed.copy())
@@ -282,6 +286,10 @@ def _circle_step(f, p, t, r, xtol):
 
     vals = {}
     best = None
+    ahead = order[0]
+    vals[ahead] = g(offs[ahead])
+    if not math.isfinite(vals[ahead]):  # the curve runs into the undefined part (no pair): its end
+        return None
     for i in order:  # ahead first: stop at the first sign change found
         for j in (i - 1, i + 1):
             if not 0 <= j < len(offs):
