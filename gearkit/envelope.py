@@ -45,7 +45,7 @@ class Branch:
         valid : (n,) bool, False where the normal misses the tool centrode
         """
         w = np.atleast_1d(np.asarray(w, dtype=float))
-        u = self.u0 + w * (self.u1 - self.u0)
+        u = self.u0 * (1.0 - w) + self.u1 * w  # exact at both ends (u0 > u1 walks backwards)
         p, _, n = self.segment.evaluate(u)
         s, valid = self.motion.contact(p, n, self.root)
         s0 = np.where(valid, s, 0.0)

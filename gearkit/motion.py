@@ -133,9 +133,13 @@ class RollingMotion:
             return s, valid
         rel = p - np.array([0.0, c])
         b = np.einsum("ij,ij->i", n, rel)
-        disc = b * b - (np.einsum("ij,ij->i", rel, rel) - c * c)
-        valid = disc >= 0
-        sq = np.sqrt(np.where(valid, disc, 0.0))
+        # c^2 - d^2 with d the centre's distance from the normal line: equal to b^2 - (|rel|^2 - c^2)
+        # for a unit normal, without its cancellation; a line grazing the centrode within rounding
+        # touches it (the two roots meet exactly there, e.g. where a pin's contact turns back)
+        d = np.abs(rel[:, 0] * n[:, 1] - rel[:, 1] * n[:, 0])
+        disc = (abs(c) - d) * (abs(c) + d)
+        valid = disc >= -8.0 * np.finfo(float).eps * abs(c) * (abs(c) + d)
+        sq = np.sqrt(np.maximum(disc, 0.0))
         t1, t2 = -b - sq, -b + sq
         if root in ("near", "far"):
             # a tie (the normal is perpendicular to the line of centres through the point, e.g. an

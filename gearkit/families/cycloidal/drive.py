@@ -193,9 +193,15 @@ class DriveSpec:
 
 # ----------------------------------------------------------------------------- closed forms
 def _phase(spec: DriveSpec) -> float:
-    """Polar angle turning the reference digest's frame (space centre on +y for dz > 0) into the
-    gearkit frame (lobe 0 on +y)."""
-    return math.pi / spec.lobes if spec.sign > 0 else 0.0
+    """Polar angle turning the reference digest's frame into the gearkit frame (lobe 0 on +y).
+
+    In the digest's frame family 0's root (the pin nearest the disc centre for dz > 0, farthest
+    for dz < 0) is at psi = 0 (dz > 0) or psi = pi/|Z_d| (dz < 0, where T's polar angle equals psi);
+    gearkit puts that tooth space at polar angle pi/Z_g.
+    """
+    if spec.sign > 0:
+        return math.pi / spec.lobes
+    return math.pi / spec.lobes * (1 - abs(spec.tooth_difference))
 
 
 def _turn(points, angle):
@@ -276,23 +282,24 @@ def min_curvature_radius(spec: DriveSpec):
     return best
 
 
+def _root_psi(spec: DriveSpec) -> float:
+    """Relative angle of family 0's root in the digest's parametrisation (polar pi/Z_g in gearkit's)."""
+    return 0.0 if spec.sign > 0 else math.pi / abs(spec.equivalent_lobes)
+
+
 def psi_max(spec: DriveSpec) -> float:
-    """psi_max (rad): relative angle at which family 0's flank, from its root, meets the tooth's
-    symmetry axis (reference digest eq. 16); pi/|Z_g| for |dz| = 1."""
+    """psi_max (rad): relative angle over which family 0's flank runs from its root to where it meets
+    the tooth's symmetry axis (reference digest eq. 16); pi/|Z_g| for |dz| = 1."""
     from scipy.optimize import brentq
 
     if abs(spec.tooth_difference) == 1:
         return math.pi / spec.lobes
+    root = _root_psi(spec)
 
-    def polar(psi):  # gearkit frame: the tooth axis is polar angle 0
-        p = disc_curve(spec, [psi])[0]
+    def polar(x):  # gearkit frame: the root at polar pi/Z_g, the tooth axis at 0; psi decreases towards it
+        p = disc_curve(spec, [root - x])[0]
         return math.atan2(p[0], p[1])
-    z = abs(spec.equivalent_lobes)
-    hi = math.pi / z
-    # dz > 0: family 0's root is at polar pi/Z_g and psi < 0 runs towards the axis
-    sgn = -1.0 if spec.sign > 0 else 1.0
-    f = (lambda x: polar(sgn * x)) if spec.sign > 0 else (lambda x: polar(sgn * x) - math.pi / spec.lobes)
-    return brentq(f, 1e-12, hi, xtol=1e-15, rtol=1e-15)
+    return brentq(polar, 1e-12, math.pi / abs(spec.equivalent_lobes), xtol=1e-15, rtol=1e-15)
 
 
 def contact_ratio(spec: DriveSpec) -> float:
