@@ -1,0 +1,101 @@
+"""The simulated pin mesh of generated cycloid discs: pins in contact, load-carrying pins, backlash.
+
+Oracles: the digest (cycloid §1.9, §1.11 modifications table, §2 simulation rows, §4 items 7, 8,
+9, 13): eps from eq. 27, the first-order and continuous backlash formulas, the normal clearance
+Delta_0(phi) = dr - dR (1 - K1 cos phi)/sqrt(S).
+
+``EPS_TOL = 1e-3`` (the issue's); ``REL = 0.01`` (the issue's 1% on the backlash angle);
+``NUMERIC = 2e-4`` relative for the digest's own contact-search values; ``CLEAR = 1e-5`` mm
+(digest item 13).
+"""
+import math
+
+import numpy as np
+import pytest
+
+from gearkit.families.cycloidal import DriveSpec, backlash, contact_ratio, disc_profile, mesh_state, simulate_mesh
+
+EPS_TOL = 1e-3
+REL = 0.01
+NUMERIC = 2e-4
+CLEAR = 1e-5
+
+CASES = {"+1": (12, 11, 90.0, 7.0, 4.0), "+2": (24, 22, 90.0, 7.0, 4.0), "+3": (36, 33, 90.0, 7.0, 4.0),
+         "-1": (15, 16, 120.0, 10.0, 5.0)}
+
+
+@pytest.mark.parametrize("case,eps", [("+1", 6.0), ("+2", 6.4199), ("+3", 5.7125), ("-1", 7.5)])
+def test_time_averaged_load_carrying_pins_equal_the_contact_ratio(case, eps):
+    """Issue item 2: the count of pins on the loaded flank, averaged over the mesh period on the
+    generated disc, equals eps to 1e-3 (both load directions)."""
+    spec = DriveSpec(*CASES[case])
+    stats = simulate_mesh(spec)
+    assert contact_ratio(spec) == pytest.approx(eps, abs=1e-4)
+    assert stats.loaded[0] == pytest.approx(contact_ratio(spec), abs=EPS_TOL)
+    assert stats.loaded_reverse[0] == pytest.approx(contact_ratio(spec), abs=EPS_TOL)
+    assert stats.loaded[1] == math.floor(contact_ratio(spec)) and stats.loaded[2] == math.ceil(contact_ratio(spec))
+
+
+def test_unmodified_single_difference_every_pin_touches():
+    """Issue item 4 (digest §4 item 8): dz = +1, all Z_b pins touch at every crank angle and
+    exactly Z_b/2 carry load in each direction."""
+    stats = simulate_mesh(DriveSpec(*CASES["+1"]), samples=500)
+    assert stats.touching == (12.0, 12, 12)
+    assert stats.loaded == (6.0, 6, 6) and stats.loaded_reverse == (6.0, 6, 6)
+    state = mesh_state(DriveSpec(*CASES["+1"]), 0.0123)
+    assert np.abs(state.clearance).max() < 1e-9
+
+
+@pytest.mark.parametrize("case,phi0_deg,touch,loaded", [("+2", 4.5, 13, 7), ("+3", 3.0, 12, 6)])
+def test_multi_tooth_snapshots(case, phi0_deg, touch, loaded):
+    """Digest §4 item 9: pins touching and loaded at the pin-wheel angle phi0 (crank-fixed frame)."""
+    spec = DriveSpec(*CASES[case])
+    state = mesh_state(spec, math.radians(phi0_deg) / spec.equivalent_lobes)
+    assert int(state.touching.sum()) == touch
+    assert max(int(state.load_carrying(1).sum()), int(state.load_carrying(-1).sum())) == loaded
+
+
+def test_equidistant_modification_backlash_and_one_pin():
+    """Issue item 4 (digest §4 item 13): dr = 0.02 mm: the backlash angle is within 1% of
+    (dr - dR sqrt(1 - K1^2))/r_g' = 0.45455 mrad; one pin touches at zero load, the one at 60 deg
+    from the line of centres (nearest arccos K1 = 57.77 deg), on either side by the direction."""
+    spec = DriveSpec(*CASES["+1"], equidistant_mod=0.02)
+    assert mesh_state(spec).touching.sum() == 0  # clearance all round before the disc turns
+    continuous = (0.02 - 0.0) / spec.disc_pitch_radius
+    assert continuous == pytest.approx(0.45455e-3, rel=1e-4)
+    for direction, side in ((1, -1), (-1, 1)):
+        angle, state = backlash(spec, 0.0, direction)
+        assert angle == pytest.approx(continuous, rel=REL)
+        assert angle == pytest.approx(0.45493e-3, rel=NUMERIC)  # the digest's contact search
+        k = np.flatnonzero(state.touching)
+        assert len(k) == 1
+        centre = state.centres[k[0]] - state.centres.mean(axis=0)  # about the pin ring's centre
+        line = -state.centres.mean(axis=0)  # towards the disc centre
+        ang = math.degrees(math.atan2(centre[0] * line[1] - centre[1] * line[0], centre @ line))
+        assert ang == pytest.approx(side * 60.0, abs=1e-9)
+
+
+@pytest.mark.parametrize("d_r,d_big_r,numeric", [(0.0, -0.01, 0.19246), (0.02, -0.01, 0.64744),
+                                                 (0.03, 0.01, 0.48990)])
+def test_modification_table(d_r, d_big_r, numeric):
+    """Digest §1.11 table: backlash from the contact search, and the continuous formula within 1%."""
+    spec = DriveSpec(*CASES["+1"], equidistant_mod=d_r, shift_mod=d_big_r)
+    angle, _ = backlash(spec)
+    assert angle * 1e3 == pytest.approx(numeric, rel=NUMERIC)
+    k1 = spec.k1
+    assert angle == pytest.approx((d_r - d_big_r * math.sqrt(1 - k1 * k1)) / spec.disc_pitch_radius, rel=REL)
+
+
+def test_normal_clearance_and_radial_clearance():
+    """Digest §4 item 13: the clearance of each pin (disc not turned) is
+    Delta_0 = dr - dR (1 - K1 cos phi)/sqrt(S) within 1e-5 mm; tip and root clear by dr - dR."""
+    d_r, d_big_r = 0.02, -0.01
+    spec = DriveSpec(*CASES["+1"], equidistant_mod=d_r, shift_mod=d_big_r)
+    state = mesh_state(spec, 0.0)
+    k1 = spec.k1
+    phi = 2 * math.pi * np.arange(spec.pins) / spec.pins  # pin k's angle from the line of centres
+    s = 1 + k1 * k1 - 2 * k1 * np.cos(phi)
+    assert state.clearance == pytest.approx(d_r - d_big_r * (1 - k1 * np.cos(phi)) / np.sqrt(s), abs=CLEAR)
+    d = disc_profile(spec)
+    assert d.tip_diameter / 2 == pytest.approx(87.0 - (d_r - d_big_r), abs=1e-9)
+    assert d.root_diameter / 2 == pytest.approx(79.0 - (d_r - d_big_r), abs=1e-9)
