@@ -225,11 +225,11 @@ def check_pin_gearing(spec) -> PinGearCheck:
               "pin_radius": spec.pin_radius, "center_distance": spec.center_distance,
               "tip_diameter": w.tip_diameter, "root_diameter": w.root_diameter,
               "first_usable_roll_deg": math.degrees(first_usable_roll(spec))}
-    if w.looped:
+    try:
         r_use = w.usable_flank_radius()
         s0, s1 = w.contact_rolls()
         eps = (s1 - s0) / (math.pi * spec.module)
-    else:
+    except GearkitError:
         r_use, eps = w.tip_diameter / 2.0, 0.0
     values["usable_flank_radius"] = r_use
     top = w.tip_diameter / 2.0

@@ -31,7 +31,11 @@ from gearkit.errors import GeometryError, SpecError, require
 from gearkit.motion import RollingMotion
 from gearkit.tools import arc
 
-__all__ = ["PinGearSpec", "PinGearWheel", "pin_gear_wheel", "first_usable_roll", "pin_wheel_outline"]
+__all__ = ["PinGearSpec", "PinGearWheel", "pin_gear_wheel", "first_usable_roll", "pin_wheel_outline", "DETECT_TOL"]
+
+#: loop-detection tolerance (module units): the equidistant's loop next to the pitch circle can be
+#: very small (a thin pin on a large pin wheel), so it is looked for much finer than usual
+DETECT_TOL = 1e-6
 
 
 def _is_int(v) -> bool:
@@ -122,24 +126,21 @@ class PinGearWheel(ToothProfile):
         return next((p for p in self.half.pieces if p.label == "flank"), None)
 
     def usable_flank_radius(self) -> float:
-        """Radius (mm) where the working flank leaves the space bottom (the trim point), i.e. the
-        lowest point a pin touches."""
-        pieces = list(self.half.pieces)
-        for k in range(len(pieces) - 1, 0, -1):
-            if self.half.joins[k - 1] == "trim":
-                return float(np.hypot(*pieces[k - 1](np.array([1.0]))[0]))
-        raise GeometryError("no trimmed loop: the flank does not meet the space bottom")
+        """Radius (mm) where the working flank leaves the space bottom (the trim point, or the flank's
+        lower end), i.e. the lowest point a pin touches."""
+        pc = self._flank_piece()
+        if pc is None:
+            raise GeometryError("the wheel has no working flank")
+        return float(np.hypot(*pc(np.array([1.0]))[0]))
 
     def contact_rolls(self):
-        """Rolls (mm on the pitch circles) at which a pin first and last touches the flank: at the
-        trim point and at the tip. Their difference over the pitch is the contact ratio."""
-        pieces = list(self.half.pieces)
-        rolls = []
-        for k, pc in enumerate(pieces):
-            if hasattr(pc.curve, "solve") and pc.label == "flank":
-                s = pc.curve.solve(np.array([pc.w0, pc.w1]))[2]
-                rolls.extend([float(s[0]), float(s[1])])
-        return min(rolls), max(rolls)
+        """Rolls (mm on the pitch circles) at which a pin first and last touches the working flank: at
+        the tip and at the trim point. Their difference over the pitch is the contact ratio."""
+        pc = self._flank_piece()
+        if pc is None:
+            raise GeometryError("the wheel has no working flank")
+        s = pc.curve.solve(np.array([pc.w0, pc.w1]))[2]
+        return float(min(s)), float(max(s))
 
 
 def _pin_tool(spec: PinGearSpec):
@@ -171,7 +172,7 @@ def pin_gear_wheel(spec: PinGearSpec) -> PinGearWheel:
     branches = chain_branches(_pin_tool(spec), motion, "front")
     try:
         half = trim_half_tooth(branches, int(spec.wheel_teeth), spec.tip_radius, False,
-                               detect_tol=2e-4 * spec.module)
+                               detect_tol=DETECT_TOL * spec.module)
     except GeometryError as exc:
         raise SpecError("pin_radius", f"rho = {spec.pin_radius:g} mm leaves no tooth on the wheel ({exc})") from None
     # the pin circle at the pole (constant roll) is the space bottom: label it so
