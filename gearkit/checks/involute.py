@@ -162,7 +162,8 @@ def fail_margins(g: PairGeometry) -> dict:
     return out
 
 
-def check_pair(spec: PairSpec, limits: CheckLimits = CheckLimits(), geometry: str = "generated") -> PairCheck:
+def check_pair(spec: PairSpec, limits: CheckLimits = CheckLimits(), geometry: str = "generated",
+               simulate: bool = False) -> PairCheck:
     """Check a pair: every finding of the module table, from the generated or the formula geometry.
 
     Parameters
@@ -173,6 +174,10 @@ def check_pair(spec: PairSpec, limits: CheckLimits = CheckLimits(), geometry: st
         "generated" (default) generates both gears and reads their form circles, undercut and tip
         thickness off them; "formula" uses the tool formulas only (fast, exact without undercut;
         an undercut gear's form circle is then taken at its base circle).
+    simulate : bool
+        Also mesh the generated gears over a cycle (:mod:`gearkit.contact`, about a second) and add
+        the findings of :mod:`gearkit.checks.simulated`: the simulated contact ratio beside the
+        formula's, and interference the formulas miss (or flag where the teeth clear).
 
     Returns
     -------
@@ -199,6 +204,9 @@ def check_pair(spec: PairSpec, limits: CheckLimits = CheckLimits(), geometry: st
     if spec.kind == "internal":
         from gearkit.checks.internal import internal_findings
         findings += internal_findings(spec, g)
+    if simulate:
+        from gearkit.checks.simulated import simulated_findings
+        findings += simulated_findings(spec, g, findings, limits)
     return PairCheck(g, CheckReport(tuple(findings)), profiles)
 
 

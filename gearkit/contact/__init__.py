@@ -7,7 +7,8 @@ backlash, and interference (depth, area, where). Helical gears as transverse sli
 
 * :class:`Mesh` — two profiles (gear, ring or rack) placed at a centre distance
   (:mod:`gearkit.contact.mesh`).
-* :func:`simulate` — one mesh cycle → :class:`ContactAnalysis` (:mod:`gearkit.contact.analysis`).
+* :func:`simulate` — one mesh cycle → :class:`ContactAnalysis` (:mod:`gearkit.contact.analysis`);
+  :func:`limits` — just where the mate stops either way at given driver angles.
 * :func:`analyse_pair` / :func:`pair_mesh` — the same for a :class:`~gearkit.pair.PairSpec`.
 * :func:`pin_ring` — pins as teeth (cycloid–pin-wheel drives, lantern gearing).
 * :func:`plot_transmission_error`, :func:`plot_path_of_contact` — PNG/SVG plots (matplotlib).
@@ -27,11 +28,11 @@ Examples
 >>> round(res.contact_ratio, 3), res.interference.found
 (1.635, False)
 """
-from gearkit.contact.analysis import ContactAnalysis, Interference, simulate
+from gearkit.contact.analysis import ContactAnalysis, Interference, limits, simulate
 from gearkit.contact.mesh import KINDS, Mesh
 from gearkit.contact.pair import analyse_pair, pair_mesh
 from gearkit.contact.pins import pin_ring
 from gearkit.contact.plot import plot_path_of_contact, plot_transmission_error, save_plot
 
-__all__ = ["KINDS", "ContactAnalysis", "Interference", "Mesh", "analyse_pair", "pair_mesh", "pin_ring",
+__all__ = ["KINDS", "ContactAnalysis", "Interference", "Mesh", "analyse_pair", "limits", "pair_mesh", "pin_ring",
            "plot_path_of_contact", "plot_transmission_error", "save_plot", "simulate"]

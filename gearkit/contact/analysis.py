@@ -33,43 +33,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from gearkit.contact.cycle import Cycle, contact_ratio
+from gearkit.contact.interference import Interference, find_interference, sharpen
 from gearkit.contact.mesh import Mesh
-from gearkit.contact.solver import solve
 from gearkit.errors import require
 
-__all__ = ["ContactAnalysis", "Interference", "simulate"]
+__all__ = ["ContactAnalysis", "Interference", "limits", "simulate"]
 
-#: bisection steps for the instants a pair enters or leaves contact (2^-16 of a step)
-_BISECT = 16
-
-
-@dataclass(frozen=True)
-class Interference:
-    """Overlap of the two profiles found over the cycle.
-
-    Attributes
-    ----------
-    found : bool
-    max_depth : float, mm (along the contact normal; 0 when not found)
-    area : float, mm^2 (overlap of the outlines at the deepest instant; 0 when not found)
-    where : tuple of str (kinds, deepest first)
-    driver_angle : float, rad (the deepest instant)
-    point : (2,) float64, mm (fixed frame)
-    events : tuple of dict (the deepest instance of each kind)
-    """
-
-    found: bool
-    max_depth: float = 0.0
-    area: float = 0.0
-    where: tuple = ()
-    driver_angle: float = 0.0
-    point: tuple = (0.0, 0.0)
-    events: tuple = ()
-
-    def to_dict(self) -> dict:
-        return {"found": self.found, "max_depth": self.max_depth, "area": self.area, "where": list(self.where),
-                "driver_angle_deg": math.degrees(self.driver_angle), "point": list(self.point),
-                "events": [dict(e) for e in self.events]}
 
 
 @dataclass(frozen=True)
@@ -132,140 +102,6 @@ class ContactAnalysis:
         return out
 
 
-# ----------------------------------------------------------------------------- evaluation
-class _Eval:
-    """Bounds at driver angles ``phi`` (n,) over the slice shifts (S,), reduced per angle."""
-
-    def __init__(self, mesh: Mesh, phi, shifts, contact_tol):
-        self.phi = np.asarray(phi, dtype=float)
-        n, s = len(self.phi), len(shifts)
-        b = solve(mesh, (self.phi[:, None] + shifts[None, :]).ravel(), contact_tol)
-        kk = b.teeth.shape[1]
-
-        def grid(a):
-            return a.reshape((n, s, kk) + a.shape[2:])
-        self.teeth = grid(b.teeth)
-        self.value, self.exact, self.arm = grid(b.value), grid(b.exact), grid(b.arm)
-        self.point, self.normal = grid(b.point), grid(b.normal)
-        self.piece1, self.piece2, self.rho2 = grid(b.piece1), grid(b.piece2), grid(b.rho2)
-        self.corner1, self.corner2 = grid(b.corner1), grid(b.corner2)
-        self.upper = self.value[..., 0].min(axis=(1, 2, 3))
-        self.lower = -self.value[..., 1].min(axis=(1, 2, 3))
-        wb = 0 if mesh.working == 1 else 1
-        self.wb = wb
-        self.work = self.upper if wb == 0 else self.lower
-        v = self.value[..., wb]
-        flat = v.reshape(n, -1).argmin(axis=1)
-        best = v.reshape(n, -1)[np.arange(n), flat]
-        arm_best = self.arm[..., wb].reshape(n, -1)[np.arange(n), flat]
-        gap = (v - best[:, None, None, None]) * self.arm[..., wb]
-        # a bound is known to about noise / arm (rad): a contact whose normal nearly passes through the
-        # mate's centre (a crest) sets a position that is uncertain by much more than a firm one
-        noise = (mesh.noise * self.arm[..., wb] / arm_best[:, None, None, None])
-        self.touch = self.exact[..., wb] & (gap <= contact_tol + noise)  # (n, S, K, 2)
-        self.ids = np.where(self.touch, 2 * self.teeth[..., None] + np.arange(2), np.iinfo(np.int64).min)
-
-    def pair_sets(self):
-        """The set of pair ids (2 tooth + half) in contact at each angle."""
-        return [set(r[r != np.iinfo(np.int64).min].tolist()) for r in self.ids.reshape(len(self.phi), -1)]
-
-    def extreme(self, bound):
-        """Index tuples ``(n, s, k, h)`` of the extreme contact of ``bound`` at every angle."""
-        v = self.value[..., bound].reshape(len(self.phi), -1)
-        flat = np.argmin(v, axis=1)
-        return (np.arange(len(self.phi)),) + np.unravel_index(flat, self.value.shape[1:4])
-
-
-def _contact_ratio(mesh, phi, ev, shifts, contact_tol):
-    """Time average of the pairs in contact over ``phi[0] .. phi[-1]`` (one cycle), transitions bisected."""
-    sets = ev.pair_sets()
-    period = phi[-1] - phi[0]
-    total = 0.0
-    todo = []  # (lo angle, hi angle, pair id, in at lo)
-    for j in range(len(phi) - 1):
-        a, b = sets[j], sets[j + 1]
-        total += len(a & b) * (phi[j + 1] - phi[j])
-        for pid in a ^ b:
-            todo.append((phi[j], phi[j + 1], pid, pid in a))
-    if todo:
-        lo = np.array([t[0] for t in todo])
-        hi = np.array([t[1] for t in todo])
-        pid = np.array([t[2] for t in todo])
-        start_in = np.array([t[3] for t in todo])
-        for _ in range(_BISECT):
-            mid = 0.5 * (lo + hi)
-            mid_sets = _Eval(mesh, mid, shifts, contact_tol).pair_sets()
-            inside = np.array([p in s for p, s in zip(pid.tolist(), mid_sets)])
-            same = inside == start_in
-            lo, hi = np.where(same, mid, lo), np.where(same, hi, mid)
-        cut = 0.5 * (lo + hi)
-        starts = np.array([t[0] for t in todo])
-        ends = np.array([t[1] for t in todo])
-        total += float(np.sum(np.where(start_in, cut - starts, ends - cut)))
-    return total / period
-
-
-def _labels(mesh, ev, idx, bound):
-    """(driver feature, mate feature) at the contacts ``idx`` of ``bound``."""
-    p1 = ev.piece1[idx + (bound,)]
-    p2 = ev.piece2[idx + (bound,)]
-    c1 = ev.corner1[idx + (bound,)]
-    c2 = ev.corner2[idx + (bound,)]
-    d = np.array(mesh.driver.labels, dtype=object)[np.clip(p1, 0, None)]
-    d = np.where(c1 & (d == "flank"), "tip", d)
-    m = mesh.mate.label(p2)
-    m = np.where(c2, "tip", m)
-    return d, m
-
-
-def _kind(driver_feature, mate_feature) -> str:
-    feats = (driver_feature, mate_feature)
-    if "fillet" in feats:
-        return "tip-fillet"
-    if "root" in feats:
-        return "tip-root"
-    if "tip" in feats:
-        return "tip"
-    return "flank"
-
-
-def _interference(mesh, ev, ref, itol, work_arm, rev_arm):
-    """Interference events over the cycle (see the module notes)."""
-    wb = ev.wb
-    over = mesh.working * (ref - ev.work) * work_arm  # the first contact ahead of the ideal position
-    jam = (ev.lower - ev.upper) * rev_arm
-    events = []
-    for depth, bound, is_jam in ((over, wb, False), (jam, 1 - wb, True)):
-        hit = np.flatnonzero(np.nan_to_num(depth, nan=0.0) > itol)
-        if hit.size == 0:
-            continue
-        idx = ev.extreme(bound)
-        d, m = _labels(mesh, ev, idx, bound)
-        kinds = np.array([_kind(a, b) for a, b in zip(d, m)])
-        groups = [("jamming", hit)] if is_jam else []  # jamming, and what the binding contact is
-        groups += [(k, hit[kinds[hit] == k]) for k in dict.fromkeys(kinds[hit].tolist())
-                   if not (is_jam and k == "flank")]
-        for kind, sel in groups:
-            j = int(sel[np.argmax(depth[sel])])
-            at = tuple(i[j] for i in idx)
-            events.append({"kind": kind, "depth": float(depth[j]), "driver_angle": float(ev.phi[j]),
-                           "point": [float(v) for v in ev.point[at + (bound,)]],
-                           "driver_feature": str(d[j]), "mate_feature": str(m[j]),
-                           "side": "reverse" if bound != wb else "working", "step": j})
-    for who, gap in zip(("driver", "mate"), mesh.root_clearances()):
-        if -gap > itol:  # a tip circle reaches into the other gear's root circle
-            events.append({"kind": "tip-root", "depth": float(-gap), "driver_angle": float(ev.phi[0]),
-                           "point": [float("nan")] * 2, "driver_feature": "tip" if who == "driver" else "root",
-                           "mate_feature": "root" if who == "driver" else "tip", "side": "radial", "step": 0})
-    if not events:
-        return Interference(False), None
-    events.sort(key=lambda e: -e["depth"])
-    top = events[0]
-    where = tuple(dict.fromkeys(e["kind"] for e in events))
-    return Interference(True, top["depth"], 0.0, where, top["driver_angle"], tuple(top["point"]),
-                        tuple(events)), top
-
-
 def simulate(mesh: Mesh, steps: int = 2000, *, contact_tol: float | None = None,
              interference_tol: float | None = None, face_width: float = 0.0, helix_angle_deg: float = 0.0,
              slices: int = 1, start: float = 0.0) -> ContactAnalysis:
@@ -316,11 +152,11 @@ def simulate(mesh: Mesh, steps: int = 2000, *, contact_tol: float | None = None,
         zeta = np.zeros(1)
         shifts = np.zeros(1)
     phi = start + mesh.pitch1 * np.arange(steps + 1) / steps
-    ev = _Eval(mesh, phi, shifts, ctol)
-    eps_total = _contact_ratio(mesh, phi, ev, shifts, ctol)
+    ev = Cycle(mesh, phi, shifts, ctol)
+    eps_total = contact_ratio(mesh, phi, ev, shifts, ctol)
     if helical:
-        ev0 = _Eval(mesh, phi, np.zeros(1), ctol)
-        eps = _contact_ratio(mesh, phi, ev0, np.zeros(1), ctol)
+        ev0 = Cycle(mesh, phi, np.zeros(1), ctol)
+        eps = contact_ratio(mesh, phi, ev0, np.zeros(1), ctol)
     else:
         eps = eps_total
     ref = mesh.reference()
@@ -332,13 +168,15 @@ def simulate(mesh: Mesh, steps: int = 2000, *, contact_tol: float | None = None,
     rev_arm = ev.arm[r_idx + (1 - ev.wb,)]
     play = ev.upper - ev.lower
     r_w2 = 1.0 if mesh.kind == "rack" else mesh.pitch_radii[1]
-    inter, top = _interference(mesh, ev, ref, itol, work_arm, rev_arm)
-    if top is not None:
+    extra = sharpen(mesh, ev, ref, shifts, ctol, itol)
+    inter, top = find_interference(mesh, ev, ref, itol, work_arm, rev_arm, extra)
+    if top is not None and top["side"] != "radial":
         from gearkit.contact.overlap import overlap_area
 
-        j = top["step"]
-        delta = ref if top["side"] == "working" else ev.work[j]
-        area = overlap_area(mesh, ev.phi[j] + shifts[int(w_idx[1][j])], delta)
+        at = Cycle(mesh, np.array([top["driver_angle"]]), shifts, ctol)
+        k = int(at.extreme(at.wb)[1][0])
+        delta = ref if top["side"] == "working" else float(at.work[0])
+        area = overlap_area(mesh, top["driver_angle"] + shifts[k], delta)
         inter = Interference(True, inter.max_depth, area, inter.where, inter.driver_angle, inter.point, inter.events)
     counts = np.array([len(s) for s in ev.pair_sets()])
     contacts = _contacts(ev, zeta)
@@ -350,6 +188,17 @@ def simulate(mesh: Mesh, steps: int = 2000, *, contact_tol: float | None = None,
         backlash_angle=play[:n], interference=inter, reference=float(ref), contacts=contacts,
         units="mm" if mesh.kind == "rack" else "rad", slices=len(shifts), face_width=float(face_width),
         contact_tol=ctol, interference_tol=itol)
+
+
+def limits(mesh: Mesh, phi):
+    """Where the mate stops, turned either way, at driver angles ``phi`` ``(n,)`` (rad).
+
+    Returns ``(upper, lower)``: the mate positions (mate units, from the ideal motion) of first
+    contact in each direction; ``upper - lower`` is the free play (negative: the teeth overlap at
+    every position). A quick query, without the cycle's contact ratio or interference analysis.
+    """
+    ev = Cycle(mesh, np.atleast_1d(np.asarray(phi, dtype=float)), np.zeros(1), 1e-12 * mesh.module)
+    return ev.upper, ev.lower
 
 
 def _contacts(ev, zeta):

@@ -159,14 +159,14 @@ def _minimise(task, a, b):
     e = np.zeros(rows.size)
     todo = np.arange(rows.size)
     for _ in range(_MIN_ITER):
-        tol1 = 1e-10 * np.abs(x[todo]) + 1e-12 * width[rows[todo]]
+        tol1 = 1e-9 * np.abs(x[todo]) + 1e-11 * width[rows[todo]]
         todo = todo[np.abs(x[todo] - 0.5 * (lo[todo] + hi[todo])) > 2 * tol1 - 0.5 * (hi[todo] - lo[todo])]
         if todo.size == 0:
             break
         x_, fx_, w_, fw_, v_, fv_ = x[todo], fx[todo], xw[todo], fw[todo], xv[todo], fv[todo]
         lo_, hi_, d_, e_ = lo[todo], hi[todo], d[todo], e[todo]
         mid = 0.5 * (lo_ + hi_)
-        tol1 = 1e-10 * np.abs(x_) + 1e-12 * width[rows[todo]]
+        tol1 = 1e-9 * np.abs(x_) + 1e-11 * width[rows[todo]]
         r = (x_ - w_) * (fx_ - fv_)
         q = (x_ - v_) * (fx_ - fw_)
         p = (x_ - v_) * q - (x_ - w_) * r

@@ -1,0 +1,129 @@
+"""``gearkit contact``: mesh the generated teeth of a pair over one cycle (tooth contact analysis).
+
+Usage::
+
+    gearkit contact --z1 20 --z2 40 -m 2 [pair options as in gearkit check] [--steps 2000]
+                    [--slices 20] [--tol 0.002] [--json] [-o te.png] [-o path.svg]
+    gearkit contact design.toml [--json]
+
+Prints the simulated contact ratio beside the formula value, the transmission error, the
+backlash and any interference, with the simulation's findings. ``-o`` writes a plot (PNG or SVG
+by the suffix): the path of contact when the file name contains "path", else the transmission
+error. Exit status: 0 when no simulated finding fails, 1 when one does, 2 for bad input.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+
+from gearkit.errors import SpecError
+
+
+def register(subparsers) -> None:
+    from gearkit.cli import check
+
+    holder = argparse.ArgumentParser(add_help=False).add_subparsers()
+    check.register(holder)  # the pair options, exactly as `gearkit check` has them
+    pair_options = holder.choices["check"]
+    p = subparsers.add_parser(
+        "contact", parents=[pair_options], conflict_handler="resolve",
+        help="mesh the generated teeth over a cycle: transmission error, contact ratio, backlash, interference",
+        description="Tooth contact analysis of an involute pair (lengths in mm, angles in degrees): the "
+                    "generated teeth meshed rigidly over one mesh cycle. " + check._SIGN_NOTE,
+        epilog="Exit status: 0 no simulated finding fails, 1 one fails, 2 bad input.")
+    for action in p._actions:  # `gearkit check --geometry` does not apply: the teeth are always generated
+        if action.dest == "geometry":
+            action.help = argparse.SUPPRESS
+    sim = p.add_argument_group("simulation")
+    sim.add_argument("--steps", type=int, default=2000, help="driver angles per mesh cycle (default 2000)")
+    sim.add_argument("--slices", type=int, help="transverse slices of a helical pair (default 20 with --width)")
+    sim.add_argument("--tol", type=float, help="chord tolerance (mm) that locates contacts before they are "
+                     "refined on the exact teeth (default 0.001 m_n)")
+    sim.add_argument("--contact-tol", type=float, help="normal clearance (mm) counted as contact (default: "
+                     "round-off, the geometric contact)")
+    sim.add_argument("-o", "--output", action="append", default=[], metavar="FILE",
+                     help="write a plot (.png or .svg): the path of contact if FILE's name contains 'path', "
+                          "else the transmission error; repeatable")
+    p.set_defaults(run=run)
+
+
+def _spec(args):
+    from gearkit.cli import check
+
+    if args.design is not None:
+        extra = [name for name in check._MODEL_FLAGS if check._given(args, name)]
+        if extra:
+            raise SpecError("design", "give either a design file or pair flags, not both "
+                            f"(also got --{extra[0].replace('_', '-')})")
+        from gearkit.checks import load_design
+        return load_design(args.design)
+    return check._spec_from_flags(args)
+
+
+def run(args) -> int:
+    from gearkit.checks import check_pair
+    from gearkit.checks.simulated import simulated_findings
+    from gearkit.contact import analyse_pair, save_plot
+
+    spec, limits = _spec(args)
+    for name in ("steps", "slices"):
+        v = getattr(args, name)
+        if v is not None and v < 1:
+            raise SpecError(f"--{name}", f"{v} must be a positive integer")
+    check = check_pair(spec, limits)
+    analysis = analyse_pair(spec, args.steps, tol=args.tol, slices=args.slices, contact_tol=args.contact_tol)
+    findings = simulated_findings(spec, check.geometry, check.report.findings, limits, analysis)
+    written = [save_plot(analysis, path) for path in args.output]
+    if args.json:
+        out = analysis.to_dict()
+        g = check.geometry
+        out["contact_ratio_formula"] = g.contact_ratio
+        if analysis.slices > 1:
+            out["total_contact_ratio_formula"] = g.total_contact_ratio
+        out["backlash_formula"] = g.backlash
+        out["findings"] = [f.to_dict() for f in findings]
+        out["formula_findings"] = [f.to_dict() for f in check.report.findings if f.status != "ok"]
+        out["files"] = written
+        print(json.dumps(out, indent=2))
+    else:
+        print(format_summary(spec, check, analysis, findings, written))
+    return 1 if any(f.status == "fail" for f in findings) else 0
+
+
+def format_summary(spec, check, analysis, findings, written=()) -> str:
+    """The human summary of ``gearkit contact``."""
+    g = check.geometry
+    z2 = "rack" if g.kind == "rack" else f"z2 = {spec.teeth2}"
+    unit = "mm" if analysis.units == "mm" else "rad"
+    counts = analysis.pairs_in_contact
+    inter = analysis.interference
+    lines = [
+        f"gearkit contact: {g.kind} pair, z1 = {spec.teeth1}, {z2}, m_n = {g.module:g} mm, a_w = "
+        f"{g.center_distance:.4f} mm; {len(analysis.driver_angle)} steps per cycle"
+        + (f", {analysis.slices} slices" if analysis.slices > 1 else ""),
+        f"  contact ratio   simulated {analysis.contact_ratio:.5f}   formula {g.contact_ratio:.5f}"
+        + (f"   total {analysis.total_contact_ratio:.5f} (formula {g.total_contact_ratio:.5f})"
+           if analysis.slices > 1 else ""),
+        f"  pairs in contact {int(counts.min())}..{int(counts.max())}",
+        f"  transmission error  max |TE| {analysis.transmission_error_max:.3e} {unit}, "
+        f"peak-to-peak {analysis.transmission_error_pp:.3e} {unit}",
+        f"  backlash  {analysis.backlash:.5f} mm circular, {analysis.backlash_normal:.5f} mm normal "
+        f"(formula {g.backlash:.5f} mm)",
+        "  interference  " + (f"{inter.max_depth:.4g} mm deep, area {inter.area:.3g} mm^2, at "
+                              f"{math.degrees(inter.driver_angle):.3f} deg ({', '.join(inter.where)})"
+                              if inter.found else "none"),
+        "",
+    ]
+    for f in findings:
+        mark = {"fail": "!! FAIL  ", "warn": " ! warn  ", "ok": "   ok    "}[f.status]
+        lines.append(f"  {mark}{f.id:<29}{f.message}")
+    for path in written:
+        lines.append(f"wrote {path}")
+    return "\n".join(lines)
+
+
+if __name__ == "__main__":  # pragma: no cover
+    from gearkit.cli import main
+    sys.exit(main(["contact", *sys.argv[1:]]))
