@@ -56,3 +56,18 @@ __all__ += ["ArcRack", "ArcSpec", "NovikovCheck", "NovikovGearSpec", "NovikovLim
 from gearkit.blocking import BlockingAtlas, BlockingContour, blocking_atlas, blocking_contour  # noqa: E402
 
 __all__ += ["BlockingAtlas", "BlockingContour", "blocking_atlas", "blocking_contour"]
+
+# -- the cycloidal family (issue 6): pin-wheel drives, cycloid pairs and clock gearing, pin gearing --
+from gearkit.checks.cycloidal import check_cycloid_pair, check_drive, check_pin_gearing  # noqa: E402
+from gearkit.families.cycloidal import (CycloidalDisc, CycloidGear, CycloidPairSpec, DriveSpec,  # noqa: E402
+                                        PinGearSpec, PinGearWheel, cycloid_gear, disc_profile, pin_gear_wheel,
+                                        simulate_mesh)
+
+__all__ += ["CycloidGear", "CycloidPairSpec", "CycloidalDisc", "DriveSpec", "PinGearSpec", "PinGearWheel",
+            "check_cycloid_pair", "check_drive", "check_pin_gearing", "cycloid_gear", "disc_profile",
+            "pin_gear_wheel", "simulate_mesh"]
+
+# -- tooth contact analysis (issue 8): the meshing simulation of generated profiles ----------------
+from gearkit.contact import ContactAnalysis, analyse_pair, pin_ring  # noqa: E402
+
+__all__ += ["ContactAnalysis", "analyse_pair", "pin_ring"]

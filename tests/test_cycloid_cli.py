@@ -103,3 +103,17 @@ def test_cycloid_pair_and_pin_gearing(tmp_path, capsys):
                                                   "30", "--json"]).out)["contact_ratio"])
     _run(capsys, ["cycloid", "-m", "1", "--pinion-teeth", "12", "--wheel-teeth", "30", "--rolling-radius", "1",
                   "2", "3"], 2)
+
+
+def test_example_script_runs(tmp_path):
+    import runpy
+    import sys
+
+    path = __import__("pathlib").Path(__file__).resolve().parents[1] / "examples" / "cycloidal_drive.py"
+    argv = sys.argv
+    sys.argv = [str(path), str(tmp_path)]
+    try:
+        runpy.run_path(str(path), run_name="__main__")
+    finally:
+        sys.argv = argv
+    assert {p.name for p in tmp_path.iterdir()} >= {"disc.dxf", "disc.stl", "drive.obj"}
