@@ -167,8 +167,8 @@ def _analytic_radius(spec, phi):
     psi = np.asarray(phi) / spec.equivalent_lobes
     z, big_r, e = spec.equivalent_pins, spec.pin_circle_radius, spec.eccentricity
     d1 = np.stack([big_r * np.cos(psi) - e * z * np.cos(z * psi), -big_r * np.sin(psi) + e * z * np.sin(z * psi)], -1)
-    d2 = np.stack([-big_r * np.sin(psi) + e * z * z * np.sin(z * psi), -big_r * np.cos(psi) + e * z * z * np.cos(z * psi)],
-                  -1)
+    d2 = np.stack([-big_r * np.sin(psi) + e * z * z * np.sin(z * psi),
+                   -big_r * np.cos(psi) + e * z * z * np.cos(z * psi)], -1)
     return np.linalg.norm(d1, axis=1) ** 3 / np.abs(d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0])
 
 

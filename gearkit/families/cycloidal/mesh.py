@@ -1,8 +1,9 @@
 """The simulated mesh of a pin-wheel drive: which pins touch the generated disc, which carry load,
 and how far the disc turns before the first contact (backlash).
 
-The disc is the generated one (the exact envelope pieces of its half tooth); the pins are the nominal ones (``R_Z``, ``r_Z``, running eccentricity ``e``), placed in the disc's
-frame for a relative angle ``psi0`` (reference digest §1.3): the pin ring's centre sits at
+The disc is the generated one (the exact envelope of its generating pin, over the rolls the
+kernel kept); the pins are the nominal ones (``R_Z``, ``r_Z``, running eccentricity ``e``),
+placed in the disc's frame for a relative angle ``psi0`` (reference digest §1.3): the pin ring's centre sits at
 ``-e (sin Z_e psi0, cos Z_e psi0)`` and pin k at polar angle ``psi0 - 2 pi k/Z_b`` about it
 (in the digest's frame, turned into gearkit's by the same phase as the closed forms). A
 pin's clearance is its centre's distance from the exact generated disc minus ``r_Z``; it touches
@@ -152,13 +153,10 @@ class MeshState:
     touching: np.ndarray
     arm: np.ndarray
 
-    @property
-    def spec_scale(self) -> float:
-        return float(np.abs(self.centres).max())
-
     def load_carrying(self, direction: int = 1) -> np.ndarray:
-        """Pins that touch and push the disc in ``direction`` (+1 counter-clockwise, -1 clockwise)."""
-        return self.touching & (direction * self.arm > 1e-9 * self.spec_scale)
+        """Pins that touch and push the disc in ``direction`` (+1 counter-clockwise, -1 clockwise);
+        a pin whose push passes through the disc centre (arm below 1e-9 of the size) carries none."""
+        return self.touching & (direction * self.arm > 1e-9 * float(np.abs(self.centres).max()))
 
 
 def _state(spec, outline, psi0, turn, contact_tol):

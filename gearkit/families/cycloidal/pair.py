@@ -20,7 +20,7 @@ Frames: gear centre at the origin, tooth 0 centred on +y (the kernel's conventio
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
