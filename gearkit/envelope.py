@@ -34,8 +34,8 @@ class Branch:
     def label(self) -> str:
         return self.segment.label
 
-    def solve(self, w):
-        """Contact of the tool points at ``w``.
+    def solve(self, w, normals: bool = True):
+        """Contact of the tool points at ``w`` (``normals=False`` skips the blank normals).
 
         Returns
         -------
@@ -50,12 +50,14 @@ class Branch:
         s, valid = self.motion.contact(p, n, self.root)
         s0 = np.where(valid, s, 0.0)
         q = self.motion.to_blank(p, s0)
+        if not normals:
+            return q, None, s, valid
         nb = -self.motion.rotate_to_blank(n, s0)
         return q, nb, s, valid
 
     def __call__(self, w):
         """Blank-frame points at ``w`` (the exact curve)."""
-        return self.solve(w)[0]
+        return self.solve(w, normals=False)[0]
 
 
 def _valid_runs(branch: Branch, n: int = 65):

@@ -27,10 +27,15 @@ from gearkit.errors import require
 def _centrode(c, s):
     """Point and tangent angle at arc length ``s`` of a centrode through the origin,
     tangent to +x there, centre ``(0, c)`` (``c = None``: the x axis)."""
+    out = np.empty(np.shape(s) + (2,))
     if c is None:
-        return np.stack([s, np.zeros_like(s)], -1), np.zeros_like(s)
+        out[..., 0] = s
+        out[..., 1] = 0.0
+        return out, np.zeros_like(s)
     a = s / c
-    return np.stack([c * np.sin(a), c * (1.0 - np.cos(a))], -1), a
+    out[..., 0] = c * np.sin(a)
+    out[..., 1] = c * (1.0 - np.cos(a))
+    return out, a
 
 
 @dataclass(frozen=True)

@@ -96,14 +96,22 @@ class Segment:
         u = np.asarray(u, dtype=float)
         if self.reverse:
             u = 1.0 - u
-        p, t = self._primitive(u)
+        p0, t0 = self._primitive(u)
         a11, a12, a21, a22, b1, b2 = self.affine
-        p = np.stack([a11 * p[..., 0] + a12 * p[..., 1] + b1, a21 * p[..., 0] + a22 * p[..., 1] + b2], -1)
-        t = np.stack([a11 * t[..., 0] + a12 * t[..., 1], a21 * t[..., 0] + a22 * t[..., 1]], -1)
-        t = t / np.linalg.norm(t, axis=-1, keepdims=True)
+        p = np.empty(p0.shape)
+        p[..., 0] = a11 * p0[..., 0] + a12 * p0[..., 1] + b1
+        p[..., 1] = a21 * p0[..., 0] + a22 * p0[..., 1] + b2
+        tx = a11 * t0[..., 0] + a12 * t0[..., 1]
+        ty = a21 * t0[..., 0] + a22 * t0[..., 1]
+        norm = np.hypot(tx, ty)
         if self.reverse:
-            t = -t
-        n = np.stack([-t[..., 1], t[..., 0]], -1)
+            norm = -norm
+        t = np.empty(p0.shape)
+        t[..., 0] = tx / norm
+        t[..., 1] = ty / norm
+        n = np.empty(p0.shape)
+        n[..., 0] = -t[..., 1]
+        n[..., 1] = t[..., 0]
         return p, t, n
 
     def endpoints(self):
