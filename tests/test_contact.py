@@ -159,9 +159,18 @@ def test_helical_textbook_example():
     assert res.contact_ratio == pytest.approx(1.10997, abs=EPS_TOL)
     assert res.total_contact_ratio == pytest.approx(2.11324, abs=EPS_TOL)
     assert res.transmission_error_max * 40 <= 10 * 1e-3 * 6.0
-    lines = res.contacts
-    assert set(np.unique(lines["slice"])) == set(range(6))
-    assert lines["zeta"].max() == pytest.approx(54.0)
+    assert set(np.unique(res.contacts["slice"])) == set(range(6))
+    assert res.contacts["zeta"].max() == pytest.approx(54.0)
+    # contact lines: in the plane of action every slice's contact of a tooth pair lies on one straight
+    # line across the face (the involute helicoid's contact line), inclined at the base helix angle
+    g = pair_geometry(spec)
+    along = res.contacts["normal"][0]  # the line of action, along the contact normals
+    for pts in res.contact_lines(5).values():
+        if len(pts) >= 3:
+            u = np.column_stack([pts[:, :2] @ along, pts[:, 2]])
+            slope = np.polyfit(u[:, 1], u[:, 0], 1)
+            assert np.abs(np.polyval(slope, u[:, 1]) - u[:, 0]).max() <= LOCATE * 10
+            assert abs(slope[0]) == pytest.approx(math.tan(g.base_helix_angle), rel=1e-6)
 
 
 def test_work_per_driver_angle_does_not_grow_with_the_mate():

@@ -67,6 +67,14 @@ def test_text_summary_and_plots(tmp_path, capsys):
     assert not list(tmp_path.glob(".gearkit-*"))  # atomic writes leave no temporary files
 
 
+def test_registered_in_the_gearkit_command(capsys):
+    from gearkit.cli import main
+
+    assert main(["contact", "--z1", "20", "--z2", "40", "-m", "1", "--steps", "8"]) == 0
+    assert "backlash  0.00000 mm circular" in capsys.readouterr().out
+    assert main(["contact", "--z1", "20", "-m", "1"]) == 2  # bad input: no z2
+
+
 def test_bad_plot_suffix_is_a_spec_error(tmp_path):
     from gearkit.errors import SpecError
 

@@ -74,8 +74,11 @@ def simulated_findings(spec, geometry, findings, limits, analysis=None, steps: i
 
     j, j_n = analysis.backlash, analysis.backlash_normal
     tol = analysis.interference_tol
-    msg = (f"simulated backlash {j:.5f} mm on the working circle (normal {j_n:.5f} mm); formula "
-           f"{g.backlash:.5f} mm (normal {g.backlash_normal:.5f} mm)")
+
+    def mm(v):
+        return f"{0.0 if abs(v) < 5e-6 else v:.5f}"  # no "-0.00000"
+    msg = (f"simulated backlash {mm(j)} mm on the working circle (normal {mm(j_n)} mm); formula "
+           f"{mm(g.backlash)} mm (normal {mm(g.backlash_normal)} mm)")
     out.append(Finding("backlash.simulated", "fail" if j < -tol else "ok", j, 0.0,
                        msg + ("; negative: the teeth jam" if j < -tol else ""), "min"))
 

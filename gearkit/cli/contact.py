@@ -92,6 +92,10 @@ def run(args) -> int:
     return 1 if any(f.status == "fail" for f in findings) else 0
 
 
+def _mm(v) -> str:
+    return f"{0.0 if abs(v) < 5e-6 else v:.5f}"  # no "-0.00000"
+
+
 def format_summary(spec, check, analysis, findings, written=()) -> str:
     """The human summary of ``gearkit contact``."""
     g = check.geometry
@@ -109,8 +113,8 @@ def format_summary(spec, check, analysis, findings, written=()) -> str:
         f"  pairs in contact {int(counts.min())}..{int(counts.max())}",
         f"  transmission error  max |TE| {analysis.transmission_error_max:.3e} {unit}, "
         f"peak-to-peak {analysis.transmission_error_pp:.3e} {unit}",
-        f"  backlash  {analysis.backlash:.5f} mm circular, {analysis.backlash_normal:.5f} mm normal "
-        f"(formula {g.backlash:.5f} mm)",
+        f"  backlash  {_mm(analysis.backlash)} mm circular, {_mm(analysis.backlash_normal)} mm normal "
+        f"(formula {_mm(g.backlash)} mm)",
         "  interference  " + (f"{inter.max_depth:.4g} mm deep, area {inter.area:.3g} mm^2, at "
                               f"{math.degrees(inter.driver_angle):.3f} deg ({', '.join(inter.where)})"
                               if inter.found else "none"),

@@ -77,6 +77,18 @@ class ContactAnalysis:
         """Peak-to-peak TE over the cycle (mate units)."""
         return float(np.ptp(self.transmission_error))
 
+    def contact_lines(self, step: int) -> dict:
+        """The contacts at driver angle ``step`` as lines across the face width: ``{(tooth, half): (k, 3)
+        float64 mm}``, points ``(x, y, zeta)`` (fixed frame, axial position) ordered by ``zeta``. A
+        spur pair's lines are single points."""
+        c = self.contacts
+        at = np.flatnonzero(c["step"] == step)
+        out = {}
+        for i in at[np.lexsort((c["zeta"][at], c["half"][at], c["tooth"][at]))]:
+            key = (int(c["tooth"][i]), int(c["half"][i]))
+            out.setdefault(key, []).append([*c["point"][i], c["zeta"][i]])
+        return {k: np.array(v) for k, v in out.items()}
+
     def to_dict(self) -> dict:
         """JSON-ready summary (lengths mm, angles rad unless the key says deg)."""
         from gearkit.checks.report import json_number

@@ -7,14 +7,17 @@ left), the bounds that its boundary puts on the mate's position (see :mod:`geark
 * lower: ``max over the half of (-w(rho) - u)``, kept as ``min (w(rho) + u)``.
 
 1. **Search.** The bound functions are evaluated at the polyline samples (exact points; the
-   mate's ``w`` interpolated). Candidates: local minima, and the places where the boundary
-   crosses the mate's tip circle (the mate's tip corner), of every half within ``margin`` of the
-   best bound.
+   mate's ``w`` interpolated). Between two samples the exact function can dip below them by at
+   most the chord's deviation plus the mate's bending over the chord, as a normal distance over
+   the local arm of the mate's normal (``dip``; unbounded next to a rounded crest, where the
+   bound falls like a square root). Every interval whose ends come within ``dip`` of the half's
+   best value is refined, for every half that may come within the contact tolerance of the best
+   bound overall.
 2. **Refinement**, on the exact pieces, one polyline interval at a time: the crossing of the tip
-   circle by root finding (Illinois), the minimum by Brent's method, and ``w`` by
-   :meth:`HalfWidth.exact`. A smooth
-   contact ends at a stationary point (the flanks touch tangentially); a corner contact at an
-   interval end (the driver's corner) or at the tip crossing (the mate's corner).
+   circle by root finding (Illinois), the minimum by Brent's method after a few probes, and ``w``
+   by :meth:`HalfWidth.exact`. A smooth contact ends at a stationary point (the flanks touch
+   tangentially); a corner contact at an interval end (the driver's corner) or at the tip
+   crossing (the mate's corner).
 
 Work per angle depends on the window of teeth that can touch, not on the tooth counts.
 """
@@ -26,12 +29,12 @@ import numpy as np
 
 __all__ = ["Bounds", "solve"]
 
-#: Brent iterations of the minimum, crossing iterations (both converge long before)
+#: Brent iterations of the minimum, Illinois iterations of a crossing (both converge long before)
 _MIN_ITER = 60
+_CROSS_ITER = 40
 _GOLD = 0.3819660112501051
 #: interior samples of an interval before the bracket is narrowed
 _PROBES = 7
-_CROSS_ITER = 40
 #: search-array size per chunk of driver angles (memory ~ 40 bytes each)
 _CHUNK = 1_500_000
 
@@ -42,9 +45,8 @@ class Bounds:
 
     Axes: ``(n, K, half, bound)`` with ``half`` 0 = right, 1 = left and ``bound`` 0 = upper,
     1 = lower. ``value`` holds ``min (w - u)`` (bound 0) and ``min (w + u)`` (bound 1): the upper
-    bound is ``value[..., 0]``, the lower one ``-value[..., 1]``. Only halves within the search
-    margin of the best are refined (``exact``); the others keep their search value and are
-    farther than ``margin`` from contact.
+    bound is ``value[..., 0]``, the lower one ``-value[..., 1]``. Only halves that may come within
+    the contact tolerance of the best are refined (``exact``); the others keep their search value.
     """
 
     phi: np.ndarray
