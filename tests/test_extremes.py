@@ -242,3 +242,38 @@ def test_tooth_converges_to_the_rack_tooth_as_z_grows():
     assert devs[0] / devs[1] == pytest.approx(10.0, rel=0.15)
     assert devs[1] / devs[2] == pytest.approx(10.0, rel=0.05)
     assert devs[2] < 3.0 / 10000
+
+
+# -- meshed extremes: watertight, and Cavalieri's volume ---------------------------------------
+MESHED = [dict(teeth=3, module=1.0, shift=0.5), dict(teeth=1000, module=1.0), dict(teeth=6, module=0.01, shift=-0.5),
+          dict(teeth=6, module=1000.0, shift=-0.5), dict(teeth=20, module=1.0, shift=0.3, helix_angle_deg=60.0),
+          dict(teeth=24, module=1.0, internal=True, tool=("shaper", 20))]
+
+
+@pytest.mark.parametrize("kw", MESHED, ids=lambda kw: ",".join(f"{k}={v}" for k, v in kw.items()))
+def test_extreme_gears_mesh_watertight_with_the_profile_area_times_width(kw):
+    from gearkit.solids import SolidSpec, gear_solid
+
+    prof = make(**kw)
+    assert not isinstance(prof, SpecError)
+    m = prof.module
+    tol, width = 1e-2 * m, 2.0 * m
+    spec = SolidSpec(width, outer_diameter=prof.root_diameter + 4 * m) if prof.internal else SolidSpec(width)
+    solid = gear_solid(prof, spec, tol=tol)
+    vertices, faces = solid.arrays()
+    assert np.isfinite(vertices).all()
+    # watertight and consistently oriented: every directed edge appears once, its reverse once
+    edges = np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]])
+    keys = edges[:, 0].astype(np.int64) * len(vertices) + edges[:, 1]
+    rev = edges[:, 1].astype(np.int64) * len(vertices) + edges[:, 0]
+    assert len(np.unique(keys)) == len(keys)
+    assert np.array_equal(np.sort(keys), np.sort(rev))
+    # Cavalieri: every transverse section is the profile (turned), so volume = section area x width
+    out = prof.outline(tol)
+    x, y = out[:, 0], out[:, 1]
+    area = 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
+    if prof.internal:
+        area = math.pi * (prof.root_diameter / 2 + 2 * m) ** 2 - area
+    # the mesh's outline is sampled to tol as well: its area differs by at most tol x perimeter
+    perimeter = float(np.linalg.norm(np.diff(np.vstack([out, out[:1]]), axis=0), axis=1).sum())
+    assert solid.volume == pytest.approx(area * width, abs=2 * tol * perimeter * width)
