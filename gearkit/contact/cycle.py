@@ -46,7 +46,7 @@ class Cycle:
         gap = (v - best[:, None, None, None]) * self.arm[..., wb]
         # a bound is known to about noise / arm (rad): a contact whose normal nearly passes through the
         # mate's centre (a crest) sets a position that is uncertain by much more than a firm one
-        noise = (mesh.noise * self.arm[..., wb] / arm_best[:, None, None, None])
+        noise = mesh.noise * self.arm[..., wb] / np.maximum(arm_best, 1e-9 * mesh.arm_scale)[:, None, None, None]
         # unrefined halves are farther than the search margin: their search value, at the arm scale
         rough = (v - best[:, None, None, None]) * mesh.arm_scale
         self.excess = np.where(self.exact[..., wb], gap - noise, rough)  # (n, S, K, 2), mm

@@ -34,7 +34,7 @@ _MIN_ITER = 60
 _CROSS_ITER = 40
 _GOLD = 0.3819660112501051
 #: interior samples of an interval before the bracket is narrowed
-_PROBES = 7
+_PROBES = 5
 #: search-array size per chunk of driver angles (memory ~ 40 bytes each)
 _CHUNK = 1_500_000
 
@@ -161,14 +161,14 @@ def _minimise(task, a, b):
     e = np.zeros(rows.size)
     todo = np.arange(rows.size)
     for _ in range(_MIN_ITER):
-        tol1 = 1e-9 * np.abs(x[todo]) + 1e-11 * width[rows[todo]]
+        tol1 = 1e-8 * np.abs(x[todo]) + 1e-10 * width[rows[todo]]
         todo = todo[np.abs(x[todo] - 0.5 * (lo[todo] + hi[todo])) > 2 * tol1 - 0.5 * (hi[todo] - lo[todo])]
         if todo.size == 0:
             break
         x_, fx_, w_, fw_, v_, fv_ = x[todo], fx[todo], xw[todo], fw[todo], xv[todo], fv[todo]
         lo_, hi_, d_, e_ = lo[todo], hi[todo], d[todo], e[todo]
         mid = 0.5 * (lo_ + hi_)
-        tol1 = 1e-9 * np.abs(x_) + 1e-11 * width[rows[todo]]
+        tol1 = 1e-8 * np.abs(x_) + 1e-10 * width[rows[todo]]
         r = (x_ - w_) * (fx_ - fv_)
         q = (x_ - v_) * (fx_ - fw_)
         p = (x_ - v_) * q - (x_ - w_) * r

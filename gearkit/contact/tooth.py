@@ -183,6 +183,14 @@ class HalfWidth:
                 self.crest = self.crest or first is rows[0]
         #: radial scale turning a depth below the root into an angle-like space width
         self.root_scale = abs(self.rho_root) if coords is polar_from_y else 1.0
+        # the arm of the flank's normal at the nodes, from the neighbouring chords' slopes dw/drho
+        slope = np.abs(self._w1 - self._w0) / (self._r1 - self._r0)
+        node_slope = np.maximum(np.concatenate([slope[:1], slope]), np.concatenate([slope, slope[-1:]]))
+        s = np.abs(self._grid_r) if self.root_scale != 1.0 else np.ones_like(self._grid_r)
+        self._arm_node = s / np.sqrt(1.0 + (s * node_slope) ** 2)
+        for end in (self.rho_tip, self.rho_root):  # a stationary end: the normal runs through the centre
+            if np.isfinite(self._anchor).any() and np.any(self._anchor == end):
+                self._arm_node[np.argmin(np.abs(self._grid_r - end))] = 0.0
 
     # -- regions ------------------------------------------------------------------------------
     def free(self, rho):
@@ -307,21 +315,12 @@ class HalfWidth:
 
     def arm(self, rho):
         """Estimated arm (mm; for a rack the normal's x component) of the flank's normal about the mate's
-        centre at ``rho``: small where the normal runs through the centre (a crest, the root)."""
+        centre at ``rho``: small where the normal runs through the centre (a crest, the root).
+        Interpolated between the table's nodes (linearly: below the square-root rise off a crest)."""
         rho = np.asarray(rho, dtype=float)
-        j = np.clip(np.searchsorted(self._r0, rho, side="right") - 1, 0, len(self._r0) - 1)
-        r0, r1 = self._r0[j], self._r1[j]
-        slope = (self._w1[j] - self._w0[j]) / (r1 - r0)
-        a = self._anchor[j]
-        grazing = np.isfinite(a)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            c = (self._w1[j] - self._w0[j]) / (np.sqrt(np.abs(r1 - a)) - np.sqrt(np.abs(r0 - a)))
-            steep = np.abs(c) / (2 * np.sqrt(np.abs(rho - a)))
-        slope = np.where(grazing, np.nan_to_num(steep, nan=np.inf, posinf=np.inf), slope)
+        out = np.interp(rho, self._grid_r, self._arm_node)
         s = np.abs(rho) if self.root_scale != 1.0 else np.ones_like(rho)
-        with np.errstate(invalid="ignore", over="ignore"):
-            out = s / np.sqrt(1.0 + (s * slope) ** 2)
-        return np.where(self.free(rho) | self._body(rho), s, np.nan_to_num(out, nan=0.0))
+        return np.where(self.free(rho) | self._body(rho), s, out)
 
     def curvature(self, rho):
         """Largest curvature (1/mm) of the mate's flank near ``rho`` (0 off the flank)."""
