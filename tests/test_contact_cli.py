@@ -113,3 +113,21 @@ def test_simulated_interference_is_flagged_even_when_the_formulas_pass():
     formula_bad = [Finding("interference.1", "fail", -1.0, 0.0, "digs in", "min")]
     out = {f.id: f for f in simulated_findings(spec, g, formula_bad, CheckLimits(), faked)}
     assert "agree" in out["interference.simulated"].message
+
+
+def test_example_script_runs(tmp_path, capsys):
+    import runpy
+    import sys
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[1] / "examples" / "contact_analysis.py"
+    argv = sys.argv
+    sys.argv = [str(path), str(tmp_path)]
+    try:
+        runpy.run_path(str(path), run_name="__main__")
+    finally:
+        sys.argv = argv
+    assert {p.name for p in tmp_path.iterdir()} == {"te_12_24.png", "path_12_24.svg", "te_internal.png",
+                                                   "path_cycloid.png"}
+    out = capsys.readouterr().out
+    assert "the teeth jam below a = 30.0000000000 mm (formula 30.0000000000)" in out

@@ -169,16 +169,16 @@ def _minimise(task, a, b):
         lo_, hi_, d_, e_ = lo[todo], hi[todo], d[todo], e[todo]
         mid = 0.5 * (lo_ + hi_)
         tol1 = 1e-8 * np.abs(x_) + 1e-10 * width[rows[todo]]
-        r = (x_ - w_) * (fx_ - fv_)
-        q = (x_ - v_) * (fx_ - fw_)
-        p = (x_ - v_) * q - (x_ - w_) * r
-        q = 2 * (q - r)
-        p = np.where(q > 0, -p, p)
-        q = np.abs(q)
-        e_old = e_
-        para = (np.abs(e_old) > tol1) & (np.abs(p) < np.abs(0.5 * q * e_old)) & (p > q * (lo_ - x_)) \
-            & (p < q * (hi_ - x_))
-        with np.errstate(invalid="ignore", divide="ignore"):
+        with np.errstate(invalid="ignore", over="ignore", divide="ignore"):  # inf values: golden steps
+            r = (x_ - w_) * (fx_ - fv_)
+            q = (x_ - v_) * (fx_ - fw_)
+            p = (x_ - v_) * q - (x_ - w_) * r
+            q = 2 * (q - r)
+            p = np.where(q > 0, -p, p)
+            q = np.abs(q)
+            e_old = e_
+            para = (np.abs(e_old) > tol1) & (np.abs(p) < np.abs(0.5 * q * e_old)) & (p > q * (lo_ - x_)) \
+                & (p < q * (hi_ - x_))
             step_p = p / q
         golden_e = np.where(x_ >= mid, lo_ - x_, hi_ - x_)
         e_new = np.where(para, d_, golden_e)
