@@ -63,7 +63,7 @@ def run_bench(quick: bool = False, process: bool = True, progress=None) -> dict:
     out["oracle"], out["oracle_order"] = oracle.oracle_convergence(quick, repeats)
     say("pair check, simulated meshes")
     out["products"] = (products.pair_check_rows(quick, repeats) + products.involute_contact_rows(quick, repeats)
-                       + products.cycloidal_mesh_rows(quick, repeats))
+                       + products.cycloidal_mesh_rows(quick, repeats) + products.novikov_contact_rows(quick, repeats))
     measured = {(r["family"], r["product"]) for r in out["ladder"] + out["products"]}
     out["unmeasured"] = products.unmeasured_products(measured)
     if process:

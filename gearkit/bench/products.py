@@ -151,3 +151,24 @@ def involute_contact_rows(quick: bool, repeats: int):
                      "contact_ratio_error": abs(res.contact_ratio - eps),
                      "transmission_error_max_rad": res.transmission_error_max})
     return rows
+
+
+def novikov_contact_rows(quick: bool, repeats: int):
+    """Time of the Novikov pair's transverse contact solve (with and without the interference scan)."""
+    try:
+        from gearkit.families.novikov import NovikovPairSpec, tooth_profile
+        from gearkit.families.novikov_mesh import mesh_contact
+    except ImportError:
+        return []
+    spec = NovikovPairSpec(20, 40, 2.0, 15.0, 30.0)
+    rows = []
+    for scan in ((False,) if quick else (False, True)):
+        def run():
+            tooth_profile.cache_clear() if hasattr(tooth_profile, "cache_clear") else None
+            return mesh_contact(spec, interference=scan)
+
+        seconds, _ = median_time(run, repeats)
+        rows.append({"family": "novikov", "product": "contact simulation",
+                     "case": "dca24 20/40 m=2 beta=15" + (", interference scan" if scan else ", contact only"),
+                     "seconds": seconds})
+    return rows
