@@ -55,3 +55,25 @@ def test_rack_command_reports_the_basic_rack(capsys):
     assert info["pitch"] == pytest.approx(2 * math.pi)
     assert info["tooth_thickness"] == pytest.approx(math.pi, abs=1e-12)
     assert (info["tip_height"], info["root_height"]) == pytest.approx((2.0, -2.5))
+
+
+def test_rack_bar_solid_volume_is_profile_area_times_width(tmp_path, capsys):
+    import numpy as np
+    import trimesh
+
+    from gearkit.families.rack import RackSpec, rack_profile
+
+    out = tmp_path / "rack.stl"
+    info = _json(capsys, ["rack", "-m", "2", "-n", "5", "--width", "12", "--height", "9", "--tol", "0.002",
+                          "-o", str(out), "--json"])
+    mesh = trimesh.load(str(out))
+    assert mesh.is_watertight
+    prof = rack_profile(RackSpec(2.0))
+    line = prof.outline(1e-6, teeth=5)
+    base = prof.tip_height - 9.0
+    poly = np.concatenate([line, [[line[-1, 0], base], [line[0, 0], base]]])
+    area = 0.5 * abs(np.sum(poly[:, 0] * np.roll(poly[:, 1], -1) - np.roll(poly[:, 0], -1) * poly[:, 1]))
+    perimeter = np.sum(np.linalg.norm(np.diff(np.vstack([poly, poly[:1]]), axis=0), axis=1))
+    bound = 0.002 * perimeter * 12  # every facet within tol of the exact surface
+    assert abs(mesh.volume - area * 12) <= bound
+    assert abs(info["volume"] - mesh.volume) < 1e-6 * mesh.volume

@@ -19,7 +19,11 @@ def register(subparsers) -> None:
     p.add_argument("--cutter-teeth", type=int, default=None, help="generate with a shaper cutter of z0 teeth")
     p.add_argument("--thinning", type=float, default=0.0, help="tooth thinning for backlash, mm")
     p.add_argument("--tol", type=float, default=None, help="max deviation of output points/chords, mm (default 0.001*m)")
-    p.add_argument("-o", "--output", default=None, help="write the profile: .svg .dxf .csv .json")
+    p.add_argument("-o", "--output", default=None,
+                   help="write the profile (.svg .dxf .csv .json) or a bar of --count teeth as a solid (.stl .obj .glb)")
+    p.add_argument("--width", type=float, default=None, help="face width of the solid bar, mm (default 10*m)")
+    p.add_argument("--height", type=float, default=None,
+                   help="bar height from the tip line to its back, mm (default tooth depth + 3*m)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(run=run)
 
@@ -39,7 +43,19 @@ def run(args) -> int:
             "root_height": prof.root_height, "tooth_thickness": prof.tooth_thickness,
             "tip_thickness": prof.tip_thickness, "pointed": prof.pointed,
             "tolerance": {"requested": tol, "achieved": prof.achieved(tol)}}
-    if args.output:
+    from gearkit.solids.export import mesh_format
+
+    if args.output and mesh_format(args.output):
+        from gearkit.solids.rack import rack_solid
+
+        height = args.height if args.height is not None else (prof.tip_height - prof.root_height) + 3 * spec.module
+        width = args.width if args.width is not None else 10 * spec.module
+        bar = rack_solid(prof, length=args.count * prof.pitch, height=height, width=width, tol=tol,
+                         start=-prof.pitch / 2)
+        bar.export(args.output)
+        info.update(output=args.output, volume=bar.volume, faces=bar.faces,
+                    tolerance={"requested": tol, "achieved": bar.achieved})
+    elif args.output:
         import numpy as np
 
         from gearkit.export import write_profile
