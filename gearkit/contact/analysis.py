@@ -9,7 +9,9 @@ Quasi-static, unloaded, rigid: at every driver angle the mate rests against the 
 * **Pairs in contact**: driver halves whose working bound is within ``contact_tol`` (a normal
   distance, mm) of the mate's position. The **simulated contact ratio** is their time average
   over one mesh cycle (one driver pitch); the instants where a pair enters or leaves contact
-  are refined by bisection, so the average does not depend on the step count.
+  are found between the steps, so the average does not depend on the step count. It counts what
+  touches: where conjugate action lapses (eps_alpha < 1) the mate falls back onto an edge
+  contact, which counts (the transmission error shows the lapse), so it never drops below 1.
 * **Backlash**: the free play ``delta_upper - delta_lower`` as an arc on the mate's working
   pitch circle (circular; a length for a rack) and along the contact normal (normal); the
   smallest over the cycle.
