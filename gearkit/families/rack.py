@@ -185,7 +185,7 @@ def rack_profile(spec: RackSpec) -> RackProfile:
     --------
     >>> r = rack_profile(RackSpec(2.0))
     >>> round(r.tooth_thickness, 9), r.tip_height, r.root_height
-    (3.14159265, 2.0, -2.5)
+    (3.141592654, 2.0, -2.5)
     """
     try:
         half = _basic_rack_half(spec) if isinstance(spec.tool, BasicRack) else _shaper_rack_half(spec)
