@@ -94,7 +94,8 @@ def _refine_crossing(fa, fb, wa, wb, bounds_a, bounds_b):
             break
         moved = np.abs(trial - x).max()
         x, f = trial, f_trial
-        if moved < 1e-17 or not np.any(f):
+        scale = 1.0 + float(np.abs(fa(np.array([x[0]]))[0]).max())
+        if moved < 1e-16 or np.linalg.norm(f) <= 2e-16 * scale:
             break
     return float(x[0]), float(x[1])
 
@@ -226,15 +227,27 @@ def _pieces_of(branches, sections):
     return pieces, joins
 
 
-def _crossings(pieces, func, target, n=48):
-    """Refined parameters where ``func(points) = target`` along the pieces: [(piece index, w)]."""
+def _grids(pieces, n=48):
+    """Each piece sampled at ``n`` parameters in its own direction (so junctions line up): [(w, points)]."""
+    out = []
+    for pc in pieces:
+        w = np.linspace(pc.w0, pc.w1, n)
+        out.append((w, pc.curve(w) if pc.w0 != pc.w1 else None))
+    return out
+
+
+def _crossings(pieces, func, target, n=48, grids=None):
+    """Refined parameters where ``func(points) = target`` along the pieces: [(piece index, w)].
+
+    ``grids`` (from :func:`_grids`) lets several searches share one sampling of the pieces.
+    """
+    grids = _grids(pieces, n) if grids is None else grids
     out = []
     last = 0.0
-    for k, pc in enumerate(pieces):
-        if pc.w0 == pc.w1:
+    for k, (pc, (w, pts)) in enumerate(zip(pieces, grids)):
+        if pts is None:
             continue
-        w = np.linspace(pc.w0, pc.w1, n)  # in the piece's own direction, so junctions line up
-        g = func(pc.curve(w)) - target
+        g = func(pts) - target
         if last * g[0] < 0:  # the sign flips exactly at the junction with the previous piece
             out.append((k, float(w[0])))
         last = float(g[-1])
@@ -299,9 +312,10 @@ def trim_half_tooth(branches, teeth_or_angle, tip_radius: float, internal: bool,
     def rho(p):
         return coords(p)[0]
 
-    marks = [(k, w, "S") for k, w in _crossings(pieces, psi, half)]
-    marks += [(k, w, "C") for k, w in _crossings(pieces, psi, 0.0)]
-    marks += [(k, w, "R") for k, w in _crossings(pieces, rho, tip_radius)]
+    grids = _grids(pieces)
+    marks = [(k, w, "S") for k, w in _crossings(pieces, psi, half, grids=grids)]
+    marks += [(k, w, "C") for k, w in _crossings(pieces, psi, 0.0, grids=grids)]
+    marks += [(k, w, "R") for k, w in _crossings(pieces, rho, tip_radius, grids=grids)]
     marks.sort(key=lambda m: (m[0], m[1]))
 
     def inside(k, w):

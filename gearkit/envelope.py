@@ -12,6 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gearkit.curves import rotate
 from gearkit.motion import RollingMotion
 from gearkit.tools import Segment
 
@@ -49,11 +50,11 @@ class Branch:
         p, _, n = self.segment.evaluate(u)
         s, valid = self.motion.contact(p, n, self.root)
         s0 = np.where(valid, s, 0.0)
-        q = self.motion.to_blank(p, s0)
+        shift, angle, offset = self.motion.pose(s0)
+        q = rotate(p - shift, angle) + offset
         if not normals:
             return q, None, s, valid
-        nb = -self.motion.rotate_to_blank(n, s0)
-        return q, nb, s, valid
+        return q, -rotate(n, angle), s, valid
 
     def __call__(self, w):
         """Blank-frame points at ``w`` (the exact curve)."""

@@ -75,6 +75,20 @@ class RollingMotion:
         """Vector from the blank-frame origin to the pole at s = 0."""
         return np.array([0.0, 0.0 if self.blank_centre is None else -self.blank_centre])
 
+    def pose(self, s):
+        """Tool-to-blank map at roll ``s``: ``q = rotate(p - shift, angle) + offset``.
+
+        Returns
+        -------
+        shift : (n, 2) float64, the pole in the tool frame
+        angle : (n,) float64, rad
+        offset : (n, 2) float64, the pole in the blank frame
+        """
+        s = np.asarray(s, dtype=float)
+        c_t, tau_t = _centrode(self.tool_centre, s)
+        c_b, tau_b = _centrode(self.blank_centre, s)
+        return c_t, tau_b - tau_t, c_b + self.blank_offset
+
     def to_blank(self, points, s):
         """Tool-frame points at roll ``s`` expressed in the blank frame.
 
