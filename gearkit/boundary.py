@@ -371,7 +371,33 @@ def trim_half_tooth(branches, teeth_or_angle, tip_radius: float, internal: bool,
     return HalfTooth(tuple(sel), tuple(sel_joins), bool(pointed), half)
 
 
-class ToothProfile:
+class HalfToothProfile:
+    """What every generated profile shares: its exact half tooth, sampled on request.
+
+    Subclasses set ``half`` (a :class:`HalfTooth`), ``module`` and ``_cache`` (a dict).
+    """
+
+    def _end(self, which):
+        piece = self.half.pieces[0] if which == "tip" else self.half.pieces[-1]
+        return piece(np.array([0.0 if which == "tip" else 1.0]))[0]
+
+    @property
+    def pointed(self) -> bool:
+        return self.half.pointed
+
+    def half_points(self, tol: float):
+        """Half tooth from tip to space centre sampled to ``tol``; returns (points, achieved)."""
+        key = ("half", float(tol))
+        if key not in self._cache:
+            self._cache[key] = self.half.sample(tol)
+        return self._cache[key]
+
+    def achieved(self, tol: float) -> float:
+        """Largest chord deviation (mm) of the half tooth sampled at ``tol``."""
+        return self.half_points(tol)[1]
+
+
+class ToothProfile(HalfToothProfile):
     """A generated gear: one exact half tooth, repeated ``teeth`` times.
 
     Lengths in mm, transverse section. Everything is read off the generated geometry.
@@ -394,14 +420,6 @@ class ToothProfile:
         self._cache = {}
 
     # -- key values read off the geometry ---------------------------------------------
-    def _end(self, which):
-        piece = self.half.pieces[0] if which == "tip" else self.half.pieces[-1]
-        return piece(np.array([0.0 if which == "tip" else 1.0]))[0]
-
-    @property
-    def pointed(self) -> bool:
-        return self.half.pointed
-
     @property
     def tip_diameter(self) -> float:
         """Diameter of the generated tip (the blank's tip circle, or the point of a pointed tooth)."""
@@ -472,13 +490,6 @@ class ToothProfile:
         return 2.0 * float(np.hypot(*end)) * float(polar_from_y(end[None])[1][0])
 
     # -- sampled geometry ---------------------------------------------------------------
-    def half_points(self, tol: float):
-        """Half tooth from tip to space centre sampled to ``tol``; returns (points, achieved)."""
-        key = ("half", float(tol))
-        if key not in self._cache:
-            self._cache[key] = self.half.sample(tol)
-        return self._cache[key]
-
     def tooth_points(self, tol: float):
         """One whole tooth, counter-clockwise from the right space centre to the left one."""
         half, _ = self.half_points(tol)
@@ -495,6 +506,3 @@ class ToothProfile:
         y = s * tooth[None, :, 0] + c * tooth[None, :, 1]
         return np.stack([x, y], -1).reshape(-1, 2)
 
-    def achieved(self, tol: float) -> float:
-        """Largest chord deviation (mm) of the outline sampled at ``tol``."""
-        return self.half_points(tol)[1]

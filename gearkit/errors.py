@@ -26,3 +26,16 @@ def require(condition: bool, field: str, message: str) -> None:
     """Raise ``SpecError(field, message)`` unless ``condition`` holds."""
     if not condition:
         raise SpecError(field, message)
+
+
+def require_cut_inputs(module, helix_angle_deg, thinning) -> None:
+    """Validate the inputs every generated gear shares: normal module (mm), helix angle (degrees)
+    and tooth thinning (mm); raise ``SpecError`` naming the first one out of range."""
+    import math
+
+    ok_m = isinstance(module, (int, float)) and not isinstance(module, bool) and math.isfinite(module)
+    require(ok_m and 1e-4 <= module <= 1e4, "module", f"{module!r} must be a length in [0.0001, 10000] mm")
+    b = helix_angle_deg
+    require(math.isfinite(b) and -80.0 < b < 80.0, "helix_angle_deg", f"{b!r} must be in (-80, 80) degrees")
+    require(math.isfinite(thinning) and 0.0 <= thinning < 0.5 * math.pi * module, "thinning",
+            f"{thinning!r} must be in [0, pi*m/2) mm")

@@ -23,7 +23,7 @@ import numpy as np
 from gearkit.boundary import ToothProfile, trim_half_tooth
 from gearkit.curves import inv, polar_from_y
 from gearkit.envelope import chain_branches
-from gearkit.errors import GeometryError, SpecError, require
+from gearkit.errors import GeometryError, SpecError, require, require_cut_inputs
 from gearkit.motion import RollingMotion
 from gearkit.tools import BasicRack, ShaperCutter, rotation_matrix, transform_chain
 
@@ -63,14 +63,9 @@ class GearSpec:
         require(isinstance(z, (int, np.integer)) and not isinstance(z, bool) and 3 <= z <= 100000, "teeth",
                 f"{z!r} must be an integer in [3, 100000]")
         m = self.module
-        require(isinstance(m, (int, float)) and math.isfinite(m) and 1e-4 <= m <= 1e4, "module",
-                f"{m!r} must be a length in [0.0001, 10000] mm")
+        require_cut_inputs(m, self.helix_angle_deg, self.thinning)
         require(math.isfinite(self.shift) and -3.0 <= self.shift <= 5.0, "shift",
                 f"x = {self.shift!r} must be in [-3, 5]")
-        b = self.helix_angle_deg
-        require(math.isfinite(b) and -80.0 < b < 80.0, "helix_angle_deg", f"{b!r} must be in (-80, 80) degrees")
-        require(math.isfinite(self.thinning) and 0.0 <= self.thinning < 0.5 * math.pi * m, "thinning",
-                f"{self.thinning!r} must be in [0, pi*m/2) mm")
         if self.tool is None:
             object.__setattr__(self, "tool", ShaperCutter(20) if self.internal else BasicRack())
         require(isinstance(self.tool, (BasicRack, ShaperCutter)), "tool", "must be a BasicRack or a ShaperCutter")

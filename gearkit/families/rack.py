@@ -17,9 +17,9 @@ from functools import lru_cache
 
 import numpy as np
 
-from gearkit.boundary import HalfTooth, Piece, linear_coords, trim_half_tooth
+from gearkit.boundary import HalfTooth, HalfToothProfile, Piece, _crossings, linear_coords, trim_half_tooth
 from gearkit.envelope import chain_branches
-from gearkit.errors import GeometryError, SpecError, require
+from gearkit.errors import GeometryError, SpecError, require, require_cut_inputs
 from gearkit.motion import RollingMotion
 from gearkit.tools import BasicRack, ShaperCutter, arc, line, rotation_matrix, transform_chain
 
@@ -44,13 +44,7 @@ class RackSpec:
     thinning: float = 0.0
 
     def __post_init__(self):
-        m = self.module
-        require(isinstance(m, (int, float)) and math.isfinite(m) and 1e-4 <= m <= 1e4, "module",
-                f"{m!r} must be a length in [0.0001, 10000] mm")
-        b = self.helix_angle_deg
-        require(math.isfinite(b) and -80.0 < b < 80.0, "helix_angle_deg", f"{b!r} must be in (-80, 80) degrees")
-        require(math.isfinite(self.thinning) and 0.0 <= self.thinning < 0.5 * math.pi * m, "thinning",
-                f"{self.thinning!r} must be in [0, pi*m/2) mm")
+        require_cut_inputs(self.module, self.helix_angle_deg, self.thinning)
         if self.tool is None:
             object.__setattr__(self, "tool", BasicRack())
         require(isinstance(self.tool, (BasicRack, ShaperCutter)), "tool", "must be a BasicRack or a ShaperCutter")
@@ -64,7 +58,7 @@ class RackSpec:
         return math.pi * self.module / math.cos(self.beta)
 
 
-class RackProfile:
+class RackProfile(HalfToothProfile):
     """A generated rack tooth; ``outline(tol, teeth)`` lays ``teeth`` of them along x."""
 
     def __init__(self, half: HalfTooth, spec: RackSpec):
@@ -74,10 +68,6 @@ class RackProfile:
         self.module = spec.module
         self._cache = {}
 
-    def _end(self, which):
-        piece = self.half.pieces[0] if which == "tip" else self.half.pieces[-1]
-        return piece(np.array([0.0 if which == "tip" else 1.0]))[0]
-
     @property
     def tip_height(self) -> float:
         return float(self._end("tip")[1])
@@ -86,14 +76,8 @@ class RackProfile:
     def root_height(self) -> float:
         return float(self._end("root")[1])
 
-    @property
-    def pointed(self) -> bool:
-        return self.half.pointed
-
     def thickness_at(self, height: float) -> float:
         """Tooth thickness (mm, transverse) at ``height`` above the datum line."""
-        from gearkit.boundary import _crossings
-
         hits = _crossings(self.half.pieces, lambda p: linear_coords(p)[0], float(height))
         if not hits:
             raise ValueError(f"height {height} misses the tooth flank")
@@ -108,12 +92,6 @@ class RackProfile:
     @property
     def tip_thickness(self) -> float:
         return 0.0 if self.pointed else 2.0 * float(self.half.pieces[0](np.array([1.0]))[0, 0])
-
-    def half_points(self, tol: float):
-        key = ("half", float(tol))
-        if key not in self._cache:
-            self._cache[key] = self.half.sample(tol)
-        return self._cache[key]
 
     def tooth_points(self, tol: float):
         """One tooth from the left space centre (x = -p/2) to the right one (x = +p/2)."""
@@ -131,8 +109,6 @@ class RackProfile:
         last = tooth[-1:] + np.array([(teeth - 1) * self.pitch, 0.0])
         return np.concatenate(reps + [last])
 
-    def achieved(self, tol: float) -> float:
-        return self.half_points(tol)[1]
 
 
 def _segment_piece(seg, label):
