@@ -15,7 +15,7 @@ from gearkit.errors import GearkitError, GeometryError, SpecError
 _PUBLIC = {
     # the generating kernel and the involute family
     "gearkit.accuracy": ("Accuracy",),
-    "gearkit.boundary": ("ToothProfile",),
+    "gearkit.profile": ("ToothProfile",),
     "gearkit.families.involute": ("GearSpec", "InvoluteProfile", "tooth_profile"),
     "gearkit.families.rack": ("RackProfile", "RackSpec", "rack_profile"),
     "gearkit.tools": ("BasicRack", "ShaperCutter"),

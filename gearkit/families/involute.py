@@ -20,7 +20,8 @@ from functools import lru_cache
 
 import numpy as np
 
-from gearkit.boundary import ToothProfile, trim_half_tooth
+from gearkit.boundary import trim_half_tooth
+from gearkit.profile import ToothProfile
 from gearkit.curves import inv, polar_from_y
 from gearkit.envelope import chain_branches
 from gearkit.errors import GeometryError, SpecError, require, require_cut_inputs

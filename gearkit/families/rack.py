@@ -17,7 +17,8 @@ from functools import lru_cache
 
 import numpy as np
 
-from gearkit.boundary import HalfTooth, HalfToothProfile, Piece, _crossings, linear_coords, trim_half_tooth
+from gearkit.boundary import HalfTooth, Piece, _crossings, linear_coords, trim_half_tooth
+from gearkit.profile import HalfToothProfile
 from gearkit.envelope import chain_branches
 from gearkit.errors import GeometryError, SpecError, require, require_cut_inputs
 from gearkit.motion import RollingMotion

@@ -1,0 +1,152 @@
+"""Generated profiles: what every family returns, read off its exact half tooth.
+
+:class:`ToothProfile` is a generated gear (one exact half tooth from
+:func:`gearkit.boundary.trim_half_tooth`, repeated ``teeth`` times); its key values (tip,
+root and form diameters, thicknesses, undercut, trimming, pointing) are read off the
+generated geometry, and ``outline(tol)`` samples it to a chord tolerance.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from gearkit.boundary import CircleArc, HalfTooth, TipLine, _crossings
+from gearkit.curves import polar_from_y
+
+
+class HalfToothProfile:
+    """What every generated profile shares: its exact half tooth, sampled on request.
+
+    Subclasses set ``half`` (a :class:`HalfTooth`), ``module`` and ``_cache`` (a dict).
+    """
+
+    def _end(self, which):
+        piece = self.half.pieces[0] if which == "tip" else self.half.pieces[-1]
+        return piece(np.array([0.0 if which == "tip" else 1.0]))[0]
+
+    @property
+    def pointed(self) -> bool:
+        return self.half.pointed
+
+    def half_points(self, tol: float):
+        """Half tooth from tip to space centre sampled to ``tol``; returns (points, achieved)."""
+        key = ("half", float(tol))
+        if key not in self._cache:
+            self._cache[key] = self.half.sample(tol)
+        return self._cache[key]
+
+    def achieved(self, tol: float) -> float:
+        """Largest chord deviation (mm) of the half tooth sampled at ``tol``."""
+        return self.half_points(tol)[1]
+
+
+class ToothProfile(HalfToothProfile):
+    """A generated gear: one exact half tooth, repeated ``teeth`` times.
+
+    Lengths in mm, transverse section. Everything is read off the generated geometry.
+    ``outline(tol)`` is the closed outline of all teeth as an ``(n, 2)`` array,
+    counter-clockwise, tooth 0 centred on +y.
+    """
+
+    def __init__(self, half: HalfTooth, teeth: int, internal: bool, module: float, *,
+                 family: str, spec=None, reference_diameter: float | None = None,
+                 base_diameter: float | None = None, blank_tip_diameter: float | None = None):
+        self.half = half
+        self.teeth = int(teeth)
+        self.internal = bool(internal)
+        self.module = float(module)
+        self.family = family
+        self.spec = spec
+        self.reference_diameter = reference_diameter
+        self.base_diameter = base_diameter
+        self.blank_tip_diameter = blank_tip_diameter
+        self._cache = {}
+
+    # -- key values read off the geometry ---------------------------------------------
+    @property
+    def tip_diameter(self) -> float:
+        """Diameter of the generated tip (the blank's tip circle, or the point of a pointed tooth)."""
+        return 2.0 * float(np.hypot(*self._end("tip")))
+
+    @property
+    def root_diameter(self) -> float:
+        """Diameter at the centre of the tooth space (the root circle of a generated gear)."""
+        return 2.0 * float(np.hypot(*self._end("root")))
+
+    @property
+    def form_diameter(self) -> float:
+        """d_Nf: diameter where the flank ends and the fillet (or undercut) begins."""
+        pieces = self.half.pieces
+        k = 0
+        while k < len(pieces) and pieces[k].label != "flank":
+            k += 1
+        while k + 1 < len(pieces) and pieces[k + 1].label == "flank":
+            k += 1
+        k = min(k, len(pieces) - 1)
+        return 2.0 * float(np.hypot(*pieces[k](np.array([1.0]))[0]))
+
+    def _flank_joins(self):
+        labels = [p.label for p in self.half.pieces]
+        return [(labels[i], labels[i + 1], j) for i, j in enumerate(self.half.joins)]
+
+    @property
+    def undercut(self) -> bool:
+        """True when the fillet cuts into the flank (a loop of the envelope was removed there)."""
+        return any(j == "trim" and a == "flank" and b != "flank" for a, b, j in self._flank_joins())
+
+    @property
+    def trimmed(self) -> bool:
+        """True when the cutter removed part of the flank on the tip side (trimming): the tooth
+        between the tip circle and the flank was formed by a non-flank part of the cutter, or a
+        loop of the envelope was cut away there."""
+        pieces = self.half.pieces
+        k_f = next((i for i, p in enumerate(pieces) if p.label == "flank"), len(pieces))
+        cut_by_other = any(not isinstance(p.curve, (CircleArc, TipLine)) for p in pieces[:k_f])
+        return cut_by_other or any(j == "trim" for j in self.half.joins[:k_f])
+
+    def thickness_at(self, radius: float) -> float:
+        """Arc tooth thickness (mm) on the circle of ``radius``; 0 above a pointed tip.
+
+        Raises ``ValueError`` when the circle misses the tooth flank.
+        """
+        r = float(radius)
+        rs = [float(np.hypot(*self._end("tip"))), float(np.hypot(*self._end("root")))]
+        if not min(rs) - 1e-12 * max(rs) <= r <= max(rs) + 1e-12 * max(rs):
+            raise ValueError(f"radius {r} is outside the tooth ({min(rs)} .. {max(rs)})")
+        hits = _crossings(self.half.pieces, lambda p: polar_from_y(p)[0], r)
+        if not hits:
+            end = self._end("tip") if abs(np.hypot(*self._end("tip")) - r) < abs(np.hypot(*self._end("root")) - r) \
+                else self._end("root")
+            return 2.0 * r * float(polar_from_y(end[None])[1][0])
+        k, w = hits[0]
+        psi = polar_from_y(self.half.pieces[k].curve(np.array([w])))[1][0]
+        return 2.0 * r * float(psi)
+
+    @property
+    def tip_thickness(self) -> float:
+        """s_a: arc thickness on the tip circle (0 for a pointed tooth)."""
+        if self.pointed:
+            return 0.0
+        tip = self._end("tip")
+        first = self.half.pieces[0]
+        end = first(np.array([1.0]))[0] if first.label == "tip" else tip
+        return 2.0 * float(np.hypot(*end)) * float(polar_from_y(end[None])[1][0])
+
+    # -- sampled geometry ---------------------------------------------------------------
+    def tooth_points(self, tol: float):
+        """One whole tooth, counter-clockwise from the right space centre to the left one."""
+        half, _ = self.half_points(tol)
+        mirror = half * np.array([-1.0, 1.0])
+        return np.concatenate([half[::-1], mirror[1:]])
+
+    def outline(self, tol: float | None = None):
+        """Closed outline of all teeth, ``(n, 2)`` float64, counter-clockwise (no repeated end point)."""
+        tol = 1e-3 * self.module if tol is None else tol
+        tooth = self.tooth_points(tol)[:-1]
+        ang = 2.0 * np.pi * np.arange(self.teeth) / self.teeth
+        c, s = np.cos(ang)[:, None], np.sin(ang)[:, None]
+        x = c * tooth[None, :, 0] - s * tooth[None, :, 1]
+        y = s * tooth[None, :, 0] + c * tooth[None, :, 1]
+        return np.stack([x, y], -1).reshape(-1, 2)
+
