@@ -32,8 +32,8 @@ MIN_CONTACT_RATIO = 1.2
 
 
 @dataclass(frozen=True)
-class DriveCheck:
-    """The values of a drive check (JSON-ready through :meth:`to_dict`) and its findings."""
+class FamilyCheck:
+    """The values of a check (JSON-ready through :meth:`to_dict`) and its findings."""
 
     values: dict
     report: CheckReport
@@ -42,6 +42,18 @@ class DriveCheck:
         out = dict(self.values)
         out.update(self.report.to_dict())
         return out
+
+
+class DriveCheck(FamilyCheck):
+    """Values and findings of a cycloid-pin-wheel drive check."""
+
+
+class PairCheck(FamilyCheck):
+    """Values and findings of a cycloid pair (or clock gearing) check."""
+
+
+class PinGearCheck(FamilyCheck):
+    """Values and findings of a pin-gearing check."""
 
 
 def _deg(x):
@@ -156,19 +168,6 @@ def check_drive(spec, samples: int = 2000) -> DriveCheck:
     return DriveCheck(values, CheckReport(tuple(f)))
 
 
-@dataclass(frozen=True)
-class PairCheck:
-    """Values and findings of a cycloid pair (or clock gearing) check."""
-
-    values: dict
-    report: CheckReport
-
-    def to_dict(self) -> dict:
-        out = dict(self.values)
-        out.update(self.report.to_dict())
-        return out
-
-
 def check_cycloid_pair(spec) -> PairCheck:
     """Check a cycloid pair (:class:`~gearkit.families.cycloidal.CycloidPairSpec`) on the generated gears."""
     from gearkit.families.cycloidal import (clock_factors, cycloid_gear, generated_contact_ratio,
@@ -200,19 +199,6 @@ def check_cycloid_pair(spec) -> PairCheck:
         values.update({"theoretical_addendum": big_a, "wheel_addendum_factor": add,
                        "wheel_addendum_radius_factor": rad})
     return PairCheck(values, CheckReport(tuple(f)))
-
-
-@dataclass(frozen=True)
-class PinGearCheck:
-    """Values and findings of a pin-gearing check."""
-
-    values: dict
-    report: CheckReport
-
-    def to_dict(self) -> dict:
-        out = dict(self.values)
-        out.update(self.report.to_dict())
-        return out
 
 
 def check_pin_gearing(spec) -> PinGearCheck:
