@@ -132,3 +132,28 @@ class CheckReport:
 
     def to_dict(self) -> dict:
         return {"ok": self.ok, "status": self.status, "findings": [f.to_dict() for f in self.findings]}
+
+
+def _cell(v, width: int) -> str:
+    """A table number: 4 decimals, small magnitudes in exponent form, no "-0.0000", blank for None."""
+    if v is None:
+        return " " * width
+    v = float(v)
+    if not math.isfinite(v):
+        return f"{v:>{width}}"
+    if 0 < abs(v) < 5e-4:
+        return f"{v:{width}.2e}"
+    return f"{(0.0 if abs(v) < 5e-5 else v):{width}.4f}"
+
+
+def format_findings(report: "CheckReport", id_width: int = 22) -> list:
+    """The findings of a report as the compact table every ``gearkit`` command prints: one line a
+    finding with failures marked ``!! FAIL``, then the overall result line."""
+    lines = [f"     status  {'check':<{id_width}}    value      limit  note"]
+    for f in report:
+        mark = {"fail": "!! FAIL  ", "warn": " ! warn  ", "ok": "   ok    "}[f.status]
+        bound = {"min": ">=", "max": "<="}.get(f.sense, "  ")
+        lines.append(f"  {mark}{f.id:<{id_width}}{_cell(f.value, 10)} {bound}{_cell(f.limit, 9)}  {f.message}")
+    lines.append(f"result: {report.status.upper()} ({len(report.failures)} failing, {len(report.warnings)} warning"
+                 f"{'' if len(report.warnings) == 1 else 's'})")
+    return lines

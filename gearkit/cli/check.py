@@ -192,14 +192,9 @@ def format_report(result) -> str:
         d_f = prof.root_diameter if prof else gear.root_diameter
         lines.append(f"  {i + 1:<4}{gear.teeth:>5}{_num(gear.shift_coeff)}{_num(gear.tip_diameter)}{_num(d_f)}"
                      f"{_num(gear.form_diameter)}{_num(gear.tip_thickness_normal)}  {'yes' if under else 'no'}")
-    lines += ["", "     status  check                     value      limit  note"]
-    for f in result.report:
-        mark = {"fail": "!! FAIL  ", "warn": " ! warn  ", "ok": "   ok    "}[f.status]
-        bound = {"min": ">=", "max": "<="}.get(f.sense, "  ")
-        lines.append(f"  {mark}{f.id:<22}{_num(f.value)} {bound}{_num(f.limit, 9)}  {f.message}")
-    r = result.report
-    lines.append(f"result: {r.status.upper()} ({len(r.failures)} failing, {len(r.warnings)} warning"
-                 f"{'' if len(r.warnings) == 1 else 's'})")
+    from gearkit.checks.report import format_findings
+
+    lines += [""] + format_findings(result.report, 22)
     return "\n".join(lines)
 
 

@@ -102,12 +102,9 @@ def _format(title: str, values: dict, report) -> str:
     for k, v in values.items():
         if isinstance(v, _SCALARS) and k not in ("ok", "status"):
             lines.append(f"  {k:<30}{_num(v)}")
-    lines += ["", "     status  check                     value      limit  note"]
-    for f in report:
-        mark = {"fail": "!! FAIL  ", "warn": " ! warn  ", "ok": "   ok    "}[f.status]
-        lines.append(f"  {mark}{f.id:<22}{_num(f.value):>10} {_num(f.limit):>10}  {f.message}")
-    lines.append(f"result: {report.status.upper()} ({len(report.failures)} failing, {len(report.warnings)} warning"
-                 f"{'' if len(report.warnings) == 1 else 's'})")
+    from gearkit.checks.report import format_findings
+
+    lines += [""] + format_findings(report, 22)
     return "\n".join(lines)
 
 

@@ -118,12 +118,6 @@ def run(args) -> int:
     return 0 if result.ok else 1
 
 
-def _fmt(v, width) -> str:
-    if not math.isfinite(v):
-        return f"{v:>{width}}"
-    return f"{v:{width}.2e}" if 0 < abs(v) < 5e-4 else f"{v:{width}.4f}"
-
-
 def format_report(result) -> str:
     """The compact human report of ``gearkit novikov``."""
     g = result.geometry
@@ -148,15 +142,9 @@ def format_report(result) -> str:
     for k, prof in enumerate(result.profiles, start=1):
         lines.append(f"  {k:<5}{prof.teeth:>3}{prof.tip_diameter:11.4f}{prof.root_diameter:11.4f}"
                      f"{prof.tip_thickness:10.4f}")
-    lines += ["", "     status  check                          value      limit  note"]
-    for f in result.report:
-        mark = {"fail": "!! FAIL  ", "warn": " ! warn  ", "ok": "   ok    "}[f.status]
-        bound = {"min": ">=", "max": "<="}.get(f.sense, "  ")
-        val, lim = _fmt(f.value, 10), (_fmt(f.limit, 9) if f.limit is not None else " " * 9)
-        lines.append(f"  {mark}{f.id:<27}{val} {bound}{lim}  {f.message}")
-    r = result.report
-    lines.append(f"result: {r.status.upper()} ({len(r.failures)} failing, {len(r.warnings)} warning"
-                 f"{'' if len(r.warnings) == 1 else 's'})")
+    from gearkit.checks.report import format_findings
+
+    lines += [""] + format_findings(result.report, 27)
     return "\n".join(lines)
 
 
