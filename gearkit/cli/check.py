@@ -23,7 +23,7 @@ _MODEL_FLAGS = ("z1", "z2", "module", "x1", "x2", "center_distance", "split", "p
                 "cutter_addendum", "pinion_cutter_teeth", "rack", "addendum", "tip", "da1", "da2",
                 "thinning1", "thinning2", "min_tip_thickness", "min_contact_ratio", "min_tip_clearance")
 
-_SIGN_NOTE = ("Shifts are normal coefficients x_n. For a ring (--internal) the textbook sign holds: positive "
+SIGN_NOTE = ("Shifts are normal coefficients x_n. For a ring (--internal) the textbook sign holds: positive "
               "--x2 moves the ring's teeth outward, making them thinner and its tip (inner) diameter larger; "
               "a shaper-cut gear's shift is the cutter's radial setting.")
 
@@ -31,8 +31,18 @@ _SIGN_NOTE = ("Shifts are normal coefficients x_n. For a ring (--internal) the t
 def register(subparsers) -> None:
     p = subparsers.add_parser(
         "check", help="check a gear pair: undercut, pointing, contact ratio, interference, jamming",
-        description="Check an involute gear pair (lengths in mm, angles in degrees). " + _SIGN_NOTE,
+        description="Check an involute gear pair (lengths in mm, angles in degrees). " + SIGN_NOTE,
         epilog="Exit status: 0 no finding fails, 1 a finding fails, 2 bad input.")
+    add_pair_arguments(p)
+    out = p.add_argument_group("output")
+    out.add_argument("--geometry", choices=("generated", "formula"), default="generated",
+                     help="read form circles and undercut off the generated gears (default) or the formulas")
+    out.add_argument("--json", action="store_true", help="print one JSON object")
+    p.set_defaults(run=run)
+
+
+def add_pair_arguments(p, limits: bool = True) -> None:
+    """The design-file argument and the pair, tool (and limit) flags every pair command shares."""
     p.add_argument("design", nargs="?", help="TOML design file (instead of the pair flags)")
     g = p.add_argument_group("pair")
     g.add_argument("--z1", type=int, help="pinion teeth")
@@ -65,15 +75,27 @@ def register(subparsers) -> None:
     t.add_argument("--cutter-shift", type=float, default=0.0, help="the shaper's own shift x0")
     t.add_argument("--cutter-addendum", type=float, default=1.25, help="the shaper's addendum h_a0* (default 1.25)")
     t.add_argument("--pinion-cutter-teeth", type=int, help="cut the pinion with a shaper of this many teeth")
+    if not limits:
+        p.set_defaults(min_tip_thickness=None, min_contact_ratio=None, min_tip_clearance=None)
+        return
     lim = p.add_argument_group("limits")
     lim.add_argument("--min-tip-thickness", type=float, help="warn below this s_an / m_n (default 0.25)")
     lim.add_argument("--min-contact-ratio", type=float, help="warn below this eps_alpha (default 1.2)")
     lim.add_argument("--min-tip-clearance", type=float, help="warn below this c / m_n (default 0.1)")
-    out = p.add_argument_group("output")
-    out.add_argument("--geometry", choices=("generated", "formula"), default="generated",
-                     help="read form circles and undercut off the generated gears (default) or the formulas")
-    out.add_argument("--json", action="store_true", help="print one JSON object")
-    p.set_defaults(run=run)
+
+
+def pair_spec_from_args(args, allowed_with_design=()):
+    """``(PairSpec, CheckLimits)`` from a design file or from the pair flags (not both: flags other
+    than ``allowed_with_design`` next to a design file are a ``SpecError``)."""
+    if args.design is not None:
+        extra = [name for name in _MODEL_FLAGS
+                 if hasattr(args, name) and name not in allowed_with_design and _given(args, name)]
+        if extra:
+            raise SpecError("design", "give either a design file or pair flags, not both "
+                            f"(also got --{extra[0].replace('_', '-')})")
+        from gearkit.checks import load_design
+        return load_design(args.design)
+    return _spec_from_flags(args)
 
 
 def _given(args, name) -> bool:
@@ -143,15 +165,7 @@ def _apply_center_distance(spec, a_w, x1, x2, split):
 def run(args) -> int:
     from gearkit.checks import check_pair
 
-    if args.design is not None:
-        extra = [name for name in _MODEL_FLAGS if _given(args, name)]
-        if extra:
-            raise SpecError("design", "give either a design file or pair flags, not both "
-                            f"(also got --{extra[0].replace('_', '-')})")
-        from gearkit.checks import load_design
-        spec, limits = load_design(args.design)
-    else:
-        spec, limits = _spec_from_flags(args)
+    spec, limits = pair_spec_from_args(args)
     result = check_pair(spec, limits, geometry=args.geometry)
     if args.json:
         print(json.dumps(result.to_dict(), indent=2))

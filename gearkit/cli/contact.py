@@ -13,7 +13,6 @@ error. Exit status: 0 when no simulated finding fails, 1 when one does, 2 for ba
 """
 from __future__ import annotations
 
-import argparse
 import json
 import math
 import sys
@@ -22,20 +21,16 @@ from gearkit.errors import SpecError
 
 
 def register(subparsers) -> None:
-    from gearkit.cli import check
+    from gearkit.cli.check import SIGN_NOTE, add_pair_arguments
 
-    holder = argparse.ArgumentParser(add_help=False).add_subparsers()
-    check.register(holder)  # the pair options, exactly as `gearkit check` has them
-    pair_options = holder.choices["check"]
     p = subparsers.add_parser(
-        "contact", parents=[pair_options], conflict_handler="resolve",
+        "contact",
         help="mesh the generated teeth over a cycle: transmission error, contact ratio, backlash, interference",
         description="Tooth contact analysis of an involute pair (lengths in mm, angles in degrees): the "
-                    "generated teeth meshed rigidly over one mesh cycle. " + check._SIGN_NOTE,
+                    "generated teeth meshed rigidly over one mesh cycle. " + SIGN_NOTE,
         epilog="Exit status: 0 no simulated finding fails, 1 one fails, 2 bad input.")
-    for action in p._actions:  # `gearkit check --geometry` does not apply: the teeth are always generated
-        if action.dest == "geometry":
-            action.help = argparse.SUPPRESS
+    add_pair_arguments(p)
+    p.add_argument("--json", action="store_true", help="print one JSON object")
     sim = p.add_argument_group("simulation")
     sim.add_argument("--steps", type=int, default=2000, help="driver angles per mesh cycle (default 2000)")
     sim.add_argument("--slices", type=int, help="transverse slices of a helical pair (default 20 with --width)")
@@ -50,16 +45,9 @@ def register(subparsers) -> None:
 
 
 def _spec(args):
-    from gearkit.cli import check
+    from gearkit.cli.check import pair_spec_from_args
 
-    if args.design is not None:
-        extra = [name for name in check._MODEL_FLAGS if check._given(args, name)]
-        if extra:
-            raise SpecError("design", "give either a design file or pair flags, not both "
-                            f"(also got --{extra[0].replace('_', '-')})")
-        from gearkit.checks import load_design
-        return load_design(args.design)
-    return check._spec_from_flags(args)
+    return pair_spec_from_args(args)
 
 
 def run(args) -> int:

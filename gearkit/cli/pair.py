@@ -12,40 +12,10 @@ Exit status: 0 the gears run free at every sampled rotation, 1 they interfere, 2
 """
 from __future__ import annotations
 
-import argparse
 import json
 import math
 
 from gearkit.errors import SpecError
-
-#: argument groups of ``gearkit check`` that describe the pair
-_SHARED_GROUPS = ("pair", "tools")
-
-
-def _add_check_flags(p) -> None:
-    """Copy the design-file argument and the pair and tool flags from ``gearkit check``'s parser."""
-    from gearkit.cli import check
-
-    holder = argparse.ArgumentParser(add_help=False).add_subparsers()
-    check.register(holder)
-    src = holder.choices["check"]
-    copied = {}
-    for action in src._positionals._group_actions:
-        p._add_action(action)
-    for group in src._action_groups:
-        if group.title in _SHARED_GROUPS:
-            dst = p.add_argument_group(group.title)
-            for action in group._group_actions:
-                dst._add_action(action)
-                copied[action.dest] = dst
-    for mutex in src._mutually_exclusive_groups:
-        if all(a.dest in copied for a in mutex._group_actions):
-            dst = copied[mutex._group_actions[0].dest].add_mutually_exclusive_group()
-            for action in mutex._group_actions:
-                dst._group_actions.append(action)
-    # the check limits are not pair flags; the spec builder reads them
-    p.set_defaults(min_tip_thickness=None, min_contact_ratio=None, min_tip_clearance=None)
-
 
 def register(subparsers) -> None:
     p = subparsers.add_parser(
@@ -54,7 +24,9 @@ def register(subparsers) -> None:
                     "tooth of one sits in the middle of a space of the other; write the assembly (OBJ with "
                     "named parts, GLB, or STL) and measure the interference volume of the two solids.",
         epilog="Exit status: 0 the gears run free at every sampled rotation, 1 they interfere, 2 bad input.")
-    _add_check_flags(p)
+    from gearkit.cli.check import add_pair_arguments
+
+    add_pair_arguments(p, limits=False)
     s = p.add_argument_group("solids")
     s.add_argument("--herringbone", action="store_true", help="double-helical gears (needs a helix angle)")
     s.add_argument("--gap", type=float, default=0.0, help="central gap of double-helical gears, mm")
@@ -81,18 +53,9 @@ def register(subparsers) -> None:
 
 
 def _pair_spec(args):
-    from gearkit.cli import check
+    from gearkit.cli.check import pair_spec_from_args
 
-    if args.design is not None:
-        extra = [name for name in check._MODEL_FLAGS if hasattr(args, name) and check._given(args, name)]
-        extra = [n for n in extra if n != "width"]
-        if extra:
-            raise SpecError("design", "give either a design file or pair flags, not both "
-                            f"(also got --{extra[0].replace('_', '-')})")
-        from gearkit.checks import load_design
-
-        return load_design(args.design)[0]
-    return check._spec_from_flags(args)[0]
+    return pair_spec_from_args(args, allowed_with_design=("width",))[0]
 
 
 def run(args) -> int:
