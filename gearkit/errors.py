@@ -28,6 +28,22 @@ def require(condition: bool, field: str, message: str) -> None:
         raise SpecError(field, message)
 
 
+def is_int(v) -> bool:
+    """An integer input (Python or numpy), not a bool."""
+    import numpy as np
+
+    return isinstance(v, (int, np.integer)) and not isinstance(v, bool)
+
+
+def is_real(v) -> bool:
+    """A finite real input (Python or numpy), not a bool."""
+    import math
+
+    import numpy as np
+
+    return isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, bool) and math.isfinite(v)
+
+
 def require_cut_inputs(module, helix_angle_deg, thinning) -> None:
     """Validate the inputs every generated gear shares: normal module (mm), helix angle (degrees)
     and tooth thinning (mm); raise ``SpecError`` naming the first one out of range."""

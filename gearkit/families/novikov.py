@@ -29,6 +29,7 @@ import numpy as np
 from gearkit.boundary import ToothProfile, trim_half_tooth
 from gearkit.envelope import chain_branches
 from gearkit.errors import GeometryError, SpecError, require
+from gearkit.errors import is_int as _is_int, is_real as _num
 from gearkit.families.novikov_presets import RackSystem, rack_system
 from gearkit.families.novikov_racks import ArcRack
 from gearkit.motion import RollingMotion
@@ -38,12 +39,6 @@ __all__ = ["NovikovGearSpec", "NovikovProfile", "tooth_profile", "NovikovPairSpe
            "ContactGeometry", "novikov_pair_geometry", "gear_specs"]
 
 
-def _is_int(v) -> bool:
-    return isinstance(v, (int, np.integer)) and not isinstance(v, bool)
-
-
-def _num(v) -> bool:
-    return isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, bool) and math.isfinite(v)
 
 
 @dataclass(frozen=True)

@@ -35,6 +35,7 @@ from functools import lru_cache
 import numpy as np
 
 from gearkit.errors import SpecError, require
+from gearkit.errors import is_real as _num
 from gearkit.tools import Segment, arc, corner, line, transform_chain
 
 __all__ = ["ArcSpec", "ArcRack", "RackGeometry", "TRANSITIONS", "rack_geometry"]
@@ -44,9 +45,6 @@ TRANSITIONS = ("relief-arc", "common-tangent", "flank-line", "none")
 HEIGHT_TOL = 1e-4
 _HALF = math.pi / 2
 
-
-def _num(v) -> bool:
-    return isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, bool) and math.isfinite(v)
 
 
 @dataclass(frozen=True)

@@ -19,6 +19,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from gearkit.errors import SpecError, require
+from gearkit.errors import is_int as _is_int, is_real as _finite
 from gearkit.tools import BasicRack, ShaperCutter
 
 __all__ = ["KINDS", "TIP_RULES", "PairSpec"]
@@ -27,12 +28,6 @@ KINDS = ("external", "internal", "rack")
 TIP_RULES = ("shortened", "standard")
 
 
-def _is_int(v) -> bool:
-    return isinstance(v, (int, np.integer)) and not isinstance(v, bool)
-
-
-def _finite(v) -> bool:
-    return isinstance(v, (int, float, np.integer, np.floating)) and math.isfinite(v)
 
 
 @dataclass(frozen=True)

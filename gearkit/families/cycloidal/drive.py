@@ -27,17 +27,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from gearkit.errors import require
+from gearkit.errors import is_int as _is_int, is_real as _finite
 
 __all__ = ["DriveSpec", "disc_curve", "theoretical_curve", "curve_normal", "curvature_radius",
            "min_curvature_radius", "psi_max", "contact_ratio", "line_of_action_point"]
 
 
-def _is_int(v) -> bool:
-    return isinstance(v, (int, np.integer)) and not isinstance(v, bool)
-
-
-def _finite(v) -> bool:
-    return isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, bool) and math.isfinite(v)
 
 
 @dataclass(frozen=True)

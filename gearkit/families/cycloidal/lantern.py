@@ -28,6 +28,7 @@ import numpy as np
 from gearkit.boundary import HalfTooth, Piece, ToothProfile, trim_half_tooth
 from gearkit.envelope import chain_branches
 from gearkit.errors import GeometryError, SpecError, require
+from gearkit.errors import is_int as _is_int, is_real as _finite
 from gearkit.motion import RollingMotion
 from gearkit.tools import arc
 
@@ -38,12 +39,6 @@ __all__ = ["PinGearSpec", "PinGearWheel", "pin_gear_wheel", "first_usable_roll",
 DETECT_TOL = 1e-6
 
 
-def _is_int(v) -> bool:
-    return isinstance(v, (int, np.integer)) and not isinstance(v, bool)
-
-
-def _finite(v) -> bool:
-    return isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, bool) and math.isfinite(v)
 
 
 @dataclass(frozen=True)

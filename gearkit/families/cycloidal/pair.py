@@ -28,6 +28,7 @@ import numpy as np
 from gearkit.boundary import ToothProfile, trim_half_tooth
 from gearkit.envelope import chain_branches
 from gearkit.errors import GeometryError, SpecError, require
+from gearkit.errors import is_int as _is_int, is_real as _finite
 from gearkit.motion import RollingMotion
 from gearkit.tools import Segment, corner, line
 
@@ -39,12 +40,6 @@ CLOCK_ADDENDUM = 0.95
 CLOCK_TIP_RADIUS = 1.40
 
 
-def _is_int(v) -> bool:
-    return isinstance(v, (int, np.integer)) and not isinstance(v, bool)
-
-
-def _finite(v) -> bool:
-    return isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, bool) and math.isfinite(v)
 
 
 @dataclass(frozen=True)
