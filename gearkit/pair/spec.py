@@ -13,10 +13,8 @@ Conventions
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, replace
 
-import numpy as np
 
 from gearkit.errors import SpecError, require
 from gearkit.errors import is_int as _is_int, is_real as _finite
