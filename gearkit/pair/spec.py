@@ -15,7 +15,6 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
-
 from gearkit.errors import SpecError, require
 from gearkit.errors import is_int as _is_int, is_real as _finite
 from gearkit.tools import BasicRack, ShaperCutter
