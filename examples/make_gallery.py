@@ -18,8 +18,8 @@ from pathlib import Path
 from gearkit.families.involute import GearSpec, tooth_profile
 from gearkit.families.novikov import NovikovGearSpec
 from gearkit.families.novikov import tooth_profile as novikov_profile
-from gearkit.families.novikov_presets import rack_system
-from gearkit.families.rack import RackSpec, rack_profile
+from gearkit.families.novikov.presets import rack_system
+from gearkit.families.involute.rack import RackSpec, rack_profile
 from gearkit.pair import PairSpec
 from gearkit.solids import SolidSpec, gear_solid, pair_assembly, rack_solid, write_mesh
 from gearkit.tools import ShaperCutter

@@ -4,7 +4,7 @@ error does to the contact.
 Run: python examples/novikov_pair.py [OUTPUT_DIR]
 
 The preset racks ("dca24", "single-arc") are NOT verified against the standards: verify against the
-standard before production. A rack of your own is a TOML file (see gearkit.families.novikov_presets).
+standard before production. A rack of your own is a TOML file (see gearkit.families.novikov.presets).
 """
 import math
 import sys
@@ -15,8 +15,8 @@ from gearkit.checks.novikov import check_novikov
 from gearkit.cli.novikov import format_report
 from gearkit.export import write_profile
 from gearkit.families.novikov import NovikovPairSpec, novikov_pair_geometry
-from gearkit.families.novikov_mesh import mesh_contact, meshed_outlines
-from gearkit.families.novikov_presets import rack_system
+from gearkit.families.novikov.mesh import mesh_contact, meshed_outlines
+from gearkit.families.novikov.presets import rack_system
 
 
 def main(out_dir: Path) -> None:

@@ -16,10 +16,10 @@ _PUBLIC = {
     # the generating kernel and the involute family
     "gearkit.accuracy": ("Accuracy",),
     "gearkit.profile": ("ToothProfile",),
-    "gearkit.families.involute": ("GearSpec", "InvoluteProfile", "tooth_profile"),
-    "gearkit.families.rack": ("RackProfile", "RackSpec", "rack_profile"),
+    "gearkit.families.involute": ("GearSpec", "InvoluteProfile", "RackProfile", "RackSpec", "rack_profile",
+                                  "tooth_profile"),
     "gearkit.tools": ("BasicRack", "ShaperCutter"),
-    "gearkit.oracle": ("swept_gear",),
+    "gearkit.oracles.involute": ("swept_gear",),
     # gear pairs and design checks
     "gearkit.checks": ("CheckLimits", "CheckReport", "Finding", "PairCheck", "check_pair", "load_design"),
     "gearkit.pair": ("PairGeometry", "PairSpec", "pair_geometry", "shifts_for_center_distance"),
@@ -35,11 +35,9 @@ _PUBLIC = {
                                    "PinGearWheel", "cycloid_gear", "disc_profile", "pin_gear_wheel", "simulate_mesh"),
     # Novikov (circular-arc) gears
     "gearkit.checks.novikov": ("NovikovCheck", "NovikovLimits", "check_novikov"),
-    "gearkit.families.novikov": ("NovikovGearSpec", "NovikovPairGeometry", "NovikovPairSpec", "NovikovProfile",
-                                 "novikov_pair_geometry"),
-    "gearkit.families.novikov_mesh": ("mesh_contact", "meshed_outlines"),
-    "gearkit.families.novikov_presets": ("RackSystem", "load_rack_system", "rack_presets", "rack_system"),
-    "gearkit.families.novikov_racks": ("ArcRack", "ArcSpec"),
+    "gearkit.families.novikov": ("ArcRack", "ArcSpec", "NovikovGearSpec", "NovikovPairGeometry", "NovikovPairSpec",
+                                 "NovikovProfile", "RackSystem", "load_rack_system", "mesh_contact", "meshed_outlines",
+                                 "novikov_pair_geometry", "rack_presets", "rack_system"),
     # the speed-accuracy bench
     "gearkit.bench": ("run_bench",),
 }

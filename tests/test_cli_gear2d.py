@@ -61,7 +61,7 @@ def test_rack_bar_solid_volume_is_profile_area_times_width(tmp_path, capsys):
     import numpy as np
     import trimesh
 
-    from gearkit.families.rack import RackSpec, rack_profile
+    from gearkit.families.involute.rack import RackSpec, rack_profile
 
     out = tmp_path / "rack.stl"
     info = _json(capsys, ["rack", "-m", "2", "-n", "5", "--width", "12", "--height", "9", "--tol", "0.002",

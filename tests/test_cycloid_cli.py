@@ -9,7 +9,7 @@ import math
 import pytest
 
 from gearkit.cli import main
-from gearkit.oracle_cycloid import clock_addendum_by_rolling
+from gearkit.oracles.cycloid import clock_addendum_by_rolling
 
 DRIVE = ["cycloidal-drive", "--pins", "12", "--lobes", "11", "--pin-circle-radius", "90", "--pin-radius", "7",
          "--eccentricity", "4", "--samples", "400"]

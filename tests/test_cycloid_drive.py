@@ -2,7 +2,7 @@
 
 Oracles: the closed-form profile P = T - sgn(dz) r_Z N (digest §1.3; written in
 ``gearkit.families.cycloidal.drive``, independent of the envelope kernel), the swept-pin ray
-cast of ``gearkit.oracle_cycloid`` (no meshing equation), analytic curvature of T from its
+cast of ``gearkit.oracles.cycloid`` (no meshing equation), analytic curvature of T from its
 derivatives, and the digest's numbers (§1.10, §1.11, §4 items 1, 5, 6, 7, 10, 11, 12, 14).
 
 Tolerances: ``CLOSED = 1e-9`` mm (the issue's), ``DIGEST = 1e-4`` (its four-digit values),
@@ -20,7 +20,7 @@ from gearkit.errors import SpecError
 from gearkit.families.cycloidal import (DriveSpec, contact_ratio, curvature_radius, disc_curve, disc_profile,
                                         line_of_action_point, min_curvature_radius, psi_max, theoretical_curve)
 from gearkit.families.cycloidal.drive import _root_psi
-from gearkit.oracle_cycloid import swept_pin_disc
+from gearkit.oracles.cycloid import swept_pin_disc
 
 CLOSED = 1e-9
 DIGEST = 1e-4

@@ -3,7 +3,7 @@
 Oracles: the classical epicycloid/hypocycloid equations (textbook §53; reference digest "other
 gears" §1.6, written out again here in the standard x-y form), the arcs-of-action contact ratio
 (digest §1.5, its test vector 1.8723), the law of gearing (common normal through the pitch point),
-and for clock gearing a circle rolled by the equal-arc rule (``gearkit.oracle_cycloid``).
+and for clock gearing a circle rolled by the equal-arc rule (``gearkit.oracles.cycloid``).
 
 ``CLOSED = 1e-9 m`` is the issue's tolerance for the flanks and the contacts.
 """
@@ -17,7 +17,7 @@ from gearkit.curves import polar_from_y, roulette
 from gearkit.errors import SpecError
 from gearkit.families.cycloidal import (CycloidPairSpec, clock_factors, conjugate_check, cycloid_gear,
                                         generated_contact_ratio, pair_contact_ratio)
-from gearkit.oracle_cycloid import clock_addendum_by_rolling
+from gearkit.oracles.cycloid import clock_addendum_by_rolling
 from gearkit.tools import Segment
 
 CLOSED = 1e-9

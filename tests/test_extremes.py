@@ -228,7 +228,7 @@ def test_tip_thickness_goes_continuously_to_zero_at_the_pointing_limit(z):
 # -- the tooth converges to the rack's as z grows -----------------------------------------------
 def test_tooth_converges_to_the_rack_tooth_as_z_grows():
     from gearkit.accuracy import distances_to_polyline
-    from gearkit.families.rack import RackSpec, rack_profile
+    from gearkit.families.involute.rack import RackSpec, rack_profile
 
     rack = rack_profile(RackSpec(1.0))  # the basic rack's own profile: the gear's counterpart at z = inf
     exact_rack = np.concatenate([p(np.linspace(0.0, 1.0, 2001)) for p in rack.half.pieces])

@@ -8,10 +8,10 @@ import pytest
 from gearkit.accuracy import distances_to_polyline
 from gearkit.errors import SpecError
 from gearkit.families.novikov import NovikovGearSpec, NovikovPairSpec, tooth_profile
-from gearkit.families.novikov_presets import rack_system
-from gearkit.families.novikov_racks import ArcRack, ArcSpec
-from gearkit.oracle import tooth_zone_points
-from gearkit.oracle_novikov import swept_arc_rack_gear
+from gearkit.families.novikov.presets import rack_system
+from gearkit.families.novikov.racks import ArcRack, ArcSpec
+from gearkit.oracles.involute import tooth_zone_points
+from gearkit.oracles.novikov import swept_arc_rack_gear
 
 DCA = rack_system("dca24").rack1
 PINION, WHEEL = rack_system("single-arc").racks
@@ -122,7 +122,7 @@ def test_single_arc_gears_match_the_swept_oracle(rack, z):
 
 def test_transverse_tool_is_the_normal_rack_stretched_exactly():
     """The transverse section of a circular arc is an ellipse arc: (x cos b - cx)^2 + (y - cy)^2 = r^2."""
-    from gearkit.families.novikov import _tool_chain
+    from gearkit.families.novikov.gear import _tool_chain
 
     beta = D(15.0)
     chain = _tool_chain(NovikovGearSpec(20, 4.0, DCA, 15.0))

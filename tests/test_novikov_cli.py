@@ -4,7 +4,7 @@ import json
 import pytest
 
 from gearkit.cli import main
-from gearkit.families.novikov_presets import PRESETS_FILE
+from gearkit.families.novikov.presets import PRESETS_FILE
 
 PAIR = ["novikov", "--z1", "20", "--z2", "60", "-m", "4", "--helix-angle-deg", "15"]
 

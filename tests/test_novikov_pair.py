@@ -9,9 +9,9 @@ import pytest
 from gearkit.checks.novikov import NovikovLimits, check_novikov
 from gearkit.errors import GeometryError, SpecError
 from gearkit.families.novikov import NovikovPairSpec, novikov_pair_geometry
-from gearkit.families.novikov_mesh import contact_trace, mesh_contact, signed_clearance
-from gearkit.families.novikov_presets import RackSystem, rack_system
-from gearkit.families.novikov_racks import ArcRack, ArcSpec
+from gearkit.families.novikov.mesh import contact_trace, mesh_contact, signed_clearance
+from gearkit.families.novikov.presets import RackSystem, rack_system
+from gearkit.families.novikov.racks import ArcRack, ArcSpec
 
 D = math.radians
 PRINTED = 0.6e-4  # the digest prints 4 decimals for mm and degrees here
@@ -81,7 +81,7 @@ def test_slices_across_the_face_touch_at_the_designed_height():
     sections through the contact points touch (to the sampling tolerance) at the designed contact radius,
     one axial pitch apart for each zone and the double-arc zones contact_axial_distance apart; the
     sections between them do not touch."""
-    from gearkit.families.novikov_mesh import section_clearance
+    from gearkit.families.novikov.mesh import section_clearance
 
     spec = worked(racks=consistent_dca())
     g = novikov_pair_geometry(spec)
@@ -211,7 +211,7 @@ def test_interference_is_detected():
     d = signed_clearance(np.array([[0.5, 0.5], [0.5, 1.25], [1.1, 0.5]]), square)
     assert d == pytest.approx([-0.5, 0.25, 0.1])
     from gearkit.families.novikov import tooth_profile
-    from gearkit.families.novikov_mesh import _interference
+    from gearkit.families.novikov.mesh import _interference
 
     spec = worked()
     c = mesh_contact(spec, 0, interference=False)
@@ -256,7 +256,7 @@ def test_helical_pair_is_free_of_interference_across_a_whole_axial_pitch(racks):
     """The transverse sections are not conjugate (run at a constant ratio in the plane they would
     overlap at other phases); the helical body's play is set by the section that touches first, the
     one solved at the contact. Every section over an axial pitch then clears, to the sampling tolerance."""
-    from gearkit.families.novikov_mesh import section_clearance
+    from gearkit.families.novikov.mesh import section_clearance
 
     spec = worked(racks=racks)
     g = novikov_pair_geometry(spec)

@@ -9,9 +9,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from gearkit.errors import SpecError
-from gearkit.families.novikov_presets import (PRESETS_FILE, RackSystem, load_rack_system, rack_presets, rack_system,
+from gearkit.families.novikov.presets import (PRESETS_FILE, RackSystem, load_rack_system, rack_presets, rack_system,
                                               rack_system_from_dict)
-from gearkit.families.novikov_racks import ArcRack, ArcSpec
+from gearkit.families.novikov.racks import ArcRack, ArcSpec
 
 D = math.radians
 #: the digest prints 5 decimals (4 for angles in degrees)

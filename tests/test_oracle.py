@@ -9,7 +9,7 @@ import pytest
 
 from gearkit.accuracy import distances_to_polyline
 from gearkit.families.involute import GearSpec, tooth_profile
-from gearkit.oracle import swept_rack_gear, swept_shaper_gear, tooth_zone_points
+from gearkit.oracles.involute import swept_rack_gear, swept_shaper_gear, tooth_zone_points
 from gearkit.tools import ShaperCutter
 
 

@@ -2,7 +2,7 @@
 
 Oracles: the equidistant of the epicycloid traced by a pin centre (textbook §53; reference digest
 "other gears" §1.7, written out here in the standard form), the swept pins of
-``gearkit.oracle_cycloid`` (ray cast, no meshing equation), the digest's first usable roll
+``gearkit.oracles.cycloid`` (ray cast, no meshing equation), the digest's first usable roll
 (r1 = 25, r2 = 100, rho = 3.927 -> 0.0943 rad).
 
 ``CLOSED = 1e-9 m``; the oracle's scallop bound ``step^2/(8 rho)`` with ``SCALLOP = 1.1``.
@@ -17,7 +17,7 @@ from gearkit.checks.cycloidal import check_pin_gearing
 from gearkit.curves import polar_from_y
 from gearkit.errors import SpecError
 from gearkit.families.cycloidal import PinGearSpec, first_usable_roll, pin_gear_wheel
-from gearkit.oracle_cycloid import swept_pin_wheel
+from gearkit.oracles.cycloid import swept_pin_wheel
 
 CLOSED = 1e-9
 SCALLOP = 1.1

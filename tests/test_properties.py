@@ -119,7 +119,7 @@ def test_involute_specs_give_valid_geometry_or_a_spec_error(data):
 @given(m=modules, beta=st.sampled_from([0.0, 15.0, 30.0]), tol_m=st.sampled_from([1e-2, 1e-4, 1e-6]),
        z0=st.one_of(st.none(), st.integers(8, 60)))
 def test_racks_give_valid_geometry(m, beta, tol_m, z0):
-    from gearkit.families.rack import RackSpec, rack_profile
+    from gearkit.families.involute.rack import RackSpec, rack_profile
     from gearkit.tools import ShaperCutter
 
     def run():
@@ -146,7 +146,7 @@ def test_racks_give_valid_geometry(m, beta, tol_m, z0):
        tol_m=st.sampled_from([1e-2, 1e-4, 1e-6]))
 def test_novikov_gears_give_valid_geometry_or_a_spec_error(z, m, beta, which, tol_m):
     novikov = pytest.importorskip("gearkit.families.novikov")
-    from gearkit.families.novikov_presets import rack_system
+    from gearkit.families.novikov.presets import rack_system
 
     rack = getattr(rack_system("dca24"), which)
 

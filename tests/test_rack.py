@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from gearkit.errors import SpecError
-from gearkit.families.rack import RackSpec, rack_profile
+from gearkit.families.involute.rack import RackSpec, rack_profile
 from gearkit.tools import BasicRack, ShaperCutter
 
 EXACT = 1e-9

@@ -8,7 +8,7 @@ import pytest
 from gearkit.accuracy import distances_to_polyline
 from gearkit.errors import GeometryError, SpecError
 from gearkit.families.involute import GearSpec, tooth_profile
-from gearkit.families.rack import RackSpec, rack_profile
+from gearkit.families.involute.rack import RackSpec, rack_profile
 from gearkit.solids import SolidSpec, gear_solid, rack_solid
 from gearkit.solids.solid import Solid
 from gearkit.tools import ShaperCutter

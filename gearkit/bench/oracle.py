@@ -1,6 +1,6 @@
 """The swept-tool oracle's convergence, next to the envelope path's cost for the same accuracy.
 
-The oracle (:mod:`gearkit.oracle`) cuts the blank with the rack at discrete roll steps; its
+The oracle (:mod:`gearkit.oracles.involute`) cuts the blank with the rack at discrete roll steps; its
 error against the exact envelope shrinks with the step (second order for a rounded rack
 tip). For each step the bench reports the oracle's time and error, and the time the envelope
 path needs to produce the same gear at a tolerance equal to that error.
@@ -21,7 +21,7 @@ def oracle_convergence(quick: bool, repeats: int):
     """Rows {step, oracle_error, oracle_seconds, envelope_tol, envelope_seconds, envelope_vertices, speedup}
     for the rack-cut spur gear z = 20, m = 1 (errors and tolerances in mm)."""
     from gearkit.families.involute import GearSpec, tooth_profile
-    from gearkit.oracle import swept_rack_gear, tooth_zone_points
+    from gearkit.oracles.involute import swept_rack_gear, tooth_zone_points
 
     spec = GearSpec(20, 1.0)
     m = spec.module

@@ -19,7 +19,7 @@ PRODUCT_MODULES = {
     ("cycloidal", "profile"): "gearkit.families.cycloidal.disc",
     ("cycloidal", "contact simulation"): "gearkit.families.cycloidal.mesh",
     ("novikov", "profile"): "gearkit.families.novikov",
-    ("novikov", "contact simulation"): "gearkit.families.novikov_mesh",
+    ("novikov", "contact simulation"): "gearkit.families.novikov.mesh",
 }
 
 
@@ -157,7 +157,7 @@ def novikov_contact_rows(quick: bool, repeats: int):
     """Time of the Novikov pair's transverse contact solve (with and without the interference scan)."""
     try:
         from gearkit.families.novikov import NovikovPairSpec, tooth_profile
-        from gearkit.families.novikov_mesh import mesh_contact
+        from gearkit.families.novikov.mesh import mesh_contact
     except ImportError:
         return []
     spec = NovikovPairSpec(20, 40, 2.0, 15.0, 30.0)

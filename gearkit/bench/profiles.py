@@ -100,7 +100,7 @@ def novikov_ladder(quick: bool, repeats: int):
     """The Novikov pinion of the preset double-circular-arc rack system (z = 20, beta = 15 deg)."""
     try:
         from gearkit.families import novikov
-        from gearkit.families.novikov_presets import rack_system
+        from gearkit.families.novikov.presets import rack_system
     except ImportError:
         return []
     spec = novikov.NovikovGearSpec(20, 1.0, rack_system("dca24").rack1, 15.0)
@@ -143,7 +143,7 @@ def involute_scaling(quick: bool, repeats: int):
 def rack_scaling(quick: bool, repeats: int):
     """The rack (z = infinity) row: one tooth of the rack a 20-tooth shaper cutter generates."""
     try:
-        from gearkit.families.rack import RackSpec, rack_profile
+        from gearkit.families.involute.rack import RackSpec, rack_profile
     except ImportError:
         return [{"family": "involute", "product": "profile", "teeth": "rack", "available": False,
                  "note": "the kernel has no rack (z = infinity) profile"}]

@@ -2,7 +2,7 @@
 
 :func:`check_novikov` derives the pair geometry (:func:`~gearkit.families.novikov.novikov_pair_geometry`),
 generates both gears with the envelope kernel, and (optionally) meshes them in the transverse plane
-(:mod:`gearkit.families.novikov_mesh`):
+(:mod:`gearkit.families.novikov.mesh`):
 
 ==========================  ==========================================================  ==========
 id                          checks                                                      on failure
@@ -224,7 +224,7 @@ def check_novikov(spec: NovikovPairSpec, limits: NovikovLimits = NovikovLimits()
     ``simulate`` meshes the generated gears in the transverse plane (one solve per contact zone and
     an interference scan at ``tol``, default 1e-5 m_n).
     """
-    from gearkit.families.novikov_mesh import mesh_contact
+    from gearkit.families.novikov.mesh import mesh_contact
 
     g = novikov_pair_geometry(spec)
     profiles = (tooth_profile(spec.gear(1)), tooth_profile(spec.gear(2)))

@@ -66,7 +66,7 @@ def _write(spec, args, info):
     if mesh_format(path) is not None:
         return _write_3d(spec, args)
     from gearkit.export import write_profile
-    from gearkit.families.novikov_mesh import meshed_outlines
+    from gearkit.families.novikov.mesh import meshed_outlines
 
     tol = args.tol if args.tol is not None else 1e-3 * spec.module
     return write_profile(path, meshed_outlines(spec, tol), info)
@@ -77,7 +77,7 @@ def _write_3d(spec, args) -> dict:
     transverse sections at z = 0 are those of the 2D mesh; the opposite hands keep them in mesh along
     the face), or one gear when the file is named gear*."""
     from gearkit.families.novikov import tooth_profile
-    from gearkit.families.novikov_mesh import mesh_contact
+    from gearkit.families.novikov.mesh import mesh_contact
     from gearkit.solids import SolidSpec, default_mesh_tol, gear_solid, write_mesh
 
     tol = args.tol if args.tol is not None else default_mesh_tol(spec.module)

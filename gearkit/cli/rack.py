@@ -31,7 +31,7 @@ def register(subparsers) -> None:
 def run(args) -> int:
     from gearkit.cli.gear import tool_from_args
     from gearkit.errors import SpecError
-    from gearkit.families.rack import RackSpec, rack_profile
+    from gearkit.families.involute.rack import RackSpec, rack_profile
 
     args.cutter_shift, args.cutter_addendum = 0.0, 1.25
     spec = RackSpec(args.module, tool_from_args(args, False), args.helix_angle_deg, args.thinning)

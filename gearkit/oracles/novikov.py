@@ -1,7 +1,7 @@
 """Swept-tool oracle for circular-arc (Novikov) racks: the independent check of the envelope path.
 
-Like :mod:`gearkit.oracle` (whose polygon booleans it reuses, and nothing else), this shares no
-code with the envelope kernel or with :mod:`gearkit.families.novikov_racks`: the rack is given as a
+Like :mod:`gearkit.oracles.involute` (whose polygon booleans it reuses, and nothing else), this shares no
+code with the envelope kernel or with :mod:`gearkit.families.novikov.racks`: the rack is given as a
 *drawing* (the digest's recipe: lines and arcs of the right flank of one basic-rack tooth, normal
 section, module units, tooth axis at x = 0, tip towards +y), sampled here, mirrored into cutter
 teeth, stretched by 1/cos(beta) into the transverse section, rolled along the blank in the
@@ -19,13 +19,13 @@ import math
 
 import numpy as np
 
-from gearkit.oracle import _circle, _cross_section, _cut
+from gearkit.oracles.involute import _circle, _cross_section, _cut
 
 __all__ = ["drawing_of", "cutter_outline", "swept_arc_rack_gear"]
 
 
 def drawing_of(rack) -> list:
-    """The drawing of an :class:`~gearkit.families.novikov_racks.ArcRack` as plain primitives."""
+    """The drawing of an :class:`~gearkit.families.novikov.racks.ArcRack` as plain primitives."""
     return [(s.kind, *s.data) for s in rack.geometry.drawing]
 
 

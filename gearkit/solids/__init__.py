@@ -9,7 +9,7 @@ solid; STL is written with numpy, OBJ (named parts) and GLB through trimesh
 facet from the exact tooth surface, twist included, and every solid reports the deviation it
 achieved (``Solid.achieved``).
 
-This package (with :mod:`gearkit.oracle`) is the only place that imports manifold3d; trimesh
+This package (with :mod:`gearkit.oracles.involute`) is the only place that imports manifold3d; trimesh
 is imported only where a format or a check needs it.
 """
 from gearkit.solids.export import MESH_FORMATS, mesh_format, write_mesh

@@ -133,7 +133,7 @@ def pair_assembly(spec, width: float | None = None, tol: float | None = None, *,
             raise SpecError("herringbone", "a herringbone rack is not built; use a helical pair")
         if bores[1] is not None:
             raise SpecError("bores", "a rack has no bore")
-        from gearkit.families.rack import RackSpec, rack_profile
+        from gearkit.families.involute.rack import RackSpec, rack_profile
 
         prof = rack_profile(RackSpec(spec.module, spec.tools[1], spec.helix_angle_deg, spec.thinning2))
         length = 2.0 * geo.gears[0].tip_diameter if rack_length is None else rack_length

@@ -30,11 +30,11 @@ from functools import lru_cache
 from pathlib import Path
 
 from gearkit.errors import SpecError, require
-from gearkit.families.novikov_racks import HEIGHT_TOL, ArcRack, ArcSpec
+from gearkit.families.novikov.racks import HEIGHT_TOL, ArcRack, ArcSpec
 
 __all__ = ["RackSystem", "Zone", "rack_presets", "rack_system", "load_rack_system", "rack_system_from_dict"]
 
-PRESETS_FILE = Path(__file__).resolve().parent.parent / "data" / "novikov_racks.toml"
+PRESETS_FILE = Path(__file__).resolve().parents[2] / "data" / "novikov_racks.toml"
 _RACK_KEYS = {"contact_angle_deg", "addendum", "dedendum", "convex", "concave", "transition", "transition_radius",
               "transition_angle_deg", "root_radius"}
 _ARC_KEYS = {"radius", "centre_shift", "centre_offset"}
