@@ -9,6 +9,8 @@ id                         checks                                               
 =========================  ======================================================  ==========
 undercut.i                 the generated gear i is undercut (value x, limit x_min)  warn
 pointing.i                 normal tip thickness s_an (<= 0 fail)                    warn/fail
+inspection.*.i             span, over pins, chordal: formula vs generated tooth     warn
+                           (:mod:`gearkit.checks.inspection`; generated geometry)
 contact_ratio              real eps_alpha (undercut/interference-shortened)         warn/fail
 interference.1             active profile start of gear 1 vs its form circle        fail
 interference.2             active profile end on gear 2 vs its form circle          fail
@@ -55,6 +57,7 @@ class PairCheck:
     geometry: PairGeometry
     report: CheckReport
     profiles: tuple = ()
+    inspections: tuple = ()
 
     @property
     def ok(self) -> bool:
@@ -76,6 +79,8 @@ class PairCheck:
                 "tip_thickness": prof.tip_thickness if prof else max(gear.tip_thickness, 0.0),
                 "tip_thickness_normal": gear.tip_thickness_normal,
                 "undercut": bool(prof.undercut) if prof else gear.undercut, "tool": gear.tool})
+            if self.inspections:
+                gears[-1]["inspection"] = self.inspections[i].to_dict()
         return {
             "ok": self.report.ok, "status": self.report.status, "kind": g.kind,
             "module": g.module, "transverse_module": g.transverse_module,
@@ -200,6 +205,22 @@ def check_pair(spec: PairSpec, limits: CheckLimits = CheckLimits(), geometry: st
     else:
         g = pair_geometry(spec)
     findings = _gear_findings(spec, g, profiles, limits)
+    inspections = ()
+    if profiles:
+        from gearkit.checks.inspection import inspection_findings
+        from gearkit.pair.inspection import inspect_gear
+
+        inspections = []
+        for i, (gspec, prof) in enumerate(zip(gear_specs(spec), profiles)):
+            try:
+                inspections.append(inspect_gear(gspec, profile=prof))
+            except SpecError as exc:  # a tooth no instrument can measure is a finding, not an error
+                findings.append(Finding(f"inspection.{i + 1}", "warn", 0.0, None,
+                                        f"gear {i + 1}: no inspection dimensions ({exc})"))
+                inspections = ()
+                break
+            findings += inspection_findings(inspections[-1], 1e-3 * spec.module, spec.face_width, f".{i + 1}")
+        inspections = tuple(inspections)
     findings += _mesh_findings(spec, g, limits)
     if spec.kind == "internal":
         from gearkit.checks.internal import internal_findings
@@ -207,7 +228,7 @@ def check_pair(spec: PairSpec, limits: CheckLimits = CheckLimits(), geometry: st
     if simulate:
         from gearkit.checks.simulated import simulated_findings
         findings += simulated_findings(spec, g, findings, limits)
-    return PairCheck(g, CheckReport(tuple(findings)), profiles)
+    return PairCheck(g, CheckReport(tuple(findings)), profiles, inspections)
 
 
 def _gear_findings(spec, g, profiles, lim) -> list:

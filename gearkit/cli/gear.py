@@ -46,8 +46,47 @@ def register(subparsers) -> None:
     p.add_argument("-o", "--output", default=None, help="write the profile (.svg .dxf .csv .json) or the solid "
                    "(.stl .obj .glb; needs --width)")
     p.add_argument("--json", action="store_true", help="print one JSON object instead of the table")
+    add_inspection_flags(p)
     add_solid_flags(p)
     p.set_defaults(run=run)
+
+
+def add_inspection_flags(p) -> None:
+    """Flags of the inspection dimensions (span, over pins/balls, chordal thickness)."""
+    g = p.add_argument_group("inspection dimensions")
+    g.add_argument("--span-teeth", type=int, default=None, help="span over k teeth (default: the standard k, "
+                   "anvils nearest d + 2 x m_n)")
+    g.add_argument("--pin-diameter", type=float, default=None, help="pin/ball diameter d_p, mm (default: touching "
+                   "the flanks on d + 2 x m_n)")
+    g.add_argument("--chordal-diameter", type=float, default=None, help="circle of the chordal thickness, mm "
+                   "(default: the reference circle)")
+
+
+def inspection_of(args, spec, prof, tol: float):
+    """(JSON dict, findings) of the gear's inspection dimensions, by formula and measured."""
+    from gearkit.checks.inspection import inspection_findings
+    from gearkit.pair.inspection import inspect_gear
+
+    insp = inspect_gear(spec, args.span_teeth, args.pin_diameter, args.chordal_diameter, profile=prof)
+    width = getattr(args, "width", None)
+    return insp.to_dict(), inspection_findings(insp, tol, width)
+
+
+def format_inspection(info: dict) -> str:
+    """Table rows of the inspection dimensions (formula, and measured on the generated tooth)."""
+    rows = []
+    if "span" in info:
+        s = info["span"]
+        rows.append((f"span W (k = {s['k']})", f"{s['W']:12.6f} mm  measured {s['measured']['W']:.6f} mm, "
+                     f"anvils on d_M = {s['measured']['d_M']:.4f} mm ({s['measured']['touches']})"))
+    p = info["over_pins"]
+    rows.append((f"{'between' if p['between'] else 'over'} pins M", f"{p['M']:12.6f} mm  measured "
+                 f"{p['measured']['M']:.6f} mm, d_p = {p['d_p']:.4f} mm ({p['measured']['touches']})"))
+    c = info["chordal"]
+    rows.append(("chordal thickness s", f"{c['s']:12.6f} mm  measured {c['measured']['s']:.6f} mm, "
+                 f"on d_y = {c['d_y']:.4f} mm"))
+    rows.append(("chordal height h", f"{c['h']:12.6f} mm  measured {c['measured']['h']:.6f} mm"))
+    return "\n".join(f"  {label:<25}{value}" for label, value in rows)
 
 
 def add_solid_flags(p) -> None:
@@ -167,12 +206,22 @@ def run(args) -> int:
     if not tol > 0:
         raise SpecError("--tol", f"{tol!r} must be a positive length in mm")
     info = prof.summary(tol)
+    dims, findings = inspection_of(args, spec, prof, tol)
     if args.output:
         from gearkit.export import write_profile
 
         write_profile(args.output, [prof.outline(tol)], info)
         info["output"] = args.output
-    print(json.dumps(info, indent=2) if args.json else format_summary(info))
+    info.update(dims)
+    info["findings"] = [f.to_dict() for f in findings]
+    if args.json:
+        print(json.dumps(info, indent=2))
+    else:
+        from gearkit.checks.report import CheckReport, format_findings
+
+        warned = [f for f in findings if f.status != "ok"]
+        print(format_summary(info) + "\n" + format_inspection(info)
+              + ("\n" + "\n".join(format_findings(CheckReport(tuple(warned)))) if warned else ""))
     return 0
 
 

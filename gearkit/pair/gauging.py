@@ -58,13 +58,20 @@ def _first_peak(pieces, score):
     where an anvil resting on the tooth from outside touches it (value, point, label)."""
     t = np.linspace(0.0, 1.0, _GRID)
     values = np.concatenate([score(piece(t)) for piece in pieces])
-    falls = np.nonzero(np.diff(values) < 0)[0]
+    scale = float(np.max(np.abs(values)))
+    falls = np.nonzero(np.diff(values) < -1e-12 * scale)[0]  # round-off at the joins is no fall
     i = int(falls[0]) if falls.size else values.size - 1
     k, j = divmod(i, _GRID)
     piece = pieces[k]
     if j == 0 and k > 0 and values[i - 1] >= values[i]:  # the peak sits on the join with the previous piece
         k, j, piece = k - 1, _GRID - 1, pieces[k - 1]
     return _refine(piece, t[max(j - 1, 0)], t[min(j + 1, _GRID - 1)], score, float(t[j]))
+
+
+def _corner(profile, point, label: str) -> str:
+    """``"tip corner"`` when a contact sits on the tip circle's edge, else the touched feature's label."""
+    r_tip = profile.tip_diameter / 2
+    return "tip corner" if abs(float(np.hypot(*point)) - r_tip) <= 1e-9 * r_tip else label
 
 
 def measure_span(profile, k: int, beta_b: float = 0.0) -> tuple[Span, str]:
@@ -85,6 +92,7 @@ def measure_span(profile, k: int, beta_b: float = 0.0) -> tuple[Span, str]:
     u = np.array([math.cos(theta), math.sin(theta)])
     half, point, label = _first_peak(profile.half.pieces, lambda p: p @ u)
     w_t = 2 * half
+    label = _corner(profile, point, label)
     w = w_t * math.cos(beta_b)
     return Span(k, w, w_t, 2 * float(np.hypot(*point)), w * math.sin(beta_b)), label
 
@@ -126,6 +134,7 @@ def measure_over_pins(profile, d_p: float, beta_b: float = 0.0) -> tuple[OverPin
     r_m = brentq(gap, min(a, b), max(a, b), xtol=1e-13, rtol=4 * np.finfo(float).eps)
     centre = r_m * e
     _, point, label = _extreme(pieces, lambda p: -np.sum((p - centre) ** 2, axis=-1))
+    label = _corner(profile, point, label)
     centres = 2 * r_m * (math.cos(math.pi / (2 * z)) if z % 2 else 1.0)
     m = centres - d_p if profile.internal else centres + d_p
     return OverPins(float(d_p), m, 2 * r_m, 2 * float(np.hypot(*point)), profile.internal), label
