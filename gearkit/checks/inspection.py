@@ -27,6 +27,14 @@ from gearkit.checks.report import Finding
 __all__ = ["inspection_findings"]
 
 
+def _contact_finding(fid: str, dev: float, tol: float, contact: str, tool: str, text: str) -> Finding:
+    """Formula vs measurement of a dimension taken by contact: warn beyond ``tol`` or off the flank."""
+    where = "" if contact == "flank" else f"; the {tool} touch the {contact}, not the flank"
+    bad = dev > tol or contact != "flank"
+    return Finding(fid, "warn" if bad else "ok", dev, tol,
+                   text + where + ("; the formula does not describe this gear" if dev > tol else ""), "max")
+
+
 def inspection_findings(insp, tol: float, face_width: float | None = None, suffix: str = "") -> list:
     """Findings of a :class:`~gearkit.pair.inspection.GearInspection` (``tol`` in mm).
 
@@ -44,22 +52,14 @@ def inspection_findings(insp, tol: float, face_width: float | None = None, suffi
     out = []
     if insp.span is not None:
         s, sm = insp.span, insp.span_measured
-        d = dev["span.W"]
-        bad = d > tol or insp.span_contact != "flank"
-        where = "" if insp.span_contact == "flank" else f"; the anvils touch the {insp.span_contact}, not the flank"
-        out.append(Finding(f"inspection.span{suffix}", "warn" if bad else "ok", d, tol,
-                           f"span over k = {s.k}: W = {s.W:.6f} mm (formula), {sm.W:.6f} mm measured on the "
-                           f"generated tooth, measuring circle d_M = {sm.d_M:.4f} mm{where}"
-                           + ("; the formula does not describe this gear" if d > tol else ""), "max"))
+        out.append(_contact_finding(f"inspection.span{suffix}", dev["span.W"], tol, insp.span_contact, "anvils",
+                                    f"span over k = {s.k}: W = {s.W:.6f} mm (formula), {sm.W:.6f} mm measured on "
+                                    f"the generated tooth, measuring circle d_M = {sm.d_M:.4f} mm"))
     p, pm = insp.over_pins, insp.over_pins_measured
-    d = dev["over_pins.M"]
-    bad = d > tol or insp.pin_contact != "flank"
     what = "between" if p.internal else "over"
-    where = "" if insp.pin_contact == "flank" else f"; the pins touch the {insp.pin_contact}, not the flank"
-    out.append(Finding(f"inspection.over_pins{suffix}", "warn" if bad else "ok", d, tol,
-                       f"dimension {what} {'balls' if insp.helical else 'pins'} d_p = {p.d_p:.4f} mm: M = {p.M:.6f} mm "
-                       f"(formula), {pm.M:.6f} mm measured{where}"
-                       + ("; the formula does not describe this gear" if d > tol else ""), "max"))
+    out.append(_contact_finding(f"inspection.over_pins{suffix}", dev["over_pins.M"], tol, insp.pin_contact, "pins",
+                                f"dimension {what} {'balls' if insp.helical else 'pins'} d_p = {p.d_p:.4f} mm: "
+                                f"M = {p.M:.6f} mm (formula), {pm.M:.6f} mm measured"))
     c, cm = insp.chordal, insp.chordal_measured
     d = max(dev["chordal.s"], dev["chordal.h"])
     note = " (the virtual-gear approximation of the helical formula)" if insp.helical and d > tol else ""
