@@ -38,10 +38,13 @@ _PUBLIC = {
     "gearkit.families.novikov": ("ArcRack", "ArcSpec", "NovikovGearSpec", "NovikovPairGeometry", "NovikovPairSpec",
                                  "NovikovProfile", "RackSystem", "load_rack_system", "mesh_contact", "meshed_outlines",
                                  "novikov_pair_geometry", "rack_presets", "rack_system"),
+    # scenes: placed gears, kinematics, planetary synthesis
+    "gearkit.scene": ("Scene", "load_scene", "scene_layout", "scene_speeds"),
     # the speed-accuracy bench
     "gearkit.bench": ("run_bench",),
 }
-_ALIASES = {"novikov_tooth_profile": ("gearkit.families.novikov", "tooth_profile")}
+_ALIASES = {"novikov_tooth_profile": ("gearkit.families.novikov", "tooth_profile"),
+            "synthesize_planetary": ("gearkit.scene", "synthesize")}
 _WHERE = {name: (module, name) for module, names in _PUBLIC.items() for name in names}
 _WHERE.update(_ALIASES)
 

@@ -21,7 +21,7 @@ Examples
 ...           (Relation("sun", "planet", 21, 43, 1, "carrier"), Relation("planet", "ring", 43, 108, -1, "carrier")))
 >>> s = t.solve(fixed=("ring",), inputs={"sun": 1})
 >>> s.dof, s.ratio("sun", "carrier"), s.relative("planet", "carrier")
-(1, Fraction(43, 7), Fraction(-108, 301))
+(1, Fraction(43, 7), Fraction(-756, 1849))
 """
 from __future__ import annotations
 
