@@ -4,12 +4,16 @@ Usage::
 
     gearkit contact --z1 20 --z2 40 -m 2 [pair options as in gearkit check] [--steps 2000]
                     [--slices 20] [--tol 0.002] [--json] [-o te.png] [-o path.svg]
+    gearkit contact ... --width 20 --torque 100 [--tip-relief 0.008[@43.2]] [--crowning 0.01]
+                    [--misalignment 0.02] [--json] [-o te.png] [-o load.png] [-o pattern.png]
     gearkit contact design.toml [--json]
 
 Prints the simulated contact ratio beside the formula value, the transmission error, the
 backlash and any interference, with the simulation's findings. ``-o`` writes a plot (PNG or SVG
 by the suffix): the path of contact when the file name contains "path", else the transmission
-error. Exit status: 0 when no simulated finding fails, 1 when one does, 2 for bad input.
+error. With ``--torque`` the pair is also analysed under load (the JSON gains ``loaded``) and ``-o``
+writes the loaded TE, the load sharing (``load`` in the name) or the contact pattern (``pattern``).
+Exit status: 0 when no simulated finding fails, 1 when one does, 2 for bad input.
 """
 from __future__ import annotations
 
@@ -41,6 +45,18 @@ def register(subparsers) -> None:
     sim.add_argument("-o", "--output", action="append", default=[], metavar="FILE",
                      help="write a plot (.png or .svg): the path of contact if FILE's name contains 'path', "
                           "else the transmission error; repeatable")
+    ld = p.add_argument_group("loaded contact (external pairs; needs --width)")
+    ld.add_argument("--torque", type=float, help="pinion torque, N m: analyse the pair under load")
+    ld.add_argument("--tip-relief", metavar="AMOUNT[@DIAMETER]", help="linear tip relief on both gears, mm; "
+                    "from the pinion's DIAMETER (mm; the wheel's over the same roll length), else from each "
+                    "gear's highest point of single tooth contact (long relief)")
+    ld.add_argument("--crowning", type=float, default=0.0, help="lead crowning C_beta of the pinion, mm")
+    ld.add_argument("--misalignment", type=float, default=0.0,
+                    help="axis misalignment out of plane f_Sigma_beta over the face width, mm")
+    ld.add_argument("--misalignment-in-plane", type=float, default=0.0,
+                    help="axis misalignment in plane f_Sigma_delta over the face width, mm")
+    ld.add_argument("--center-distance-deviation", type=float, default=0.0,
+                    help="centre-distance deviation from the operating centre distance, mm")
     p.set_defaults(run=run)
 
 
@@ -63,7 +79,14 @@ def run(args) -> int:
     check = check_pair(spec, limits)
     analysis = analyse_pair(spec, args.steps, tol=args.tol, slices=args.slices, contact_tol=args.contact_tol)
     findings = simulated_findings(spec, check.geometry, check.report.findings, limits, analysis)
-    written = [save_plot(analysis, path) for path in args.output]
+    loaded = _loaded(spec, args)
+    if loaded is not None:
+        from gearkit.contact.plot_loaded import save_loaded_plot
+
+        written = [save_plot(analysis, path) if "path" in path.lower() else save_loaded_plot(loaded, path)
+                   for path in args.output]
+    else:
+        written = [save_plot(analysis, path) for path in args.output]
     if args.json:
         out = analysis.to_dict()
         g = check.geometry
@@ -74,17 +97,68 @@ def run(args) -> int:
         out["findings"] = [f.to_dict() for f in findings]
         out["formula_findings"] = [f.to_dict() for f in check.report.findings if f.status != "ok"]
         out["files"] = written
+        if loaded is not None:
+            out["loaded"] = loaded.to_dict()
         print(json.dumps(out, indent=2))
     else:
-        print(format_summary(spec, check, analysis, findings, written))
+        print(format_summary(spec, check, analysis, findings, written, loaded))
     return 1 if any(f.status == "fail" for f in findings) else 0
+
+
+def _tip_relief(spec, text):
+    """``AMOUNT[@DIAMETER]`` -> (Modification, Modification) or (None, None)."""
+    from gearkit.contact.harris import long_tip_relief
+    from gearkit.families.modification import Modification
+    from gearkit.pair import pair_geometry
+
+    if not text:
+        return None, None
+    amount, _, diameter = text.partition("@")
+    try:
+        c = float(amount)
+        d = float(diameter) if diameter else None
+    except ValueError:
+        raise SpecError("--tip-relief", f"{text!r} must be AMOUNT or AMOUNT@DIAMETER (mm)") from None
+    if d is None:
+        return long_tip_relief(spec, c)
+    if not (math.isfinite(c) and 0 <= c <= 1):
+        raise SpecError("--tip-relief", f"{c!r} must be an amount in [0, 1] mm")
+    g = pair_geometry(spec)
+    rb1, ra1 = g.gears[0].base_diameter / 2, g.gears[0].tip_diameter / 2
+    if not (math.isfinite(d) and 2 * rb1 < d < 2 * ra1):
+        raise SpecError("--tip-relief", f"start diameter {d!r} must lie on the pinion's flank "
+                        f"({2 * rb1:.4f} .. {2 * ra1:.4f} mm)")
+    roll = math.sqrt(ra1 ** 2 - rb1 ** 2) - math.sqrt((d / 2) ** 2 - rb1 ** 2)
+    return (Modification(tip_relief=c, tip_relief_diameter=d), Modification(tip_relief=c, tip_relief_roll=roll))
+
+
+def _loaded(spec, args):
+    """The loaded analysis asked for by ``--torque`` (None without it)."""
+    from gearkit.contact.loaded import Deviations
+    from gearkit.contact.pair import analyse_loaded
+    from gearkit.families.modification import Modification
+
+    extras = ("tip_relief", "crowning", "misalignment", "misalignment_in_plane", "center_distance_deviation")
+    if args.torque is None:
+        if any(getattr(args, k) for k in extras):
+            raise SpecError("--torque", "micro-geometry and mounting deviations act in the loaded analysis: "
+                            "give --torque")
+        return None
+    m1, m2 = _tip_relief(spec, args.tip_relief)
+    if args.crowning:
+        import dataclasses
+
+        m1 = dataclasses.replace(m1, lead_crowning=args.crowning) if m1 else Modification(lead_crowning=args.crowning)
+    dev = Deviations(args.center_distance_deviation, args.misalignment_in_plane, args.misalignment)
+    return analyse_loaded(spec, args.torque, modifications=(m1, m2), deviations=dev, steps=args.steps,
+                          slices=args.slices, tol=args.tol)
 
 
 def _mm(v) -> str:
     return f"{0.0 if abs(v) < 5e-6 else v:.5f}"  # no "-0.00000"
 
 
-def format_summary(spec, check, analysis, findings, written=()) -> str:
+def format_summary(spec, check, analysis, findings, written=(), loaded=None) -> str:
     """The human summary of ``gearkit contact``."""
     g = check.geometry
     z2 = "rack" if g.kind == "rack" else f"z2 = {spec.teeth2}"
@@ -108,6 +182,12 @@ def format_summary(spec, check, analysis, findings, written=()) -> str:
                               if inter.found else "none"),
         "",
     ]
+    if loaded is not None:
+        lines[-1:-1] = [
+            f"  loaded ({loaded.torque:g} N m; {loaded.steps} steps, {loaded.slices} slices): p-p TE "
+            f"{loaded.transmission_error_pp * 1e6:.3f} µrad, contact ratio {loaded.contact_ratio_loaded:.3f}, "
+            f"max Hertzian pressure {loaded.max_contact_pressure:.0f} MPa, mean mesh stiffness "
+            f"{loaded.mesh_stiffness_mean:.2f} N/mm/µm"]
     for f in findings:
         mark = {"fail": "!! FAIL  ", "warn": " ! warn  ", "ok": "   ok    "}[f.status]
         lines.append(f"  {mark}{f.id:<29}{f.message}")

@@ -14,12 +14,15 @@ import numpy as np
 
 from gearkit.errors import SpecError
 
-__all__ = ["plot_transmission_error", "plot_path_of_contact", "save_plot"]
+__all__ = ["new_figure", "plot_path_of_contact", "plot_transmission_error", "save_plot", "write_figure"]
 
 _FORMATS = ("png", "svg")
+#: a rigid TE below this (rad; mm for a rack) is round-off of the exact solution, drawn as zero
+ROUND_OFF = 1e-12
 
 
-def _figure(width=7.0, height=4.5):
+def new_figure(width=7.0, height=4.5):
+    """A matplotlib Figure on the Agg canvas (no pyplot state)."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
@@ -28,7 +31,8 @@ def _figure(width=7.0, height=4.5):
     return fig
 
 
-def _write(fig, path) -> str:
+def write_figure(fig, path) -> str:
+    """Write ``fig`` to ``path`` atomically in the format of its suffix (png, svg); returns the path."""
     path = os.fspath(path)
     fmt = os.path.splitext(path)[1].lower().lstrip(".")
     if fmt not in _FORMATS:
@@ -49,11 +53,18 @@ def _write(fig, path) -> str:
 
 def plot_transmission_error(result, path) -> str:
     """Transmission error (µrad; µm for a rack) and pairs in contact over the mesh cycle."""
-    fig = _figure()
+    fig = new_figure()
     ax = fig.add_subplot(1, 1, 1)
     phi = np.degrees(result.driver_angle)
     te = result.transmission_error * 1e6
     unit = "µm" if result.units == "mm" else "µrad"
+    noise = ROUND_OFF * 1e6
+    flat = bool(np.all(np.abs(te[np.isfinite(te)]) <= noise))
+    if flat:  # conjugate flanks: zero to round-off, drawn as zero on a readable scale
+        ax.set_ylim(-1.0, 1.0)
+        ax.text(0.02, 0.92, f"TE = 0 to round-off (max |TE| {np.nanmax(np.abs(te)):.1e} {unit})",
+                transform=ax.transAxes, fontsize=8)
+        te = np.zeros_like(te)
     ax.plot(phi, np.where(np.isfinite(te), te, np.nan), color="tab:blue", lw=1.2, label="transmission error")
     ax.set_xlabel("driver angle (deg)")
     ax.set_ylabel(f"transmission error ({unit})", color="tab:blue")
@@ -67,7 +78,7 @@ def plot_transmission_error(result, path) -> str:
         title += f"; interference {result.interference.max_depth:.3g} mm ({', '.join(result.interference.where)})"
     ax.set_title(title, fontsize=9)
     ax.grid(True, alpha=0.3)
-    return _write(fig, path)
+    return write_figure(fig, path)
 
 
 def _half_points(profile, tol):
@@ -114,7 +125,7 @@ def plot_path_of_contact(result, path, step: int | None = None) -> str:
     phi = float(result.driver_angle[j])
     delta = float(result.reference + result.transmission_error[j])
     tol = max(mesh.tol, 1e-3 * mesh.module)
-    fig = _figure(6.5, 6.5)
+    fig = new_figure(6.5, 6.5)
     ax = fig.add_subplot(1, 1, 1)
     for k, t in enumerate(_driver_teeth(mesh, phi, tol)):
         ax.plot(t[:, 0], t[:, 1], color="tab:blue", lw=1.0, label="driver" if k == 0 else None)
@@ -140,7 +151,7 @@ def plot_path_of_contact(result, path, step: int | None = None) -> str:
     ax.legend(loc="upper right", fontsize=8)
     ax.set_title(f"path of contact, driver at {math.degrees(phi):.3f} deg", fontsize=9)
     ax.grid(True, alpha=0.3)
-    return _write(fig, path)
+    return write_figure(fig, path)
 
 
 def save_plot(result, path) -> str:

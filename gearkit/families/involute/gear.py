@@ -24,6 +24,7 @@ from gearkit.boundary import trim_half_tooth
 from gearkit.profile import ToothProfile
 from gearkit.curves import inv, polar_from_y
 from gearkit.envelope import chain_branches
+from gearkit.families.modification import Modification, modify_half
 from gearkit.errors import GeometryError, SpecError, require, require_cut_inputs
 from gearkit.motion import RollingMotion
 from gearkit.tools import BasicRack, ShaperCutter, rotation_matrix, transform_chain
@@ -48,6 +49,9 @@ class GearSpec:
         None: d + 2 m_n (h_a* + x) (external), d - 2 m_n (h_a* - x) (internal), no tip shortening.
     thinning : float, mm, >= 0
         Tooth-thickness allowance for backlash (normal section, on the reference circle).
+    modification : Modification or None
+        Micro-geometry (:mod:`gearkit.families.modification`): its profile part is applied to the
+        generated flank (external gears), its lead part across the face width in contact analysis.
     """
 
     teeth: int
@@ -58,6 +62,7 @@ class GearSpec:
     tool: BasicRack | ShaperCutter | None = None
     tip_diameter: float | None = None
     thinning: float = 0.0
+    modification: Modification | None = None
 
     def __post_init__(self):
         z = self.teeth
@@ -76,6 +81,10 @@ class GearSpec:
             require(z - self.tool.teeth >= 4, "tool.teeth",
                     f"a shaper with {self.tool.teeth} teeth cannot cut an internal gear of {z} teeth "
                     f"(needs at most z - 4 = {z - 4})")
+        require(self.modification is None or isinstance(self.modification, Modification), "modification",
+                "must be a Modification or None")
+        require(self.modification is None or not (self.internal and self.modification.has_profile),
+                "modification", "profile modifications are supported on external gears only")
         if self.tip_diameter is not None:
             d = self.tip_diameter
             require(math.isfinite(d) and 0.0 < d, "tip_diameter", f"{d!r} must be a positive length in mm")
@@ -176,10 +185,18 @@ def tooth_profile(spec: GearSpec) -> ToothProfile:
     if not any(p.label == "flank" for p in half.pieces):
         raise SpecError("shift", f"x = {spec.shift} leaves no involute flank on a {spec.teeth}-tooth gear "
                         "(the cutter's tip cuts the whole tooth away)")
+    if spec.modification is not None and spec.modification.has_profile:
+        half = modify_half(half, spec.modification, spec.base_diameter / 2.0, _root_radius(half))
     prof = InvoluteProfile(half, spec.teeth, spec.internal, spec.module, family="involute", spec=spec,
                            reference_diameter=spec.reference_diameter, base_diameter=spec.base_diameter,
                            blank_tip_diameter=spec.blank_tip_diameter)
     return prof
+
+
+def _root_radius(half) -> float:
+    """Radius of the half tooth's last point (the space centre on the root circle), mm."""
+    q = half.pieces[-1](np.array([1.0]))[0]
+    return float(math.hypot(q[0], q[1]))
 
 
 class InvoluteProfile(ToothProfile):
