@@ -16,8 +16,8 @@ _PUBLIC = {
     # the generating kernel and the involute family
     "gearkit.accuracy": ("Accuracy",),
     "gearkit.profile": ("ToothProfile",),
-    "gearkit.families.involute": ("GearSpec", "InvoluteProfile", "RackProfile", "RackSpec", "rack_profile",
-                                  "tooth_profile"),
+    "gearkit.families.involute": ("GearSpec", "InvoluteProfile", "Modification", "RackProfile", "RackSpec",
+                                  "rack_profile", "tooth_profile"),
     "gearkit.tools": ("BasicRack", "ShaperCutter"),
     "gearkit.oracles.involute": ("swept_gear",),
     # gear pairs and design checks
@@ -28,7 +28,8 @@ _PUBLIC = {
     # blocking contours
     "gearkit.blocking": ("BlockingAtlas", "BlockingContour", "blocking_atlas", "blocking_contour"),
     # tooth contact analysis
-    "gearkit.contact": ("ContactAnalysis", "analyse_pair", "pin_ring"),
+    "gearkit.contact": ("ContactAnalysis", "Deviations", "LoadedAnalysis", "Material", "analyse_loaded",
+                        "analyse_pair", "harris_map", "pin_ring"),
     # the cycloidal family
     "gearkit.checks.cycloidal": ("check_cycloid_pair", "check_drive", "check_pin_gearing"),
     "gearkit.families.cycloidal": ("CycloidalDisc", "CycloidGear", "CycloidPairSpec", "DriveSpec", "PinGearSpec",

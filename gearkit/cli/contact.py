@@ -108,7 +108,7 @@ def run(args) -> int:
 def _tip_relief(spec, text):
     """``AMOUNT[@DIAMETER]`` -> (Modification, Modification) or (None, None)."""
     from gearkit.contact.harris import long_tip_relief
-    from gearkit.families.modification import Modification
+    from gearkit.families.involute.modification import Modification
     from gearkit.pair import pair_geometry
 
     if not text:
@@ -136,7 +136,7 @@ def _loaded(spec, args):
     """The loaded analysis asked for by ``--torque`` (None without it)."""
     from gearkit.contact.loaded import Deviations
     from gearkit.contact.pair import analyse_loaded
-    from gearkit.families.modification import Modification
+    from gearkit.families.involute.modification import Modification
 
     extras = ("tip_relief", "crowning", "misalignment", "misalignment_in_plane", "center_distance_deviation")
     if args.torque is None:

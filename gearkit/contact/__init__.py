@@ -10,6 +10,9 @@ backlash, and interference (depth, area, where). Helical gears as transverse sli
 * :func:`simulate` — one mesh cycle → :class:`ContactAnalysis` (:mod:`gearkit.contact.analysis`);
   :func:`limits` — just where the mate stops either way at given driver angles.
 * :func:`analyse_pair` / :func:`pair_mesh` — the same for a :class:`~gearkit.pair.PairSpec`.
+* :func:`analyse_loaded` — the pair under load (:mod:`gearkit.contact.loaded`): loaded TE, load
+  sharing, contact pattern, Hertzian pressure, mesh stiffness (:mod:`gearkit.contact.stiffness`);
+  :func:`harris_map` — p-p TE over loads and tip reliefs (:mod:`gearkit.contact.harris`).
 * :func:`pin_ring` — pins as teeth (cycloid–pin-wheel drives, lantern gearing).
 * :func:`plot_transmission_error`, :func:`plot_path_of_contact` — PNG/SVG plots (matplotlib).
 
@@ -30,9 +33,13 @@ Examples
 """
 from gearkit.contact.analysis import ContactAnalysis, Interference, limits, simulate
 from gearkit.contact.mesh import KINDS, Mesh
-from gearkit.contact.pair import analyse_pair, pair_mesh
+from gearkit.contact.harris import HarrisMap, harris_map, long_tip_relief
+from gearkit.contact.loaded import Deviations, LoadedAnalysis
+from gearkit.contact.pair import analyse_loaded, analyse_pair, pair_mesh
+from gearkit.contact.stiffness import Material, iso_mesh_stiffness
 from gearkit.contact.pins import pin_ring
 from gearkit.contact.plot import plot_path_of_contact, plot_transmission_error, save_plot
 
-__all__ = ["KINDS", "ContactAnalysis", "Interference", "Mesh", "analyse_pair", "limits", "pair_mesh", "pin_ring",
-           "plot_path_of_contact", "plot_transmission_error", "save_plot", "simulate"]
+__all__ = ["KINDS", "ContactAnalysis", "Deviations", "HarrisMap", "Interference", "LoadedAnalysis", "Material", "Mesh",
+           "analyse_loaded", "analyse_pair", "harris_map", "iso_mesh_stiffness", "limits", "long_tip_relief",
+           "pair_mesh", "pin_ring", "plot_path_of_contact", "plot_transmission_error", "save_plot", "simulate"]

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from gearkit.errors import is_real, require
-from gearkit.families.modification import Modification
+from gearkit.families.involute.modification import Modification
 
 __all__ = ["HarrisMap", "harris_map", "long_tip_relief"]
 

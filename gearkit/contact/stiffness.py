@@ -31,7 +31,7 @@ Examples
 --------
 >>> iso = iso_mesh_stiffness(20, 40, contact_ratio=1.635)
 >>> round(iso.single, 2), round(iso.mesh, 2)
-(14.01, 20.67)
+(12.69, 18.74)
 """
 from __future__ import annotations
 

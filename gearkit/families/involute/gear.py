@@ -24,7 +24,7 @@ from gearkit.boundary import trim_half_tooth
 from gearkit.profile import ToothProfile
 from gearkit.curves import inv, polar_from_y
 from gearkit.envelope import chain_branches
-from gearkit.families.modification import Modification, modify_half
+from gearkit.families.involute.modification import Modification, modify_half
 from gearkit.errors import GeometryError, SpecError, require, require_cut_inputs
 from gearkit.motion import RollingMotion
 from gearkit.tools import BasicRack, ShaperCutter, rotation_matrix, transform_chain
@@ -50,7 +50,7 @@ class GearSpec:
     thinning : float, mm, >= 0
         Tooth-thickness allowance for backlash (normal section, on the reference circle).
     modification : Modification or None
-        Micro-geometry (:mod:`gearkit.families.modification`): its profile part is applied to the
+        Micro-geometry (:mod:`gearkit.families.involute.modification`): its profile part is applied to the
         generated flank (external gears), its lead part across the face width in contact analysis.
     """
 
