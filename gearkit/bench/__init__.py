@@ -64,6 +64,11 @@ def run_bench(quick: bool = False, process: bool = True, progress=None) -> dict:
     say("pair check, simulated meshes")
     out["products"] = (products.pair_check_rows(quick, repeats) + products.involute_contact_rows(quick, repeats)
                        + products.cycloidal_mesh_rows(quick, repeats) + products.novikov_contact_rows(quick, repeats))
+    if products.available("gearkit.contact.loaded"):
+        from gearkit.bench.contact import contact_target_rows
+
+        say("contact analysis against its targets")
+        out["contact_targets"] = contact_target_rows(quick)
     measured = {(r["family"], r["product"]) for r in out["ladder"] + out["products"]}
     out["unmeasured"] = products.unmeasured_products(measured)
     if process:
@@ -135,6 +140,10 @@ def format_table(res: dict) -> str:
         lines.append(f"  {r['family']:9} {r['product']:18} {r['case']:38} {_fmt_s(r['seconds']):>11}{extra}")
     for r in res["unmeasured"]:
         lines.append(f"  {r['family']:9} {r['product']:18} -- {r['note']} ({r['module']})")
+    if res.get("contact_targets"):
+        from gearkit.bench.contact import format_contact_rows
+
+        lines += [""] + format_contact_rows(res["contact_targets"])
     if res["process"]:
         lines.append("")
         lines.append("whole process (gearkit gear ... -o FILE, tol 0.001 mm, median of 5 runs)")

@@ -16,7 +16,7 @@ __all__ = ["plot_harris_map", "plot_load_sharing", "plot_loaded_te", "plot_patte
 
 def _title(res) -> str:
     return (f"{res.torque:g} N m: p-p TE {res.transmission_error_pp * 1e6:.3f} µrad, loaded contact ratio "
-            f"{res.contact_ratio_loaded:.3f}; {res.steps} steps, {res.slices} slices")
+            f"{res.contact_ratio_loaded:.3f}; {res.steps} steps, {res.slices} slice{'s' if res.slices > 1 else ''}")
 
 
 def plot_loaded_te(res, path) -> str:
@@ -51,7 +51,8 @@ def plot_load_sharing(res, path) -> str:
     ax = fig.add_subplot(1, 1, 1)
     phi = np.degrees(res.driver_angle)
     for j, t in enumerate(res.pair_teeth):
-        ax.plot(phi, res.sharing[:, j], lw=1.3, label=f"driver tooth {int(t)}")
+        share = res.sharing[:, j]
+        ax.plot(phi, np.where(res.load[:, :, j].sum(1) > 0, share, np.nan), lw=1.3, label=f"driver tooth {int(t)}")
     ax.set_ylim(-0.05, 1.1)
     ax.set_xlabel("driver angle (deg)")
     ax.set_ylabel("load share")

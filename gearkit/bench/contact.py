@@ -1,0 +1,46 @@
+"""Contact analysis against its speed targets: the rigid and the loaded mesh cycle.
+
+Targets (issues 15 and 16): a 2000-step rigid cycle of the standard 20/40 pair (m = 2) in under
+0.1 s in-process, and a 2000-step loaded spur cycle in under 1 s. Each row reports the median
+time beside its target and pass/fail; the loaded cycle is also timed against its steps and slices
+(the accuracy knobs reported with every loaded result). The first, untimed call builds the teeth.
+"""
+from __future__ import annotations
+
+from gearkit.bench.timing import median_time
+
+__all__ = ["contact_target_rows", "format_contact_rows"]
+
+
+def contact_target_rows(quick: bool = False) -> list:
+    """Rows ``{case, steps, slices, seconds, target, pass}`` (target None: a scaling row without one)."""
+    from gearkit.contact import analyse_loaded, pair_mesh, simulate
+    from gearkit.pair import PairSpec
+
+    spur = PairSpec(20, 40, 2.0, face_width=20.0)
+    mesh = pair_mesh(spur)
+    simulate(mesh, 64)
+    repeats = 1 if quick else 3
+    rows = []
+    seconds, _ = median_time(lambda: simulate(mesh, 2000), repeats, budget=5.0)
+    rows.append({"case": "rigid cycle 20/40 m=2", "steps": 2000, "slices": 1, "seconds": seconds, "target": 0.1})
+    cases = [(2000, 1, 1.0)] + ([] if quick else [(500, 1, None), (500, 10, None), (500, 40, None)])
+    for steps, slices, target in cases:
+        seconds, _ = median_time(lambda: analyse_loaded(spur, 100.0, steps=steps, slices=slices), repeats,
+                                 budget=10.0)
+        rows.append({"case": "loaded cycle 20/40 m=2, 100 N m", "steps": steps, "slices": slices,
+                     "seconds": seconds, "target": target})
+    for r in rows:
+        r["pass"] = None if r["target"] is None else bool(r["seconds"] <= r["target"])
+    return rows
+
+
+def format_contact_rows(rows) -> list:
+    """Plain-text lines of :func:`contact_target_rows`."""
+    lines = ["contact analysis against its targets (in-process, median)",
+             f"  {'case':34} {'steps':>6} {'slices':>6} {'time':>10} {'target':>8} {'':>5}"]
+    for r in rows:
+        target = "" if r["target"] is None else f"{r['target']:.2f} s"
+        verdict = "" if r["pass"] is None else ("pass" if r["pass"] else "FAIL")
+        lines.append(f"  {r['case']:34} {r['steps']:6d} {r['slices']:6d} {r['seconds']:9.3f}s {target:>8} {verdict:>5}")
+    return lines
