@@ -71,7 +71,7 @@ def _output_flags(p) -> None:
     p.add_argument("--tol", type=float, default=None, help="accuracy of exported points/facets, mm")
     p.add_argument("--width", type=float, default=None, help="face width of solids, mm")
     p.add_argument("-o", "--output", default=None,
-                   help="write: .svg .dxf .csv .json (2D outlines) or .stl .obj .glb (solids)")
+                   help="write: .svg .dxf .csv .json (2D outlines) or .stl .obj .glb .3mf .step (solids)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
 
 

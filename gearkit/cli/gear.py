@@ -1,7 +1,7 @@
 """``gearkit gear``: generate one involute gear, print its key values, export its profile or solid.
 
 ``-o`` with a 2D extension (.svg .dxf .csv .json) writes the transverse profile; with a mesh
-extension (.stl .obj .glb) it writes the solid (``--width`` required): spur or helical,
+extension (.stl .obj .glb .3mf .step) it writes the solid (``--width`` required): spur or helical,
 ``--herringbone [--gap G]``, ``--bore D [--keyway WxD]``, a ring's ``--outer-diameter`` or
 ``--rim``. The mesh path imports only numpy and manifold3d for STL (trimesh for OBJ/GLB).
 """
@@ -44,7 +44,7 @@ def register(subparsers) -> None:
     p.add_argument("--tol", type=float, default=None, help="accuracy: max deviation of any output point, chord or "
                    "facet from the exact profile or tooth surface, mm (default 0.001*m for 2D, 0.005*m for meshes)")
     p.add_argument("-o", "--output", default=None, help="write the profile (.svg .dxf .csv .json) or the solid "
-                   "(.stl .obj .glb; needs --width)")
+                   "(.stl .obj .glb .3mf, or exact B-rep .step; needs --width)")
     p.add_argument("--json", action="store_true", help="print one JSON object instead of the table")
     add_inspection_flags(p)
     add_solid_flags(p)
@@ -198,7 +198,7 @@ def run(args) -> int:
         if not mesh:
             profile_format(args.output)  # reject unknown extensions before any work
     if not mesh and _solid_only_flags(args):
-        raise SpecError(_solid_only_flags(args)[0], "applies to a mesh output (-o .stl, .obj or .glb)")
+        raise SpecError(_solid_only_flags(args)[0], "applies to a solid output (-o .stl .obj .glb .3mf .step)")
     spec, prof = build(args)
     if mesh:
         return _run_solid(args, spec, prof)
@@ -227,16 +227,22 @@ def run(args) -> int:
 
 def _run_solid(args, spec, prof) -> int:
     from gearkit.solids import default_mesh_tol, gear_solid
-    from gearkit.solids.export import write_mesh
+    from gearkit.solids.export import mesh_format, write_mesh
 
     tol = args.tol if args.tol is not None else default_mesh_tol(spec.module)
     if not tol > 0:
         raise SpecError("--tol", f"{tol!r} must be a positive length in mm")
     solid = gear_solid(prof, solid_spec_from_args(args), tol, name="gear")
-    write_mesh(args.output, [solid], ascii=args.ascii)
     info = prof.summary(tol)
-    info["tolerance"] = {"requested": tol, "achieved": solid.achieved,
-                         "of": "every vertex and facet of the mesh from the exact surface"}
+    if mesh_format(args.output) in ("step", "stp"):
+        from gearkit.solids.step import write_step
+
+        info["tolerance"] = {"requested": tol, "achieved": write_step(args.output, [solid])["achieved"],
+                             "of": "every B-spline flank of the B-rep from the exact surface"}
+    else:
+        write_mesh(args.output, [solid], ascii=args.ascii)
+        info["tolerance"] = {"requested": tol, "achieved": solid.achieved,
+                             "of": "every vertex and facet of the mesh from the exact surface"}
     info["solid"] = solid.summary()
     info["output"] = args.output
     if args.json:

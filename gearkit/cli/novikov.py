@@ -43,7 +43,7 @@ def register(subparsers) -> None:
                      "the solids' default in 3D)")
     out.add_argument("--json", action="store_true", help="print one JSON object")
     out.add_argument("-o", "--output", help="write the pair in mesh: 2D .svg .dxf .csv .json, or helical solids "
-                     ".obj .stl .glb (one gear when the file is named gear*, or with --gear)")
+                     ".obj .stl .glb .3mf .step (one gear when the file is named gear*, or with --gear)")
     out.add_argument("--gear", type=int, choices=(1, 2), help="3D output of this gear only (1 pinion, 2 wheel)")
     p.set_defaults(run=run)
 

@@ -46,7 +46,7 @@ def register(subparsers) -> None:
                    "interference, degrees")
     o.add_argument("--sweep", type=int, default=0, metavar="N",
                    help="also measure the interference at N rotations over one pinion pitch")
-    o.add_argument("-o", "--output", default=None, help="write the assembly: .obj (named parts), .glb or .stl")
+    o.add_argument("-o", "--output", default=None, help="write the assembly: .obj .glb .3mf .step (named parts) or .stl")
     o.add_argument("--ascii", action="store_true", help="ASCII STL instead of binary")
     o.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(run=run)
@@ -65,7 +65,7 @@ def run(args) -> int:
         from gearkit.solids.export import mesh_format
 
         if mesh_format(args.output) is None:
-            raise SpecError("output", f"{args.output!r}: the assembly is written as .obj, .glb or .stl")
+            raise SpecError("output", f"{args.output!r}: the assembly is written as .obj, .glb, .3mf, .step or .stl")
     if args.sweep < 0:
         raise SpecError("--sweep", f"{args.sweep} must be >= 0")
     spec = _pair_spec(args)

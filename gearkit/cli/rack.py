@@ -20,7 +20,7 @@ def register(subparsers) -> None:
     p.add_argument("--thinning", type=float, default=0.0, help="tooth thinning for backlash, mm")
     p.add_argument("--tol", type=float, default=None, help="max deviation of output points/chords, mm (default 0.001*m)")
     p.add_argument("-o", "--output", default=None,
-                   help="write the profile (.svg .dxf .csv .json) or a bar of --count teeth as a solid (.stl .obj .glb)")
+                   help="write the profile (.svg .dxf .csv .json) or a bar of --count teeth as a solid (.stl .obj .glb .3mf .step)")
     p.add_argument("--width", type=float, default=None, help="face width of the solid bar, mm (default 10*m)")
     p.add_argument("--height", type=float, default=None,
                    help="bar height from the tip line to its back, mm (default tooth depth + 3*m)")

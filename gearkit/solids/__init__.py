@@ -7,16 +7,19 @@ and tested for 3D interference (:func:`pair_assembly`). manifold3d builds and ch
 solid; STL is written with numpy, OBJ (named parts) and GLB through trimesh
 (:func:`write_mesh`, atomic). The same ``tol`` (mm) bounds the deviation of every vertex and
 facet from the exact tooth surface, twist included, and every solid reports the deviation it
-achieved (``Solid.achieved``).
+achieved (``Solid.achieved``). 3MF (unit mm, named objects) is written with the standard
+library; STEP rebuilds each part from its :class:`Recipe` as an exact B-rep
+(:mod:`gearkit.solids.step`, B-spline flanks, planar ends, cylindrical bores) with the optional
+``gearkit[step]`` kernel, imported only then.
 
-This package (with :mod:`gearkit.oracles.involute`) is the only place that imports manifold3d; trimesh
+This package (with :mod:`gearkit.oracles.involute`) is the only place that imports manifold3d and OCP; trimesh
 is imported only where a format or a check needs it.
 """
 from gearkit.solids.export import MESH_FORMATS, mesh_format, write_mesh
 from gearkit.solids.gear import gear_solid
 from gearkit.solids.pair import Assembly, pair_assembly
 from gearkit.solids.rack import rack_solid
-from gearkit.solids.solid import Solid, SolidSpec, default_mesh_tol
+from gearkit.solids.solid import Recipe, Solid, SolidSpec, default_mesh_tol
 
-__all__ = ["Assembly", "MESH_FORMATS", "Solid", "SolidSpec", "default_mesh_tol", "gear_solid", "mesh_format",
+__all__ = ["Assembly", "MESH_FORMATS", "Recipe", "Solid", "SolidSpec", "default_mesh_tol", "gear_solid", "mesh_format",
            "pair_assembly", "rack_solid", "write_mesh"]

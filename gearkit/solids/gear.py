@@ -20,7 +20,7 @@ import manifold3d as m3
 import numpy as np
 
 from gearkit.errors import GeometryError, SpecError
-from gearkit.solids.solid import Solid, SolidSpec, default_mesh_tol
+from gearkit.solids.solid import Recipe, Solid, SolidSpec, default_mesh_tol
 from gearkit.solids.surface import plan_layers, tooth_polyline
 
 
@@ -158,8 +158,8 @@ class _Mesh:
     def cap(self, tris, up: bool):
         self.faces.append(tris if up else tris[:, ::-1])
 
-    def solid(self, name: str, info: dict) -> Solid:
-        return Solid.from_arrays(np.concatenate(self.vertices), np.concatenate(self.faces), name, info)
+    def solid(self, name: str, info: dict, recipe: Recipe | None = None) -> Solid:
+        return Solid.from_arrays(np.concatenate(self.vertices), np.concatenate(self.faces), name, info, recipe)
 
 
 def _helix(profile, spec: SolidSpec) -> float:
@@ -265,7 +265,7 @@ def gear_solid(profile, spec: SolidSpec, tol: float | None = None, name: str = "
         w0, w1 = mesh.wall(wall, 0.0, b, hole=not internal)
     mesh.cap(sec.face(0.0, lo[0], wall, w0), up=False)
     mesh.cap(sec.face(top, hi[1], wall, w1), up=True)
-    return mesh.solid(name, info)
+    return mesh.solid(name, info, Recipe("gear", (profile, spec, tol)))
 
 
 def _groove(profile, radii, wall, internal: bool, tol: float):

@@ -17,7 +17,7 @@ import manifold3d as m3
 import numpy as np
 
 from gearkit.errors import SpecError, require
-from gearkit.solids.solid import Solid, checked, default_mesh_tol, manifold_from_arrays
+from gearkit.solids.solid import Recipe, Solid, checked, default_mesh_tol, manifold_from_arrays
 from gearkit.solids.surface import plan_layers, tooth_polyline
 
 
@@ -77,7 +77,7 @@ def rack_solid(profile, length: float, height: float, width: float, tol: float |
             "length": float(length), "height": float(height), "helix_angle_deg": beta_deg, "tol": tol,
             "achieved": plan.achieved, "polyline_tol": poly.tol, "layers": 1, "points_per_tooth": poly.edges,
             "teeth": None}
-    return Solid(man, name, info)
+    return Solid(man, name, info, Recipe("rack", (profile, length, height, width, start, tol)))
 
 
 def _sheared_prism(polygon, width: float, shear: float):

@@ -88,6 +88,29 @@ class SolidSpec:
             raise SpecError("rim", "give the outer diameter or the rim thickness, not both")
 
 
+@dataclass(frozen=True)
+class Recipe:
+    """How to rebuild a solid as an exact B-rep (:func:`gearkit.solids.step.shape`), and where it is placed.
+
+    kind : "gear" (profile, SolidSpec, tol), "rack" (profile, length, height, width, start, tol),
+        "section" (curves, runs, tol), "cylinders" (centres, radius, z0, z1), "tube" (inner, outer,
+        z0, z1), "difference" / "union" (Recipe, Recipe)
+    angle : rad, turned about z first; offset : (x, y, z) mm, moved then
+    """
+
+    kind: str
+    args: tuple
+    angle: float = 0.0
+    offset: tuple = (0.0, 0.0, 0.0)
+
+    def placed(self, angle: float = 0.0, offset=(0.0, 0.0, 0.0)) -> "Recipe":
+        """This recipe turned by ``angle`` about z and then moved by ``offset`` (after its own placement)."""
+        c, s = math.cos(angle), math.sin(angle)
+        x, y, z = self.offset
+        moved = (c * x - s * y + offset[0], s * x + c * y + offset[1], z + offset[2])
+        return Recipe(self.kind, self.args, self.angle + angle, tuple(float(v) for v in moved))
+
+
 class Solid:
     """A checked watertight solid and the record of how it was made.
 
@@ -98,18 +121,21 @@ class Solid:
     info : dict
         ``kind``, ``tol`` (requested, mm), ``achieved`` (largest measured deviation of any vertex
         or facet from the exact surface, mm), ``layers``, ``points_per_tooth``, ...
+    recipe : Recipe or None
+        How to rebuild it exactly (STEP); None for a mesh-only solid.
     """
 
-    def __init__(self, manifold, name: str, info: dict):
+    def __init__(self, manifold, name: str, info: dict, recipe: Recipe | None = None):
         self.manifold = manifold
         self.name = name
         self.info = dict(info)
+        self.recipe = recipe
         self._arrays = None
 
     @classmethod
-    def from_arrays(cls, vertices, faces, name: str, info: dict) -> "Solid":
+    def from_arrays(cls, vertices, faces, name: str, info: dict, recipe: Recipe | None = None) -> "Solid":
         """Build from a triangle mesh; raise :class:`GeometryError` unless it is a valid solid."""
-        return cls(checked(manifold_from_arrays(vertices, faces), name), name, info)
+        return cls(checked(manifold_from_arrays(vertices, faces), name), name, info, recipe)
 
     # -- invariants ---------------------------------------------------------------------
     @property
@@ -165,7 +191,8 @@ class Solid:
             man = man.rotate((0.0, 0.0, math.degrees(angle)))
         if any(offset):
             man = man.translate(tuple(float(c) for c in offset))
-        return Solid(man, name or self.name, self.info)
+        recipe = None if self.recipe is None else self.recipe.placed(angle, offset)
+        return Solid(man, name or self.name, self.info, recipe)
 
     def to_trimesh(self):
         """The mesh as a ``trimesh.Trimesh`` (imports trimesh)."""
@@ -175,7 +202,7 @@ class Solid:
         return trimesh.Trimesh(v, f, process=False)
 
     def export(self, path, ascii: bool = False):
-        """Write the mesh (.stl binary unless ``ascii``, .obj, .glb) atomically; returns the path."""
+        """Write the solid (.stl binary unless ``ascii``, .obj, .glb, .3mf, .step) atomically; returns the path."""
         from gearkit.solids.export import write_mesh
 
         return write_mesh(path, [self], ascii=ascii)

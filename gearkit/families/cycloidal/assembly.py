@@ -128,8 +128,10 @@ def _cylinders(centres, radius, z0, z1, tol, name):
     for p in parts[1:]:
         man = man + p.manifold
     from gearkit.solids import Solid
+    from gearkit.solids.solid import Recipe
 
-    return Solid(man, name, {"kind": "pins", "count": len(parts)})
+    recipe = Recipe("cylinders", ([tuple(map(float, c)) for c in centres], float(radius), float(z0), float(z1)))
+    return Solid(man, name, {"kind": "pins", "count": len(parts)}, recipe)
 
 
 def disc_solid(spec: DriveSpec, width: float, tol: float, output: OutputMechanism = OutputMechanism()):
@@ -148,7 +150,9 @@ def disc_solid(spec: DriveSpec, width: float, tol: float, output: OutputMechanis
     holes = _cylinders(centres, hole, -width, 2.0 * width, tol, "holes")
     info = dict(body.info)
     info.update({"output_holes": count, "hole_radius": hole})
-    return Solid(body.manifold - holes.manifold, "disc", info)
+    from gearkit.solids.solid import Recipe
+
+    return Solid(body.manifold - holes.manifold, "disc", info, Recipe("difference", (body.recipe, holes.recipe)))
 
 
 def drive_parts(spec: DriveSpec, width: float, tol: float, output: OutputMechanism = OutputMechanism()):
@@ -169,7 +173,11 @@ def drive_parts(spec: DriveSpec, width: float, tol: float, output: OutputMechani
         n = max(len(circle((0, 0), outer, tol)), len(circle((0, 0), inner, tol)))
         t = np.linspace(0.0, 2.0 * math.pi, n, endpoint=False)
         ring = [outer * np.stack([np.cos(t), np.sin(t)], -1), inner * np.stack([np.cos(t), np.sin(t)], -1)]
-        parts.append(prism(ring, -0.1 * width, 1.1 * width, "housing"))
+        from gearkit.solids.solid import Recipe
+
+        housing = prism(ring, -0.1 * width, 1.1 * width, "housing")
+        housing.recipe = Recipe("tube", (inner, outer, -0.1 * width, 1.1 * width))
+        parts.append(housing)
         count, rw_c, rw, _, _ = output.resolve(spec)
         if count:
             oc = [rw_c * np.array([math.sin(2 * math.pi * j / count), math.cos(2 * math.pi * j / count)])
