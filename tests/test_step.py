@@ -182,7 +182,7 @@ def test_rack_pair_and_helical_rack(tmp_path):
     assert main(["pair", "--z1", "10", "-m", "2", "--rack-pair", "--width", "6", "--helix-angle-deg", "10",
                  "--tol", str(TOL), "-o", str(path)]) in (0, 1)
     assert [n for n, _ in _read(path)] == ["pinion", "rack"]
-    from gearkit.families.rack import RackSpec, rack_profile
+    from gearkit.families.involute import RackSpec, rack_profile
     from gearkit.solids import rack_solid
 
     bar = rack_solid(rack_profile(RackSpec(2.0, helix_angle_deg=10.0)), 30.0, 8.0, 6.0, TOL, start=-3.0)
