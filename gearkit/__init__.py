@@ -41,6 +41,10 @@ _PUBLIC = {
                                  "novikov_pair_geometry", "rack_presets", "rack_system"),
     # scenes: placed gears, kinematics, planetary synthesis
     "gearkit.scene": ("Scene", "load_scene", "scene_layout", "scene_speeds"),
+    # cams
+    "gearkit.families.cam": ("CamProfile", "CamSpec", "MotionProgram", "MotionSegment", "cam_profile"),
+    "gearkit.checks.cam": ("CamCheck", "check_cam"),
+    "gearkit.oracles.cam": ("swept_cam",),
     # the speed-accuracy bench
     "gearkit.bench": ("run_bench",),
 }

@@ -1,10 +1,18 @@
 """The envelope solver: where each tool point touches the blank, for every tool segment.
 
 One implementation serves every family. For a tool segment and a generating motion, the
-meshing equation ``n . v_rel = 0`` is solved per tool point in closed form
-(:meth:`gearkit.motion.RollingMotion.contact`), and the point is carried into the blank
-frame at its contact roll. The result is a :class:`Branch`: an exact parametric curve in
-the blank frame, evaluated to machine precision wherever it is asked.
+meshing equation ``n . v_rel = 0`` (the tool point's normal passes through the instant centre)
+is solved and the contact point is carried into the blank frame. It is solved for either
+unknown:
+
+* ``along="tool"`` (gears): per tool point, for the roll at which it touches, in closed form
+  (:meth:`gearkit.motion.RollingMotion.contact`);
+* ``along="motion"`` (cams, and any tool whose points touch over a whole range of the motion,
+  such as a roller during a dwell): per instant of the motion, for the tool point that touches,
+  in closed form on lines and circular arcs (the foot of the normal from the instant centre).
+
+The result is a :class:`Branch`: an exact parametric curve in the blank frame, evaluated to
+machine precision wherever it is asked.
 """
 from __future__ import annotations
 
@@ -30,6 +38,7 @@ class Branch:
     u0: float = 0.0
     u1: float = 1.0
     root: str = "near"
+    along: str = "tool"
 
     @property
     def label(self) -> str:
@@ -42,13 +51,19 @@ class Branch:
         -------
         points : (n, 2) float64, blank frame, mm
         normals : (n, 2) float64, unit outward normals of the blank surface (into the tool)
-        s : (n,) float64, roll at contact, mm
-        valid : (n,) bool, False where the normal misses the tool centrode
+        s : (n,) float64, roll (or motion parameter) at contact
+        valid : (n,) bool, False where the normal misses the tool centrode (along the motion: where
+            the foot of the normal from the instant centre falls off the segment)
         """
         w = np.atleast_1d(np.asarray(w, dtype=float))
         u = self.u0 * (1.0 - w) + self.u1 * w  # exact at both ends (u0 > u1 walks backwards)
-        p, _, n = self.segment.evaluate(u)
-        s, valid = self.motion.contact(p, n, self.root)
+        if self.along == "motion":
+            s = u
+            u, valid = touching(self.segment, self.motion.tool_pole(s), self.root)
+            p, _, n = self.segment.evaluate(u)
+        else:
+            p, _, n = self.segment.evaluate(u)
+            s, valid = self.motion.contact(p, n, self.root)
         s0 = np.where(valid, s, 0.0)
         shift, angle, offset = self.motion.pose(s0)
         q = rotate(p - shift, angle) + offset
@@ -59,6 +74,50 @@ class Branch:
     def __call__(self, w):
         """Blank-frame points at ``w`` (the exact curve)."""
         return self.solve(w, normals=False)[0]
+
+
+def touching(segment: Segment, poles, root: str = "near"):
+    """Parameter of the point of ``segment`` whose normal line passes through each pole (tool frame).
+
+    Closed forms: on a line, the foot of the perpendicular from the pole; on a circular arc of
+    centre ``c``, the point ``c + r m`` with ``m = (pole - c)/|pole - c|`` (``root="near"``: the side
+    facing the pole) or ``-m`` (``"far"``); a corner (``r = 0``) touches at its point, the normal
+    along ``m``. The segment's affine map must be a similarity (true of every tool a cam uses).
+
+    Returns
+    -------
+    u : (n,) float64 in [0, 1] (clipped where invalid)
+    valid : (n,) bool, the contact lies on the segment
+    """
+    pole = np.atleast_2d(np.asarray(poles, dtype=float))
+    a11, a12, a21, a22, b1, b2 = segment.affine
+    mat = np.array([[a11, a12], [a21, a22]])
+    scale = float(np.sqrt(abs(np.linalg.det(mat))))
+    if not np.allclose(mat.T @ mat, scale * scale * np.eye(2), rtol=1e-12, atol=1e-15):
+        raise ValueError("touching: the segment's affine map must be a similarity")
+    local = (pole - np.array([b1, b2])) @ np.linalg.inv(mat).T  # poles in the primitive's frame
+    eps = 1e-12
+    if segment.kind == "line":
+        x0, y0, x1, y1 = segment.data
+        d = np.array([x1 - x0, y1 - y0])
+        u = ((local - np.array([x0, y0])) @ d) / float(d @ d)
+    elif segment.kind == "arc":
+        cx, cy, r, a0, a1 = segment.data
+        m = local - np.array([cx, cy])
+        if root == "far":
+            m = -m
+        elif root != "near":
+            raise ValueError(f"root must be 'near' or 'far' along the motion, not {root!r}")
+        ang = np.arctan2(m[:, 1], m[:, 0])
+        lo = min(a0, a1)
+        ang = lo + np.mod(ang - lo + eps, 2.0 * np.pi) - eps
+        u = (ang - a0) / (a1 - a0)
+    else:
+        raise ValueError(f"touching: no closed form on a {segment.kind!r} segment (lines and arcs only)")
+    if segment.reverse:
+        u = 1.0 - u
+    valid = np.isfinite(u) & (u >= -eps) & (u <= 1.0 + eps)
+    return np.clip(np.where(np.isfinite(u), u, 0.0), 0.0, 1.0), valid
 
 
 def _valid_runs(branch: Branch, n: int = 65):

@@ -1,9 +1,12 @@
-"""Generating motions: a tool centrode rolling without slip on the blank's centrode.
+"""Generating motions: a tool centrode rolling without slip on the blank's centrode, or any planar motion.
 
-Every generating motion gearkit needs has constant ratio, so its centrodes are circles
-or straight lines: rack on gear (hobbing), gear on gear (shaper cutter, external or
-internal), pin ring on disc (cycloidal drive). :class:`RollingMotion` covers them all with
-signed centrode curvatures.
+Gear cutting has constant ratio, so its centrodes are circles or straight lines: rack on
+gear (hobbing), gear on gear (shaper cutter, external or internal), pin ring on disc
+(cycloidal drive). :class:`RollingMotion` covers them all with signed centrode curvatures.
+A cam's follower moves relative to the cam by a motion law, not by rolling:
+:class:`PlanarMotion` is the general planar motion given by its pose and the pose's
+derivatives as functions of the motion parameter (the cam angle). Both give the envelope
+solver (:mod:`gearkit.envelope`) what it needs: the pose and the instant centre.
 
 Frames. The *tool frame* and the *fixed frame* coincide at ``s = 0``: origin at the pole
 (the centrodes' contact point), x along the common tangent, the blank centre at
@@ -200,3 +203,82 @@ class RollingMotion:
             if np.all(np.abs(step) <= 1e-15 * (1.0 + np.abs(s))):
                 break
         return s
+
+
+@dataclass(frozen=True)
+class PlanarMotion:
+    """A general planar motion of the tool relative to the blank, given by its pose over a parameter.
+
+    At parameter ``t`` (for a cam: the cam angle, rad) a tool-frame point ``p`` sits in the blank
+    frame at ``q = R(theta(t)) p + d(t)``. ``rates(t)`` returns the pose and its first two
+    derivatives, vectorised over ``t``: ``(theta, theta', theta'', d, d', d'')`` with the angles
+    ``(n,)`` rad and the translations ``(n, 2)`` mm. Constant-ratio rolling
+    (:class:`RollingMotion`) is the special case with circular or straight centrodes; this class
+    serves motions without centrodes of a simple shape (a cam turning while its follower moves by
+    a motion law).
+
+    Its instant centre in the tool frame (:meth:`tool_pole`) is where the meshing equation
+    n . v_rel = 0 is read: a tool point is in contact when its normal passes through it.
+
+    Examples
+    --------
+    A tool turning at unit rate about the blank's origin (a rotation, no translation): every
+    tool point moves on a circle and the pole is the origin.
+
+    >>> def spin(t):
+    ...     t = np.asarray(t, dtype=float)
+    ...     z = np.zeros(t.shape + (2,))
+    ...     return t, np.ones_like(t), np.zeros_like(t), z, z, z
+    >>> m = PlanarMotion(spin)
+    >>> m.tool_pole([0.3]).round(12).tolist()
+    [[0.0, 0.0]]
+    >>> q, dq, ddq = m.path(np.array([[2.0, 0.0]]), [0.0])
+    >>> dq.tolist(), ddq.tolist()
+    ([[0.0, 2.0]], [[-2.0, 0.0]])
+    """
+
+    rates: object
+
+    def pose(self, t):
+        """Tool-to-blank map at ``t`` in the form of :meth:`RollingMotion.pose`:
+        ``q = rotate(p - shift, angle) + offset`` (the shift is zero)."""
+        theta, _, _, d, _, _ = self.rates(np.asarray(t, dtype=float))
+        return np.zeros_like(d), theta, d
+
+    def to_blank(self, points, t):
+        """Tool-frame points at ``t`` in the blank frame, ``(n, 2)``."""
+        theta, _, _, d, _, _ = self.rates(np.asarray(t, dtype=float))
+        return rotate(np.asarray(points, dtype=float), theta) + d
+
+    def rotate_to_blank(self, vectors, t):
+        """Tool-frame direction vectors at ``t`` in the blank frame."""
+        theta = self.rates(np.asarray(t, dtype=float))[0]
+        return rotate(np.asarray(vectors, dtype=float), theta)
+
+    def tool_pole(self, t):
+        """Instant centre of the relative motion in the tool frame, ``(n, 2)``: the tool point whose
+        blank-frame velocity ``theta' J R p + d'`` vanishes (NaN where the motion is a pure translation)."""
+        theta, dtheta, _, _, dd, _ = self.rates(np.asarray(t, dtype=float))
+        jd = np.stack([-dd[..., 1], dd[..., 0]], -1)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return rotate(jd, -theta) / dtheta[..., None]
+
+    def path(self, points, t):
+        """Blank-frame position, velocity and acceleration (with respect to ``t``) of tool points.
+
+        ``q' = theta' J R p + d'``, ``q'' = theta'' J R p - theta'^2 R p + d''``.
+
+        Parameters
+        ----------
+        points : (n, 2) or (2,) float64, tool frame, mm
+        t : (n,) float64
+
+        Returns
+        -------
+        q, dq, ddq : (n, 2) float64
+        """
+        theta, dth, ddth, d, dd, ddd = self.rates(np.atleast_1d(np.asarray(t, dtype=float)))
+        rp = rotate(np.asarray(points, dtype=float), theta)
+        jrp = np.stack([-rp[..., 1], rp[..., 0]], -1)
+        return (rp + d, dth[..., None] * jrp + dd,
+                ddth[..., None] * jrp - (dth * dth)[..., None] * rp + ddd)

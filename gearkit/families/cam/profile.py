@@ -1,0 +1,237 @@
+"""The cam profile: the envelope of the follower moving relative to the cam.
+
+:func:`cam_profile` hands the follower (the tool: roller circle, knife point, flat face) and its
+motion relative to the cam (:func:`~gearkit.families.cam.follower.follower_motion`) to the
+kernel's envelope solver, solved along the cam angle (:class:`gearkit.envelope.Branch` with
+``along="motion"``). The branch is an exact curve of the cam angle; where a roller is larger than
+the pitch curve's convex radius of curvature (or a flat face meets a non-convex motion) the
+envelope loops, and the loop is cut away at the refined crossing (undercut: the cam no longer
+gives the prescribed motion there). ``outline(tol)`` samples what is left to a chord tolerance
+and reports the deviation it achieved.
+"""
+from __future__ import annotations
+
+import functools
+import math
+
+import numpy as np
+
+from gearkit.accuracy import adaptive_sample
+from gearkit.boundary import Piece
+from gearkit.curves import cross2, polyline_self_intersections
+from gearkit.envelope import Branch, touching
+from gearkit.families.cam.follower import follower_motion, follower_tool, lift_direction, reference_point
+
+__all__ = ["CamProfile", "cam_profile"]
+
+_TWO_PI = 2.0 * math.pi
+#: cam angles sampled to find the curve's shape, loops and extremes
+_SCAN = 4096
+
+
+def _refine(f, wa, wb, lo_a, hi_a, lo_b, hi_b):
+    """Newton on ``f(wa) = f(wb)`` (a self-crossing of the exact curve) inside the given windows."""
+    h = 1e-9
+    x = np.array([wa, wb], dtype=float)
+    lo, hi = np.array([lo_a, lo_b]), np.array([hi_a, hi_b])
+    for _ in range(50):
+        p = f(np.array([x[0] - h, x[0] + h, x[1] - h, x[1] + h, x[0], x[1]]))
+        g = p[4] - p[5]
+        jac = np.column_stack([(p[1] - p[0]) / (2 * h), -(p[3] - p[2]) / (2 * h)])
+        try:
+            step = np.linalg.solve(jac, g)
+        except np.linalg.LinAlgError:
+            break
+        new = np.clip(x - step, lo, hi)
+        if np.abs(new - x).max() < 1e-15:
+            x = new
+            break
+        x = new
+    return float(x[0]), float(x[1])
+
+
+class CamProfile:
+    """A generated disc cam. Lengths in mm, cam frame (the cam at angle 0).
+
+    ``branch`` is the exact envelope over one turn (its parameter ``w`` in [0, 1] runs the cam
+    angle from ``start`` through a full turn); ``pieces`` are the parts that remain after the loops
+    are cut. Everything else is read off them.
+    """
+
+    def __init__(self, spec):
+        self.spec = spec
+        self.motion = follower_motion(spec)
+        self.tool = follower_tool(spec)
+        self.reference = reference_point(spec)
+        self._cache = {}
+        start = self._start_angle()
+        self.start = start
+        self.branch = Branch(self.tool, self.motion, start, start + _TWO_PI, "near", along="motion")
+        self.pieces, self.loops = self._trim()
+
+    # -- construction ---------------------------------------------------------------------
+    def _start_angle(self) -> float:
+        """A cam angle where the envelope is regular and outermost (no loop can cover it): where
+        the pitch curve is least convex relative to the roller."""
+        phi = np.linspace(0.0, _TWO_PI, _SCAN, endpoint=False)
+        if self.spec.contact == "flat":
+            s, _, a, _ = self.spec.motion.evaluate(phi)
+            return float(phi[np.argmax(s + a)])
+        k = 1.0 / self.pitch_curvature_radius(phi)
+        return float(phi[np.argmin(k)])
+
+    def _trim(self):
+        w = np.linspace(0.0, 1.0, 4 * _SCAN + 1)
+        pts = self.branch(w)
+        ii, jj, ti, tj = polyline_self_intersections(pts)
+        pieces, loops = [], []
+        pos_e, pos_f, start = -1, 0.0, 0.0
+        step = w[1] - w[0]
+        while True:
+            mask = (ii > pos_e) | ((ii == pos_e) & (ti > pos_f))
+            if not mask.any():
+                break
+            i0 = ii[mask].min()
+            cand = np.flatnonzero(mask & (ii == i0))
+            pick = cand[np.lexsort((tj[cand], jj[cand]))[-1]]
+            ea, eb = int(ii[pick]), int(jj[pick])
+            wa = w[ea] + ti[pick] * step
+            wb = w[eb] + tj[pick] * step
+            wa, wb = _refine(self.branch, wa, wb, w[max(ea - 2, 0)], w[min(ea + 3, len(w) - 1)],
+                             w[max(eb - 2, 0)], w[min(eb + 3, len(w) - 1)])
+            pieces.append(Piece(self.spec.contact, self.branch, start, wa))
+            loops.append((self._phi(wa), self._phi(wb)))
+            start = wb
+            pos_e, pos_f = eb, float(tj[pick])
+        pieces.append(Piece(self.spec.contact, self.branch, start, 1.0))
+        return tuple(pieces), tuple(loops)
+
+    def _phi(self, w):
+        return float(np.mod(self.start + _TWO_PI * w, _TWO_PI))
+
+    # -- exact curves ---------------------------------------------------------------------
+    def contact(self, phi):
+        """Contact at cam angles ``phi``: points and unit outward normals of the cam (cam frame), and
+        the contact point and tool normal in the follower frame. Returns ``(q, n, c, m)``, each ``(n, 2)``."""
+        phi = np.atleast_1d(np.asarray(phi, dtype=float))
+        u, _ = touching(self.tool, self.motion.tool_pole(phi), "near")
+        c, _, m = self.tool.evaluate(u)
+        q = self.motion.to_blank(c, phi)
+        n = -self.motion.rotate_to_blank(m, phi)
+        return q, n, c, m
+
+    def profile_points(self, phi):
+        """Points of the (untrimmed) envelope at cam angles ``phi``, ``(n, 2)``."""
+        return self.contact(phi)[0]
+
+    def pitch_points(self, phi):
+        """The pitch curve (path of the roller centre or knife tip) at cam angles ``phi``, ``(n, 2)``."""
+        phi = np.atleast_1d(np.asarray(phi, dtype=float))
+        return self.motion.to_blank(np.broadcast_to(self.reference, phi.shape + (2,)), phi)
+
+    def pitch_curvature_radius(self, phi):
+        """Signed radius of curvature of the pitch curve (exact, from the pose derivatives), mm:
+        positive where it is convex (its centre of curvature on the cam's side), ``inf`` where straight."""
+        phi = np.atleast_1d(np.asarray(phi, dtype=float))
+        _, dq, ddq = self.motion.path(np.broadcast_to(self.reference, phi.shape + (2,)), phi)
+        speed = np.hypot(dq[:, 0], dq[:, 1])
+        with np.errstate(divide="ignore"):
+            return -speed ** 3 / cross2(dq, ddq)  # the pitch curve runs clockwise in the cam frame
+
+    def curvature_radius(self, phi, h: float = 2e-4):
+        """Signed radius of curvature of the generated envelope, mm (positive convex), by central
+        differences of the exact branch over the cam angle (step ``h`` rad)."""
+        phi = np.atleast_1d(np.asarray(phi, dtype=float))
+        p = self.profile_points(np.concatenate([phi - h, phi, phi + h])).reshape(3, len(phi), 2)
+        d1 = (p[2] - p[0]) / (2 * h)
+        d2 = (p[2] - 2 * p[1] + p[0]) / (h * h)
+        speed = np.hypot(d1[:, 0], d1[:, 1])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return -speed ** 3 * np.sign(self._forward(phi)) / cross2(d1, d2)
+
+    def _forward(self, phi):
+        """+1 where the envelope runs the same way as the pitch curve (or the cam angle), -1 in a loop."""
+        q, _, _, _ = self.contact(phi)
+        _, dq, _ = self.motion.path(np.broadcast_to(self.reference, q.shape), phi)
+        h = 1e-6
+        d = (self.profile_points(phi + h) - self.profile_points(phi - h)) / (2 * h)
+        return np.where(np.einsum("ij,ij->i", d, dq) >= 0, 1.0, -1.0)
+
+    # -- values read off the geometry ----------------------------------------------------
+    def pressure_angle(self, phi):
+        """Pressure angle without friction at cam angles ``phi``, rad, signed: the angle from the driven
+        point's velocity (as the lift grows) to the force the cam puts on the follower (along the
+        generated contact normal)."""
+        phi = np.atleast_1d(np.asarray(phi, dtype=float))
+        _, _, c, m = self.contact(phi)
+        driven = np.broadcast_to(self.reference, c.shape) if self.spec.contact == "roller" else c
+        v = lift_direction(self.spec, driven)
+        f = -m
+        return np.arctan2(cross2(v, f), np.einsum("ij,ij->i", v, f))
+
+    def face_contact(self, phi):
+        """Where a flat face touches, as the signed distance along the face from its foot point, mm."""
+        _, _, c, _ = self.contact(phi)
+        return c[:, 0] - self.reference[0] if self.spec.follower == "translating" else c[:, 0]
+
+    @property
+    def undercut(self) -> bool:
+        """True when a loop of the envelope was cut away (the cam cannot give the motion there)."""
+        return bool(self.loops)
+
+    # -- sampled geometry ----------------------------------------------------------------
+    def _sample(self, tol: float):
+        key = ("outline", float(tol))
+        if key not in self._cache:
+            chunks, worst = [], 0.0
+            for pc in self.pieces:
+                _, pts, dev = adaptive_sample(pc, tol, n_init=33)
+                chunks.append(pts if not chunks else pts[1:])
+                worst = max(worst, dev)
+            pts = np.concatenate(chunks)[:-1][::-1]  # closed: drop the repeated start; counter-clockwise
+            self._cache[key] = (np.ascontiguousarray(pts), worst)
+        return self._cache[key]
+
+    def outline(self, tol: float = 1e-3):
+        """Closed profile, ``(n, 2)`` float64, counter-clockwise, no repeated end point; every chord
+        within ``tol`` (mm) of the exact envelope."""
+        return self._sample(tol)[0]
+
+    def achieved(self, tol: float = 1e-3) -> float:
+        """Largest chord deviation (mm) of :meth:`outline` at ``tol``, measured at every chord's quarter points."""
+        return self._sample(tol)[1]
+
+    def pitch_outline(self, tol: float = 1e-3):
+        """Closed pitch curve, counter-clockwise, and its achieved deviation."""
+        _, pts, dev = adaptive_sample(lambda w: self.pitch_points(_TWO_PI * np.asarray(w)), tol, n_init=33)
+        return np.ascontiguousarray(pts[:-1][::-1]), dev
+
+    def radii(self):
+        """(smallest, largest) radius of the generated (trimmed) profile, mm: a dense scan of every
+        kept piece refined by a bounded search."""
+        from gearkit.families.cam.follower import phase_extreme
+
+        lo, hi = math.inf, 0.0
+        for pc in self.pieces:
+            def rad(w, _pc=pc):
+                return np.hypot(*_pc(np.asarray(w)).T)
+            hi = max(hi, phase_extreme(rad, 0.0, 1.0, 1025))
+            lo = min(lo, -phase_extreme(lambda w: -rad(w), 0.0, 1.0, 1025))
+        return lo, hi
+
+
+@functools.lru_cache(maxsize=32)
+def cam_profile(spec) -> CamProfile:
+    """Generate the cam of ``spec`` (cached by spec).
+
+    Examples
+    --------
+    >>> from gearkit.families.cam import CamSpec, MotionProgram
+    >>> spec = CamSpec(40.0, MotionProgram.rise_dwell_return(10.0, 90.0, 30.0, 90.0), roller_radius=8.0)
+    >>> prof = cam_profile(spec)
+    >>> prof.undercut, round(prof.achieved(1e-3) / 1e-3, 1) <= 1.0
+    (False, True)
+    >>> [round(r, 6) for r in prof.radii()]  # base circle 40 - 8, top 40 + 10 - 8
+    [32.0, 42.0]
+    """
+    return CamProfile(spec)
