@@ -70,7 +70,10 @@ def test_a_failing_interference_check_shows_up_in_3d():
 
     from gearkit.checks import check_pair
 
-    spec = replace(PAIRS["internal"], tip_diameter2=None)
+    # the backlash comes from a centre distance 0.13 mm inside the tight mesh: a thinning allowance would
+    # feed the pinion's cutter in (ISO 21771 x_E), deepening its fillet clear of the ring's tip
+    nominal = replace(PAIRS["internal"], tip_diameter2=None, thinning1=0.0)
+    spec = replace(nominal, center_distance=pair_geometry(nominal).tight_center_distance - 0.13)
     assert "interference.1" in {f.id for f in check_pair(spec).report.failures}
     g = pair_geometry(spec)
     asm = pair_assembly(spec, width=4.0, tol=TOL)

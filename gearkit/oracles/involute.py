@@ -200,8 +200,10 @@ def swept_gear(spec, step: float, chord: float | None = None):
         raise TypeError("swept_gear takes a GearSpec")
     ra = spec.blank_tip_diameter / 2
     if isinstance(spec.tool, BasicRack):
-        return swept_rack_gear(spec.teeth, spec.module, spec.shift, spec.tool, ra, step,
-                               helix_angle_deg=spec.helix_angle_deg, thinning=spec.thinning, chord=chord)
+        # the allowance feeds the tool in (ISO 21771 x_E): the rack sits lower, not thicker
+        x_e = spec.shift - spec.thinning / (2 * spec.module * math.tan(math.radians(spec.tool.pressure_angle_deg)))
+        return swept_rack_gear(spec.teeth, spec.module, x_e, spec.tool, ra, step,
+                               helix_angle_deg=spec.helix_angle_deg, chord=chord)
     if spec.beta:
         raise ValueError("the oracle cuts spur gears with shaper cutters only")
     return swept_shaper_gear(spec.teeth, spec.module, spec.shift, spec.tool, ra, step, internal=spec.internal,

@@ -187,8 +187,10 @@ def pair_geometry(spec: PairSpec, form_diameters: tuple | None = None) -> PairGe
     # tips, roots, forms
     ra1 = spec.tip_diameter1 / 2 if spec.tip_diameter1 else r1 + mn * (ha + x1 - cut)
     require(ra1 > rb1, "tip_diameter1", f"d_a1 = {2 * ra1:.6g} mm must exceed the base diameter {2 * rb1:.6g} mm")
-    rf1 = root_radius(sec, z1, x1, tool1, False)
-    rho_l1 = form_roll(sec, z1, x1, tool1, False)
+    # the allowance feeds the tool in (ISO 21771 generating shift x_E): root and form move with it
+    xe1 = x1 - spec.thinning1 / (2 * mn * math.tan(sec.alpha_n))
+    rf1 = root_radius(sec, z1, xe1, tool1, False)
+    rho_l1 = form_roll(sec, z1, xe1, tool1, False)
     if kind == "rack":
         ra2 = rf2 = rho_l2 = math.inf
     else:
@@ -198,8 +200,9 @@ def pair_geometry(spec: PairSpec, form_diameters: tuple | None = None) -> PairGe
             ra2 = r2 - mn * (ha - x2 - cut)
         else:
             ra2 = r2 + mn * (ha + x2 - cut)
-        rf2 = root_radius(sec, z2, x2, tool2, internal2)
-        rho_l2 = form_roll(sec, z2, x2, tool2, internal2)
+        xe2 = x2 - spec.thinning2 / (2 * mn * math.tan(sec.alpha_n))
+        rf2 = root_radius(sec, z2, xe2, tool2, internal2)
+        rho_l2 = form_roll(sec, z2, xe2, tool2, internal2)
         if internal2:
             require(ra2 < rf2, "tip_diameter2", f"the ring's tip d_a2 = {2 * ra2:.6g} mm must be smaller "
                     f"than its root d_f2 = {2 * rf2:.6g} mm")

@@ -48,7 +48,10 @@ class GearSpec:
     tip_diameter : float or None, mm
         None: d + 2 m_n (h_a* + x) (external), d - 2 m_n (h_a* - x) (internal), no tip shortening.
     thinning : float, mm, >= 0
-        Tooth-thickness allowance for backlash (normal section, on the reference circle).
+        Tooth-thickness allowance for backlash (normal section, on the reference circle; the
+        allowance A_sn = -thinning). The tool is fed in to cut it (ISO 21771): the rack is generated
+        at the generating shift ``x_E = x - thinning / (2 m_n tan(alpha_n))``, so the root and form
+        circles move with the allowance; the tip circle stays where the nominal shift puts it.
     modification : Modification or None
         Micro-geometry (:mod:`gearkit.families.involute.modification`): its profile part is applied to the
         generated flank (external gears), its lead part across the face width in contact analysis.
@@ -123,6 +126,17 @@ class GearSpec:
         return self.reference_diameter * math.cos(self.alpha_t)
 
     @property
+    def generating_shift(self) -> float:
+        """x_E (ISO 21771): the normal shift the rack is really set to, ``x - thinning / (2 m_n tan alpha_n)``.
+
+        Examples
+        --------
+        >>> round(GearSpec(30, 1.0, thinning=0.06).generating_shift, 6)
+        -0.082424
+        """
+        return self.shift - self.thinning / (2 * self.module * math.tan(self.alpha_n))
+
+    @property
     def addendum_coeff(self) -> float:
         return self.tool.addendum if isinstance(self.tool, BasicRack) else 1.0
 
@@ -141,7 +155,7 @@ def _tool_chain_and_motion(spec: GearSpec):
     m_n, z = spec.module, spec.teeth
     r = spec.reference_diameter / 2.0
     if isinstance(spec.tool, BasicRack):
-        chain = spec.tool.half_tooth(m_n, spec.shift * m_n, spec.thinning)
+        chain = spec.tool.half_tooth(m_n, spec.generating_shift * m_n)  # the tool fed in by the allowance
         if spec.beta:
             chain = transform_chain(chain, np.diag([1.0 / math.cos(spec.beta), 1.0]))
         return chain, RollingMotion(blank_centre=-r, tool_centre=None)
