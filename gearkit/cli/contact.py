@@ -5,14 +5,16 @@ Usage::
     gearkit contact --z1 20 --z2 40 -m 2 [pair options as in gearkit check] [--steps 2000]
                     [--slices 20] [--tol 0.002] [--json] [-o te.png] [-o path.svg]
     gearkit contact ... --width 20 --torque 100 [--tip-relief 0.008[@43.2]] [--crowning 0.01]
-                    [--misalignment 0.02] [--json] [-o te.png] [-o load.png] [-o pattern.png]
+                    [--misalignment 0.02] [--runout1 0.01 --cycles 20] [--json] [-o te.png] [-o load.png]
+                    [-o pattern.png] [-o harris.png]
     gearkit contact design.toml [--json]
 
 Prints the simulated contact ratio beside the formula value, the transmission error, the
 backlash and any interference, with the simulation's findings. ``-o`` writes a plot (PNG or SVG
 by the suffix): the path of contact when the file name contains "path", else the transmission
 error. With ``--torque`` the pair is also analysed under load (the JSON gains ``loaded``) and ``-o``
-writes the loaded TE, the load sharing (``load`` in the name) or the contact pattern (``pattern``).
+writes the loaded TE, the load sharing (``load`` in the name), the contact pattern (``pattern``) or
+the Harris map around the torque (``harris``: p-p TE over torque for long tip reliefs).
 Exit status: 0 when no simulated finding fails, 1 when one does, 2 for bad input.
 """
 from __future__ import annotations
@@ -57,6 +59,10 @@ def register(subparsers) -> None:
                     help="axis misalignment in plane f_Sigma_delta over the face width, mm")
     ld.add_argument("--center-distance-deviation", type=float, default=0.0,
                     help="centre-distance deviation from the operating centre distance, mm")
+    ld.add_argument("--runout1", type=float, default=0.0, help="pinion run-out (eccentricity), mm")
+    ld.add_argument("--runout2", type=float, default=0.0, help="wheel run-out (eccentricity), mm")
+    ld.add_argument("--cycles", type=int, default=1,
+                    help="mesh cycles analysed under load (default 1; z1 for a whole pinion turn)")
     p.set_defaults(run=run)
 
 
@@ -83,7 +89,8 @@ def run(args) -> int:
     if loaded is not None:
         from gearkit.contact.plot_loaded import save_loaded_plot
 
-        written = [save_plot(analysis, path) if "path" in path.lower() else save_loaded_plot(loaded, path)
+        written = [save_plot(analysis, path) if "path" in path.lower() else
+                   _harris(spec, args, path) if "harris" in path.lower() else save_loaded_plot(loaded, path)
                    for path in args.output]
     else:
         written = [save_plot(analysis, path) for path in args.output]
@@ -138,7 +145,8 @@ def _loaded(spec, args):
     from gearkit.contact.pair import analyse_loaded
     from gearkit.families.involute.modification import Modification
 
-    extras = ("tip_relief", "crowning", "misalignment", "misalignment_in_plane", "center_distance_deviation")
+    extras = ("tip_relief", "crowning", "misalignment", "misalignment_in_plane", "center_distance_deviation",
+              "runout1", "runout2")
     if args.torque is None:
         if any(getattr(args, k) for k in extras):
             raise SpecError("--torque", "micro-geometry and mounting deviations act in the loaded analysis: "
@@ -149,9 +157,30 @@ def _loaded(spec, args):
         import dataclasses
 
         m1 = dataclasses.replace(m1, lead_crowning=args.crowning) if m1 else Modification(lead_crowning=args.crowning)
-    dev = Deviations(args.center_distance_deviation, args.misalignment_in_plane, args.misalignment)
+    dev = Deviations(args.center_distance_deviation, args.misalignment_in_plane, args.misalignment,
+                     args.runout1, args.runout2)
     return analyse_loaded(spec, args.torque, modifications=(m1, m2), deviations=dev, steps=args.steps,
-                          slices=args.slices, tol=args.tol)
+                          slices=args.slices, tol=args.tol, cycles=args.cycles)
+
+
+def _harris(spec, args, path):
+    """``-o harris.png``: the Harris map around ``--torque`` for long tip reliefs up to about twice the
+    deflection of one pair at that torque (ISO 6336-1 single stiffness)."""
+    import numpy as np
+
+    from gearkit.contact import harris_map, iso_mesh_stiffness
+    from gearkit.contact.plot_loaded import plot_harris_map
+    from gearkit.pair import pair_geometry
+
+    g = pair_geometry(spec)
+    c1 = iso_mesh_stiffness(spec.teeth1, spec.teeth2, spec.shift1, spec.shift2, contact_ratio=g.contact_ratio,
+                            helix_angle_deg=spec.helix_angle_deg).single
+    load = args.torque * 1e3 / (g.gears[0].base_diameter / 2) / spec.face_width  # N/mm, one pair
+    deflection = load / c1 * 1e-3  # mm
+    reliefs = np.linspace(0.0, 2.0 * deflection, 9)
+    torques = args.torque * np.array([0.25, 0.5, 0.75, 1.0, 1.25, 1.5])
+    hmap = harris_map(spec, torques, reliefs, design_torque=args.torque, steps=min(args.steps, 200), tol=args.tol)
+    return plot_harris_map(hmap, path)
 
 
 def _mm(v) -> str:

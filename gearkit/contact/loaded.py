@@ -51,16 +51,59 @@ class Deviations:
     (f_Sigma_beta): axis deviations over the face width, projected on the line of action as
     ``f_ma = f_Sigma_delta sin alpha_wt + f_Sigma_beta cos alpha_wt``, a separation that grows
     linearly across the face (``+f_ma / 2`` at ``zeta = b``).
+
+    ``runout1``, ``runout2``: eccentricity of each gear (mm), its centre displaced by the run-out
+    towards the gear's own angle ``runout_phase*_deg`` (turning with the gear; 0: towards tooth 0's
+    centre line at the start). ``pitch_deviations1``, ``pitch_deviations2``: single pitch deviations
+    ``f_pt`` per tooth (mm, along the line of action; ``z`` values, tooth ``i`` against tooth ``i - 1``):
+    tooth ``k`` stands ``F_k = f_1 + ... + f_k`` ahead of its place (tooth 0 the datum), which closes
+    its pair's separation by ``F_k``. The mate tooth meshing with driver tooth ``k`` is numbered
+    ``-k mod z2``. Run-out and pitch deviations repeat once per turn: analyse several cycles to see them.
     """
 
     center_distance: float = 0.0
     misalignment_in_plane: float = 0.0
     misalignment_out_of_plane: float = 0.0
+    runout1: float = 0.0
+    runout2: float = 0.0
+    runout_phase1_deg: float = 0.0
+    runout_phase2_deg: float = 0.0
+    pitch_deviations1: tuple = ()
+    pitch_deviations2: tuple = ()
 
     def __post_init__(self):
-        for name in ("center_distance", "misalignment_in_plane", "misalignment_out_of_plane"):
+        for name in ("center_distance", "misalignment_in_plane", "misalignment_out_of_plane", "runout1", "runout2"):
             v = getattr(self, name)
             require(is_real(v) and abs(v) <= 10.0, name, f"{v!r} must be a length in [-10, 10] mm")
+        for name in ("runout_phase1_deg", "runout_phase2_deg"):
+            require(is_real(getattr(self, name)), name, f"{getattr(self, name)!r} must be an angle in degrees")
+        for name in ("pitch_deviations1", "pitch_deviations2"):
+            v = tuple(getattr(self, name))
+            require(all(is_real(f) and abs(f) <= 1.0 for f in v), name, "must be lengths in [-1, 1] mm, one per tooth")
+            object.__setattr__(self, name, v)
+
+    @property
+    def has_turn(self) -> bool:
+        """Deviations that vary from tooth to tooth (run-out, pitch deviations)."""
+        return bool(self.runout1 or self.runout2 or any(self.pitch_deviations1) or any(self.pitch_deviations2))
+
+    def separation(self, mesh, teeth, phi, normal):
+        """Separation change (mm) of driver teeth ``teeth`` ``(n, ...)`` at driver angles ``phi`` ``(n,)``
+        with contact normals ``normal`` ``(n, ..., 2)`` (unit, out of the driver): run-out and pitch."""
+        out = np.zeros(teeth.shape)
+        shape = (len(phi),) + (1,) * (teeth.ndim - 1)
+        for e, phase, sign, angle in ((self.runout1, self.runout_phase1_deg, -1.0, phi),
+                                      (self.runout2, self.runout_phase2_deg, 1.0, mesh.ratio * phi)):
+            if e:  # the centre's displacement, turning with the gear (angles from +y, counter-clockwise)
+                a = (angle + math.radians(phase)).reshape(shape)
+                d = np.stack([-e * np.sin(a), e * np.cos(a)], -1)
+                out += sign * np.einsum("...i,...i->...", np.broadcast_to(d, normal.shape), normal)
+        for devs, z, index in ((self.pitch_deviations1, mesh.z1, teeth), (self.pitch_deviations2, mesh.z2, -teeth)):
+            if any(devs):
+                require(len(devs) == z, "pitch_deviations", f"give one deviation per tooth ({z}), not {len(devs)}")
+                position = np.concatenate([[0.0], np.cumsum(devs[1:])])
+                out -= position[np.mod(index, z)]
+        return out
 
     def mesh_misalignment(self, working_pressure_angle: float) -> float:
         """``f_ma`` (mm over the face width) at the working transverse pressure angle (rad)."""
@@ -135,7 +178,7 @@ class LoadedAnalysis:
 class _Gaps:
     """The rigid cycle reduced to what the loaded solution needs, flat per driver angle ``(n, E)``."""
 
-    def __init__(self, mesh, phi, zeta, shifts, contact_range, lead):
+    def __init__(self, mesh, phi, zeta, shifts, contact_range, lead, deviations=None):
         ev = Cycle(mesh, phi, shifts, contact_range)
         n, wb = len(phi) - 1, ev.wb
         s_rigid = ev.excess.shape[1]
@@ -145,8 +188,14 @@ class _Gaps:
         def per(a):  # (n + 1, S_rigid, K, 2, ...) -> (n, S, K, 2, ...)
             a = a[:n]
             return np.repeat(a, tile, axis=1) if tile > 1 else a
-        exact = per(ev.exact[..., wb])
+        # refined contacts whose normal has a working arm about the mate's centre (a normal through the
+        # centre, as at a tip touching a root, cannot carry the mate's torque)
+        exact = per(ev.exact[..., wb]) & (per(ev.arm[..., wb]) >= mesh.arm_scale)
         gap = np.where(exact, np.maximum(per(ev.excess), 0.0), np.inf) + lead[None, :, None, None]
+        if deviations is not None and deviations.has_turn:
+            teeth = np.broadcast_to(per(ev.teeth)[..., None], exact.shape)
+            normal = np.nan_to_num(per(ev.normal[..., wb, :]))
+            gap = gap + deviations.separation(mesh, teeth, phi[:n], normal)
         self.rigid_te = ev.work[:n]
         self.gap = gap.reshape(n, -1)
         self.arm = np.where(exact, per(ev.arm[..., wb]), 1.0).reshape(n, -1)
@@ -197,7 +246,7 @@ def _solve(gap, arm, comp_lin, hertz, torque2, width, scale):
 
 def loaded_cycle(mesh, torque, *, face_width: float, zeta, shifts, lead, material: Material | None = None,
                  helix_angle_deg: float = 0.0, steps: int = 2000, start: float = 0.0,
-                 correction: float = ISO_CORRECTION):
+                 correction: float = ISO_CORRECTION, deviations: Deviations | None = None, cycles: int = 1):
     """Loaded contact of ``mesh`` (an external pair) over one cycle under the driver ``torque`` (N m).
 
     Parameters
@@ -210,6 +259,10 @@ def loaded_cycle(mesh, torque, *, face_width: float, zeta, shifts, lead, materia
         slice (lead modifications and misalignment)
     material : Material (default steel)
     steps : int, driver angles per cycle
+    deviations : Deviations or None
+        Its run-out and pitch deviations (the centre distance and misalignment are the caller's: in the
+        mesh and in ``lead``).
+    cycles : int, consecutive mesh cycles (driver pitches) analysed
     correction : float
         Factor on the model's stiffness: ISO 6336-1's ``C_M`` (0.8) between the theoretical
         stiffness of solid teeth and the measured one (1: the bare model).
@@ -225,6 +278,8 @@ def loaded_cycle(mesh, torque, *, face_width: float, zeta, shifts, lead, materia
     require(is_real(correction) and 0 < correction <= 1, "correction", f"{correction!r} must be in (0, 1]")
     require(isinstance(steps, (int, np.integer)) and 8 <= steps <= 1_000_000, "steps",
             f"{steps!r} must be an integer in [8, 1000000]")
+    require(isinstance(cycles, (int, np.integer)) and 1 <= cycles <= 10_000, "cycles",
+            f"{cycles!r} must be an integer in [1, 10000]")
     material = material or Material()
     zeta = np.asarray(zeta, dtype=float)
     lead = np.asarray(lead, dtype=float)
@@ -234,9 +289,13 @@ def loaded_cycle(mesh, torque, *, face_width: float, zeta, shifts, lead, materia
     c1, c2 = ToothCompliance(mesh.gear1, material), ToothCompliance(mesh.gear2, material)
     # approach scale: the whole load on one pair at a soft 4 N/(mm um), plus the lead separations
     reach = t2_max / (mesh.gear2.base_diameter / 2 * face_width * 4e3) + float(np.ptp(lead)) + 1e-4 * mesh.module
-    phi = start + mesh.pitch1 * np.arange(steps + 1) / steps
+    if deviations is not None:
+        reach += 2 * (abs(deviations.runout1) + abs(deviations.runout2)) + sum(
+            np.abs(np.cumsum(d)).max(initial=0.0) for d in (deviations.pitch_deviations1, deviations.pitch_deviations2))
+    total = steps * cycles
+    phi = start + cycles * mesh.pitch1 * np.arange(total + 1) / total
     for _ in range(4):
-        g = _Gaps(mesh, phi, zeta, np.asarray(shifts, dtype=float), reach, lead)
+        g = _Gaps(mesh, phi, zeta, np.asarray(shifts, dtype=float), reach, lead, deviations)
         l1 = np.sqrt(np.maximum(g.r1 ** 2 - c1.base_radius ** 2, 1e-12))
         l2 = np.sqrt(np.maximum(g.r2 ** 2 - c2.base_radius ** 2, 1e-12))
         g.rel = l1 * l2 / (l1 + l2)
@@ -249,7 +308,8 @@ def loaded_cycle(mesh, torque, *, face_width: float, zeta, shifts, lead, materia
         sols = [_solve(g.gap, g.arm, comp, hertz, t * 1e3 / abs(mesh.ratio), width, scale) for t in torques]
         # a half left unrefined is farther than ``reach``: it stays clear while the approach is below that
         theta_max = max(float(np.max(sol[0])) for sol in sols)
-        if theta_max * float(np.max(g.arm[np.isfinite(g.gap)])) <= reach + float(lead.min()):
+        floor = float(np.min(g.gap[np.isfinite(g.gap)], initial=0.0))  # deviations may take gaps below zero
+        if theta_max * float(np.max(g.arm[np.isfinite(g.gap)])) <= reach + min(float(lead.min()), floor):
             break
         reach *= 4
     ref = mesh.reference()

@@ -53,7 +53,7 @@ def analyse_pair(spec, steps: int = 2000, *, tol: float | None = None, slices: i
 
 
 def analyse_loaded(spec, torque: float, *, modifications=(None, None), deviations=None, material=None,
-                   steps: int = 2000, slices: int | None = None, tol: float | None = None):
+                   steps: int = 2000, slices: int | None = None, tol: float | None = None, cycles: int = 1):
     """Loaded tooth contact of the external pair ``spec`` under the pinion ``torque`` (N m).
 
     Parameters
@@ -64,11 +64,13 @@ def analyse_loaded(spec, torque: float, *, modifications=(None, None), deviation
         Micro-geometry of pinion and wheel: profile parts are generated into the teeth, lead parts
         added across the face.
     deviations : Deviations or None
-        Centre-distance deviation and misalignment.
+        Centre-distance deviation, misalignment, run-out, single pitch deviations.
     material : Material or None (steel)
     steps : int; slices : int or None
         Driver angles per cycle; face slices (default 1 for a spur pair without lead modifications or
         misalignment, else 20).
+    cycles : int
+        Consecutive mesh cycles (driver pitches): ``z1`` shows a whole turn of run-out and pitch deviations.
 
     Returns
     -------
@@ -113,4 +115,4 @@ def analyse_loaded(spec, torque: float, *, modifications=(None, None), deviation
     else:
         shifts = np.zeros(1)
     return loaded_cycle(mesh, torque, face_width=b, zeta=zeta, shifts=shifts, lead=lead, material=material,
-                        helix_angle_deg=spec.helix_angle_deg, steps=steps)
+                        helix_angle_deg=spec.helix_angle_deg, steps=steps, deviations=dev, cycles=cycles)
