@@ -13,7 +13,7 @@ import sys
 from gearkit.errors import GearkitError
 
 #: command modules, in the order ``gearkit --help`` lists them
-COMMANDS = ("demo", "gear", "rack", "check", "pair", "bench", "novikov", "blocking", "cycloid", "contact")
+COMMANDS = ("demo", "gear", "rack", "check", "pair", "bench", "novikov", "blocking", "cycloid", "contact", "view")
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -3,7 +3,7 @@
 Usage::
 
     gearkit blocking --z1 13 --z2 16 [--rack iso53a] [--helix-angle-deg 0]
-                     [--internal --cutter-teeth 20] [--mark 0.5,0.3] [-o contour.png|.svg|.json] [--json]
+                     [--internal --cutter-teeth 20] [--mark 0.5,0.3] [-o contour.png|.svg|.json|page.html] [--json]
 
 Exit status: 0 (1 when ``--mark`` is outside the region), 2 for bad input.
 """
@@ -48,7 +48,8 @@ def register(subparsers) -> None:
                    "--criterion center_distance")
     c.add_argument("--mark", help="x1,x2: a design point to mark and test")
     o = p.add_argument_group("output")
-    o.add_argument("-o", "--output", help="write contour.png, contour.svg or contour.json (atomically)")
+    o.add_argument("-o", "--output", help="write contour.png, contour.svg, contour.json, or page.html: the map "
+                   "beside the recommended pair animated, its solids and its check (atomically)")
     o.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(run=run)
 
@@ -98,7 +99,11 @@ def run(args) -> int:
     if args.mark:
         x1, x2 = _floats(args.mark, 2, "--mark")
         marked = contour.mark(x1, x2)
-    if args.output:
+    if args.output and str(args.output).lower().endswith((".html", ".htm")):
+        from gearkit.view import blocking_view, write_page
+
+        write_page(args.output, blocking_view(spec, contour, rec, marked))
+    elif args.output:
         contour.save(args.output, rec, marked)
     if args.json:
         print(json.dumps(contour.to_dict(rec, marked), allow_nan=False))
