@@ -215,6 +215,40 @@ def test_novikov_pair(tmp_path):
     assert [n for n, _ in _read(path)] == ["gear1", "gear2"]
 
 
+def _cam_outline():
+    """An exact closed outline of two pieces: a base-circle arc and a rise, as a cam would give it."""
+    def base(w):
+        a = np.pi * (1.0 + np.asarray(w, float))  # the lower half, radius 20
+        return 20.0 * np.stack([np.cos(a), np.sin(a)], -1)
+
+    def lobe(w):  # the upper half, radius growing to 26 at the top and back (smooth at the ends)
+        a = np.pi * np.asarray(w, float)
+        r = 20.0 + 6.0 * np.sin(a) ** 2
+        return np.stack([r * np.cos(a), r * np.sin(a)], -1)
+    return [base, lobe]
+
+
+@needs_ocp
+def test_generic_prism_plugs_in(tmp_path):
+    """A family's own exact outline: mesh, 3MF and STEP from prism_solid; the STEP volume is the exact
+    section area (polar integral, less the bore and keyway) times the width."""
+    from gearkit.solids import brep, prism_solid
+
+    cam = prism_solid(_cam_outline(), SolidSpec(8.0, bore=10.0, keyway=(3.0, 1.2)), TOL, name="cam")
+    write_mesh(tmp_path / "cam.3mf", [cam])
+    write_mesh(tmp_path / "cam.step", [cam])
+    (name, shape), = _read(tmp_path / "cam.step")
+    assert name == "cam"
+    _agree(shape, cam)
+    r, h = 5.0, 1.5  # bore radius, keyway half width: the keyway adds w (r + depth) less the circle under it
+    hole = math.pi * r ** 2 + 3.0 * (r + 1.2) - (h * math.sqrt(r ** 2 - h ** 2) + r ** 2 * math.asin(h / r))
+    a = np.linspace(0.0, np.pi, 200001)
+    r2 = (20.0 + 6.0 * np.sin(a) ** 2) ** 2
+    area = 0.5 * np.pi * 20.0 ** 2 + 0.5 * float(((r2[1:] + r2[:-1]) / 2 * np.diff(a)).sum())
+    perimeter = 2 * np.pi * 23.0  # more than the outline's length
+    assert abs(brep.volume(shape) - 8.0 * (area - hole)) <= 8.0 * perimeter * TOL
+
+
 @needs_ocp
 def test_part_without_recipe_writes_nothing(tmp_path):
     from gearkit.solids import Solid

@@ -10,7 +10,8 @@ facet from the exact tooth surface, twist included, and every solid reports the 
 achieved (``Solid.achieved``). 3MF (unit mm, named objects) is written with the standard
 library; STEP rebuilds each part from its :class:`Recipe` as an exact B-rep
 (:mod:`gearkit.solids.step`, B-spline flanks, planar ends, cylindrical bores) with the optional
-``gearkit[step]`` kernel, imported only then.
+``gearkit[step]`` kernel, imported only then. Any other closed outline of exact curves (a cam,
+a plate) becomes a solid, with its recipe, through :func:`prism_solid`.
 
 This package (with :mod:`gearkit.oracles.involute`) is the only place that imports manifold3d and OCP; trimesh
 is imported only where a format or a check needs it.
@@ -18,8 +19,9 @@ is imported only where a format or a check needs it.
 from gearkit.solids.export import MESH_FORMATS, mesh_format, write_mesh
 from gearkit.solids.gear import gear_solid
 from gearkit.solids.pair import Assembly, pair_assembly
+from gearkit.solids.prism import prism_solid
 from gearkit.solids.rack import rack_solid
 from gearkit.solids.solid import Recipe, Solid, SolidSpec, default_mesh_tol
 
 __all__ = ["Assembly", "MESH_FORMATS", "Recipe", "Solid", "SolidSpec", "default_mesh_tol", "gear_solid", "mesh_format",
-           "pair_assembly", "rack_solid", "write_mesh"]
+           "pair_assembly", "prism_solid", "rack_solid", "write_mesh"]

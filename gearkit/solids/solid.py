@@ -93,8 +93,9 @@ class Recipe:
     """How to rebuild a solid as an exact B-rep (:func:`gearkit.solids.step.shape`), and where it is placed.
 
     kind : "gear" (profile, SolidSpec, tol), "rack" (profile, length, height, width, start, tol),
-        "section" (curves, runs, tol), "cylinders" (centres, radius, z0, z1), "tube" (inner, outer,
-        z0, z1), "difference" / "union" (Recipe, Recipe)
+        "prism" (curves, SolidSpec: width, bore, keyway; tol), "section" (curves, runs, tol),
+        "cylinders" (centres, radius, z0, z1), "tube" (inner, outer, z0, z1),
+        "difference" / "union" (Recipe, Recipe)
     angle : rad, turned about z first; offset : (x, y, z) mm, moved then
     """
 

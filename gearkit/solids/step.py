@@ -140,14 +140,26 @@ def gear_shape(profile, spec, tol: float):
         body, achieved = section_shape(curves, _helix_runs(k, 0.0, b, spec.herringbone), tol, measure, r_out)
     if profile.internal:
         return body, achieved
-    if spec.bore is not None:
-        r = spec.bore / 2.0
-        tool = cylinder(r, -_OVER * b, b * (1 + _OVER))
-        if spec.keyway is not None:
-            w, depth = spec.keyway
-            tool = _boolean("fuse", tool, _box(-w / 2.0, 0.0, -_OVER * b, w / 2.0, r + depth, b * (1 + _OVER)))
-        body = _boolean("cut", body, tool)
-    return body, achieved
+    return _bored(body, spec), achieved
+
+
+def _bored(body, spec):
+    """``body`` with the spec's bore (and keyway, centred on +y) cut through it."""
+    if spec.bore is None:
+        return body
+    b, r = spec.width, spec.bore / 2.0
+    tool = cylinder(r, -_OVER * b, b * (1 + _OVER))
+    if spec.keyway is not None:
+        w, depth = spec.keyway
+        tool = _boolean("fuse", tool, _box(-w / 2.0, 0.0, -_OVER * b, w / 2.0, r + depth, b * (1 + _OVER)))
+    return _boolean("cut", body, tool)
+
+
+def prism_shape(curves, spec, tol: float):
+    """(solid, achieved) of :func:`~gearkit.solids.prism_solid`'s prism: the loop of exact ``curves``
+    extruded over ``spec.width``, with the spec's bore and keyway."""
+    body, achieved = section_shape(list(curves), [brep.Run(0.0, float(spec.width))], tol)
+    return _bored(body, spec), achieved
 
 
 def rack_shape(profile, length, height, width, start, tol: float):
@@ -221,6 +233,8 @@ def shape(recipe):
         out, achieved = rack_shape(*args)
     elif kind == "section":
         out, achieved = section_shape(*args)
+    elif kind == "prism":
+        out, achieved = prism_shape(*args)
     elif kind == "cylinders":
         centres, radius, z0, z1 = args
         out = _compound([cylinder(radius, z0, z1, c) for c in centres])
