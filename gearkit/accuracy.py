@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from gearkit.errors import require
+from gearkit.errors import check_fields, is_real, require
 
 _PROBES = np.array([0.25, 0.5, 0.75])
 
@@ -29,8 +29,33 @@ class Accuracy:
     tol: float
 
     def __post_init__(self):
+        check_fields(self)
         require(isinstance(self.tol, (int, float)) and math.isfinite(self.tol) and self.tol > 0, "tol",
                 f"{self.tol!r} must be a positive length in mm")
+
+
+#: the finest tolerance a geometry of size ``m`` (its module) is computed to: the exact pieces join
+#: and the envelope solver converges to ~1e-12 of the radii, so chords below this are round-off
+PRECISION = 1e-9
+
+
+def check_tol(tol, module: float, field: str = "tol") -> float:
+    """``tol`` as a float if it is a length in ``[PRECISION m, m]`` (mm); else ``SpecError`` naming ``field``.
+
+    Below ``PRECISION * module`` a tolerance asks for more than the geometry's own precision (the
+    sampler would only add points on round-off); above ``module`` it is no longer a tooth's shape.
+
+    >>> check_tol(1e-3, 1.0)
+    0.001
+    >>> check_tol(1e-11, 1.0)
+    Traceback (most recent call last):
+    ...
+    gearkit.errors.SpecError: tol: 1e-11 mm is outside [1e-09, 1] mm (the geometry's own precision 1e-9 m up to one module m)
+    """
+    lo, hi = PRECISION * module, float(module)
+    require(is_real(tol) and lo <= tol <= hi, field, f"{tol!r} mm is outside [{lo:.6g}, {hi:.6g}] mm (the "
+            "geometry's own precision 1e-9 m up to one module m)")
+    return float(tol)
 
 
 def default_tol(module: float) -> float:
@@ -49,14 +74,37 @@ def _chord_deviation(a, b, q):
     return np.linalg.norm(q - foot, axis=-1)
 
 
+#: an interval whose longest quarter chord exceeds this multiple of the mean quarter chord moves
+#: unevenly in its parameter: a narrow feature (a fast, sharply bent stretch) may sit between probes
+UNEVEN = 2.5
+
+
+def _probe(evaluate, w, pts, tol):
+    """Quarter-point probes of every interval: (probes, probe points, chord deviation, uneven)."""
+    lo, hi = w[:-1], w[1:]
+    probes = lo[:, None] + (hi - lo)[:, None] * _PROBES
+    q = evaluate(probes.ravel()).reshape(len(lo), len(_PROBES), 2)
+    dev = _chord_deviation(pts[:-1, None, :], pts[1:, None, :], q).max(axis=1)
+    walk = np.concatenate([pts[:-1, None, :], q, pts[1:, None, :]], axis=1)
+    legs = np.linalg.norm(np.diff(walk, axis=1), axis=-1)
+    length = legs.sum(axis=1)
+    uneven = (legs.max(axis=1) > UNEVEN * length / legs.shape[1]) & (length > tol)
+    return probes, q, dev, uneven
+
+
 def adaptive_sample(evaluate, tol: float, n_init: int = 5, max_rounds: int = 60, max_split: int = 16):
     """Sample an exact curve so that every chord is within ``tol`` of it.
 
-    Each round probes every interval at its quarter points; an interval whose chord deviates
-    by ``dev > tol`` is split into ``k = ceil(1.1 sqrt(dev / tol))`` equal parameter parts
-    (at most ``max_split``): a chord's deviation shrinks as the square of its length, so one
-    round usually settles an interval and the rounds (each a call of ``evaluate``, the cost
-    that dominates for short chains) stay few. Intervals still too coarse split again.
+    Each round probes every interval at its quarter points. An interval whose chord deviates by
+    ``dev > tol`` is split into ``k = ceil(1.1 sqrt(dev / tol))`` equal parameter parts (at most
+    ``max_split``): a chord's deviation shrinks as the square of its length, so one round usually
+    settles an interval and the rounds (each a call of ``evaluate``, the cost that dominates for
+    short chains) stay few. An interval that moves *unevenly* in its parameter (one quarter
+    carries more than ``UNEVEN / 4`` of the walk through its probes, and the walk is longer than
+    ``tol``) is split at its probes however small its probed deviation: that is where a narrow
+    feature (a short, sharply bent stretch the parameter runs through fast) hides between
+    probes, and the quadratic model behind the probes only holds once the speed is even.
+    Intervals still too coarse split again.
 
     Parameters
     ----------
@@ -74,20 +122,33 @@ def adaptive_sample(evaluate, tol: float, n_init: int = 5, max_rounds: int = 60,
     points : (k, 2) float64, on the curve
     achieved : float, mm
         Largest chord deviation measured at the quarter points of every final interval.
+
+    Examples
+    --------
+    A bump of height 0.1 that the parameter crosses within a few thousandths near w = 0.053: the
+    quarter points of the first interval all land on its chord (a sampler that trusts its probes
+    reports 2e-9 and is 0.1 off); the uneven walk through them gives it away:
+
+    >>> def f(w):
+    ...     t = np.tanh((w - 0.053) / 0.001)
+    ...     return np.stack([t + w, 0.1 * (1 - t * t)], -1)
+    >>> w, p, achieved = adaptive_sample(f, 1e-3)
+    >>> dense = f(np.linspace(0, 1, 100001))
+    >>> bool(polyline_deviation(p, dense) <= 1e-3), bool(achieved <= 1e-3)
+    (True, True)
     """
     w = np.linspace(0.0, 1.0, n_init)
     pts = evaluate(w)
     for _ in range(max_rounds):
         lo, hi = w[:-1], w[1:]
-        probes = lo[:, None] + (hi - lo)[:, None] * _PROBES
-        q = evaluate(probes.ravel()).reshape(len(lo), len(_PROBES), 2)
-        dev = _chord_deviation(pts[:-1, None, :], pts[1:, None, :], q).max(axis=1)
+        probes, q, dev, uneven = _probe(evaluate, w, pts, tol)
         bad = dev > tol
-        if not bad.any():
+        if not (bad.any() or uneven.any()):
             return w, pts, float(dev.max(initial=0.0))
         k = np.clip(np.ceil(1.1 * np.sqrt(dev[bad] / tol)), 2, max(2, max_split)).astype(int)
-        new_w = [probes[bad, 1]]
-        new_p = [q[bad, 1]]
+        quarters = uneven & ~bad  # split at the probes already evaluated
+        new_w = [probes[bad, 1], probes[quarters].ravel()]
+        new_p = [q[bad, 1], q[quarters].reshape(-1, 2)]
         if (k > 2).any():  # the midpoint is already evaluated; other split points are new
             many = k > 2
             kk = k[many]
@@ -101,12 +162,9 @@ def adaptive_sample(evaluate, tol: float, n_init: int = 5, max_rounds: int = 60,
             new_p.append(evaluate(extra))
         w = np.concatenate([w] + new_w)
         pts = np.concatenate([pts] + new_p)
-        order = np.argsort(w, kind="stable")
-        w, pts = w[order], pts[order]
-    lo, hi = w[:-1], w[1:]
-    probes = lo[:, None] + (hi - lo)[:, None] * _PROBES
-    q = evaluate(probes.ravel()).reshape(len(lo), len(_PROBES), 2)
-    dev = _chord_deviation(pts[:-1, None, :], pts[1:, None, :], q).max(axis=1)
+        w, first = np.unique(w, return_index=True)  # sorted; an interval too short to split stays whole
+        pts = pts[first]
+    _, _, dev, _ = _probe(evaluate, w, pts, tol)
     return w, pts, float(dev.max(initial=0.0))
 
 

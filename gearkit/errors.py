@@ -32,7 +32,7 @@ def is_int(v) -> bool:
     """An integer input (Python or numpy), not a bool."""
     import numpy as np
 
-    return isinstance(v, (int, np.integer)) and not isinstance(v, bool)
+    return isinstance(v, (int, np.integer)) and not isinstance(v, (bool, np.bool_))
 
 
 def is_real(v) -> bool:
@@ -41,7 +41,96 @@ def is_real(v) -> bool:
 
     import numpy as np
 
-    return isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, bool) and math.isfinite(v)
+    return (isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, (bool, np.bool_))
+            and math.isfinite(v))
+
+
+def _kinds(annotation) -> set:
+    """The names in a field's annotation (``"float | None"`` -> ``{"float", "None"}``)."""
+    text = annotation if isinstance(annotation, str) else getattr(annotation, "__name__", str(annotation))
+    return {k.strip() for k in text.split("|")}
+
+
+def check_fields(spec, prefix: str = "") -> None:
+    """The one type gate of every spec: each field's value must match its annotation.
+
+    Read from the dataclass annotations: an ``int`` field takes an integer (Python or numpy, never
+    a bool), a ``float`` field a finite real number (an integer or a numpy scalar too, never a bool,
+    a string or a non-finite value), a ``bool`` field a boolean, a ``str`` field a string; ``None``
+    only where the annotation allows it. Numpy scalars are stored as Python numbers, so what a spec
+    holds is plain (hashable, JSON-ready). Other annotations (tools, tuples) are left to the spec's
+    own checks. Raises ``SpecError`` naming the first field that does not match.
+
+    Examples
+    --------
+    >>> from dataclasses import dataclass
+    >>> @dataclass(frozen=True)
+    ... class S:
+    ...     n: int
+    ...     x: float = 0.0
+    ...     def __post_init__(self):
+    ...         check_fields(self)
+    >>> import numpy as np
+    >>> S(np.int64(3), np.float64(0.5))
+    S(n=3, x=0.5)
+    >>> S(3, "0.5")
+    Traceback (most recent call last):
+    ...
+    gearkit.errors.SpecError: x: '0.5' (str) must be a finite real number
+    >>> S(True)
+    Traceback (most recent call last):
+    ...
+    gearkit.errors.SpecError: n: True (bool) must be an integer
+    """
+    import dataclasses
+
+    import numpy as np
+
+    for f in dataclasses.fields(spec):
+        kinds = _kinds(f.type)
+        v = getattr(spec, f.name)
+        name = prefix + f.name
+        got = f"{v!r} ({type(v).__name__})"
+        if v is None:
+            require("None" in kinds or not kinds & {"int", "float", "bool", "str"}, name,
+                    "is required (None is not allowed)")
+            continue
+        if "bool" in kinds:
+            require(isinstance(v, (bool, np.bool_)), name, f"{got} must be True or False")
+            value = bool(v)
+        elif "int" in kinds and "float" not in kinds:
+            require(is_int(v), name, f"{got} must be an integer")
+            value = int(v)
+        elif "float" in kinds:
+            require(is_real(v), name, f"{got} must be a finite real number")
+            value = int(v) if is_int(v) else float(v)
+        elif "str" in kinds:
+            require(isinstance(v, str), name, f"{got} must be a string")
+            value = v
+        else:
+            continue
+        if value is not v:
+            object.__setattr__(spec, f.name, value)
+
+
+def check_count(value, field: str, lo: int, hi: int) -> int:
+    """An integer argument (not a bool) in ``[lo, hi]``, as ``int``; else ``SpecError`` naming ``field``.
+
+    >>> check_count(3, "teeth", 1, 10)
+    3
+    """
+    require(is_int(value) and lo <= value <= hi, field, f"{value!r} must be an integer in [{lo}, {hi}]")
+    return int(value)
+
+
+def check_length(value, field: str, lo: float, hi: float) -> float:
+    """A real argument in ``[lo, hi]`` (mm), as ``float``; else ``SpecError`` naming ``field``.
+
+    >>> check_length(2, "width", 0.0, 10.0)
+    2.0
+    """
+    require(is_real(value) and lo <= value <= hi, field, f"{value!r} must be a length in [{lo:.6g}, {hi:.6g}] mm")
+    return float(value)
 
 
 def require_cut_inputs(module, helix_angle_deg, thinning) -> None:
@@ -49,9 +138,8 @@ def require_cut_inputs(module, helix_angle_deg, thinning) -> None:
     and tooth thinning (mm); raise ``SpecError`` naming the first one out of range."""
     import math
 
-    ok_m = isinstance(module, (int, float)) and not isinstance(module, bool) and math.isfinite(module)
-    require(ok_m and 1e-4 <= module <= 1e4, "module", f"{module!r} must be a length in [0.0001, 10000] mm")
+    require(is_real(module) and 1e-4 <= module <= 1e4, "module", f"{module!r} must be a length in [0.0001, 10000] mm")
     b = helix_angle_deg
-    require(math.isfinite(b) and -80.0 < b < 80.0, "helix_angle_deg", f"{b!r} must be in (-80, 80) degrees")
-    require(math.isfinite(thinning) and 0.0 <= thinning < 0.5 * math.pi * module, "thinning",
+    require(is_real(b) and -80.0 < b < 80.0, "helix_angle_deg", f"{b!r} must be in (-80, 80) degrees")
+    require(is_real(thinning) and 0.0 <= thinning < 0.5 * math.pi * module, "thinning",
             f"{thinning!r} must be in [0, pi*m/2) mm")

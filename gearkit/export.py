@@ -109,4 +109,4 @@ def write_profile(path, loops, info: dict | None = None) -> Path:
         return atomic_write(path, csv)
     payload = dict(info or {})
     payload["loops"] = [lp.tolist() for lp in loops]
-    return atomic_write(path, lambda tmp: Path(tmp).write_text(json.dumps(payload)))
+    return atomic_write(path, lambda tmp: Path(tmp).write_text(json.dumps(payload, allow_nan=False)))

@@ -11,6 +11,7 @@ import math
 
 import numpy as np
 
+from gearkit.accuracy import check_tol
 from gearkit.boundary import CircleArc, HalfTooth, TipLine, _crossings
 from gearkit.curves import polar_from_y
 
@@ -30,8 +31,11 @@ class HalfToothProfile:
         return self.half.pointed
 
     def half_points(self, tol: float):
-        """Half tooth from tip to space centre sampled to ``tol``; returns (points, achieved)."""
-        key = ("half", float(tol))
+        """Half tooth from tip to space centre sampled to ``tol``; returns (points, achieved).
+
+        ``tol`` (mm) must lie in ``[1e-9 m, m]`` (:func:`gearkit.accuracy.check_tol`).
+        """
+        key = ("half", check_tol(tol, self.module))
         if key not in self._cache:
             self._cache[key] = self.half.sample(tol)
         return self._cache[key]
@@ -105,23 +109,32 @@ class ToothProfile(HalfToothProfile):
         cut_by_other = any(not isinstance(p.curve, (CircleArc, TipLine)) for p in pieces[:k_f])
         return cut_by_other or any(j == "trim" for j in self.half.joins[:k_f])
 
-    def thickness_at(self, radius: float) -> float:
+    def thickness_at(self, radius: float) -> float | None:
         """Arc tooth thickness (mm) on the circle of ``radius``; 0 above a pointed tip.
 
-        Raises ``ValueError`` when the circle misses the tooth flank.
+        ``None`` when the circle does not reach the tooth (it lies outside the tooth's radial
+        range, e.g. the reference circle of a gear whose shift puts it below the root): a value to
+        report, not an error.
+
+        Examples
+        --------
+        >>> from gearkit import GearSpec, tooth_profile
+        >>> prof = tooth_profile(GearSpec(40, 1.0, shift=1.3))
+        >>> prof.thickness_at(20.0) is None, round(prof.thickness_at(21.0), 6) > 0
+        (True, True)
         """
         r = float(radius)
         rs = [float(np.hypot(*self._end("tip"))), float(np.hypot(*self._end("root")))]
         if not min(rs) - 1e-12 * max(rs) <= r <= max(rs) + 1e-12 * max(rs):
-            raise ValueError(f"radius {r} is outside the tooth ({min(rs)} .. {max(rs)})")
+            return None
         hits = _crossings(self.half.pieces, lambda p: polar_from_y(p)[0], r)
         if not hits:
             end = self._end("tip") if abs(np.hypot(*self._end("tip")) - r) < abs(np.hypot(*self._end("root")) - r) \
                 else self._end("root")
-            return 2.0 * r * float(polar_from_y(end[None])[1][0])
+            return max(0.0, 2.0 * r * float(polar_from_y(end[None])[1][0]))
         k, w = hits[0]
         psi = polar_from_y(self.half.pieces[k].curve(np.array([w])))[1][0]
-        return 2.0 * r * float(psi)
+        return max(0.0, 2.0 * r * float(psi))
 
     @property
     def tip_thickness(self) -> float:
@@ -131,7 +144,8 @@ class ToothProfile(HalfToothProfile):
         tip = self._end("tip")
         first = self.half.pieces[0]
         end = first(np.array([1.0]))[0] if first.label == "tip" else tip
-        return 2.0 * float(np.hypot(*end)) * float(polar_from_y(end[None])[1][0])
+        # a tip pointed to round-off (psi ~ -1e-16) is pointed: never a negative thickness
+        return max(0.0, 2.0 * float(np.hypot(*end)) * float(polar_from_y(end[None])[1][0]))
 
     # -- sampled geometry ---------------------------------------------------------------
     def tooth_points(self, tol: float):

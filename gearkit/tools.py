@@ -20,7 +20,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from gearkit.errors import SpecError, require
+from gearkit.errors import SpecError, check_fields, require
 
 _IDENTITY = (1.0, 0.0, 0.0, 1.0, 0.0, 0.0)
 
@@ -178,6 +178,10 @@ def corner(point, t_in, t_out, label):
 _ISO53 = {"A": (1.25, 0.38), "B": (1.25, 0.30), "C": (1.25, 0.25), "D": (1.40, 0.39)}
 
 
+#: smallest pressure angle of a cutter, degrees: below it a flank is nearly radial and the undercut
+#: limit (2 / sin^2 alpha teeth) runs to millions of teeth (1e-12 degrees exhausted the memory)
+MIN_PRESSURE_ANGLE_DEG = 1.0
+
 @dataclass(frozen=True)
 class BasicRack:
     """Generating (basic) rack in module units, normal section.
@@ -219,9 +223,10 @@ class BasicRack:
     name: str = field(default="basic rack", compare=False)
 
     def __post_init__(self):
+        check_fields(self)
         a = self.pressure_angle_deg
-        require(math.isfinite(a) and 0.0 < a < 45.0, "pressure_angle_deg",
-                f"{a!r} is outside the allowed range (0, 45) degrees")
+        require(MIN_PRESSURE_ANGLE_DEG <= a < 45.0, "pressure_angle_deg",
+                f"{a!r} is outside the allowed range [{MIN_PRESSURE_ANGLE_DEG:g}, 45) degrees")
         require(math.isfinite(self.addendum) and 0.0 < self.addendum <= 3.0, "addendum",
                 f"h_aP* = {self.addendum!r} must be in (0, 3] (module units)")
         require(math.isfinite(self.dedendum) and self.addendum <= self.dedendum <= 4.0, "dedendum",
@@ -398,11 +403,12 @@ class ShaperCutter:
     tip_radius: float = 0.0
 
     def __post_init__(self):
+        check_fields(self, 'cutter.')
         require(isinstance(self.teeth, (int, np.integer)) and 6 <= self.teeth <= 1000, "cutter.teeth",
                 f"{self.teeth!r} must be an integer in [6, 1000]")
         a = self.pressure_angle_deg
-        require(math.isfinite(a) and 0.0 < a < 45.0, "cutter.pressure_angle_deg",
-                f"{a!r} is outside (0, 45) degrees")
+        require(MIN_PRESSURE_ANGLE_DEG <= a < 45.0, "cutter.pressure_angle_deg",
+                f"{a!r} is outside [{MIN_PRESSURE_ANGLE_DEG:g}, 45) degrees")
         require(math.isfinite(self.shift) and -1.0 <= self.shift <= 1.5, "cutter.shift",
                 f"x0 = {self.shift!r} must be in [-1, 1.5]")
         require(math.isfinite(self.addendum) and 0.5 <= self.addendum <= 2.0, "cutter.addendum",

@@ -86,7 +86,7 @@ def save(contour, path, recommendation=None, marked=None) -> None:
     try:
         with os.fdopen(fd, "wb") as fh:
             if ext == ".json":
-                fh.write(json.dumps(contour.to_dict(recommendation, marked), indent=1).encode())
+                fh.write(json.dumps(contour.to_dict(recommendation, marked), indent=1, allow_nan=False).encode())
             else:
                 figure(contour, recommendation, marked).savefig(fh, format=ext[1:])
         os.replace(tmp, path)

@@ -92,7 +92,7 @@ def check_drive(spec, samples: int = 2000) -> DriveCheck:
               "pin_pitch_radius": spec.pin_pitch_radius, "disc_pitch_radius": spec.disc_pitch_radius,
               "rolling_radius": spec.rolling_radius, "active_pin_arc_deg": _deg(spec.active_pin_arc)}
     rho_min, phi_at = min_curvature_radius(spec)
-    values["min_curvature_radius"] = rho_min
+    values["min_curvature_radius"] = rho_min if math.isfinite(rho_min) else None  # None: never bends that way
     broken = [x for x in f if x.status == "fail" and x.id in ("curtate", "profile.closed", "pins.overlap",
                                                             "meshing.condition")]
     disc = None
@@ -105,9 +105,10 @@ def check_drive(spec, samples: int = 2000) -> DriveCheck:
     looped = bool(disc is not None and disc.looped)
     status = "fail" if (r_grind >= rho_min or looped) else "ok"
     f.append(Finding("looping", status, r_grind, rho_min,
-                     f"grinding pin radius {r_grind:.6g} mm against the theoretical curve's smallest curvature "
-                     f"radius |rho_0|min = {rho_min:.6g} mm (at phi = {_deg(phi_at) if phi_at == phi_at else 0:.2f} "
-                     "deg): " + ("the offset loops and the pins undercut the disc (the kernel cut a loop away)"
+                     (f"grinding pin radius {r_grind:.6g} mm against the theoretical curve's smallest curvature "
+                      f"radius |rho_0|min = {rho_min:.6g} mm (at phi = {_deg(phi_at):.2f} deg): "
+                      if phi_at is not None else "the theoretical curve never bends towards the pins (no curvature "
+                      "radius limits the pin radius): ") + ("the offset loops and the pins undercut the disc (the kernel cut a loop away)"
                                  if status == "fail" else "regular"), "max"))
     side = "innermost" if spec.sign > 0 else "outermost"
     f.append(Finding("active_pin_arc", "ok", _deg(spec.active_pin_arc), 90.0,

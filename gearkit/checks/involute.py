@@ -33,7 +33,7 @@ profile must lie inside the involute parts of both flanks, ``F1 <= A`` and ``E <
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 
 from gearkit.checks.limits import CheckLimits, min_teeth_undercut
@@ -202,6 +202,11 @@ def check_pair(spec: PairSpec, limits: CheckLimits = CheckLimits(), geometry: st
         profiles = tuple(profiles)
         forms = tuple(p.form_diameter for p in profiles) + ((None,) if spec.kind == "rack" else ())
         g = pair_geometry(spec, forms)
+        # the checked tip is the cut tip: a tooth that points below its blank's tip circle ends at its point
+        cut = {f"tip_diameter{i + 1}": p.tip_diameter for i, p in enumerate(profiles)
+               if p.pointed and not p.internal and p.tip_diameter < g.gears[i].tip_diameter}
+        if cut:
+            g = pair_geometry(replace(spec, **cut), forms)
     else:
         g = pair_geometry(spec)
     findings = _gear_findings(spec, g, profiles, limits)

@@ -13,7 +13,7 @@ import math
 from dataclasses import dataclass, replace
 
 
-from gearkit.errors import SpecError, require
+from gearkit.errors import SpecError, check_fields, require
 from gearkit.pair.geometry import pair_geometry
 from gearkit.pair.spec import PairSpec
 from gearkit.pair.tooling import form_roll, section
@@ -42,6 +42,7 @@ class CheckLimits:
     min_tip_clearance: float = 0.1
 
     def __post_init__(self):
+        check_fields(self)
         require(math.isfinite(self.min_tip_thickness) and 0.0 <= self.min_tip_thickness <= 2.0,
                 "min_tip_thickness", f"{self.min_tip_thickness!r} must be in [0, 2] (module units)")
         require(math.isfinite(self.min_contact_ratio) and 1.0 <= self.min_contact_ratio <= 3.0,

@@ -25,7 +25,7 @@ import math
 from dataclasses import dataclass
 
 from gearkit.checks.report import CheckReport, Finding, grade
-from gearkit.errors import require
+from gearkit.errors import check_fields, require
 from gearkit.families.novikov import NovikovPairGeometry, NovikovPairSpec, novikov_pair_geometry, tooth_profile
 
 __all__ = ["NovikovLimits", "NovikovCheck", "check_novikov"]
@@ -57,6 +57,7 @@ class NovikovLimits:
     max_angle_error_deg: float = 0.5
 
     def __post_init__(self):
+        check_fields(self)
         for name, lo, hi in (("min_overlap_ratio", 1.0, 5.0), ("min_tip_thickness", 0.0, 2.0),
                              ("min_tip_clearance", 0.0, 1.0), ("min_window", 0.0, 0.5),
                              ("max_angle_error_deg", 0.0, 10.0)):

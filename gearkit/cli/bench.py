@@ -29,7 +29,7 @@ def run(args) -> int:
     if args.json:
         from gearkit.export import atomic_write
 
-        text = json.dumps(res, indent=1) + "\n"
+        text = json.dumps(res, indent=1, allow_nan=False) + "\n"
 
         def write(tmp):
             with open(tmp, "w", encoding="utf-8") as fh:

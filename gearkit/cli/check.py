@@ -168,7 +168,7 @@ def run(args) -> int:
     spec, limits = pair_spec_from_args(args)
     result = check_pair(spec, limits, geometry=args.geometry)
     if args.json:
-        print(json.dumps(result.to_dict(), indent=2))
+        print(json.dumps(result.to_dict(), indent=2, allow_nan=False))
     else:
         print(format_report(result))
     return 0 if result.ok else 1

@@ -106,7 +106,7 @@ def run(args) -> int:
         out["files"] = written
         if loaded is not None:
             out["loaded"] = loaded.to_dict()
-        print(json.dumps(out, indent=2))
+        print(json.dumps(out, indent=2, allow_nan=False))
     else:
         print(format_summary(spec, check, analysis, findings, written, loaded))
     return 1 if any(f.status == "fail" for f in findings) else 0

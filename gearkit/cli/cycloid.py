@@ -129,7 +129,7 @@ def run_drive(args) -> int:
     if fmt is not None:
         out["output"] = _write_drive(args, spec, fmt)
     if args.json:
-        print(json.dumps(out, indent=2))
+        print(json.dumps(out, indent=2, allow_nan=False))
     else:
         kind = "disc" if spec.sign > 0 else "ring"
         title = (f"gearkit cycloidal-drive: {kind}, Z_b = {spec.pins} pins, Z_g = {spec.lobes}, dz = "
@@ -210,7 +210,7 @@ def run_cycloid(args) -> int:
     if fmt is not None:
         out["output"] = _write_pair(args, spec, fmt)
     if args.json:
-        print(json.dumps(out, indent=2))
+        print(json.dumps(out, indent=2, allow_nan=False))
     else:
         print(_format(title, result.values, result.report) + (f"\nwrote {out['output']['path']}" if "output" in out
                                                             else ""))

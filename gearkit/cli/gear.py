@@ -165,7 +165,9 @@ def format_summary(info: dict) -> str:
         f"  tip diameter d_a         {info['tip_diameter']:12.6f} mm",
         f"  root diameter d_f        {info['root_diameter']:12.6f} mm",
         f"  form diameter d_Nf       {info['form_diameter']:12.6f} mm  (read from the generated tooth)",
-        f"  tooth thickness s        {info['tooth_thickness']:12.6f} mm  (arc, reference circle)",
+        f"  tooth thickness s        {info['tooth_thickness']:12.6f} mm  (arc, reference circle)"
+        if info["tooth_thickness"] is not None else
+        "  tooth thickness s                  -     (the reference circle is not on the tooth)",
         f"  tip thickness s_a        {info['tip_thickness']:12.6f} mm",
         f"  undercut                 {'YES, depth %.6f mm' % info['undercut_depth'] if info['undercut'] else 'no'}",
         f"  pointed                  {'YES' if info['pointed'] else 'no'}",
@@ -215,7 +217,7 @@ def run(args) -> int:
     info.update(dims)
     info["findings"] = [f.to_dict() for f in findings]
     if args.json:
-        print(json.dumps(info, indent=2))
+        print(json.dumps(info, indent=2, allow_nan=False))
     else:
         from gearkit.checks.report import CheckReport, format_findings
 
@@ -246,7 +248,7 @@ def _run_solid(args, spec, prof) -> int:
     info["solid"] = solid.summary()
     info["output"] = args.output
     if args.json:
-        print(json.dumps(info, indent=2))
+        print(json.dumps(info, indent=2, allow_nan=False))
     else:
         print(format_summary(info) + "\n" + format_solid(info["solid"]))
     return 0

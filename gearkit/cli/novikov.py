@@ -109,7 +109,7 @@ def run(args) -> int:
     if args.output:
         written = _write(spec, args, {k: info[k] for k in ("center_distance", "overlap_ratio", "contact_radii")})
         info["output"] = {"path": args.output, **(written if isinstance(written, dict) else {})}
-    print(json.dumps(info, indent=2) if args.json else format_report(result))
+    print(json.dumps(info, indent=2, allow_nan=False) if args.json else format_report(result))
     if args.output and not args.json:
         extra = info["output"].get("interference_volume")
         print(f"wrote {args.output}" + ("" if extra is None else

@@ -94,7 +94,7 @@ def run(args) -> int:
         asm.export(args.output, angle, ascii=args.ascii)
         info["output"] = args.output
     if args.json:
-        print(json.dumps(info, indent=2))
+        print(json.dumps(info, indent=2, allow_nan=False))
     else:
         print(format_assembly(info, worst))
     return 0 if worst <= 0.0 else 1

@@ -66,7 +66,7 @@ def run(args) -> int:
         write_profile(args.output, [body], info)
         info["output"] = args.output
     if args.json:
-        print(json.dumps(info, indent=2))
+        print(json.dumps(info, indent=2, allow_nan=False))
     else:
         print(f"gearkit rack: m_n = {spec.module:g} mm, pitch {prof.pitch:.6f} mm")
         for key in ("tip_height", "root_height", "tooth_thickness", "tip_thickness"):

@@ -181,7 +181,10 @@ def pair_geometry(spec: PairSpec, form_diameters: tuple | None = None) -> PairGe
         x_sum = x2 - x1 if internal2 else x1 + x2
     y = (a_w - a_ref) / mn
     dy = y - x_sum if internal2 else x_sum - y
-    cut = dy if spec.tip_rule == "shortened" else 0.0
+    # an external (or rack) pair's tips are shortened, never lengthened: a negative dy (a_w above
+    # a + x_sum m) would grow them beyond the blank d + 2 m_n (h_a* + x) the gear is cut from. (An
+    # internal pair keeps the textbook's signed dy, digest 3.2: its worked example lengthens by 0.147 m.)
+    cut = (dy if internal2 else max(dy, 0.0)) if spec.tip_rule == "shortened" else 0.0
     ha = spec.addendum
 
     # tips, roots, forms

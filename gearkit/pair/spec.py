@@ -13,11 +13,12 @@ Conventions
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
 
-from gearkit.errors import SpecError, require
+from gearkit.errors import SpecError, check_fields, require
 from gearkit.errors import is_int as _is_int, is_real as _finite
-from gearkit.tools import BasicRack, ShaperCutter
+from gearkit.tools import MIN_PRESSURE_ANGLE_DEG, BasicRack, ShaperCutter
 
 __all__ = ["KINDS", "TIP_RULES", "PairSpec"]
 
@@ -58,7 +59,9 @@ class PairSpec:
         h_a*, addendum coefficient of both gears (module units).
     tip_rule : {"shortened", "standard"}
         "shortened" keeps the standard bottom clearance, d_a = d + 2 m_n (h_a* + x - dy)
-        (ring: d_a2 = d2 - 2 m_n (h_a* - x2 - dy)); "standard" uses dy = 0.
+        (ring: d_a2 = d2 - 2 m_n (h_a* - x2 - dy)); an external or rack pair only shortens (a
+        negative dy, from a centre distance above a + (x1 + x2) m_n, leaves its tips at the
+        standard d + 2 m_n (h_a* + x)); "standard" uses dy = 0.
     tip_diameter1, tip_diameter2 : float or None, mm
         Given tip diameters, overriding ``tip_rule``.
     center_distance : float or None, mm
@@ -88,6 +91,7 @@ class PairSpec:
     thinning2: float = 0.0
 
     def __post_init__(self):
+        check_fields(self)
         require(self.kind in KINDS, "kind", f"{self.kind!r} is not one of {', '.join(KINDS)}")
         require(_is_int(self.teeth1) and 3 <= self.teeth1 <= 100000, "teeth1",
                 f"z1 = {self.teeth1!r} must be an integer in [3, 100000]")
@@ -99,7 +103,8 @@ class PairSpec:
         if self.kind == "internal":
             require(self.teeth2 > self.teeth1, "teeth2",
                     f"the ring needs more teeth than the pinion (z2 = {self.teeth2} <= z1 = {self.teeth1})")
-        require(_finite(self.module) and self.module > 0, "module", f"m_n = {self.module!r} must be > 0 mm")
+        require(_finite(self.module) and 1e-4 <= self.module <= 1e4, "module",
+                f"m_n = {self.module!r} must be a length in [0.0001, 10000] mm")
         for name in ("shift1", "shift2"):
             v = getattr(self, name)
             require(_finite(v) and -3.0 <= v <= 3.0, name, f"x = {v!r} must be in [-3, 3]")
@@ -115,6 +120,13 @@ class PairSpec:
             v = getattr(self, name)
             if v is not None:
                 require(_finite(v) and v > 0, name, f"{v!r} must be a positive length in mm")
+        if self.center_distance is not None:  # within 10 modules of the reference (shifts are within +-3)
+            a_ref = self.module / math.cos(math.radians(b)) * (
+                self.teeth1 / 2 if self.kind == "rack" else abs(self.teeth2 + (-1 if self.kind == "internal" else 1)
+                                                                * self.teeth1) / 2)
+            hi = a_ref + 10 * self.module
+            require(self.center_distance <= hi, "center_distance", f"a_w = {self.center_distance!r} mm must be at "
+                    f"most a + 10 m_n = {hi:.6g} mm (a = {a_ref:.6g} mm, the reference centre distance)")
         if self.kind == "rack":
             require(self.tip_diameter2 is None, "tip_diameter2", "a rack has no tip diameter")
         for name in ("thinning1", "thinning2"):
@@ -126,7 +138,8 @@ class PairSpec:
     def _check_tools(self):
         if self.pressure_angle_deg is not None:
             a = self.pressure_angle_deg
-            require(_finite(a) and 0.0 < a < 45.0, "pressure_angle_deg", f"{a!r} must be in (0, 45) degrees")
+            require(_finite(a) and MIN_PRESSURE_ANGLE_DEG <= a < 45.0, "pressure_angle_deg",
+                    f"{a!r} must be in [{MIN_PRESSURE_ANGLE_DEG:g}, 45) degrees")
         for name in ("tool1", "tool2"):
             tool = getattr(self, name)
             require(tool is None or isinstance(tool, (BasicRack, ShaperCutter)), name,

@@ -19,7 +19,8 @@ import math
 import manifold3d as m3
 import numpy as np
 
-from gearkit.errors import GeometryError, SpecError
+from gearkit.accuracy import check_tol
+from gearkit.errors import GeometryError, SpecError, check_length
 from gearkit.solids.solid import Recipe, Solid, SolidSpec, default_mesh_tol
 from gearkit.solids.surface import plan_layers, tooth_polyline
 
@@ -203,9 +204,7 @@ def gear_solid(profile, spec: SolidSpec, tol: float | None = None, name: str = "
     >>> s.achieved <= 0.01, s.volume > 0
     (True, True)
     """
-    tol = default_mesh_tol(profile.module) if tol is None else float(tol)
-    if not (math.isfinite(tol) and tol > 0):
-        raise SpecError("tol", f"{tol!r} must be a positive length in mm")
+    tol = default_mesh_tol(profile.module) if tol is None else check_tol(tol, profile.module)
     beta_deg = _helix(profile, spec)
     beta = math.radians(beta_deg)
     k = math.tan(beta) / _reference_radius(profile, abs(beta))
@@ -214,6 +213,8 @@ def gear_solid(profile, spec: SolidSpec, tol: float | None = None, name: str = "
         raise SpecError("bore", "a ring gear has no bore (give --outer-diameter or --rim)")
     if not internal and (spec.outer_diameter is not None or spec.rim is not None):
         raise SpecError("outer_diameter" if spec.rim is None else "rim", "applies to ring (internal) gears")
+    m = profile.module
+    check_length(spec.width, "width", 1e-4 * m, 1e5 * m)  # magnitudes a mesh of this gear can carry
     b, gap = spec.width, spec.gap
     run = (b - gap) / 2.0 if spec.herringbone else b
     plan = plan_layers(lambda t: tooth_polyline(profile, t), tol, k * run, both_hands=spec.herringbone)
@@ -221,6 +222,8 @@ def gear_solid(profile, spec: SolidSpec, tol: float | None = None, name: str = "
     radii = np.hypot(poly.points[:, 0], poly.points[:, 1])
     bore = outer = None
     if spec.bore is not None:
+        if spec.bore / 2.0 >= radii.min():
+            raise SpecError("bore", f"{spec.bore!r} mm must stay inside the root circle (d = {2 * radii.min():.6g} mm)")
         bore = bore_points(spec.bore, spec.keyway, tol)
         if np.hypot(bore[:, 0], bore[:, 1]).max() >= radii.min():
             raise SpecError("bore", f"the bore (and keyway) must stay inside the root circle "
@@ -228,9 +231,10 @@ def gear_solid(profile, spec: SolidSpec, tol: float | None = None, name: str = "
     if internal:
         r_root = float(radii.max())
         r_out = spec.outer_diameter / 2.0 if spec.outer_diameter else r_root + (spec.rim or 2.0 * profile.module)
-        if r_out <= r_root:
-            raise SpecError("outer_diameter", f"{2 * r_out:.6g} mm must exceed the ring's root diameter "
-                            f"{2 * r_root:.6g} mm")
+        field = "outer_diameter" if spec.rim is None else "rim"
+        if not r_root < r_out <= r_root + 1e3 * m:
+            raise SpecError(field, f"the outer diameter {2 * r_out:.6g} mm must lie in ({2 * r_root:.6g}, "
+                            f"{2 * (r_root + 1e3 * m):.6g}] mm (the ring's root diameter, plus a rim up to 1000 modules)")
         outer = circle_points(r_out, tol)
     sec = _Section(poly, profile.teeth, internal)
     n = plan.layers if k else 1

@@ -16,7 +16,8 @@ import math
 import manifold3d as m3
 import numpy as np
 
-from gearkit.errors import SpecError, require
+from gearkit.accuracy import check_tol
+from gearkit.errors import SpecError, check_length, require
 from gearkit.solids.solid import Recipe, Solid, checked, default_mesh_tol, manifold_from_arrays
 from gearkit.solids.surface import plan_layers, tooth_polyline
 
@@ -50,11 +51,11 @@ def rack_solid(profile, length: float, height: float, width: float, tol: float |
     >>> bar.bounds[1][0] - bar.bounds[0][0], bar.achieved <= 0.01
     (40.0, True)
     """
+    m = profile.module
     for field, value in (("length", length), ("height", height), ("width", width)):
-        require(isinstance(value, (int, float)) and math.isfinite(value) and value > 0, field,
-                f"{value!r} must be a positive length in mm")
-    tol = default_mesh_tol(profile.module) if tol is None else float(tol)
-    require(math.isfinite(tol) and tol > 0, "tol", f"{tol!r} must be a positive length in mm")
+        check_length(value, field, 1e-6 * m, 1e4 * m)  # a bar of at most 1e4 modules: ~3000 teeth
+    start = check_length(start, "start", -1e6 * m, 1e6 * m)
+    tol = default_mesh_tol(m) if tol is None else check_tol(tol, m)
     plan = plan_layers(lambda t: tooth_polyline(profile, t, rack=True), tol, 0.0)
     poly = plan.polyline
     tip, root = _tip_and_root(poly)

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 import manifold3d as m3
 import numpy as np
 
-from gearkit.errors import GeometryError, SpecError, require
+from gearkit.errors import GeometryError, SpecError, check_fields, require
 
 
 def default_mesh_tol(module: float) -> float:
@@ -63,6 +63,7 @@ class SolidSpec:
     rim: float | None = None
 
     def __post_init__(self):
+        check_fields(self)
         _positive(self.width, "width", allow_none=False)
         if self.helix_angle_deg is not None:
             b = self.helix_angle_deg

@@ -26,7 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from gearkit.errors import require
+from gearkit.errors import check_fields, require
 from gearkit.errors import is_int as _is_int, is_real as _finite
 
 __all__ = ["DriveSpec", "disc_curve", "theoretical_curve", "curve_normal", "curvature_radius",
@@ -75,16 +75,21 @@ class DriveSpec:
     tip_radius: float | None = None
 
     def __post_init__(self):
+        check_fields(self)
         require(_is_int(self.pins) and 3 <= self.pins <= 1000, "pins", f"Z_b = {self.pins!r} must be an integer "
                 "in [3, 1000]")
         require(_is_int(self.lobes) and 2 <= self.lobes <= 1000, "lobes", f"Z_g = {self.lobes!r} must be an "
                 "integer in [2, 1000]")
         require(self.pins != self.lobes, "lobes", f"Z_g = {self.lobes} must differ from Z_b = {self.pins} "
                 "(the tooth difference dz = Z_b - Z_g cannot be 0)")
-        for name in ("pin_circle_radius", "pin_radius", "eccentricity"):
+        big_r = self.pin_circle_radius
+        require(_finite(big_r) and 1e-3 <= big_r <= 1e5, "pin_circle_radius", f"R_Z = {big_r!r} must be a length in "
+                "[0.001, 100000] mm")
+        for name, rel in (("pin_radius", 1e-12), ("eccentricity", 1e-4)):  # lengths on the scale of R_Z
             v = getattr(self, name)
-            require(_finite(v) and v > 0, name, f"{v!r} must be a positive length in mm")
-        r, big_r, e = self.pin_radius, self.pin_circle_radius, self.eccentricity
+            require(_finite(v) and v >= rel * big_r, name, f"{v!r} must be a length of at least {rel:g} R_Z = "
+                    f"{rel * big_r:.6g} mm")
+        r, e = self.pin_radius, self.eccentricity
         require(e < big_r, "eccentricity", f"e = {e!r} must be smaller than the pin-circle radius R_Z = {big_r!r}")
         require(r < big_r, "pin_radius", f"r_Z = {r!r} must be smaller than the pin-circle radius R_Z = {big_r!r}")
         for name in ("equidistant_mod", "shift_mod"):
@@ -260,7 +265,9 @@ def min_curvature_radius(spec: DriveSpec):
 
     For dz > 0 that is the convex part (rho_0 < 0); for dz < 0 the ring lies on the other side of
     the pins, so the critical part is the concave one (rho_0 > 0). Returns ``(value_mm, phi_rad)``
-    with phi in [0, pi]; ``inf`` when the curve never bends that way.
+    with phi in [0, pi]; ``(inf, None)`` when the curve never bends that way (no radius limits
+    the pins: the offset cannot loop). ``inf`` is the exact value for the Python API; JSON reports
+    carry it as ``null`` with a message.
     """
     from scipy.optimize import minimize_scalar
 
@@ -269,7 +276,7 @@ def min_curvature_radius(spec: DriveSpec):
     crit = np.where(rho > 0, rho, np.inf)
     i = int(np.argmin(crit))
     if not np.isfinite(crit[i]):
-        return math.inf, math.nan
+        return math.inf, None
     lo, hi = phi[max(i - 1, 0)], phi[min(i + 1, len(phi) - 1)]
     res = minimize_scalar(lambda p: float(-spec.sign * curvature_radius(spec, p)), bounds=(lo, hi),
                           method="bounded", options={"xatol": 1e-13})

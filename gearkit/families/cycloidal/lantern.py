@@ -27,7 +27,7 @@ import numpy as np
 
 from gearkit.boundary import HalfTooth, Piece, ToothProfile, trim_half_tooth
 from gearkit.envelope import chain_branches
-from gearkit.errors import GeometryError, SpecError, require
+from gearkit.errors import GeometryError, SpecError, check_fields, require
 from gearkit.errors import is_int as _is_int, is_real as _finite
 from gearkit.motion import RollingMotion
 from gearkit.tools import arc
@@ -65,6 +65,7 @@ class PinGearSpec:
     addendum: float = 1.0
 
     def __post_init__(self):
+        check_fields(self)
         m = self.module
         require(_finite(m) and 1e-3 <= m <= 1e3, "module", f"{m!r} must be a length in [0.001, 1000] mm")
         require(_is_int(self.pins) and 3 <= self.pins <= 10000, "pins", f"z1 = {self.pins!r} must be an integer "

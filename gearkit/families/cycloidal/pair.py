@@ -27,7 +27,7 @@ import numpy as np
 
 from gearkit.boundary import ToothProfile, trim_half_tooth
 from gearkit.envelope import chain_branches
-from gearkit.errors import GeometryError, SpecError, require
+from gearkit.errors import GeometryError, SpecError, check_fields, require
 from gearkit.errors import is_int as _is_int, is_real as _finite
 from gearkit.motion import RollingMotion
 from gearkit.tools import Segment, corner, line
@@ -121,6 +121,7 @@ class CycloidPairSpec:
     clock: bool = False
 
     def __post_init__(self):
+        check_fields(self)
         m = self.module
         require(_finite(m) and 1e-3 <= m <= 1e3, "module", f"{m!r} must be a length in [0.001, 1000] mm")
         require(_is_int(self.pinion_teeth) and 4 <= self.pinion_teeth <= 10000, "pinion_teeth",
@@ -171,7 +172,14 @@ class CycloidPairSpec:
         if v is not None:
             return v * self.module
         if self.clock and k == 2:
-            return CLOCK_ADDENDUM * clock_factors(self.module, self.pinion_teeth, self.wheel_teeth)[0] * self.module
+            try:
+                big_a = clock_factors(self.module, self.pinion_teeth, self.wheel_teeth)[0]
+            except GeometryError:  # a large pinion's generating circle r1/2 points the wheel above 2.9 m
+                raise SpecError("pinion_teeth", f"z1 = {self.pinion_teeth} is too many for clock gearing with "
+                                f"z2 = {self.wheel_teeth}: the wheel's epicycloid (generating circle r1/2) does not "
+                                "point below 2.9 m, so its addendum 0.95 A is undefined; give addendum2 (at most 3) "
+                                "or fewer pinion teeth") from None
+            return CLOCK_ADDENDUM * big_a * self.module
         return self.module
 
     @property

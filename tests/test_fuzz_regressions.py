@@ -1,0 +1,195 @@
+"""The reproducers of the fuzzing report (issue 20), one test per numbered defect class.
+
+Each case is the report's own spec; the assertions hold it to an independent oracle (a closed
+form, the generated geometry, a dense re-evaluation of the exact curve, strict JSON parsing).
+"""
+import json
+import math
+
+import numpy as np
+import pytest
+
+import gearkit as gk
+from gearkit.accuracy import polyline_deviation
+from gearkit.cli import main
+from gearkit.curves import inv
+from gearkit.errors import SpecError
+
+#: exact geometry against closed forms (mm, relative to a module of 1)
+EXACT = 1e-9
+#: dense re-evaluation points per exact piece: fine enough that its own chords are far below tol
+DENSE = 200_001
+
+
+def _strict(text):
+    """Parse JSON refusing NaN/Infinity (``json.loads`` accepts them by default)."""
+    def refuse(token):
+        raise ValueError(f"non-standard JSON number {token}")
+    return json.loads(text, parse_constant=refuse)
+
+
+def _true_deviation(profile, tol):
+    """Largest distance of the exact half tooth (dense) from its sampled polyline."""
+    half, _ = profile.half_points(tol)
+    w = np.linspace(0.0, 1.0, DENSE)
+    exact = np.concatenate([p(w) for p in profile.half.pieces])
+    return polyline_deviation(half, exact)
+
+
+# -- 1. thickness at a radius the tooth does not reach ----------------------------------------
+def test_1_reference_circle_below_the_root_is_reported_not_raised(capsys):
+    prof = gk.tooth_profile(gk.GearSpec(40, 1.0, shift=1.3))
+    # closed forms: r_f = r - m (h_fP* - x) = 20.05 > r = 20; the involute thickness at r = 21
+    assert prof.root_diameter / 2 == pytest.approx(20.0 - (1.25 - 1.3), abs=EXACT)
+    info = prof.summary()
+    assert info["tooth_thickness"] is None and prof.thickness_at(20.0) is None
+    alpha, r, rb = math.radians(20.0), 21.0, 20.0 * math.cos(math.radians(20.0))
+    s_ref = math.pi / 2 + 2 * 1.3 * math.tan(alpha)
+    closed = 2 * r * (s_ref / 40.0 + inv(alpha) - inv(math.acos(rb / r)))
+    assert prof.thickness_at(r) == pytest.approx(closed, abs=EXACT)
+    assert main(["gear", "-z", "40", "-m", "1", "-x", "1.3"]) == 0
+    assert "not on the tooth" in capsys.readouterr().out
+    assert main(["gear", "-z", "40", "-m", "1", "-x", "1.3", "--json"]) == 0
+    assert _strict(capsys.readouterr().out)["tooth_thickness"] is None
+
+
+# -- 2. the pair check grades the tips that are cut --------------------------------------------
+@pytest.mark.parametrize("spec, tips", [
+    (dict(teeth1=20, teeth2=40, module=1.0, center_distance=30.6), (22.0, 42.0)),
+    (dict(teeth1=40, teeth2=None, module=1.0, kind="rack", center_distance=20.6), (42.0,)),
+])
+def test_2_checked_tip_is_never_larger_than_the_cut_tip(spec, tips):
+    res = gk.check_pair(gk.PairSpec(**spec), simulate=True)
+    checked = [gear.tip_diameter for gear in res.geometry.gears]
+    cut = [p.tip_diameter for p in res.profiles]
+    # the standard blank d + 2 m (h_a* + x) with x = 0: a_w > a never lengthens the tips
+    assert checked == pytest.approx(tips, abs=EXACT) and all(c <= k * (1 + EXACT) for c, k in zip(checked, cut))
+    rep = res.report
+    assert rep["contact_ratio.simulated"].value == pytest.approx(rep["contact_ratio"].value, abs=1e-3)
+    assert rep["contact_ratio.simulated"].status != "fail"
+
+
+def test_2_pointed_tooth_is_checked_at_its_point():
+    # z = 10, x = 1: the flanks meet below the blank's tip circle d + 2 m (1 + x) = 14
+    res = gk.check_pair(gk.PairSpec(10, 30, 1.0, shift1=1.0, tip_rule="standard"))
+    pinion = res.profiles[0]
+    assert pinion.pointed and pinion.tip_diameter < 14.0 - 0.1
+    assert res.geometry.gears[0].tip_diameter == pytest.approx(pinion.tip_diameter, abs=EXACT)
+    assert res.report["pointing.1"].status == "fail"
+
+
+def test_2_formula_simulation_disagreement_fails():
+    from gearkit.checks.simulated import EPS_AGREEMENT, simulated_findings
+    from gearkit.contact import analyse_pair
+
+    spec = gk.PairSpec(20, 40, 1.0)
+    res = gk.check_pair(spec)
+    analysis = analyse_pair(spec, 64)
+    ok = simulated_findings(spec, res.geometry, res.report.findings, gk.CheckLimits(), analysis)[0]
+    assert ok.status == "ok"
+    # the same simulation against the formula geometry of another pair (tips 0.1 m longer)
+    other = gk.pair_geometry(gk.PairSpec(20, 40, 1.0, tip_diameter1=22.2, tip_diameter2=42.2))
+    assert abs(other.contact_ratio - analysis.contact_ratio) > EPS_AGREEMENT
+    bad = simulated_findings(spec, other, res.report.findings, gk.CheckLimits(), analysis)[0]
+    assert bad.status == "fail" and "disagree" in bad.message
+
+
+# -- 3. the reported deviation is a bound ------------------------------------------------------
+@pytest.mark.parametrize("make, tol", [
+    (lambda: gk.pin_gear_wheel(gk.PinGearSpec(1.0, 50, 60, 0.04)), 3e-5),
+    (lambda: gk.disc_profile(gk.DriveSpec(3, 2, 13.0, 8.0, 3.8)), 0.01),
+])
+def test_3_sampler_does_not_skip_narrow_features(make, tol):
+    prof = make()
+    _, achieved = prof.half_points(tol)
+    true = _true_deviation(prof, tol)
+    assert achieved <= tol and true <= tol
+
+
+# -- 4. strict JSON ------------------------------------------------------------------------------
+def test_4_drive_without_finite_curvature_limit_is_strict_json(capsys):
+    from gearkit.families.cycloidal import min_curvature_radius
+
+    spec = gk.DriveSpec(6, 9, 40.0, 5.0, 4.0)
+    value, where = min_curvature_radius(spec)
+    assert value == math.inf and where is None
+    code = main(["cycloidal-drive", "--pins", "6", "--lobes", "9", "--pin-circle-radius", "40", "--pin-radius", "5",
+                 "--eccentricity", "4", "--json"])
+    out = _strict(capsys.readouterr().out)
+    assert code in (0, 1) and out["min_curvature_radius"] is None
+    looping = next(f for f in out["findings"] if f["id"] == "looping")
+    assert looping["limit"] is None and "never bends" in looping["message"]
+
+
+# -- 9. one validation path for every spec field ------------------------------------------------
+@pytest.mark.parametrize("build, field", [
+    (lambda: gk.PairSpec(20, 40, 1.0, shift1="0.3"), "shift1"),
+    (lambda: gk.PairSpec(20, 40, 1.0, thinning1=None), "thinning1"),
+    (lambda: gk.PairSpec(True, 40, 1.0), "teeth1"),
+    (lambda: gk.BasicRack(pressure_angle_deg="20"), "pressure_angle_deg"),
+    (lambda: gk.ShaperCutter(20.0), "cutter.teeth"),
+    (lambda: gk.SolidSpec(width=None), "width"),
+    (lambda: gk.SolidSpec(5.0, herringbone=1), "herringbone"),
+    (lambda: gk.DriveSpec(12, 11, "90", 7.0, 4.0), "pin_circle_radius"),
+    (lambda: gk.CycloidPairSpec(1.0, 10, 20, clock="2"), "clock"),
+    (lambda: gk.PinGearSpec(1.0, np.float64(10), 20, 0.1), "pins"),
+    (lambda: gk.CheckLimits(min_contact_ratio=None), "min_contact_ratio"),
+])
+def test_9_wrong_types_are_spec_errors_naming_the_field(build, field):
+    with pytest.raises(SpecError) as exc:
+        build()
+    assert exc.value.field == field
+
+
+def test_9_numpy_scalars_are_numbers():
+    spec = gk.PairSpec(np.int64(20), np.int32(40), np.int64(2), np.float64(0.1))
+    assert (type(spec.teeth1), type(spec.module), type(spec.shift1)) == (int, int, float)
+    assert spec == gk.PairSpec(20, 40, 2, 0.1)
+    res = gk.check_pair(spec)
+    assert res.geometry.center_distance == pytest.approx(gk.check_pair(gk.PairSpec(20, 40, 2.0, 0.1))
+                                                         .geometry.center_distance, abs=EXACT)
+    assert gk.DriveSpec(np.int64(12), np.int64(11), np.float32(90.0), 7, 4) == gk.DriveSpec(12, 11, 90.0, 7.0, 4.0)
+
+
+# -- 10. hostile magnitudes ----------------------------------------------------------------------
+@pytest.mark.parametrize("build, field", [
+    (lambda: gk.rack_solid(gk.rack_profile(gk.RackSpec(1.0)), 10.0, 5.0, 3.0, start=math.inf), "start"),
+    (lambda: gk.PairSpec(20, 40, 1.0, center_distance=1e300), "center_distance"),
+    (lambda: gk.PairSpec(20, 40, 1e-300), "module"),
+    (lambda: gk.gear_solid(gk.tooth_profile(gk.GearSpec(20, 1.0)), gk.SolidSpec(5.0, bore=1e300)), "bore"),
+    (lambda: gk.gear_solid(gk.tooth_profile(gk.GearSpec(20, 1.0)), gk.SolidSpec(1e300)), "width"),
+    (lambda: gk.BasicRack(pressure_angle_deg=1e-12), "pressure_angle_deg"),
+    (lambda: gk.ShaperCutter(20, pressure_angle_deg=1e-12), "cutter.pressure_angle_deg"),
+    (lambda: gk.DriveSpec(12, 11, 90.0, 7.0, 1e-300), "eccentricity"),
+    (lambda: gk.DriveSpec(12, 11, 1e300, 7.0, 4.0), "pin_circle_radius"),
+    (lambda: gk.tooth_profile(gk.GearSpec(20, 1.0)).half_points(1e-11), "tol"),
+    (lambda: gk.tooth_profile(gk.GearSpec(20, 1.0)).outline(math.inf), "tol"),
+    (lambda: gk.gear_solid(gk.tooth_profile(gk.GearSpec(20, 1.0)), gk.SolidSpec(5.0), tol=1e-300), "tol"),
+])
+def test_10_hostile_magnitudes_are_spec_errors(build, field):
+    with pytest.raises(SpecError) as exc:
+        build()
+    assert exc.value.field == field
+
+
+def test_10_tol_floor_names_the_allowed_range():
+    with pytest.raises(SpecError, match=r"outside \[1e-09, 1\] mm"):
+        gk.tooth_profile(gk.GearSpec(20, 1.0)).half_points(1e-11)
+    # the floor itself is accepted and achieved
+    prof = gk.tooth_profile(gk.GearSpec(20, 1.0))
+    assert prof.half_points(1e-9)[1] <= 1e-9
+
+
+# -- 11. small ones ------------------------------------------------------------------------------
+def test_11_pointed_tip_thickness_is_zero():
+    disc = gk.disc_profile(gk.DriveSpec(12, 11, 90.0, 7.0, 4.0))
+    assert disc.tip_thickness == 0.0 and math.copysign(1.0, disc.tip_thickness) == 1.0
+
+
+def test_11_clock_gearing_with_many_pinion_teeth_names_the_field():
+    with pytest.raises(SpecError) as exc:
+        gk.CycloidPairSpec(1.0, 98, 104, clock=True)
+    assert exc.value.field == "pinion_teeth"
+    # with the wheel addendum given, the pair is valid and generates
+    spec = gk.CycloidPairSpec(1.0, 98, 104, clock=True, addendum2=2.5)
+    assert spec.addendum(2) == pytest.approx(2.5)
