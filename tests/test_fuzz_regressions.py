@@ -123,6 +123,13 @@ def test_4_drive_without_finite_curvature_limit_is_strict_json(capsys):
 
 # -- 9. one validation path for every spec field ------------------------------------------------
 @pytest.mark.parametrize("build, field", [
+    (lambda: gk.GearSpec(20, 2.0, shift="0.3"), "shift"),
+    (lambda: gk.GearSpec(20, 2.0, thinning=None), "thinning"),
+    (lambda: gk.GearSpec(20, 2.0, internal="yes"), "internal"),
+    (lambda: gk.rack_profile(gk.RackSpec(1.0)).outline(1e-3, teeth=True), "teeth"),
+    (lambda: gk.RackSpec("1.0"), "module"),
+    (lambda: gk.NovikovGearSpec(20, 1.0, gk.rack_system("dca24").rack1, helix_angle_deg=None), "helix_angle_deg"),
+    (lambda: gk.NovikovPairSpec(20, 40, 1.0, 15.0, "20"), "face_width"),
     (lambda: gk.PairSpec(20, 40, 1.0, shift1="0.3"), "shift1"),
     (lambda: gk.PairSpec(20, 40, 1.0, thinning1=None), "thinning1"),
     (lambda: gk.PairSpec(True, 40, 1.0), "teeth1"),
@@ -142,6 +149,9 @@ def test_9_wrong_types_are_spec_errors_naming_the_field(build, field):
 
 
 def test_9_numpy_scalars_are_numbers():
+    gear = gk.GearSpec(np.int64(20), np.int64(2), np.float64(0.3))
+    assert gear == gk.GearSpec(20, 2.0, 0.3) and type(gear.teeth) is int
+    assert gk.tooth_profile(gear).tip_diameter == pytest.approx(20 * 2 + 2 * 2 * (1 + 0.3), abs=EXACT)
     spec = gk.PairSpec(np.int64(20), np.int32(40), np.int64(2), np.float64(0.1))
     assert (type(spec.teeth1), type(spec.module), type(spec.shift1)) == (int, int, float)
     assert spec == gk.PairSpec(20, 40, 2, 0.1)

@@ -17,7 +17,7 @@ import manifold3d as m3
 import numpy as np
 
 from gearkit.accuracy import check_tol
-from gearkit.errors import SpecError, check_length, require
+from gearkit.errors import SpecError, check_length
 from gearkit.solids.solid import Recipe, Solid, checked, default_mesh_tol, manifold_from_arrays
 from gearkit.solids.surface import plan_layers, tooth_polyline
 

@@ -25,7 +25,7 @@ from gearkit.profile import ToothProfile
 from gearkit.curves import inv, polar_from_y
 from gearkit.envelope import chain_branches
 from gearkit.families.involute.modification import Modification, modify_half
-from gearkit.errors import GeometryError, SpecError, require, require_cut_inputs
+from gearkit.errors import GeometryError, SpecError, check_fields, require, require_cut_inputs
 from gearkit.motion import RollingMotion
 from gearkit.tools import BasicRack, ShaperCutter, rotation_matrix, transform_chain
 
@@ -68,6 +68,7 @@ class GearSpec:
     modification: Modification | None = None
 
     def __post_init__(self):
+        check_fields(self)
         z = self.teeth
         require(isinstance(z, (int, np.integer)) and not isinstance(z, bool) and 3 <= z <= 100000, "teeth",
                 f"{z!r} must be an integer in [3, 100000]")

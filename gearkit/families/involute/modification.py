@@ -38,7 +38,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from gearkit.boundary import CircleArc, Piece
-from gearkit.errors import is_real, require
+from gearkit.errors import check_fields, is_real, require
 
 __all__ = ["Modification", "modify_half"]
 
@@ -80,6 +80,7 @@ class Modification:
     helix_slope: float = 0.0
 
     def __post_init__(self):
+        check_fields(self)
         for name in _PROFILE + _LEAD:
             v = getattr(self, name)
             require(is_real(v) and abs(v) <= 1.0, name, f"{v!r} must be a length in [-1, 1] mm")

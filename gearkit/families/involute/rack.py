@@ -20,7 +20,7 @@ import numpy as np
 from gearkit.boundary import HalfTooth, Piece, _crossings, linear_coords, trim_half_tooth
 from gearkit.profile import HalfToothProfile
 from gearkit.envelope import chain_branches
-from gearkit.errors import GeometryError, SpecError, require, require_cut_inputs
+from gearkit.errors import GeometryError, SpecError, check_count, check_fields, require, require_cut_inputs
 from gearkit.motion import RollingMotion
 from gearkit.tools import BasicRack, ShaperCutter, arc, line, rotation_matrix, transform_chain
 
@@ -45,6 +45,7 @@ class RackSpec:
     thinning: float = 0.0
 
     def __post_init__(self):
+        check_fields(self)
         require_cut_inputs(self.module, self.helix_angle_deg, self.thinning)
         if self.tool is None:
             object.__setattr__(self, "tool", BasicRack())
@@ -101,8 +102,7 @@ class RackProfile(HalfToothProfile):
 
     def outline(self, tol: float | None = None, teeth: int = 1):
         """Open polyline of ``teeth`` teeth, left to right, starting at x = -p/2 (mm)."""
-        require(isinstance(teeth, (int, np.integer)) and 1 <= teeth <= 100000, "teeth",
-                f"{teeth!r} must be an integer in [1, 100000]")
+        teeth = check_count(teeth, "teeth", 1, 100000)
         tol = 1e-3 * self.module if tol is None else tol
         tooth = self.tooth_points(tol)
         body = tooth[:-1]

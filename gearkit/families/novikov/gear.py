@@ -28,7 +28,7 @@ import numpy as np
 
 from gearkit.boundary import ToothProfile, trim_half_tooth
 from gearkit.envelope import chain_branches
-from gearkit.errors import GeometryError, SpecError, require
+from gearkit.errors import GeometryError, SpecError, check_fields, require
 from gearkit.errors import is_int as _is_int, is_real as _num
 from gearkit.families.novikov.presets import RackSystem, rack_system
 from gearkit.families.novikov.racks import ArcRack
@@ -63,6 +63,7 @@ class NovikovGearSpec:
     tip_diameter: float | None = None
 
     def __post_init__(self):
+        check_fields(self)
         z = self.teeth
         require(_is_int(z) and 3 <= z <= 100000, "teeth", f"{z!r} must be an integer in [3, 100000]")
         m = self.module
@@ -239,6 +240,7 @@ class NovikovPairSpec:
     tip_diameter2: float | None = field(default=None)
 
     def __post_init__(self):
+        check_fields(self)
         for k in (1, 2):
             z = getattr(self, f"teeth{k}")
             require(_is_int(z) and 3 <= z <= 100000, f"teeth{k}", f"{z!r} must be an integer in [3, 100000]")

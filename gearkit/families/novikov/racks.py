@@ -34,7 +34,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from gearkit.errors import SpecError, require
+from gearkit.errors import SpecError, check_fields, require
 from gearkit.errors import is_real as _num
 from gearkit.tools import Segment, arc, corner, line, transform_chain
 
@@ -67,6 +67,7 @@ class ArcSpec:
     centre_offset: float = 0.0
 
     def __post_init__(self):
+        check_fields(self)
         require(_num(self.radius) and 0.0 < self.radius <= 10.0, "radius",
                 f"{self.radius!r} must be in (0, 10] (module units)")
         require(_num(self.centre_shift) and abs(self.centre_shift) <= 2.0, "centre_shift",
@@ -144,6 +145,7 @@ class ArcRack:
     verified: bool = False
 
     def __post_init__(self):
+        check_fields(self)
         a = self.contact_angle_deg
         require(_num(a) and 5.0 < a < 45.0, "contact_angle_deg", f"{a!r} must be in (5, 45) degrees")
         require(_num(self.addendum) and 0.0 <= self.addendum <= 3.0, "addendum",
