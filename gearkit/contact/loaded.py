@@ -113,7 +113,7 @@ class Deviations:
 
 @dataclass(frozen=True)
 class LoadedAnalysis:
-    """Result of :func:`loaded_cycle` (arrays over the ``steps`` driver angles of one mesh cycle).
+    """Result of :func:`loaded_cycle` (arrays over the ``steps`` driver angles of ``cycles`` mesh cycles).
 
     ``load`` is ``(steps, S, P)`` N/mm per unit length for the ``P`` driver teeth ``pair_teeth``;
     ``sharing`` ``(steps, P)`` their fraction of the total; ``pattern`` ``(bins, S)`` the largest
@@ -136,6 +136,7 @@ class LoadedAnalysis:
     face_width: float = 0.0
     steps: int = 0
     slices: int = 1
+    cycles: int = 1
     refined_range: float = 0.0
     hertz_change: float = 0.0
     torque_residual: float = 0.0
@@ -168,7 +169,7 @@ class LoadedAnalysis:
             "contact_ratio_loaded": self.contact_ratio_loaded,
             "max_contact_pressure": self.max_contact_pressure,
             "mesh_stiffness_mean": self.mesh_stiffness_mean,
-            "accuracy": {"steps": self.steps, "slices": self.slices,
+            "accuracy": {"steps": self.steps, "slices": self.slices, "cycles": self.cycles,
                          "angle_step_deg": float(np.degrees(self.driver_angle[1] - self.driver_angle[0])),
                          "slice_width": self.face_width / self.slices, "refined_range": self.refined_range,
                          "hertz_change": self.hertz_change, "torque_residual": self.torque_residual},
@@ -316,12 +317,12 @@ def loaded_cycle(mesh, torque, *, face_width: float, zeta, shifts, lead, materia
     if ref is None:
         ref = float(np.median(g.rigid_te))
     g.rigid = g.rigid_te - ref
-    out = [_result(mesh, g, c1, material, t, sol, phi, zeta, face_width, width, reach)
+    out = [_result(mesh, g, c1, material, t, sol, phi, zeta, face_width, width, reach, cycles)
            for t, sol in zip(torques, sols)]
     return out[0] if np.ndim(torque) == 0 else out
 
 
-def _result(mesh, g, c1, material, torque, sol, phi, zeta, face_width, width, reach) -> LoadedAnalysis:
+def _result(mesh, g, c1, material, torque, sol, phi, zeta, face_width, width, reach, cycles) -> LoadedAnalysis:
     theta, w, q, change = sol
     torque2 = torque * 1e3 / abs(mesh.ratio)
     te = g.rigid + mesh.working * theta if np.any(theta != 0) else g.rigid
@@ -354,4 +355,4 @@ def _result(mesh, g, c1, material, torque, sol, phi, zeta, face_width, width, re
         load=load, pair_teeth=teeth, sharing=sharing, mesh_stiffness=stiffness, contact_pressure=pressure,
         pattern=pattern, pattern_roll_deg=0.5 * (edges[1:] + edges[:-1]), zeta=zeta,
         contact_ratio_loaded=float(on.sum(1).mean()), face_width=float(face_width), steps=len(phi) - 1,
-        slices=int(s_count), refined_range=float(reach), hertz_change=float(change), torque_residual=residual)
+        slices=int(s_count), cycles=int(cycles), refined_range=float(reach), hertz_change=float(change), torque_residual=residual)
