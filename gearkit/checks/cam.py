@@ -198,15 +198,14 @@ def _motion(spec, f, values):
     jumps = []
     for k, (phi, dv, da, dj) in enumerate(spec.motion.jumps()):
         deg = math.degrees(phi)
-        for name, d, note, status in (
-                ("velocity", dv, "an infinite acceleration (hard impact)", "warn"),
-                ("acceleration", da, "a soft impact", "warn"),
-                ("jerk", dj, "a jerk step", "ok")):
+        for name, d, note, status, power in (
+                ("velocity", dv, "an infinite acceleration (hard impact)", "warn", 1),
+                ("acceleration", da, "a soft impact", "warn", 2),
+                ("jerk", dj, "a jerk step", "ok", 3)):
             if abs(d) > _JUMP_REL * h:
                 jumps.append({"phi_deg": deg, "derivative": name, "jump": d})
                 f.append(Finding(f"motion.{name}.{k + 1}", status, abs(d), None,
-                                 f"the {name} jumps by {d:.6g} mm/rad^{'123'[('velocity', 'acceleration', 'jerk').index(name)]} "
-                                 f"at {deg:.6g} degrees: {note}"))
+                                 f"the {name} jumps by {d:.6g} mm/rad^{power} at {deg:.6g} degrees: {note}"))
                 break
     values["jumps"] = jumps
     values["stroke"] = spec.stroke

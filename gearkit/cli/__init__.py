@@ -13,7 +13,8 @@ import sys
 from gearkit.errors import GearkitError
 
 #: command modules, in the order ``gearkit --help`` lists them
-COMMANDS = ("demo", "gear", "rack", "check", "pair", "bench", "novikov", "blocking", "cycloid", "contact", "view")
+COMMANDS = ("demo", "gear", "rack", "check", "pair", "bench", "novikov", "blocking", "cycloid", "contact", "view",
+            "cam")
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -6,7 +6,8 @@ counter-clockwise by ``phi``; a translating follower's reference point at ``(e, 
 rocker's roller centre at ``O2 + l (-cos Psi, sin Psi)``, a flat face on the line ``y = r0 + s``),
 rotated back by ``-phi`` into the cam frame at ``steps`` equal cam angles. Each position becomes a
 polygon (the roller as a regular ``sides``-gon on its circle, the knife as a wedge of half-angle
-45 degrees opening along the follower, the face as a long slab) and all of them are subtracted from a disc with 2D polygon booleans (manifold3d's
+45 degrees opening along the follower, the face as a long slab) and all of them are subtracted
+from a disc with 2D polygon booleans (manifold3d's
 cross sections). What remains is scalloped between positions and faceted by the polygons: the
 oracle boundary lies outside the exact cam by at most the polygon's sag ``r (1 - cos(pi/sides))``
 plus the scallop between positions (about ``d^2/(8 r)`` for roller centres ``d`` apart; the
