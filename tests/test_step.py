@@ -250,6 +250,19 @@ def test_generic_prism_plugs_in(tmp_path):
 
 
 @needs_ocp
+def test_clockwise_outline_makes_the_same_prism(tmp_path):
+    """A loop given clockwise (as a cam turning the other way lists it) gives the same solid."""
+    from gearkit.solids import brep, prism_solid
+    from gearkit.solids.step import shape
+
+    ccw = prism_solid(_cam_outline(), SolidSpec(4.0), TOL)
+    cw = prism_solid([lambda w, c=c: c(1.0 - np.asarray(w)) for c in _cam_outline()[::-1]], SolidSpec(4.0), TOL)
+    assert cw.volume == pytest.approx(ccw.volume, rel=1e-9)
+    solid, _ = shape(cw.recipe)
+    _agree(solid, ccw)
+
+
+@needs_ocp
 def test_part_without_recipe_writes_nothing(tmp_path):
     from gearkit.solids import Solid
 

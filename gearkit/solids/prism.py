@@ -1,8 +1,8 @@
 """Straight prisms over any closed outline of exact plane curves: the way in for a new family.
 
 A family that knows its outline exactly (a cam, a plate, a lever) as a loop of curves
-``w -> (n, 2)`` (``w`` in [0, 1], counter-clockwise, each curve starting where the previous
-one ends) gets a :class:`~gearkit.solids.Solid` from :func:`prism_solid`, with a bore and a
+``w -> (n, 2)`` (``w`` in [0, 1], each curve starting where the previous one ends; a clockwise
+loop is turned round) gets a :class:`~gearkit.solids.Solid` from :func:`prism_solid`, with a bore and a
 keyway if asked: the mesh is the outline sampled to ``tol``
 (:func:`~gearkit.accuracy.adaptive_sample`, achieved deviation measured) and extruded by
 manifold3d; its recipe rebuilds the same outline as B-spline faces for STEP
@@ -26,7 +26,7 @@ def prism_solid(curves, spec: SolidSpec, tol: float, name: str = "part") -> Soli
 
     Parameters
     ----------
-    curves : sequence of callables ``w -> (n, 2)`` mm, a closed counter-clockwise loop
+    curves : sequence of callables ``w -> (n, 2)`` mm, a closed loop (either way round)
     spec : SolidSpec (``width``, and optionally ``bore`` and ``keyway``; the gear fields stay unset)
     tol : float, mm, largest deviation of the mesh (and of the STEP faces) from the exact outline
     name : str
@@ -56,6 +56,9 @@ def prism_solid(curves, spec: SolidSpec, tol: float, name: str = "part") -> Soli
         pieces.append(pts[:-1])
         achieved = max(achieved, float(dev))
     loop = np.concatenate(pieces)
+    if _signed_area(loop) < 0.0:  # a clockwise loop: the same curves run backwards
+        curves = tuple(_reversed(c) for c in curves[::-1])
+        loop = loop[::-1]
     gap = float(np.linalg.norm(curves[-1](np.array([1.0]))[0] - curves[0](np.array([0.0]))[0]))
     if gap > tol:
         raise SpecError("curves", f"the loop does not close: its ends are {gap:.3g} mm apart")
@@ -70,3 +73,14 @@ def prism_solid(curves, spec: SolidSpec, tol: float, name: str = "part") -> Soli
     man = checked(m3.Manifold.extrude(m3.CrossSection(loops, m3.FillRule.Positive), float(spec.width)), name)
     info = {"kind": "prism", "width": float(spec.width), "tol": float(tol), "achieved": achieved}
     return Solid(man, name, info, Recipe("prism", (curves, spec, float(tol))))
+
+
+def _signed_area(p) -> float:
+    return 0.5 * float(np.dot(p[:, 0], np.roll(p[:, 1], -1)) - np.dot(p[:, 1], np.roll(p[:, 0], -1)))
+
+
+def _reversed(curve):
+    """The same curve run from its end to its start."""
+    def back(w, curve=curve):
+        return curve(1.0 - np.asarray(w, dtype=float))
+    return back
