@@ -196,6 +196,11 @@ def test_page_runs_in_a_headless_browser(tmp_path):
     from gearkit.families.cycloidal import DriveSpec
 
     write_page(path, drive_view(DriveSpec(8, 7, 40.0, 3.0, 1.5), cycles=2))
+    minimal = tmp_path / "minimal.html"
+    square = [0.0, 0.0, 10.0, 0.0, 10.0, 10.0, 0.0, 10.0]
+    write_page(minimal, {"title": "one body", "anim": {"frames": 8, "fps": 30, "contacts": [], "path": [],
+                                                        "bodies": [{"name": "plate", "loops": [square],
+                                                                    "poses": [[k / 8, 0, 0] for k in range(8)]}]}})
     profile = tmp_path / "profile"
     profile.mkdir()
     with sync_playwright() as pw:
@@ -228,6 +233,9 @@ def test_page_runs_in_a_headless_browser(tmp_path):
             }""")
             webgl = page.evaluate("document.getElementById('glnote').textContent")
             page.screenshot(path=str(tmp_path / "page.png"))
+            # the least a producer may give: one turning body, no contacts, no trace, no solids
+            page.goto(minimal.as_uri())
+            page.wait_for_function("Number(document.body.getAttribute('data-frame')) > 0", timeout=20000)
         finally:
             ctx.close()
     assert errors == []

@@ -127,7 +127,7 @@
       }
       g.fillStyle = "rgba(40,120,60,0.55)"; g.fill();
     }
-    var pts = A.contacts ? A.contacts[f % A.contacts.length] : [];
+    var pts = (A.contacts && A.contacts.length) ? A.contacts[f % A.contacts.length] : [];
     g.beginPath();
     for (var j = 0; j < pts.length; j += 2) {
       g.moveTo(pts[j] + 5 * dpr * px, pts[j + 1]);
