@@ -7,7 +7,7 @@ import math
 from gearkit.checks import check_pair
 from gearkit.cli.check import format_report
 from gearkit.pair import PairSpec, shifts_for_center_distance
-from gearkit.tools import ShaperCutter
+from gearkit.families.involute import ShaperCutter
 
 
 def main() -> None:

@@ -24,7 +24,7 @@ from gearkit.cli.contact import format_summary
 from gearkit.contact import Mesh, analyse_pair, limits, pair_mesh, pin_ring, save_plot, simulate
 from gearkit.families.cycloidal import DriveSpec, disc_profile
 from gearkit.pair import PairSpec, pair_geometry
-from gearkit.tools import ShaperCutter
+from gearkit.families.involute import ShaperCutter
 
 
 def main(out_dir: Path) -> None:

@@ -15,8 +15,9 @@ from gearkit.checks.cycloidal import check_cycloid_pair, check_drive
 from gearkit.export import write_profile
 from gearkit.families.cycloidal import (CycloidPairSpec, DriveSpec, backlash, disc_curve, disc_profile, psi_max,
                                         simulate_mesh)
-from gearkit.families.cycloidal.assembly import disc_solid, drive_loops, drive_parts
+from gearkit.families.cycloidal.assembly import drive_loops
 from gearkit.solids import write_mesh
+from gearkit.solids.drive import disc_solid, drive_parts
 
 
 def main(out_dir: Path) -> None:

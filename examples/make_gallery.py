@@ -22,7 +22,7 @@ from gearkit.families.novikov.presets import rack_system
 from gearkit.families.involute.rack import RackSpec, rack_profile
 from gearkit.pair import PairSpec
 from gearkit.solids import SolidSpec, gear_solid, pair_assembly, rack_solid, write_mesh
-from gearkit.tools import ShaperCutter
+from gearkit.families.involute import ShaperCutter
 
 MESHES = Path(__file__).resolve().parents[1] / "meshes"
 

@@ -16,9 +16,8 @@ _PUBLIC = {
     # the generating kernel and the involute family
     "gearkit.accuracy": ("Accuracy",),
     "gearkit.profile": ("ToothProfile",),
-    "gearkit.families.involute": ("GearSpec", "InvoluteProfile", "Modification", "RackProfile", "RackSpec",
-                                  "rack_profile", "tooth_profile"),
-    "gearkit.tools": ("BasicRack", "ShaperCutter"),
+    "gearkit.families.involute": ("BasicRack", "GearSpec", "InvoluteProfile", "Modification", "RackProfile",
+                                  "RackSpec", "ShaperCutter", "rack_profile", "tooth_profile"),
     "gearkit.oracles.involute": ("swept_gear",),
     # gear pairs and design checks
     "gearkit.checks": ("CheckLimits", "CheckReport", "Finding", "PairCheck", "check_pair", "load_design"),

@@ -236,10 +236,12 @@ def _grids(pieces, n=48):
     return out
 
 
-def _crossings(pieces, func, target, n=48, grids=None):
+def crossings(pieces, func, target, n=48, grids=None):
     """Refined parameters where ``func(points) = target`` along the pieces: [(piece index, w)].
 
-    ``grids`` (from :func:`_grids`) lets several searches share one sampling of the pieces.
+    ``func`` maps ``(n, 2)`` points to ``(n,)`` values (a polar angle, a radius, a coordinate); every
+    sign change on a grid of ``n`` parameters per piece is refined to a root. ``grids`` (one
+    sampling of the pieces, as this module builds it) lets several searches share the sampling.
     """
     grids = _grids(pieces, n) if grids is None else grids
     out = []
@@ -313,9 +315,9 @@ def trim_half_tooth(branches, teeth_or_angle, tip_radius: float, internal: bool,
         return coords(p)[0]
 
     grids = _grids(pieces)
-    marks = [(k, w, "S") for k, w in _crossings(pieces, psi, half, grids=grids)]
-    marks += [(k, w, "C") for k, w in _crossings(pieces, psi, 0.0, grids=grids)]
-    marks += [(k, w, "R") for k, w in _crossings(pieces, rho, tip_radius, grids=grids)]
+    marks = [(k, w, "S") for k, w in crossings(pieces, psi, half, grids=grids)]
+    marks += [(k, w, "C") for k, w in crossings(pieces, psi, 0.0, grids=grids)]
+    marks += [(k, w, "R") for k, w in crossings(pieces, rho, tip_radius, grids=grids)]
     marks.sort(key=lambda m: (m[0], m[1]))
 
     def inside(k, w):
@@ -370,12 +372,3 @@ def trim_half_tooth(branches, teeth_or_angle, tip_radius: float, internal: bool,
         pointed = abs(d[1]) > 1e-4 * np.linalg.norm(d)
     return HalfTooth(tuple(sel), tuple(sel_joins), bool(pointed), half)
 
-
-def __getattr__(name):
-    """The profile classes live in :mod:`gearkit.profile`; this keeps ``from gearkit.boundary import
-    ToothProfile`` working."""
-    if name in ("ToothProfile", "HalfToothProfile"):
-        from gearkit import profile
-
-        return getattr(profile, name)
-    raise AttributeError(f"module 'gearkit.boundary' has no attribute {name!r}")

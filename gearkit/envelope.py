@@ -22,7 +22,7 @@ import numpy as np
 
 from gearkit.curves import rotate
 from gearkit.motion import RollingMotion
-from gearkit.tools import Segment
+from gearkit.segments import Segment
 
 
 @dataclass(frozen=True)

@@ -5,11 +5,13 @@ the target directory and renamed over the target only when complete, so a failed
 never leaves a partial or corrupt file behind.
 
 2D formats: SVG (a closed path, y up, viewBox in mm), DXF (a closed polyline in mm, R2010),
-CSV (x,y per line, mm) and JSON (points and key values).
+CSV (x,y per line, mm) and JSON (points and key values). Numbers in every JSON output (files and
+``--json``) go through :func:`json_number`.
 """
 from __future__ import annotations
 
 import json
+import math
 import os
 import tempfile
 from pathlib import Path
@@ -19,6 +21,22 @@ import numpy as np
 from gearkit.errors import SpecError
 
 PROFILE_FORMATS = ("svg", "dxf", "csv", "json")
+
+
+def json_number(v):
+    """``v`` as a JSON-safe number: non-finite values (unbounded quantities) become ``None``.
+
+    Examples
+    --------
+    >>> json_number(1), json_number(float("inf")), json_number(None), json_number(True)
+    (1.0, None, None, True)
+    """
+    if v is None:
+        return None
+    if isinstance(v, bool):
+        return v
+    v = float(v)
+    return v if math.isfinite(v) else None
 
 
 def atomic_write(path, write) -> Path:

@@ -7,12 +7,11 @@ generated geometry, and ``outline(tol)`` samples it to a chord tolerance.
 """
 from __future__ import annotations
 
-import math
 
 import numpy as np
 
 from gearkit.accuracy import check_tol
-from gearkit.boundary import CircleArc, HalfTooth, TipLine, _crossings
+from gearkit.boundary import CircleArc, HalfTooth, TipLine, crossings
 from gearkit.curves import polar_from_y
 
 
@@ -127,7 +126,7 @@ class ToothProfile(HalfToothProfile):
         rs = [float(np.hypot(*self._end("tip"))), float(np.hypot(*self._end("root")))]
         if not min(rs) - 1e-12 * max(rs) <= r <= max(rs) + 1e-12 * max(rs):
             return None
-        hits = _crossings(self.half.pieces, lambda p: polar_from_y(p)[0], r)
+        hits = crossings(self.half.pieces, lambda p: polar_from_y(p)[0], r)
         if not hits:
             end = self._end("tip") if abs(np.hypot(*self._end("tip")) - r) < abs(np.hypot(*self._end("root")) - r) \
                 else self._end("root")

@@ -18,7 +18,7 @@ from gearkit.cli import main
 from gearkit.curves import bracketed_root
 from gearkit.errors import SpecError
 from gearkit.pair import PairSpec
-from gearkit.tools import ShaperCutter
+from gearkit.families.involute import ShaperCutter
 
 XTOL = 1e-6
 PRINTED = 1e-5

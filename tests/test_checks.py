@@ -16,7 +16,7 @@ from scipy.optimize import brentq, minimize_scalar
 from gearkit.checks import CheckLimits, CheckReport, Finding, check_pair, min_teeth_undercut
 from gearkit.errors import SpecError
 from gearkit.pair import PairSpec, pair_geometry
-from gearkit.tools import BasicRack, ShaperCutter
+from gearkit.families.involute import BasicRack, ShaperCutter
 
 SIDE = 1e-3
 

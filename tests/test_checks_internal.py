@@ -10,9 +10,9 @@ import pytest
 from scipy.optimize import brentq
 
 from gearkit.checks import check_pair, min_cutter_difference, min_tooth_difference
-from gearkit.checks.internal import exit_jamming_margin, nu_radius, plunge_trimming, tip_sweep
+from gearkit.pair.internal import exit_jamming_margin, nu_radius, plunge_trimming, tip_sweep
 from gearkit.pair import PairSpec, pair_geometry
-from gearkit.tools import ShaperCutter
+from gearkit.families.involute import ShaperCutter
 
 SIDE = 1e-3
 SHAPER = ShaperCutter(20, addendum=1.3)  # medium-worn shaper, x_c = 0.3

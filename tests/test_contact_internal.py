@@ -9,10 +9,10 @@ import pytest
 from scipy.optimize import brentq
 
 from gearkit.checks import check_pair
-from gearkit.checks.internal import exit_jamming_margin
+from gearkit.pair.internal import exit_jamming_margin
 from gearkit.contact import analyse_pair
 from gearkit.pair import PairSpec, pair_geometry
-from gearkit.tools import ShaperCutter
+from gearkit.families.involute import ShaperCutter
 
 SIDE = 1e-3
 EPS_TOL = 1e-3

@@ -15,7 +15,7 @@ from gearkit.envelope import Branch, chain_branches
 from gearkit.families.cycloidal import DriveSpec
 from gearkit.families.cycloidal.disc import generating_motion, pin_tool
 from gearkit.motion import RollingMotion
-from gearkit.tools import arc
+from gearkit.segments import arc
 
 RNG = np.random.default_rng(6)
 

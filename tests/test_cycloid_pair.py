@@ -18,7 +18,7 @@ from gearkit.errors import SpecError
 from gearkit.families.cycloidal import (CycloidPairSpec, clock_factors, conjugate_check, cycloid_gear,
                                         generated_contact_ratio, pair_contact_ratio)
 from gearkit.oracles.cycloid import clock_addendum_by_rolling
-from gearkit.tools import Segment
+from gearkit.segments import Segment
 
 CLOSED = 1e-9
 

@@ -19,7 +19,7 @@ import pytest
 from gearkit.curves import inv, polar_from_y, polyline_self_intersections
 from gearkit.errors import SpecError
 from gearkit.families.involute import GearSpec, tooth_profile
-from gearkit.tools import BasicRack, ShaperCutter
+from gearkit.families.involute import BasicRack, ShaperCutter
 
 #: relative round-off allowance for exact geometry (lengths relative to the tip radius)
 REL = 1e-12

@@ -11,7 +11,7 @@ from gearkit.pair.dimensions import chordal, over_pins, span, suggested_pin
 from gearkit.pair.gauging import measure_chordal, measure_over_pins, measure_span
 from gearkit.pair.inspection import inspect_gear
 from gearkit.pair.tooling import section
-from gearkit.tools import ShaperCutter
+from gearkit.families.involute import ShaperCutter
 
 AGREE = 1e-6  # mm: formula and measurement on a sound involute flank (the requirement)
 EXACT = 1e-9  # mm: two closed forms of the same quantity (round-off of a few ulp of ~100 mm, with margin)

@@ -8,7 +8,7 @@ import pytest
 from gearkit.curves import inv, polar_from_y, polyline_self_intersections
 from gearkit.errors import SpecError
 from gearkit.families.involute import GearSpec, tooth_profile
-from gearkit.tools import BasicRack, ShaperCutter
+from gearkit.families.involute import BasicRack, ShaperCutter
 
 DEG = math.pi / 180
 EXACT = 1e-9  # "exact" geometry: 1e-9 of the module

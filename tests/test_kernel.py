@@ -8,7 +8,8 @@ import pytest
 from gearkit.curves import bracketed_root, inv, inv_inverse, polyline_self_intersections
 from gearkit.errors import SpecError
 from gearkit.motion import RollingMotion
-from gearkit.tools import BasicRack, ShaperCutter, transform_chain
+from gearkit.families.involute import BasicRack, ShaperCutter
+from gearkit.segments import transform_chain
 
 DEG = math.pi / 180
 

@@ -10,7 +10,7 @@ import pytest
 from gearkit.accuracy import distances_to_polyline
 from gearkit.families.involute import GearSpec, tooth_profile
 from gearkit.oracles.involute import swept_rack_gear, swept_shaper_gear, tooth_zone_points
-from gearkit.tools import ShaperCutter
+from gearkit.families.involute import ShaperCutter
 
 
 def _oracle_error(spec, step):

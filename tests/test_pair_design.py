@@ -13,7 +13,7 @@ from gearkit.curves import inv
 from gearkit.errors import SpecError
 from gearkit.pair import PairSpec, pair_geometry, shifts_for_center_distance
 from gearkit.pair.design import thickness_sum_for_center_distance
-from gearkit.tools import ShaperCutter
+from gearkit.families.involute import ShaperCutter
 
 ROUND_TRIP = 1e-9
 SHAPER = ShaperCutter(20, addendum=1.3)

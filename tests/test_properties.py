@@ -75,7 +75,7 @@ modules = st.floats(0.01, 1000.0).map(lambda m: float(f"{m:.6g}"))
 @st.composite
 def involute_specs(draw):
     from gearkit.families.involute import GearSpec
-    from gearkit.tools import BasicRack, ShaperCutter
+    from gearkit.families.involute import BasicRack, ShaperCutter
 
     internal = draw(st.booleans())
     alpha = draw(st.sampled_from([14.5, 17.5, 20.0, 22.5, 25.0, 28.0]))
@@ -120,7 +120,7 @@ def test_involute_specs_give_valid_geometry_or_a_spec_error(data):
        z0=st.one_of(st.none(), st.integers(8, 60)))
 def test_racks_give_valid_geometry(m, beta, tol_m, z0):
     from gearkit.families.involute.rack import RackSpec, rack_profile
-    from gearkit.tools import ShaperCutter
+    from gearkit.families.involute import ShaperCutter
 
     def run():
         try:

@@ -6,7 +6,7 @@ import pytest
 
 from gearkit.errors import SpecError
 from gearkit.families.involute.rack import RackSpec, rack_profile
-from gearkit.tools import BasicRack, ShaperCutter
+from gearkit.families.involute import BasicRack, ShaperCutter
 
 EXACT = 1e-9
 

@@ -11,7 +11,7 @@ from gearkit.families.involute import GearSpec, tooth_profile
 from gearkit.families.involute.rack import RackSpec, rack_profile
 from gearkit.solids import SolidSpec, gear_solid, rack_solid
 from gearkit.solids.solid import Solid
-from gearkit.tools import ShaperCutter
+from gearkit.families.involute import ShaperCutter
 
 M = 1.0  # module, mm
 B = 6.0  # face width, mm

@@ -7,7 +7,7 @@ import pytest
 from gearkit.errors import SpecError
 from gearkit.pair import PairSpec, pair_geometry
 from gearkit.solids import pair_assembly
-from gearkit.tools import ShaperCutter
+from gearkit.families.involute import ShaperCutter
 
 M = 2.0
 TOL = 2e-3  # mesh tolerance, mm: far below the backlash (~0.2 mm) and the 0.2 m shifts

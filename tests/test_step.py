@@ -150,7 +150,7 @@ def test_herringbone_and_double_helical(tmp_path, body):
 @needs_ocp
 @pytest.mark.parametrize("herringbone", [False, True])
 def test_ring_gear(tmp_path, herringbone):
-    from gearkit.tools import ShaperCutter
+    from gearkit.families.involute import ShaperCutter
 
     prof = tooth_profile(GearSpec(24, 1.0, helix_angle_deg=10, internal=True, tool=ShaperCutter(12)))
     solid = gear_solid(prof, SolidSpec(6.0, herringbone=herringbone, gap=2.0 if herringbone else 0.0), TOL)
@@ -195,7 +195,7 @@ def test_rack_pair_and_helical_rack(tmp_path):
 def test_cycloid_drive_parts(tmp_path):
     """Disc with its bore and output holes, pins (one body each), housing, output pins: named and valid."""
     from gearkit.families.cycloidal import DriveSpec
-    from gearkit.families.cycloidal.assembly import drive_parts
+    from gearkit.solids.drive import drive_parts
 
     spec = DriveSpec(8, 7, 40.0, 3.0, 1.5)
     parts = drive_parts(spec, 6.0, TOL)

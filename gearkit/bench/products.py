@@ -36,7 +36,7 @@ def pair_check_rows(quick: bool, repeats: int):
     from gearkit.checks import check_pair
     from gearkit.pair import PairSpec
     from gearkit.families.involute import tooth_profile
-    from gearkit.tools import ShaperCutter
+    from gearkit.families.involute import ShaperCutter
 
     cases = [("external z=20/40 m=2", PairSpec(20, 40, 2.0))]
     if not quick:

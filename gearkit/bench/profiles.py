@@ -58,7 +58,7 @@ def measured_deviation(prof, outline, n_half: int, tooth: int = 1) -> float:
 
 def _involute_cases(quick: bool):
     from gearkit.families.involute import GearSpec
-    from gearkit.tools import ShaperCutter
+    from gearkit.families.involute import ShaperCutter
 
     cases = [("spur z=40", GearSpec(40, 1.0))]
     if not quick:
@@ -147,7 +147,7 @@ def rack_scaling(quick: bool, repeats: int):
     except ImportError:
         return [{"family": "involute", "product": "profile", "teeth": "rack", "available": False,
                  "note": "the kernel has no rack (z = infinity) profile"}]
-    from gearkit.tools import ShaperCutter
+    from gearkit.families.involute import ShaperCutter
 
     spec = RackSpec(1.0, tool=ShaperCutter(20))
     rows = []

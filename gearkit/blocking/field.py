@@ -4,7 +4,7 @@ A :class:`PairField` holds a pair without shifts (a :class:`~gearkit.pair.PairSp
 are ignored) and evaluates, at any (x1, x2), the margins the blocking lines are level sets of.
 Every margin is read off the same :func:`~gearkit.pair.pair_geometry` and the same check functions
 as :func:`~gearkit.checks.check_pair` (:func:`~gearkit.checks.involute.fail_margins`,
-:func:`~gearkit.checks.internal.exit_jamming_margin`, :func:`~gearkit.checks.internal.plunge_trimming`,
+:func:`~gearkit.pair.internal.exit_jamming_margin`, :func:`~gearkit.pair.internal.plunge_trimming`,
 :func:`~gearkit.checks.min_shift_undercut`): there is one implementation of each check.
 
 Form circles. The check reads each gear's form circle off the generated gear. A rack- or
@@ -378,14 +378,14 @@ class FieldPoint:
             z2 = g.specific_sliding["end"][1]
             return abs(z1) - abs(z2)
         if base == "exit_jamming":
-            from gearkit.checks.internal import exit_jamming_margin
+            from gearkit.pair.internal import exit_jamming_margin
             return exit_jamming_margin(g)
         if base == "trimming.plunge":
-            from gearkit.checks.internal import plunge_trimming
+            from gearkit.pair.internal import plunge_trimming
             gap = plunge_trimming(g)[0]
             return gap / mn if gap > 0 else min(gap / mn, -5e-324)
         if base == "trimming.nu":
-            from gearkit.checks.internal import nu_radius
+            from gearkit.pair.internal import nu_radius
             return (g.gears[1].tip_diameter / 2 - nu_radius(g)) / mn
         if base == "center_distance":
             return (g.center_distance - float(level)) / mn

@@ -23,6 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gearkit.blocking.trace import axis_root
 from gearkit.errors import SpecError, require
 
 __all__ = ["CRITERIA", "Recommendation", "recommend"]
@@ -83,8 +84,6 @@ def _level_margin(pt, name):
 
 def _refine(field, names, good, bad, line_f, xtol):
     """Bisect along the chord good -> bad for the last point meeting all ``names``, snapped to the line."""
-    from gearkit.blocking.trace import _axis_root
-
     for _ in range(60):
         if np.hypot(*(bad - good)) <= xtol:
             break
@@ -92,7 +91,7 @@ def _refine(field, names, good, bad, line_f, xtol):
         if line_f is not None:
             t = bad - good
             k = 0 if abs(t[1]) >= abs(t[0]) else 1
-            res = _axis_root(line_f, mid, k, math.nan, 0.1 * xtol, float(np.hypot(*t)))
+            res = axis_root(line_f, mid, k, math.nan, 0.1 * xtol, float(np.hypot(*t)))
             if res is not None:
                 mid = res[0]
         if _worst(field, names, mid)[0] >= 0:
@@ -119,14 +118,7 @@ def recommend(contour, criterion: str = "balanced", center_distance: float | Non
     if criterion == "center_distance":
         require(center_distance is not None and math.isfinite(center_distance) and center_distance > 0,
                 "center_distance", "the criterion 'center_distance' needs a centre distance in mm")
-        name = f"center_distance={float(center_distance):g}"
-        if name not in field.by_name:
-            from gearkit.blocking.contour import blocking_contour
-            sub = blocking_contour(field.template, window=contour.window, limits=field.limits,
-                                   center_distances=(float(center_distance),), xtol=contour.xtol, lines=[name])
-            line = sub.line(name)
-        else:
-            line = contour.line(name)
+        line = contour.center_distance_line(center_distance)
         return _along(contour, names, line, criterion, f"a_w = {center_distance:g} mm")
     return _along(contour, names, contour.line("sliding"), criterion, None)
 

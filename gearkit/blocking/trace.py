@@ -25,7 +25,7 @@ import numpy as np
 
 from gearkit.curves import bracketed_root
 
-__all__ = ["EdgeSeed", "Window", "grid_seeds", "trace_curves"]
+__all__ = ["EdgeSeed", "Window", "axis_root", "grid_seeds", "trace_curves"]
 
 
 def _distances(points, line, closed=False):
@@ -120,8 +120,12 @@ def _crosses(line, a, b) -> bool:
     return bool(np.any((s1 * s2 <= 0) & (s3 * s4 <= 0)))
 
 
-def _axis_root(f, p, k, d, xtol, h):
-    """Solve ``f = 0`` moving coordinate ``k`` of ``p``; ``d`` is a derivative estimate. -> (point, d) or None."""
+def axis_root(f, p, k, d, xtol, h):
+    """Solve ``f(x1, x2) = 0`` moving coordinate ``k`` of the point ``p`` only: (point, derivative) or None.
+
+    ``d`` is an estimate of ``df/dx_k`` (NaN: estimated here with a step ``1e-3 h``), ``xtol`` the
+    accuracy in x, ``h`` the length scale of the search (a trace step).
+    """
     x = p.copy()
     v = f(*x)
     if not math.isfinite(v):
@@ -185,7 +189,7 @@ def _edge_end(f, window, p, q, d_est, xtol, h):
     b = p + s_hit * span
     b[k_edge] = val
     other = 1 - k_edge
-    res = _axis_root(f, b, other, d_est[other], xtol, h)
+    res = axis_root(f, b, other, d_est[other], xtol, h)
     if res is None:
         return None
     e = res[0]
@@ -217,7 +221,7 @@ def _trace_one(f, window, seed, direction, grad, h0, xtol, max_points, prefer=No
             k_pref = prefer(q)
             if k_pref is not None and abs(t[1 - k_pref]) >= 0.35:
                 k = k_pref
-        res = _axis_root(f, q, k, d[k], xtol, h)
+        res = axis_root(f, q, k, d[k], xtol, h)
         new = dk = c = None
         dist = turn = 0.0
         if res is not None:

@@ -37,7 +37,7 @@ from dataclasses import replace
 from gearkit.checks.limits import CheckLimits
 from gearkit.errors import SpecError
 from gearkit.pair import PairSpec, shifts_for_center_distance
-from gearkit.tools import BasicRack, ShaperCutter
+from gearkit.families.involute import BasicRack, ShaperCutter
 
 __all__ = ["load_design", "design_from_dict"]
 

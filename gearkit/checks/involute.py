@@ -36,16 +36,18 @@ import math
 from dataclasses import dataclass, replace
 
 
-from gearkit.checks.limits import CheckLimits, min_teeth_undercut
-from gearkit.checks.report import CheckReport, Finding, grade, json_number
+from gearkit.checks.limits import CheckLimits, min_cutter_difference, min_teeth_undercut, min_tooth_difference
+from gearkit.checks.report import CheckReport, Finding, grade
 from gearkit.curves import bracketed_root
 from gearkit.errors import SpecError, require
-from gearkit.pair.geometry import PairGeometry, pair_geometry
+from gearkit.export import json_number
+from gearkit.pair.geometry import PairGeometry, gear_specs, pair_geometry
+from gearkit.pair.internal import exit_jamming_margin, nu_radius, plunge_trimming, tip_sweep
 from gearkit.pair.spec import PairSpec
 from gearkit.pair.tooling import form_roll, section
-from gearkit.tools import BasicRack
+from gearkit.families.involute import BasicRack
 
-__all__ = ["PairCheck", "check_pair", "fail_margins", "gear_specs", "min_shift_undercut"]
+__all__ = ["PairCheck", "check_pair", "fail_margins", "internal_findings", "min_shift_undercut"]
 
 GEOMETRY_MODES = ("generated", "formula")
 
@@ -100,29 +102,6 @@ class PairCheck:
             "findings": [f.to_dict() for f in self.report.findings],
             "geometry": "generated" if self.profiles else "formula",
         }
-
-
-def gear_specs(spec: PairSpec) -> tuple:
-    """The kernel's :class:`~gearkit.families.involute.GearSpec` of each gear (tips from the pair).
-
-    The wheel of an external pair has the opposite hand, a ring the same hand as the pinion.
-    A rack pair yields the pinion only.
-    """
-    from gearkit.families.involute import GearSpec
-
-    g = pair_geometry(spec)
-    beta = spec.helix_angle_deg
-    out = []
-    gears = [(spec.teeth1, spec.shift1, beta, False, spec.tools[0], spec.thinning1)]
-    if spec.kind != "rack":
-        internal = spec.kind == "internal"
-        gears.append((spec.teeth2, spec.shift2, beta if internal else -beta, internal, spec.tools[1], spec.thinning2))
-    for i, (z, x, b, internal, tool, thin) in enumerate(gears):
-        try:
-            out.append(GearSpec(z, spec.module, float(x), b, internal, tool, g.gears[i].tip_diameter, thin))
-        except SpecError as exc:  # name the gear of the pair the field belongs to
-            raise SpecError(f"gear{i + 1}.{exc.field}", str(exc).split(": ", 1)[-1]) from None
-    return tuple(out)
 
 
 def min_shift_undercut(spec: PairSpec, which: int) -> float:
@@ -228,7 +207,6 @@ def check_pair(spec: PairSpec, limits: CheckLimits = CheckLimits(), geometry: st
         inspections = tuple(inspections)
     findings += _mesh_findings(spec, g, limits)
     if spec.kind == "internal":
-        from gearkit.checks.internal import internal_findings
         findings += internal_findings(spec, g)
     if simulate:
         from gearkit.checks.simulated import simulated_findings
@@ -315,4 +293,55 @@ def _mesh_findings(spec, g, lim) -> list:
     msg = (f"backlash j_wt = {j:.5f} mm on the working circle (normal j_bn = {g.backlash_normal:.5f} mm)"
            + ("; negative: the centre distance is below the tight mesh of these teeth" if status == "fail" else ""))
     out.append(Finding("backlash", status, j, 0.0, msg, "min"))
+    return out
+
+
+def internal_findings(spec: PairSpec, g: PairGeometry) -> list:
+    """The internal-pair findings of :func:`check_pair` (see the module's table), from the internal
+    pair geometry of :mod:`gearkit.pair.internal`."""
+    mn = g.module
+    p, ring = g.gears
+    z1, z2, z0 = p.teeth, ring.teeth, spec.tools[1].teeth
+    out = []
+    margin = exit_jamming_margin(g)
+    out.append(Finding("exit_jamming", "fail" if margin < 0 else "ok", margin, 0.0,
+                       "tip circles never overlap: no exit jamming" if math.isinf(margin) else
+                       f"tip interference on leaving mesh: margin {margin:.5f} rad "
+                       + ("< 0: the pinion's tip corner hits the ring's tooth tip (raise x2 or z2 - z1)"
+                          if margin < 0 else ">= 0"), "min"))
+    depth, phi = tip_sweep(g)
+    res = 1e-4 * mn
+    out.append(Finding("tip_interference", "fail" if depth > 0 else "ok", depth, res,
+                       f"tip corners swept along their trochoidal paths through the mate's teeth: "
+                       + (f"penetrate {depth:.4g} mm at pinion angle {math.degrees(phi):.2f} deg" if depth > 0
+                          else f"no penetration deeper than {res:.3g} mm"), "max"))
+    gap, at = plunge_trimming(g)
+    out.append(Finding("trimming.plunge", "fail" if gap <= 0 else "ok", gap, 0.0,
+                       f"shaper plunge: closest approach of the ring's and the shaper's tip corners "
+                       f"{gap:.4f} mm at {math.degrees(at):.2f} deg"
+                       + (" <= 0: the shaper trims the ring's teeth while feeding in" if gap <= 0 else ""), "min"))
+    r_nu = nu_radius(g)
+    d_nu = 2 * r_nu
+    da2 = ring.tip_diameter
+    trimmed = da2 < d_nu - 1e-9 * mn
+    out.append(Finding("trimming.nu", "warn" if trimmed else "ok", da2, d_nu,
+                       (f"the ring's tip circle d_a2 = {da2:.4f} mm lies inside 2 O2N_u = {d_nu:.4f} mm: the shaper "
+                        f"trims its involute there ({(d_nu - da2) / 2:.4f} mm of height)") if trimmed else
+                       f"the ring's tip circle d_a2 = {da2:.4f} mm is outside 2 O2N_u = {d_nu:.4f} mm: no trimming",
+                       "min"))
+    below = ring.tip_diameter < ring.base_diameter
+    out.append(Finding("ring_tip.base", "warn" if below else "ok", ring.tip_diameter, ring.base_diameter,
+                       (f"the ring's tip circle d_a2 = {ring.tip_diameter:.4f} mm lies inside its base circle "
+                        f"d_b2 = {ring.base_diameter:.4f} mm: its teeth are not involute there") if below else
+                       "the ring's tip circle lies outside its base circle", "min"))
+    k_min = min_tooth_difference(spec)
+    limit = math.inf if k_min is None else float(k_min)
+    out.append(Finding("min_teeth.difference", "fail" if z2 - z1 < limit else "ok", float(z2 - z1), limit,
+                       f"tooth difference z2 - z1 = {z2 - z1}; exit jamming needs at least "
+                       + ("(none found)" if k_min is None else f"{k_min}") + " at these shifts", "min"))
+    c_min = min_cutter_difference(spec)
+    limit = math.inf if c_min is None else float(c_min)
+    out.append(Finding("min_teeth.cutter", "fail" if z2 - z0 < limit else "ok", float(z2 - z0), limit,
+                       f"ring minus shaper teeth z2 - z0 = {z2 - z0}; plunging without trimming needs at least "
+                       + ("(none found)" if c_min is None else f"{c_min}"), "min"))
     return out

@@ -15,9 +15,10 @@ from dataclasses import dataclass, replace
 
 from gearkit.errors import SpecError, check_fields, require
 from gearkit.pair.geometry import pair_geometry
+from gearkit.pair.internal import exit_jamming_margin, plunge_trimming
 from gearkit.pair.spec import PairSpec
 from gearkit.pair.tooling import form_roll, section
-from gearkit.tools import BasicRack
+from gearkit.families.involute import BasicRack
 
 __all__ = ["CheckLimits", "min_teeth_undercut", "min_tooth_difference", "min_cutter_difference"]
 
@@ -79,7 +80,6 @@ def min_teeth_undercut(tool, shift: float, module: float = 1.0, pressure_angle_d
 
 
 def _jams(spec: PairSpec) -> bool:
-    from gearkit.checks.internal import exit_jamming_margin
     return exit_jamming_margin(pair_geometry(spec)) < 0
 
 
@@ -105,8 +105,6 @@ def min_cutter_difference(spec: PairSpec) -> int | None:
     The ring (z2, its shift and tip) is kept and the shaper's tooth number varied (textbook
     3.108). None when even the smallest admissible shaper (6 teeth) trims.
     """
-    from gearkit.checks.internal import plunge_trimming
-
     cutter = spec.tools[1]
     g = pair_geometry(spec)
     tip2 = g.gears[1].tip_diameter

@@ -15,22 +15,13 @@ import math
 from dataclasses import dataclass
 
 from gearkit.errors import require
+from gearkit.export import json_number
 
-__all__ = ["STATUSES", "Finding", "CheckReport", "grade", "json_number"]
+__all__ = ["STATUSES", "Finding", "CheckReport", "grade"]
 
 #: statuses from best to worst
 STATUSES = ("ok", "warn", "fail")
 SENSES = ("min", "max")
-
-
-def json_number(v):
-    """``v`` as a JSON-safe number: non-finite values (unbounded quantities) become ``None``."""
-    if v is None:
-        return None
-    if isinstance(v, bool):
-        return v
-    v = float(v)
-    return v if math.isfinite(v) else None
 
 
 @dataclass(frozen=True)

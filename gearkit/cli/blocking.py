@@ -66,7 +66,7 @@ def _floats(text, n, flag):
 
 def _spec(args):
     from gearkit.pair import PairSpec
-    from gearkit.tools import BasicRack, ShaperCutter
+    from gearkit.families.involute import BasicRack, ShaperCutter
 
     alpha = args.pressure_angle_deg
     rack = BasicRack.iso53(args.rack[-1]) if args.rack else BasicRack(20.0 if alpha is None else alpha)
@@ -125,8 +125,7 @@ def format_summary(contour, rec, marked, output=None) -> str:
     if contour.empty:
         out.append(f"region: EMPTY -- {contour.empty_reason}")
     else:
-        from gearkit.blocking.contour import _polygon_area
-        area = sum(abs(_polygon_area(p)) for p in contour.region)
+        area = contour.area
         out.append(f"region: {len(contour.region)} polygon(s), area {area:.4f}")
     if rec is not None:
         out.append(f"recommended: x1 = {rec.x1:.4f}, x2 = {rec.x2:.4f} -- {rec.reason}")

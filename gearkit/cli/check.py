@@ -108,7 +108,7 @@ def _given(args, name) -> bool:
 def _spec_from_flags(args):
     from gearkit.checks import CheckLimits
     from gearkit.pair import PairSpec
-    from gearkit.tools import BasicRack, ShaperCutter
+    from gearkit.families.involute import BasicRack, ShaperCutter
 
     kind = "internal" if args.internal else "rack" if args.rack_pair else "external"
     for name, flag in (("z1", "--z1"), ("module", "-m/--module")):

@@ -145,7 +145,7 @@ def run_drive(args) -> int:
 
 
 def _write_drive(args, spec, fmt) -> dict:
-    from gearkit.families.cycloidal.assembly import OutputMechanism, disc_solid, drive_loops, drive_parts
+    from gearkit.families.cycloidal.assembly import OutputMechanism, drive_loops
 
     output = OutputMechanism(count=args.output_pins)
     if fmt == "2d":
@@ -155,6 +155,7 @@ def _write_drive(args, spec, fmt) -> dict:
         loops = drive_loops(spec, tol, output)
         write_profile(args.output, loops, {"family": "cycloidal disc", "pins": spec.pins, "lobes": spec.lobes})
         return {"path": args.output, "loops": len(loops), "tol": tol}
+    from gearkit.solids.drive import disc_solid, drive_parts
     from gearkit.solids.export import mesh_format, write_mesh
 
     tol = _tol(args, spec.eccentricity, 5e-3)
@@ -242,7 +243,7 @@ def _write_pair(args, spec, fmt) -> dict:
             loops.append(pinion.outline(tol) @ np.array([[c, s], [-s, c]]) + np.array([0.0, a]))
         write_profile(args.output, loops, {"family": wheel.family, "center_distance": a})
         return {"path": args.output, "loops": len(loops), "tol": tol}
-    from gearkit.families.cycloidal.assembly import _cylinders
+    from gearkit.solids.drive import cylinders
     from gearkit.solids import SolidSpec, gear_solid
     from gearkit.solids.export import write_mesh
 
@@ -252,7 +253,7 @@ def _write_pair(args, spec, fmt) -> dict:
     if pins:
         centres = [a * np.array([0.0, 1.0]) + spec.r1 * np.array([math.sin(b), -math.cos(b)])
                    for b in (-math.pi / z1 + 2 * math.pi * np.arange(z1) / z1)]
-        parts.append(_cylinders(centres, spec.pin_radius, 0.0, width, tol, "pins"))
+        parts.append(cylinders(centres, spec.pin_radius, 0.0, width, tol, "pins"))
     else:
         parts.append(gear_solid(pinion, SolidSpec(width=width), tol, name="pinion").placed(turn, (0.0, a, 0.0)))
     write_mesh(args.output, parts)

@@ -135,7 +135,7 @@ def _solid_only_flags(args) -> list:
 
 
 def tool_from_args(args, internal: bool):
-    from gearkit.tools import BasicRack, ShaperCutter
+    from gearkit.families.involute import BasicRack, ShaperCutter
 
     alpha = 20.0 if args.pressure_angle_deg is None else args.pressure_angle_deg
     if args.cutter_teeth is not None or internal:

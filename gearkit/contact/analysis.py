@@ -39,6 +39,7 @@ from gearkit.contact.cycle import Cycle, contact_ratio
 from gearkit.contact.interference import Interference, find_interference, sharpen
 from gearkit.contact.mesh import Mesh
 from gearkit.errors import require
+from gearkit.export import json_number
 
 __all__ = ["ContactAnalysis", "Interference", "limits", "simulate"]
 
@@ -93,8 +94,6 @@ class ContactAnalysis:
 
     def to_dict(self) -> dict:
         """JSON-ready summary (lengths mm, angles rad unless the key says deg)."""
-        from gearkit.checks.report import json_number
-
         te_max = self.transmission_error_max
         if self.units == "mm":  # a rack's TE as the driver's angle
             te_max /= self.mesh.pitch_radii[0]

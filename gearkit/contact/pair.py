@@ -20,7 +20,7 @@ def pair_mesh(spec, tol: float | None = None, modifications=(None, None),
     ``center_distance_deviation``, mm), each with its :class:`~gearkit.families.involute.modification.Modification`."""
     import dataclasses
 
-    from gearkit.checks.involute import gear_specs
+    from gearkit.pair import gear_specs
     from gearkit.families.involute import tooth_profile
     from gearkit.pair import pair_geometry
 

@@ -19,7 +19,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from gearkit.boundary import CircleArc, HalfTooth, Piece, ToothProfile
+from gearkit.boundary import CircleArc, HalfTooth, Piece
+from gearkit.profile import ToothProfile
 from gearkit.errors import require
 
 __all__ = ["PinArc", "pin_ring"]

@@ -13,7 +13,7 @@ import math
 
 import numpy as np
 
-from gearkit.tools import BasicRack, ShaperCutter
+from gearkit.families.involute import BasicRack, ShaperCutter
 
 
 def _cross_section(polys):
@@ -35,6 +35,13 @@ def _circle(radius, chord):
     n = max(64, int(math.ceil(math.pi / math.acos(max(-1.0, 1.0 - chord / radius)))))
     t = np.linspace(0.0, 2 * np.pi, n, endpoint=False)
     return np.stack([radius * np.cos(t), radius * np.sin(t)], -1)
+
+
+def cut_blank(tip_radius: float, tool_positions, chord: float) -> list:
+    """A disc blank of ``tip_radius`` (a polygon within ``chord`` of its circle) minus every polygon of
+    ``tool_positions`` (each ``(n, 2)`` mm): the uncut contours, ``(n, 2)`` arrays. Every swept-tool
+    oracle (one per family) ends here."""
+    return _cut(_cross_section([_circle(tip_radius, chord)]), tool_positions)
 
 
 def _arc_points(cx, cy, r, a0, a1, chord):
@@ -97,7 +104,7 @@ def swept_rack_gear(teeth, module, shift, rack: BasicRack, tip_radius, step, hel
         v = body[:, 1]
         # textbook form: X = (u + r phi) cos phi - (r + v) sin phi, Y = (u + r phi) sin phi + (r + v) cos phi
         polys.append(np.stack([u * c - (r + v) * s, u * s + (r + v) * c], -1))
-    return _cut(_cross_section([_circle(tip_radius, chord)]), polys)
+    return cut_blank(tip_radius, polys, chord)
 
 
 def cutter_polygon(cutter: ShaperCutter, m: float, alpha: float, tooth0_angle: float, chord: float,

@@ -19,7 +19,7 @@ import math
 
 import numpy as np
 
-from gearkit.oracles.involute import _circle, _cross_section, _cut
+from gearkit.oracles.involute import cut_blank
 
 __all__ = ["drawing_of", "cutter_outline", "swept_arc_rack_gear"]
 
@@ -106,4 +106,4 @@ def swept_arc_rack_gear(teeth, module, drawing, tip_radius, step, helix_angle_de
         c, s = math.cos(phi), math.sin(phi)
         u, v = body[:, 0] + roll, body[:, 1]
         polys.append(np.stack([u * c - (r + v) * s, u * s + (r + v) * c], -1))
-    return _cut(_cross_section([_circle(tip_radius, chord)]), polys)
+    return cut_blank(tip_radius, polys, chord)

@@ -2,11 +2,13 @@
 
 ``PairSpec`` holds the inputs; :func:`pair_geometry` derives the mesh (working pressure angle,
 centre distance, tip diameters, path of contact, contact ratios, sliding, clearances, backlash);
-:func:`shifts_for_center_distance` solves the shifts that give a centre distance.
+:func:`shifts_for_center_distance` solves the shifts that give a centre distance; :func:`gear_specs`
+gives the family's :class:`~gearkit.families.involute.GearSpec` of each gear. The internal pair's
+own geometry (exit jamming, trimming, tip sweep) is :mod:`gearkit.pair.internal`.
 """
 from gearkit.pair.design import SPLITS, shifts_for_center_distance
-from gearkit.pair.geometry import GearGeometry, PairGeometry, pair_geometry
+from gearkit.pair.geometry import GearGeometry, PairGeometry, gear_specs, pair_geometry
 from gearkit.pair.spec import KINDS, TIP_RULES, PairSpec
 
-__all__ = ["KINDS", "SPLITS", "TIP_RULES", "GearGeometry", "PairGeometry", "PairSpec", "pair_geometry",
-           "shifts_for_center_distance"]
+__all__ = ["KINDS", "SPLITS", "TIP_RULES", "GearGeometry", "PairGeometry", "PairSpec", "gear_specs",
+           "pair_geometry", "shifts_for_center_distance"]

@@ -26,7 +26,7 @@ from gearkit.errors import SpecError, require
 from gearkit.pair.geometry import pair_geometry
 from gearkit.pair.spec import PairSpec
 from gearkit.pair.tooling import section, thickness_coeff
-from gearkit.tools import BasicRack
+from gearkit.families.involute import BasicRack
 
 __all__ = ["SPLITS", "shifts_for_center_distance", "thickness_sum_for_center_distance"]
 

@@ -19,12 +19,12 @@ from functools import lru_cache
 import numpy as np
 
 from gearkit.curves import inv, inv_inverse
-from gearkit.errors import require
+from gearkit.errors import SpecError, require
+from gearkit.families.involute import GearSpec, ShaperCutter
 from gearkit.pair.spec import PairSpec
 from gearkit.pair.tooling import form_roll, nu_radius, root_radius, section, thickness_coeff, tip_thickness
-from gearkit.tools import ShaperCutter
 
-__all__ = ["GearGeometry", "PairGeometry", "pair_geometry"]
+__all__ = ["GearGeometry", "PairGeometry", "gear_specs", "pair_geometry"]
 
 
 @dataclass(frozen=True)
@@ -316,3 +316,24 @@ def _gear(sec, z, x, r, rb, rw, ra, rf, rho_l, d_form, t_actual, internal, tool)
         thickness_coeff=t_actual, tip_thickness=s_at, tip_thickness_normal=s_at * math.cos(beta_a),
         undercut=bool(rho_l < 0 and not internal),
         tool=("shaper z0=%d" % tool.teeth) if isinstance(tool, ShaperCutter) else "rack")
+
+
+def gear_specs(spec: PairSpec) -> tuple:
+    """The kernel's :class:`~gearkit.families.involute.GearSpec` of each gear (tips from the pair).
+
+    The wheel of an external pair has the opposite hand, a ring the same hand as the pinion.
+    A rack pair yields the pinion only.
+    """
+    g = pair_geometry(spec)
+    beta = spec.helix_angle_deg
+    out = []
+    gears = [(spec.teeth1, spec.shift1, beta, False, spec.tools[0], spec.thinning1)]
+    if spec.kind != "rack":
+        internal = spec.kind == "internal"
+        gears.append((spec.teeth2, spec.shift2, beta if internal else -beta, internal, spec.tools[1], spec.thinning2))
+    for i, (z, x, b, internal, tool, thin) in enumerate(gears):
+        try:
+            out.append(GearSpec(z, spec.module, float(x), b, internal, tool, g.gears[i].tip_diameter, thin))
+        except SpecError as exc:  # name the gear of the pair the field belongs to
+            raise SpecError(f"gear{i + 1}.{exc.field}", str(exc).split(": ", 1)[-1]) from None
+    return tuple(out)

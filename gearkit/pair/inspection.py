@@ -23,7 +23,7 @@ from gearkit.errors import require
 from gearkit.pair.dimensions import Chordal, OverPins, Span, chordal, over_pins, span, suggested_pin
 from gearkit.pair.gauging import measure_chordal, measure_over_pins, measure_span
 from gearkit.pair.tooling import Section, section, thickness_coeff
-from gearkit.tools import BasicRack
+from gearkit.families.involute import BasicRack
 
 __all__ = ["GearInspection", "gear_section", "gear_thickness_coeff", "inspect_gear"]
 

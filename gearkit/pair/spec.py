@@ -16,9 +16,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 
-from gearkit.errors import SpecError, check_fields, require
-from gearkit.errors import is_int as _is_int, is_real as _finite
-from gearkit.tools import MIN_PRESSURE_ANGLE_DEG, BasicRack, ShaperCutter
+from gearkit.errors import SpecError, check_fields, is_int, is_real, require
+from gearkit.families.involute.tools import MIN_PRESSURE_ANGLE_DEG, BasicRack, ShaperCutter
 
 __all__ = ["KINDS", "TIP_RULES", "PairSpec"]
 
@@ -93,33 +92,33 @@ class PairSpec:
     def __post_init__(self):
         check_fields(self)
         require(self.kind in KINDS, "kind", f"{self.kind!r} is not one of {', '.join(KINDS)}")
-        require(_is_int(self.teeth1) and 3 <= self.teeth1 <= 100000, "teeth1",
+        require(is_int(self.teeth1) and 3 <= self.teeth1 <= 100000, "teeth1",
                 f"z1 = {self.teeth1!r} must be an integer in [3, 100000]")
         if self.kind == "rack":
             require(self.teeth2 is None, "teeth2", "a rack pair has no z2 (give None)")
         else:
-            require(_is_int(self.teeth2) and 3 <= self.teeth2 <= 100000, "teeth2",
+            require(is_int(self.teeth2) and 3 <= self.teeth2 <= 100000, "teeth2",
                     f"z2 = {self.teeth2!r} must be an integer in [3, 100000]")
         if self.kind == "internal":
             require(self.teeth2 > self.teeth1, "teeth2",
                     f"the ring needs more teeth than the pinion (z2 = {self.teeth2} <= z1 = {self.teeth1})")
-        require(_finite(self.module) and 1e-4 <= self.module <= 1e4, "module",
+        require(is_real(self.module) and 1e-4 <= self.module <= 1e4, "module",
                 f"m_n = {self.module!r} must be a length in [0.0001, 10000] mm")
         for name in ("shift1", "shift2"):
             v = getattr(self, name)
-            require(_finite(v) and -3.0 <= v <= 3.0, name, f"x = {v!r} must be in [-3, 3]")
+            require(is_real(v) and -3.0 <= v <= 3.0, name, f"x = {v!r} must be in [-3, 3]")
         b = self.helix_angle_deg
-        require(_finite(b) and abs(b) < 60.0, "helix_angle_deg", f"{b!r} must be in (-60, 60) degrees")
+        require(is_real(b) and abs(b) < 60.0, "helix_angle_deg", f"{b!r} must be in (-60, 60) degrees")
         if self.face_width is not None:
-            require(_finite(self.face_width) and self.face_width > 0, "face_width",
+            require(is_real(self.face_width) and self.face_width > 0, "face_width",
                     f"b = {self.face_width!r} must be > 0 mm")
-        require(_finite(self.addendum) and 0.0 < self.addendum <= 3.0, "addendum",
+        require(is_real(self.addendum) and 0.0 < self.addendum <= 3.0, "addendum",
                 f"h_a* = {self.addendum!r} must be in (0, 3]")
         require(self.tip_rule in TIP_RULES, "tip_rule", f"{self.tip_rule!r} is not one of {', '.join(TIP_RULES)}")
         for name in ("tip_diameter1", "tip_diameter2", "center_distance"):
             v = getattr(self, name)
             if v is not None:
-                require(_finite(v) and v > 0, name, f"{v!r} must be a positive length in mm")
+                require(is_real(v) and v > 0, name, f"{v!r} must be a positive length in mm")
         if self.center_distance is not None:  # within 10 modules of the reference (shifts are within +-3)
             a_ref = self.module / math.cos(math.radians(b)) * (
                 self.teeth1 / 2 if self.kind == "rack" else abs(self.teeth2 + (-1 if self.kind == "internal" else 1)
@@ -131,14 +130,14 @@ class PairSpec:
             require(self.tip_diameter2 is None, "tip_diameter2", "a rack has no tip diameter")
         for name in ("thinning1", "thinning2"):
             v = getattr(self, name)
-            require(_finite(v) and 0.0 <= v <= 0.5 * self.module, name,
+            require(is_real(v) and 0.0 <= v <= 0.5 * self.module, name,
                     f"{v!r} must be in [0, {0.5 * self.module:g}] mm (half a module)")
         self._check_tools()
 
     def _check_tools(self):
         if self.pressure_angle_deg is not None:
             a = self.pressure_angle_deg
-            require(_finite(a) and MIN_PRESSURE_ANGLE_DEG <= a < 45.0, "pressure_angle_deg",
+            require(is_real(a) and MIN_PRESSURE_ANGLE_DEG <= a < 45.0, "pressure_angle_deg",
                     f"{a!r} must be in [{MIN_PRESSURE_ANGLE_DEG:g}, 45) degrees")
         for name in ("tool1", "tool2"):
             tool = getattr(self, name)

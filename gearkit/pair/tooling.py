@@ -16,7 +16,7 @@ from functools import lru_cache
 
 from gearkit.curves import inv
 from gearkit.errors import SpecError
-from gearkit.tools import BasicRack, ShaperCutter
+from gearkit.families.involute import BasicRack, ShaperCutter
 
 __all__ = ["Section", "section", "thickness_coeff", "cutter_machine", "root_radius", "form_roll",
            "tip_thickness", "half_angle", "nu_radius"]

@@ -36,7 +36,7 @@ from functools import lru_cache
 from gearkit.errors import SpecError
 from gearkit.pair import PairSpec, pair_geometry
 from gearkit.scene.phasing import PlanetMesh, assembly_positions
-from gearkit.tools import ShaperCutter
+from gearkit.families.involute import ShaperCutter
 
 __all__ = ["MeshLayout", "Layout", "scene_layout", "cutter_teeth", "CLOSE_TOL"]
 
@@ -92,7 +92,7 @@ class Layout:
 
     def gear_spec(self, name: str):
         """The kernel :class:`~gearkit.families.involute.GearSpec` of gear ``name`` (its one shape)."""
-        from gearkit.checks.involute import gear_specs
+        from gearkit.pair import gear_specs
 
         for m in self.meshes:
             if name in m.names:

@@ -26,6 +26,7 @@ import math
 from dataclasses import dataclass, field
 
 from gearkit.errors import SpecError, is_int, is_real, require
+from gearkit.scene.hands import helix_angles
 
 __all__ = ["Gear", "Mesh", "Motion", "Scene", "MESH_KINDS"]
 
@@ -350,40 +351,8 @@ class Scene:
         self.helix_angles()  # raises when two meshing gears break the helix rule
 
     def helix_angles(self) -> dict:
-        """Signed helix angle of every gear, degrees: given ones kept, the others from their meshes
-        (an external mesh reverses the hand, an internal one keeps it; a rack takes its pinion's).
-
-        Raises SpecError naming the gears when two meshing gears break that rule.
-        """
-        given = {g.name: float(g.helix_angle_deg) for g in self.gears if g.helix_angle_deg is not None}
-        out = dict(given)
-        links = {g.name: [] for g in self.gears}
-        for m in self.meshes:
-            sign = 1.0 if self.mesh_kind(m) in ("internal", "rack") else -1.0
-            links[m.first].append((m.second, sign))
-            links[m.second].append((m.first, sign))
-        seeds = [g.name for g in self.gears if g.name in given] + [g.name for g in self.gears]
-        for seed in seeds:  # given hands spread first; a set with none takes the scene's angle
-            if seed in out and seed not in given:
-                continue
-            out.setdefault(seed, float(self.helix_angle_deg))
-            stack = [seed]
-            while stack:  # shafts do not constrain hands (stepped gears may differ)
-                name = stack.pop()
-                for other, sign in links[name]:
-                    if other not in out:
-                        out[other] = sign * out[name]
-                        stack.append(other)
-        for m in self.meshes:
-            sign = 1.0 if self.mesh_kind(m) in ("internal", "rack") else -1.0
-            a, b = out[m.first], out[m.second]
-            if self.mesh_kind(m) == "rack":
-                continue
-            require(math.isclose(b, sign * a, abs_tol=1e-9), "meshes",
-                    f"{m.first} (beta = {a:g} deg) and {m.second} (beta = {b:g} deg) mesh but break the helix "
-                    f"rule: an {self.mesh_kind(m)} mesh needs {'the same' if sign > 0 else 'opposite'} hands "
-                    "and equal helix angles")
-        return out
+        """Signed helix angle of every gear, degrees (see :func:`gearkit.scene.hands.helix_angles`)."""
+        return helix_angles(self)
 
     def _check_motion(self, state: str, motion: Motion):
         require(isinstance(motion, Motion), state, "give a Motion")

@@ -269,7 +269,7 @@ def planetary_scene(scheme: str, teeth: tuple, planets: int, module: float, shif
 def _coaxial_shifts(scheme, teeth, module) -> tuple:
     """Shifts that bring both stages to one centre distance (planets unshifted), and that a_w."""
     from gearkit.pair import PairSpec, shifts_for_center_distance
-    from gearkit.tools import ShaperCutter
+    from gearkit.families.involute import ShaperCutter
     from gearkit.scene.layout import cutter_teeth
     from gearkit.scene.model import Gear
 

@@ -1,6 +1,6 @@
 """Solids, meshes and export: watertight gears, racks, pairs and 3D interference.
 
-Any generated profile (every family, through :class:`~gearkit.boundary.ToothProfile`) becomes
+Any generated profile (every family, through :class:`~gearkit.profile.ToothProfile`) becomes
 a solid: spur, helical, herringbone / double-helical, ring gears (:func:`gear_solid`), rack bars
 (:func:`rack_solid`); bores with keyways. Pairs are placed at their centre distance, phased,
 and tested for 3D interference (:func:`pair_assembly`). manifold3d builds and checks every

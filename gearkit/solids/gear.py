@@ -22,7 +22,7 @@ import numpy as np
 from gearkit.accuracy import check_tol
 from gearkit.errors import GeometryError, SpecError, check_length
 from gearkit.solids.solid import Recipe, Solid, SolidSpec, default_mesh_tol
-from gearkit.solids.surface import plan_layers, tooth_polyline
+from gearkit.solids.surface import helix_angle, plan_layers, reference_radius, tooth_polyline
 
 
 def circle_points(radius: float, tol: float) -> np.ndarray:
@@ -163,24 +163,6 @@ class _Mesh:
         return Solid.from_arrays(np.concatenate(self.vertices), np.concatenate(self.faces), name, info, recipe)
 
 
-def _helix(profile, spec: SolidSpec) -> float:
-    """The helix angle (degrees) of the solid: the spec's, else the profile's own."""
-    own = getattr(getattr(profile, "spec", None), "helix_angle_deg", None)
-    if spec.helix_angle_deg is None:
-        return float(own or 0.0)
-    if own is not None and not math.isclose(spec.helix_angle_deg, own, abs_tol=1e-12):
-        raise SpecError("helix_angle_deg", f"{spec.helix_angle_deg} degrees, but the profile was generated for "
-                        f"{own} degrees (its transverse section depends on it)")
-    return float(spec.helix_angle_deg)
-
-
-def _reference_radius(profile, beta: float) -> float:
-    d = getattr(profile, "reference_diameter", None)
-    if d is None:
-        d = profile.teeth * profile.module / math.cos(beta)
-    return d / 2.0
-
-
 def gear_solid(profile, spec: SolidSpec, tol: float | None = None, name: str = "gear") -> Solid:
     """The solid of a generated gear.
 
@@ -205,9 +187,9 @@ def gear_solid(profile, spec: SolidSpec, tol: float | None = None, name: str = "
     (True, True)
     """
     tol = default_mesh_tol(profile.module) if tol is None else check_tol(tol, profile.module)
-    beta_deg = _helix(profile, spec)
+    beta_deg = helix_angle(profile, spec)
     beta = math.radians(beta_deg)
-    k = math.tan(beta) / _reference_radius(profile, abs(beta))
+    k = math.tan(beta) / reference_radius(profile, abs(beta))
     internal = bool(profile.internal)
     if internal and spec.bore is not None:
         raise SpecError("bore", "a ring gear has no bore (give --outer-diameter or --rim)")

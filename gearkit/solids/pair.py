@@ -113,7 +113,7 @@ def pair_assembly(spec, width: float | None = None, tol: float | None = None, *,
     -------
     Assembly
     """
-    from gearkit.checks.involute import gear_specs
+    from gearkit.pair import gear_specs
     from gearkit.families.involute import tooth_profile
     from gearkit.pair import pair_geometry
 

@@ -113,10 +113,10 @@ def _radii(curves):
 
 def gear_shape(profile, spec, tol: float):
     """(solid, achieved) of :func:`~gearkit.solids.gear_solid`'s gear as an exact B-rep."""
-    from gearkit.solids.gear import _helix, _reference_radius
+    from gearkit.solids.surface import helix_angle, reference_radius
 
-    beta = math.radians(_helix(profile, spec))
-    k = math.tan(beta) / _reference_radius(profile, abs(beta))
+    beta = math.radians(helix_angle(profile, spec))
+    k = math.tan(beta) / reference_radius(profile, abs(beta))
     tooth = tooth_curves(profile, tol)
     curves = _teeth(tooth, profile.teeth)
     measure = range(len(tooth))

@@ -24,7 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from gearkit.accuracy import adaptive_sample
-from gearkit.errors import GeometryError
+from gearkit.errors import GeometryError, SpecError
 
 #: exact sub-points per polyline edge (the reference the deviation is measured against)
 FINE = 16
@@ -244,3 +244,23 @@ def plan_layers(sample, tol: float, twist: float, both_hands: bool = False) -> L
     if best is None:
         raise GeometryError(f"cannot mesh the tooth surface within tol = {tol:g} mm")
     return best[1]
+
+
+def helix_angle(profile, spec) -> float:
+    """The helix angle (degrees) of a gear solid of ``profile`` by ``spec`` (a
+    :class:`~gearkit.solids.solid.SolidSpec`): the spec's, else the profile's own; SpecError when they differ."""
+    own = getattr(getattr(profile, "spec", None), "helix_angle_deg", None)
+    if spec.helix_angle_deg is None:
+        return float(own or 0.0)
+    if own is not None and not math.isclose(spec.helix_angle_deg, own, abs_tol=1e-12):
+        raise SpecError("helix_angle_deg", f"{spec.helix_angle_deg} degrees, but the profile was generated for "
+                        f"{own} degrees (its transverse section depends on it)")
+    return float(spec.helix_angle_deg)
+
+
+def reference_radius(profile, beta: float) -> float:
+    """Reference radius (mm) of ``profile`` at helix angle ``beta`` (rad): its own, else z m / (2 cos beta)."""
+    d = getattr(profile, "reference_diameter", None)
+    if d is None:
+        d = profile.teeth * profile.module / math.cos(beta)
+    return d / 2.0

@@ -162,7 +162,7 @@ def drive_view(spec, width: float | None = None, cycles: int | None = None, tol:
     from gearkit.checks.cycloidal import check_drive
     from gearkit.contact import Mesh, pin_ring, simulate
     from gearkit.families.cycloidal import disc_profile
-    from gearkit.families.cycloidal.assembly import disc_solid
+    from gearkit.solids.drive import disc_solid
     from gearkit.solids import SolidSpec, gear_solid
 
     result = check_drive(spec, samples=samples)

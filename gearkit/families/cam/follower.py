@@ -27,7 +27,7 @@ import numpy as np
 
 from gearkit.errors import SpecError
 from gearkit.motion import PlanarMotion
-from gearkit.tools import Segment, arc, line
+from gearkit.segments import Segment, arc, line
 
 __all__ = ["follower_motion", "follower_tool", "reference_point", "lift_direction", "translating_pressure_angle",
            "rocker_pressure_angle", "friction_angle_model", "smallest_prime_radius"]

@@ -1,4 +1,4 @@
-"""Parts of a cycloidal drive (and of cycloid and pin gear pairs) as 2D loops and solids.
+"""Parts of a cycloidal drive (and of cycloid and pin gear pairs) as 2D loops.
 
 The drive in its own frame (mm): the pin ring's centre at the origin, the disc's centre at
 ``e`` along the crank, the disc placed at relative angle 0 (the mesh frame of
@@ -7,9 +7,8 @@ of radius ``r_w`` on the circle ``R_w`` about the ring's axis run in holes of ra
 ``r_w + e`` on the same circle about the disc's centre (each pin touches its hole). The pin
 ring's housing holds the pins from outside (inner radius ``R_Z + r_Z``).
 
-Solids go through :mod:`gearkit.solids` (imported when a solid is asked for): the disc is a
-:func:`~gearkit.solids.gear_solid` of the generated disc with its bore, minus the output holes;
-pins, output pins and the housing are prisms.
+The same parts as solids (the disc with its bore and output holes, pins, housing, output pins) are
+:mod:`gearkit.solids.drive`.
 """
 from __future__ import annotations
 
@@ -18,11 +17,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from gearkit.errors import SpecError, require
+from gearkit.errors import require
 from gearkit.families.cycloidal.disc import disc_profile
-from gearkit.families.cycloidal.drive import DriveSpec, _phase
+from gearkit.families.cycloidal.drive import DriveSpec, frame_phase
 
-__all__ = ["OutputMechanism", "drive_loops", "drive_parts", "disc_solid", "circle", "prism"]
+__all__ = ["OutputMechanism", "circle", "disc_offset", "drive_loops", "pin_centres", "output_pin_centres"]
 
 
 def circle(centre, radius: float, tol: float, clockwise: bool = False):
@@ -69,10 +68,37 @@ class OutputMechanism:
         return self.count, rw_c, rw, hole, bore
 
 
-def _disc_offset(spec: DriveSpec):
-    """The disc centre in the drive frame (ring centre at the origin), mm."""
-    ph = _phase(spec)
+def disc_offset(spec: DriveSpec):
+    """The disc centre in the drive frame (ring centre at the origin), mm, ``(2,)``.
+
+    Examples
+    --------
+    >>> spec = DriveSpec(12, 11, 90.0, 7.0, 4.0)
+    >>> bool(np.isclose(np.hypot(*disc_offset(spec)), spec.eccentricity))
+    True
+    """
+    ph = frame_phase(spec)
     return spec.eccentricity * np.array([math.sin(ph), math.cos(ph)])
+
+
+def pin_centres(spec: DriveSpec):
+    """Centres of the ring's pins in the drive frame, ``(pins, 2)`` mm, on the pin circle R_Z.
+
+    Examples
+    --------
+    >>> spec = DriveSpec(12, 11, 90.0, 7.0, 4.0)
+    >>> np.allclose(np.hypot(*pin_centres(spec).T), 90.0)
+    True
+    """
+    beta = frame_phase(spec) - 2.0 * math.pi * np.arange(spec.pins) / spec.pins
+    return spec.pin_circle_radius * np.stack([np.sin(beta), np.cos(beta)], -1)
+
+
+def output_pin_centres(count: int, radius: float):
+    """Centres of ``count`` output pins (or holes) on the circle ``radius`` about the origin, pin 0 on +y,
+    ``(count, 2)`` mm."""
+    a = 2.0 * math.pi * np.arange(count) / max(count, 1)
+    return radius * np.stack([np.sin(a), np.cos(a)], -1)
 
 
 def drive_loops(spec: DriveSpec, tol: float, output: OutputMechanism = OutputMechanism(), placed: bool = False):
@@ -83,104 +109,7 @@ def drive_loops(spec: DriveSpec, tol: float, output: OutputMechanism = OutputMec
     if spec.sign > 0:
         count, rw_c, _, hole, bore = output.resolve(spec)
         loops.append(circle((0.0, 0.0), bore, tol, clockwise=True))
-        for j in range(count):
-            a = 2.0 * math.pi * j / max(count, 1)
-            loops.append(circle(rw_c * np.array([math.sin(a), math.cos(a)]), hole, tol, clockwise=True))
+        loops += [circle(c, hole, tol, clockwise=True) for c in output_pin_centres(count, rw_c)]
     if placed:
-        loops = [lp + _disc_offset(spec) for lp in loops]
+        loops = [lp + disc_offset(spec) for lp in loops]
     return loops
-
-
-def prism(loops, z0: float, z1: float, name: str):
-    """A solid prism of closed, convex-or-annular polygon loops: one loop (a convex polygon, fan
-    caps) or two loops with the same vertex count (an annulus: outer counter-clockwise first)."""
-    from gearkit.solids import Solid
-
-    loops = [np.asarray(lp, dtype=float) for lp in loops]
-    n = len(loops[0])
-    verts, faces = [], []
-    for lp in loops:
-        verts += [np.column_stack([lp, np.full(n, z0)]), np.column_stack([lp, np.full(n, z1)])]
-    v = np.concatenate(verts)
-    for k, lp in enumerate(loops):
-        b0, b1 = 2 * k * n, 2 * k * n + n
-        i = np.arange(n)
-        j = (i + 1) % n
-        side = np.concatenate([np.stack([b0 + i, b0 + j, b1 + j], -1), np.stack([b0 + i, b1 + j, b1 + i], -1)])
-        faces.append(side if k == 0 else side[:, ::-1])
-    i = np.arange(n)
-    j = (i + 1) % n
-    if len(loops) == 1:
-        c = len(v)
-        v = np.concatenate([v, [[*loops[0].mean(axis=0), z0], [*loops[0].mean(axis=0), z1]]])
-        faces.append(np.stack([np.full(n, c), j, i], -1))
-        faces.append(np.stack([np.full(n, c + 1), n + i, n + j], -1))
-    else:
-        o0, o1, h0, h1 = 0, n, 2 * n, 3 * n
-        faces.append(np.concatenate([np.stack([o0 + i, h0 + j, o0 + j], -1), np.stack([o0 + i, h0 + i, h0 + j], -1)]))
-        faces.append(np.concatenate([np.stack([o1 + i, o1 + j, h1 + j], -1), np.stack([o1 + i, h1 + j, h1 + i], -1)]))
-    return Solid.from_arrays(v, np.concatenate(faces), name, {"kind": "prism"})
-
-
-def _cylinders(centres, radius, z0, z1, tol, name):
-    parts = [prism([circle(c, radius, tol)], z0, z1, name) for c in centres]
-    man = parts[0].manifold
-    for p in parts[1:]:
-        man = man + p.manifold
-    from gearkit.solids import Solid
-    from gearkit.solids.solid import Recipe
-
-    recipe = Recipe("cylinders", ([tuple(map(float, c)) for c in centres], float(radius), float(z0), float(z1)))
-    return Solid(man, name, {"kind": "pins", "count": len(parts)}, recipe)
-
-
-def disc_solid(spec: DriveSpec, width: float, tol: float, output: OutputMechanism = OutputMechanism()):
-    """The generated disc (or ring) as a solid: bore and output holes cut through it (disc frame)."""
-    from gearkit.solids import Solid, SolidSpec, gear_solid
-
-    disc = disc_profile(spec)
-    if spec.sign < 0:
-        return gear_solid(disc, SolidSpec(width=width), tol=tol, name="ring")
-    count, rw_c, _, hole, bore = output.resolve(spec)
-    body = gear_solid(disc, SolidSpec(width=width, bore=2.0 * bore), tol=tol, name="disc")
-    if not count:
-        return body
-    centres = [rw_c * np.array([math.sin(2 * math.pi * j / count), math.cos(2 * math.pi * j / count)])
-               for j in range(count)]
-    holes = _cylinders(centres, hole, -width, 2.0 * width, tol, "holes")
-    info = dict(body.info)
-    info.update({"output_holes": count, "hole_radius": hole})
-    from gearkit.solids.solid import Recipe
-
-    return Solid(body.manifold - holes.manifold, "disc", info, Recipe("difference", (body.recipe, holes.recipe)))
-
-
-def drive_parts(spec: DriveSpec, width: float, tol: float, output: OutputMechanism = OutputMechanism()):
-    """The drive's parts as solids in the drive frame: disc (or ring), pins, housing, output pins."""
-    if not (math.isfinite(width) and width > 0):
-        raise SpecError("width", f"{width!r} must be a positive length in mm")
-    off = _disc_offset(spec)
-    disc = disc_solid(spec, width, tol, output).placed(0.0, (float(off[0]), float(off[1]), 0.0))
-    ph = _phase(spec)
-    big_r, r = spec.pin_circle_radius, spec.pin_radius
-    beta = ph - 2.0 * math.pi * np.arange(spec.pins) / spec.pins
-    centres = big_r * np.stack([np.sin(beta), np.cos(beta)], -1)
-    pins = _cylinders(centres, r, -0.1 * width, 1.1 * width, tol, "pins")
-    parts = [disc, pins]
-    if spec.sign > 0:
-        inner = big_r + r
-        outer = inner + max(2.0 * r, 0.1 * big_r)
-        n = max(len(circle((0, 0), outer, tol)), len(circle((0, 0), inner, tol)))
-        t = np.linspace(0.0, 2.0 * math.pi, n, endpoint=False)
-        ring = [outer * np.stack([np.cos(t), np.sin(t)], -1), inner * np.stack([np.cos(t), np.sin(t)], -1)]
-        from gearkit.solids.solid import Recipe
-
-        housing = prism(ring, -0.1 * width, 1.1 * width, "housing")
-        housing.recipe = Recipe("tube", (inner, outer, -0.1 * width, 1.1 * width))
-        parts.append(housing)
-        count, rw_c, rw, _, _ = output.resolve(spec)
-        if count:
-            oc = [rw_c * np.array([math.sin(2 * math.pi * j / count), math.cos(2 * math.pi * j / count)])
-                  for j in range(count)]
-            parts.append(_cylinders(oc, rw, -0.2 * width, 1.2 * width, tol, "output_pins"))
-    return parts

@@ -3,7 +3,7 @@
 The disc is what a grinding pin leaves when the disc's centrode (radius ``|r_g'|``) rolls
 inside the pin ring's centrode (radius ``|r_b'|``): the same envelope kernel as every other
 family (:mod:`gearkit.envelope`, :mod:`gearkit.boundary`), with the pin as the tool — one arc
-of the pin circle, a :class:`~gearkit.tools.Segment` — and a
+of the pin circle, a :class:`~gearkit.segments.Segment` — and a
 :class:`~gearkit.motion.RollingMotion` with both centres on the blank's side.
 
 Each point of a pin touches the disc twice per pass: near the root (the normal line meets
@@ -26,12 +26,13 @@ from functools import lru_cache
 
 import numpy as np
 
-from gearkit.boundary import ToothProfile, trim_half_tooth
+from gearkit.boundary import trim_half_tooth
+from gearkit.profile import ToothProfile
 from gearkit.envelope import chain_branches
 from gearkit.errors import GeometryError, SpecError
 from gearkit.families.cycloidal.drive import DriveSpec
 from gearkit.motion import RollingMotion
-from gearkit.tools import arc
+from gearkit.segments import arc
 
 __all__ = ["CycloidalDisc", "disc_profile", "pin_tool", "generating_motion"]
 
@@ -73,7 +74,7 @@ def pin_tool(spec: DriveSpec):
 
 
 class CycloidalDisc(ToothProfile):
-    """A generated cycloid disc (dz > 0) or ring (dz < 0): a :class:`~gearkit.boundary.ToothProfile`.
+    """A generated cycloid disc (dz > 0) or ring (dz < 0): a :class:`~gearkit.profile.ToothProfile`.
 
     ``module`` is ``2 e`` (the disc's circular pitch is ``2 pi e``), so the default tolerance
     is ``2e-3 e``. ``branches`` are the raw envelope branches (before loop removal and clipping).

@@ -26,11 +26,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from gearkit.errors import check_fields, require
-from gearkit.errors import is_int as _is_int, is_real as _finite
+from gearkit.errors import check_fields, is_int, is_real, require
 
 __all__ = ["DriveSpec", "disc_curve", "theoretical_curve", "curve_normal", "curvature_radius",
-           "min_curvature_radius", "psi_max", "contact_ratio", "line_of_action_point"]
+           "min_curvature_radius", "psi_max", "contact_ratio", "line_of_action_point", "frame_phase", "turn_polar"]
 
 
 
@@ -76,38 +75,38 @@ class DriveSpec:
 
     def __post_init__(self):
         check_fields(self)
-        require(_is_int(self.pins) and 3 <= self.pins <= 1000, "pins", f"Z_b = {self.pins!r} must be an integer "
+        require(is_int(self.pins) and 3 <= self.pins <= 1000, "pins", f"Z_b = {self.pins!r} must be an integer "
                 "in [3, 1000]")
-        require(_is_int(self.lobes) and 2 <= self.lobes <= 1000, "lobes", f"Z_g = {self.lobes!r} must be an "
+        require(is_int(self.lobes) and 2 <= self.lobes <= 1000, "lobes", f"Z_g = {self.lobes!r} must be an "
                 "integer in [2, 1000]")
         require(self.pins != self.lobes, "lobes", f"Z_g = {self.lobes} must differ from Z_b = {self.pins} "
                 "(the tooth difference dz = Z_b - Z_g cannot be 0)")
         big_r = self.pin_circle_radius
-        require(_finite(big_r) and 1e-3 <= big_r <= 1e5, "pin_circle_radius", f"R_Z = {big_r!r} must be a length in "
+        require(is_real(big_r) and 1e-3 <= big_r <= 1e5, "pin_circle_radius", f"R_Z = {big_r!r} must be a length in "
                 "[0.001, 100000] mm")
         for name, rel in (("pin_radius", 1e-12), ("eccentricity", 1e-4)):  # lengths on the scale of R_Z
             v = getattr(self, name)
-            require(_finite(v) and v >= rel * big_r, name, f"{v!r} must be a length of at least {rel:g} R_Z = "
+            require(is_real(v) and v >= rel * big_r, name, f"{v!r} must be a length of at least {rel:g} R_Z = "
                     f"{rel * big_r:.6g} mm")
         r, e = self.pin_radius, self.eccentricity
         require(e < big_r, "eccentricity", f"e = {e!r} must be smaller than the pin-circle radius R_Z = {big_r!r}")
         require(r < big_r, "pin_radius", f"r_Z = {r!r} must be smaller than the pin-circle radius R_Z = {big_r!r}")
         for name in ("equidistant_mod", "shift_mod"):
             v = getattr(self, name)
-            require(_finite(v) and abs(v) <= 0.25 * min(r, e) + 0.0, name,
+            require(is_real(v) and abs(v) <= 0.25 * min(r, e) + 0.0, name,
                     f"{v!r} must be a small correction, |.| <= {0.25 * min(r, e):.6g} mm (a quarter of the "
                     "smaller of pin radius and eccentricity)")
         require(r + self.equidistant_mod > 0, "equidistant_mod", "the grinding pin radius r_Z + dr must be > 0")
         if self.disc_eccentricity is not None:
             v = self.disc_eccentricity
-            require(_finite(v) and 0 < v < big_r, "disc_eccentricity", f"e' = {v!r} must be in (0, R_Z) mm")
+            require(is_real(v) and 0 < v < big_r, "disc_eccentricity", f"e' = {v!r} must be in (0, R_Z) mm")
         if self.tip_radius is not None:
             v = self.tip_radius
             if self.tooth_difference < 0:
                 lo, hi = self.grind_circle - e + self.grind_pin, self.grind_circle + e + self.grind_pin
             else:
                 lo, hi = self.grind_circle - e - self.grind_pin, self.grind_circle + e - self.grind_pin
-            require(_finite(v) and lo < v < hi, "tip_radius", f"{v!r} mm must lie between the disc's root and "
+            require(is_real(v) and lo < v < hi, "tip_radius", f"{v!r} mm must lie between the disc's root and "
                     f"crest radii ({lo:.6g}, {hi:.6g}) mm")
 
     # -- derived (signed) ---------------------------------------------------------------------
@@ -192,7 +191,7 @@ class DriveSpec:
 
 
 # ----------------------------------------------------------------------------- closed forms
-def _phase(spec: DriveSpec) -> float:
+def frame_phase(spec: DriveSpec) -> float:
     """Polar angle turning the reference digest's frame into the gearkit frame (lobe 0 on +y).
 
     In the digest's frame family 0's root (the pin nearest the disc centre for dz > 0, farthest
@@ -204,8 +203,14 @@ def _phase(spec: DriveSpec) -> float:
     return math.pi / spec.lobes * (1 - abs(spec.tooth_difference))
 
 
-def _turn(points, angle):
-    """Add ``angle`` (scalar, or one per point) to the polar angle (from +y towards +x) of ``points``."""
+def turn_polar(points, angle):
+    """Add ``angle`` (scalar, or one per point) to the polar angle (from +y towards +x) of ``points``.
+
+    Examples
+    --------
+    >>> turn_polar(np.array([0.0, 1.0]), math.pi / 2).round(12).tolist()
+    [1.0, 0.0]
+    """
     c, s = np.cos(angle), np.sin(angle)
     x, y = points[..., 0], points[..., 1]
     return np.stack([x * c + y * s, -x * s + y * c], -1)
@@ -222,7 +227,7 @@ def theoretical_curve(spec: DriveSpec, psi, family: int = 0):
     ph = g.equivalent_pins * psi + 2.0 * math.pi * family / g.tooth_difference
     big_r, e = g.pin_circle_radius, g.eccentricity
     t = np.stack([big_r * np.sin(psi) - e * np.sin(ph), big_r * np.cos(psi) - e * np.cos(ph)], -1)
-    return _turn(t, _phase(spec))
+    return turn_polar(t, frame_phase(spec))
 
 
 def curve_normal(spec: DriveSpec, psi, family: int = 0):
@@ -233,7 +238,7 @@ def curve_normal(spec: DriveSpec, psi, family: int = 0):
     k1 = g.k1
     n = np.stack([np.sin(psi) - k1 * np.sin(ph), np.cos(psi) - k1 * np.cos(ph)], -1)
     n = n / np.linalg.norm(n, axis=-1, keepdims=True)
-    return _turn(n, _phase(spec))
+    return turn_polar(n, frame_phase(spec))
 
 
 def disc_curve(spec: DriveSpec, psi, family: int = 0):

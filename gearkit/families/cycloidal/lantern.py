@@ -25,12 +25,12 @@ from functools import lru_cache
 
 import numpy as np
 
-from gearkit.boundary import HalfTooth, Piece, ToothProfile, trim_half_tooth
+from gearkit.boundary import HalfTooth, Piece, trim_half_tooth
+from gearkit.profile import ToothProfile
 from gearkit.envelope import chain_branches
-from gearkit.errors import GeometryError, SpecError, check_fields, require
-from gearkit.errors import is_int as _is_int, is_real as _finite
+from gearkit.errors import GeometryError, SpecError, check_fields, is_int, is_real, require
 from gearkit.motion import RollingMotion
-from gearkit.tools import arc
+from gearkit.segments import arc
 
 __all__ = ["PinGearSpec", "PinGearWheel", "pin_gear_wheel", "first_usable_roll", "pin_wheel_outline", "DETECT_TOL"]
 
@@ -67,15 +67,15 @@ class PinGearSpec:
     def __post_init__(self):
         check_fields(self)
         m = self.module
-        require(_finite(m) and 1e-3 <= m <= 1e3, "module", f"{m!r} must be a length in [0.001, 1000] mm")
-        require(_is_int(self.pins) and 3 <= self.pins <= 10000, "pins", f"z1 = {self.pins!r} must be an integer "
+        require(is_real(m) and 1e-3 <= m <= 1e3, "module", f"{m!r} must be a length in [0.001, 1000] mm")
+        require(is_int(self.pins) and 3 <= self.pins <= 10000, "pins", f"z1 = {self.pins!r} must be an integer "
                 "in [3, 10000]")
-        require(_is_int(self.wheel_teeth) and 3 <= self.wheel_teeth <= 10000, "wheel_teeth",
+        require(is_int(self.wheel_teeth) and 3 <= self.wheel_teeth <= 10000, "wheel_teeth",
                 f"z2 = {self.wheel_teeth!r} must be an integer in [3, 10000]")
         lim = self.r1 * math.sin(math.pi / self.pins)
-        require(_finite(self.pin_radius) and 0 < self.pin_radius < lim, "pin_radius",
+        require(is_real(self.pin_radius) and 0 < self.pin_radius < lim, "pin_radius",
                 f"rho = {self.pin_radius!r} mm must be in (0, r1 sin(pi/z1) = {lim:.6g}) mm (pins must not touch)")
-        require(_finite(self.addendum) and 0.1 <= self.addendum <= 3.0, "addendum",
+        require(is_real(self.addendum) and 0.1 <= self.addendum <= 3.0, "addendum",
                 f"h_a* = {self.addendum!r} must be in [0.1, 3] (module units)")
 
     @property
@@ -106,7 +106,7 @@ def first_usable_roll(spec: PinGearSpec) -> float:
 
 
 class PinGearWheel(ToothProfile):
-    """The generated wheel of a pin-gear pair (a :class:`~gearkit.boundary.ToothProfile`)."""
+    """The generated wheel of a pin-gear pair (a :class:`~gearkit.profile.ToothProfile`)."""
 
     def __init__(self, half, spec: PinGearSpec, branches):
         super().__init__(half, spec.wheel_teeth, False, spec.module, family="pin gearing", spec=spec,

@@ -22,7 +22,7 @@ from functools import lru_cache
 import numpy as np
 
 from gearkit.families.cycloidal.disc import disc_profile
-from gearkit.families.cycloidal.drive import DriveSpec, _phase, _turn
+from gearkit.families.cycloidal.drive import DriveSpec, frame_phase, turn_polar
 
 __all__ = ["CONTACT_TOL", "MeshState", "MeshStats", "pin_centres", "mesh_state", "simulate_mesh", "backlash"]
 
@@ -44,7 +44,7 @@ def pin_centres(spec: DriveSpec, psi0, turn: float = 0.0):
     e, big_r = spec.eccentricity, spec.pin_circle_radius
     beta = psi - 2.0 * math.pi * np.arange(spec.pins) / spec.pins
     c = np.stack([big_r * np.sin(beta) - e * np.sin(z_e * psi), big_r * np.cos(beta) - e * np.cos(z_e * psi)], -1)
-    return _turn(c, _phase(spec) + turn)
+    return turn_polar(c, frame_phase(spec) + turn)
 
 
 class _Outline:
@@ -115,12 +115,12 @@ class _Outline:
         """Distance to the disc outline and the nearest outline point for each query point."""
         flip_x = np.array([-1.0, 1.0])
         k = np.round(np.arctan2(q[:, 0], q[:, 1]) / (2.0 * self.half))
-        local = _turn(q, -k * 2.0 * self.half)
+        local = turn_polar(q, -k * 2.0 * self.half)
         flip = np.where(local[:, :1] < 0, flip_x, 1.0)
         local = local * flip
 
         def mirror_s(p):  # mirror image in the space centre line (polar pi/z)
-            return _turn(_turn(p, -self.half) * flip_x, self.half)
+            return turn_polar(turn_polar(p, -self.half) * flip_x, self.half)
         cands = (local, mirror_s(local), local * flip_x)
         starts = [self._start(p) for p in cands]
         coarse = np.stack([st[0] for st in starts])
@@ -134,7 +134,7 @@ class _Outline:
         feet[2] = feet[2] * flip_x
         which = np.argmin(dist, axis=0)
         n = np.arange(len(q))
-        return dist[which, n], _turn(feet[which, n] * flip, k * 2.0 * self.half)
+        return dist[which, n], turn_polar(feet[which, n] * flip, k * 2.0 * self.half)
 
 
 @dataclass(frozen=True)

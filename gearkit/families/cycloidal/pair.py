@@ -25,12 +25,12 @@ from functools import lru_cache
 
 import numpy as np
 
-from gearkit.boundary import ToothProfile, trim_half_tooth
+from gearkit.boundary import trim_half_tooth
+from gearkit.profile import ToothProfile
 from gearkit.envelope import chain_branches
-from gearkit.errors import GeometryError, SpecError, check_fields, require
-from gearkit.errors import is_int as _is_int, is_real as _finite
+from gearkit.errors import GeometryError, SpecError, check_fields, is_int, is_real, require
 from gearkit.motion import RollingMotion
-from gearkit.tools import Segment, corner, line
+from gearkit.segments import Segment, corner, line
 
 __all__ = ["CycloidPairSpec", "CycloidalRack", "CycloidGear", "cycloid_gear", "clock_factors",
            "contact_ratio", "epicycloid_flank", "hypocycloid_flank", "CLOCK_ADDENDUM", "CLOCK_TIP_RADIUS"]
@@ -123,22 +123,22 @@ class CycloidPairSpec:
     def __post_init__(self):
         check_fields(self)
         m = self.module
-        require(_finite(m) and 1e-3 <= m <= 1e3, "module", f"{m!r} must be a length in [0.001, 1000] mm")
-        require(_is_int(self.pinion_teeth) and 4 <= self.pinion_teeth <= 10000, "pinion_teeth",
+        require(is_real(m) and 1e-3 <= m <= 1e3, "module", f"{m!r} must be a length in [0.001, 1000] mm")
+        require(is_int(self.pinion_teeth) and 4 <= self.pinion_teeth <= 10000, "pinion_teeth",
                 f"z1 = {self.pinion_teeth!r} must be an integer in [4, 10000]")
-        require(_is_int(self.wheel_teeth) and self.pinion_teeth <= self.wheel_teeth <= 10000, "wheel_teeth",
+        require(is_int(self.wheel_teeth) and self.pinion_teeth <= self.wheel_teeth <= 10000, "wheel_teeth",
                 f"z2 = {self.wheel_teeth!r} must be an integer in [z1 = {self.pinion_teeth}, 10000]")
         for k, r in ((1, self.r1), (2, self.r2)):
             a = getattr(self, f"rolling_radius{k}")
             if a is not None:
-                require(_finite(a) and 0.05 * r <= a < r, f"rolling_radius{k}",
+                require(is_real(a) and 0.05 * r <= a < r, f"rolling_radius{k}",
                         f"a{k} = {a!r} mm must be in [0.05 r{k}, r{k}) = [{0.05 * r:.6g}, {r:.6g}) mm")
         for name in ("addendum1", "addendum2"):
             v = getattr(self, name)
-            require(v is None or (_finite(v) and 0.1 <= v <= 3.0), name, f"{v!r} must be in [0.1, 3] (module units)")
+            require(v is None or (is_real(v) and 0.1 <= v <= 3.0), name, f"{v!r} must be in [0.1, 3] (module units)")
         if self.dedendum is not None:
             v = self.dedendum
-            require(_finite(v) and 0.5 <= v <= 4.0, "dedendum", f"{v!r} must be in [0.5, 4] (module units)")
+            require(is_real(v) and 0.5 <= v <= 4.0, "dedendum", f"{v!r} must be in [0.5, 4] (module units)")
         for k in (1, 2):  # the cutter must reach the root: 2 a >= h_f
             require(2.0 * self.rolling(3 - k) > self.reach(k) and 2.0 * self.rolling(k) > self.dedendum_mm,
                     f"rolling_radius{k}", "the generating circles are too small for the tooth depth "
@@ -200,7 +200,7 @@ class CycloidPairSpec:
 
 
 class CycloidGear(ToothProfile):
-    """A generated cycloid gear (a :class:`~gearkit.boundary.ToothProfile`) with its pair spec."""
+    """A generated cycloid gear (a :class:`~gearkit.profile.ToothProfile`) with its pair spec."""
 
     def __init__(self, half, spec: CycloidPairSpec, which: int, branches):
         z = spec.pinion_teeth if which == 1 else spec.wheel_teeth

@@ -3,10 +3,13 @@
 :mod:`~gearkit.families.involute.gear` holds the gear (:class:`GearSpec`, :func:`tooth_profile`),
 :mod:`~gearkit.families.involute.rack` the rack itself (z = infinity: :class:`RackSpec`,
 :func:`rack_profile`), :mod:`~gearkit.families.involute.modification` the flank micro-geometry
-(:class:`Modification`). The cutters (basic rack, shaper cutter) are :mod:`gearkit.tools`.
+(:class:`Modification`), :mod:`~gearkit.families.involute.tools` their cutters (:class:`BasicRack`,
+:class:`ShaperCutter`).
 """
+from gearkit.families.involute.tools import BasicRack, ShaperCutter
 from gearkit.families.involute.gear import GearSpec, InvoluteProfile, tooth_profile
 from gearkit.families.involute.modification import Modification
 from gearkit.families.involute.rack import RackProfile, RackSpec, rack_profile
 
-__all__ = ["GearSpec", "InvoluteProfile", "Modification", "RackProfile", "RackSpec", "rack_profile", "tooth_profile"]
+__all__ = ["BasicRack", "GearSpec", "InvoluteProfile", "Modification", "RackProfile", "RackSpec", "ShaperCutter",
+           "rack_profile", "tooth_profile"]

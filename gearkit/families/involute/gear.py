@@ -15,7 +15,7 @@ cutter away from the gear's teeth (an internal gear's teeth get thinner and its 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
@@ -27,7 +27,8 @@ from gearkit.envelope import chain_branches
 from gearkit.families.involute.modification import Modification, modify_half
 from gearkit.errors import GeometryError, SpecError, check_fields, require, require_cut_inputs
 from gearkit.motion import RollingMotion
-from gearkit.tools import BasicRack, ShaperCutter, rotation_matrix, transform_chain
+from gearkit.families.involute.tools import BasicRack, ShaperCutter
+from gearkit.segments import rotation_matrix, transform_chain
 
 
 @dataclass(frozen=True)
@@ -215,7 +216,7 @@ def _root_radius(half) -> float:
 
 
 class InvoluteProfile(ToothProfile):
-    """:class:`~gearkit.boundary.ToothProfile` of an involute gear, with its involute-specific values."""
+    """:class:`~gearkit.profile.ToothProfile` of an involute gear, with its involute-specific values."""
 
     @property
     def tooth_thickness(self) -> float:

@@ -17,12 +17,13 @@ from functools import lru_cache
 
 import numpy as np
 
-from gearkit.boundary import HalfTooth, Piece, _crossings, linear_coords, trim_half_tooth
+from gearkit.boundary import HalfTooth, Piece, crossings, linear_coords, trim_half_tooth
 from gearkit.profile import HalfToothProfile
 from gearkit.envelope import chain_branches
 from gearkit.errors import GeometryError, SpecError, check_count, check_fields, require, require_cut_inputs
 from gearkit.motion import RollingMotion
-from gearkit.tools import BasicRack, ShaperCutter, arc, line, rotation_matrix, transform_chain
+from gearkit.families.involute.tools import BasicRack, ShaperCutter
+from gearkit.segments import arc, line, rotation_matrix, transform_chain
 
 
 @dataclass(frozen=True)
@@ -80,7 +81,7 @@ class RackProfile(HalfToothProfile):
 
     def thickness_at(self, height: float) -> float:
         """Tooth thickness (mm, transverse) at ``height`` above the datum line."""
-        hits = _crossings(self.half.pieces, lambda p: linear_coords(p)[0], float(height))
+        hits = crossings(self.half.pieces, lambda p: linear_coords(p)[0], float(height))
         if not hits:
             raise ValueError(f"height {height} misses the tooth flank")
         k, w = hits[0]

@@ -2,14 +2,14 @@
 
 :mod:`~gearkit.families.novikov.racks` holds the circular-arc basic racks (:class:`ArcSpec`,
 :class:`ArcRack`), :mod:`~gearkit.families.novikov.presets` the named rack systems,
-:mod:`~gearkit.families.novikov.gear` the gear (:class:`NovikovGearSpec`, :func:`tooth_profile`) and
-the pair geometry (:class:`NovikovPairSpec`, :func:`novikov_pair_geometry`), and
+:mod:`~gearkit.families.novikov.gear` the gear (:class:`NovikovGearSpec`, :func:`tooth_profile`),
+:mod:`~gearkit.families.novikov.pair` the pair (:class:`NovikovPairSpec`, :func:`novikov_pair_geometry`), and
 :mod:`~gearkit.families.novikov.mesh` the meshed pair (:func:`mesh_contact`, :func:`meshed_outlines`).
 """
 from gearkit.families.novikov.racks import ArcRack, ArcSpec
 from gearkit.families.novikov.presets import RackSystem, load_rack_system, rack_presets, rack_system
-from gearkit.families.novikov.gear import (NovikovGearSpec, NovikovPairGeometry, NovikovPairSpec, NovikovProfile,
-                                           gear_specs, novikov_pair_geometry, tooth_profile)
+from gearkit.families.novikov.gear import NovikovGearSpec, NovikovProfile, tooth_profile
+from gearkit.families.novikov.pair import NovikovPairGeometry, NovikovPairSpec, gear_specs, novikov_pair_geometry
 from gearkit.families.novikov.mesh import MeshContact, mesh_contact, meshed_outlines
 
 __all__ = ["ArcRack", "ArcSpec", "MeshContact", "NovikovGearSpec", "NovikovPairGeometry", "NovikovPairSpec",

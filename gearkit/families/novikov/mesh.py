@@ -25,7 +25,8 @@ import numpy as np
 
 from gearkit.accuracy import distances_to_polyline
 from gearkit.errors import GeometryError
-from gearkit.families.novikov.gear import NovikovPairSpec, novikov_pair_geometry, tooth_profile
+from gearkit.families.novikov.gear import tooth_profile
+from gearkit.families.novikov.pair import NovikovPairSpec, novikov_pair_geometry
 
 __all__ = ["MeshContact", "mesh_contact", "meshed_outlines", "contact_trace", "section_clearance", "signed_clearance"]
 

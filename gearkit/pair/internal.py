@@ -48,7 +48,7 @@ def exit_jamming_margin(g: PairGeometry) -> float:
     Examples
     --------
     >>> from gearkit.pair import PairSpec, pair_geometry
-    >>> from gearkit.tools import ShaperCutter
+    >>> from gearkit.families.involute import ShaperCutter
     >>> g = pair_geometry(PairSpec(41, 49, 1.0, kind="internal", tool2=ShaperCutter(20)))
     >>> exit_jamming_margin(g) < 0    # zero shifts, z2 = 49: the difference must be at least 9
     True
@@ -210,56 +210,3 @@ def tip_sweep(g: PairGeometry, resolution: float | None = None) -> tuple[float, 
     if best <= res:
         return 0.0, 0.0
     return best, at
-
-
-def internal_findings(spec, g: PairGeometry) -> list:
-    """The internal-pair findings of :func:`~gearkit.checks.check_pair` (see its table)."""
-    from gearkit.checks.limits import min_cutter_difference, min_tooth_difference
-    from gearkit.checks.report import Finding
-
-    mn = g.module
-    p, ring = g.gears
-    z1, z2, z0 = p.teeth, ring.teeth, spec.tools[1].teeth
-    out = []
-    margin = exit_jamming_margin(g)
-    out.append(Finding("exit_jamming", "fail" if margin < 0 else "ok", margin, 0.0,
-                       "tip circles never overlap: no exit jamming" if math.isinf(margin) else
-                       f"tip interference on leaving mesh: margin {margin:.5f} rad "
-                       + ("< 0: the pinion's tip corner hits the ring's tooth tip (raise x2 or z2 - z1)"
-                          if margin < 0 else ">= 0"), "min"))
-    depth, phi = tip_sweep(g)
-    res = 1e-4 * mn
-    out.append(Finding("tip_interference", "fail" if depth > 0 else "ok", depth, res,
-                       f"tip corners swept along their trochoidal paths through the mate's teeth: "
-                       + (f"penetrate {depth:.4g} mm at pinion angle {math.degrees(phi):.2f} deg" if depth > 0
-                          else f"no penetration deeper than {res:.3g} mm"), "max"))
-    gap, at = plunge_trimming(g)
-    out.append(Finding("trimming.plunge", "fail" if gap <= 0 else "ok", gap, 0.0,
-                       f"shaper plunge: closest approach of the ring's and the shaper's tip corners "
-                       f"{gap:.4f} mm at {math.degrees(at):.2f} deg"
-                       + (" <= 0: the shaper trims the ring's teeth while feeding in" if gap <= 0 else ""), "min"))
-    r_nu = nu_radius(g)
-    d_nu = 2 * r_nu
-    da2 = ring.tip_diameter
-    trimmed = da2 < d_nu - 1e-9 * mn
-    out.append(Finding("trimming.nu", "warn" if trimmed else "ok", da2, d_nu,
-                       (f"the ring's tip circle d_a2 = {da2:.4f} mm lies inside 2 O2N_u = {d_nu:.4f} mm: the shaper "
-                        f"trims its involute there ({(d_nu - da2) / 2:.4f} mm of height)") if trimmed else
-                       f"the ring's tip circle d_a2 = {da2:.4f} mm is outside 2 O2N_u = {d_nu:.4f} mm: no trimming",
-                       "min"))
-    below = ring.tip_diameter < ring.base_diameter
-    out.append(Finding("ring_tip.base", "warn" if below else "ok", ring.tip_diameter, ring.base_diameter,
-                       (f"the ring's tip circle d_a2 = {ring.tip_diameter:.4f} mm lies inside its base circle "
-                        f"d_b2 = {ring.base_diameter:.4f} mm: its teeth are not involute there") if below else
-                       "the ring's tip circle lies outside its base circle", "min"))
-    k_min = min_tooth_difference(spec)
-    limit = math.inf if k_min is None else float(k_min)
-    out.append(Finding("min_teeth.difference", "fail" if z2 - z1 < limit else "ok", float(z2 - z1), limit,
-                       f"tooth difference z2 - z1 = {z2 - z1}; exit jamming needs at least "
-                       + ("(none found)" if k_min is None else f"{k_min}") + " at these shifts", "min"))
-    c_min = min_cutter_difference(spec)
-    limit = math.inf if c_min is None else float(c_min)
-    out.append(Finding("min_teeth.cutter", "fail" if z2 - z0 < limit else "ok", float(z2 - z0), limit,
-                       f"ring minus shaper teeth z2 - z0 = {z2 - z0}; plunging without trimming needs at least "
-                       + ("(none found)" if c_min is None else f"{c_min}"), "min"))
-    return out

@@ -1,0 +1,170 @@
+"""Tool edges: the curves a cutter's edge follows, as chains of exact segments.
+
+A tool is described by the half of one of its teeth that faces the tooth being cut,
+as a chain of :class:`Segment` (line, circular arc, involute, roulette), each in an affine frame
+so that the same primitives serve normal and transverse sections (the transverse
+section of a circular arc on a helical rack is an ellipse arc: an arc under a
+non-orthogonal affine map). Chains are walked with the tool material on the right;
+the outward normal (out of the tool, into the blank) is the left normal.
+
+Each segment carries the ``label`` of the gear feature it generates ("root", "fillet",
+"flank", "tip", ...), so labels on a generated profile come from the tool itself. Every
+family builds its cutters from these primitives (the involute family's basic rack and shaper
+cutter: :mod:`gearkit.families.involute.tools`).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+_IDENTITY = (1.0, 0.0, 0.0, 1.0, 0.0, 0.0)
+
+
+@dataclass(frozen=True)
+class Segment:
+    """One exact piece of a tool edge, parametrised by ``u`` in ``[0, 1]``.
+
+    kind ``"line"``: data ``(x0, y0, x1, y1)``.
+    kind ``"arc"``: data ``(cx, cy, r, a0, a1)``; point ``c + r (cos a, sin a)``, ``a`` linear in ``u``
+    (``r = 0`` is a corner: a fixed point whose normal turns from one side to the other).
+    kind ``"involute"``: data ``(cx, cy, rb, gamma, hand, t0, t1)``; involute of the circle of radius
+    ``rb`` unwound from polar angle ``gamma`` (``hand`` +1 counter-clockwise, -1 clockwise), roll
+    parameter ``t = tan(profile angle)`` linear in ``u``.
+    kind ``"roulette"``: data ``(kb, a, ratio, s0, s1)``; cycloid (base curvature ``kb = 0``),
+    epicycloid (``a > 0``) or hypocycloid (``a < 0``) traced by a circle of radius ``|a|`` rolling on
+    a base of curvature ``kb`` through the origin, rolled length ``s`` linear in ``u``
+    (:func:`gearkit.curves.roulette`; a cusp may only be an end, ``s0 = 0`` or ``s1 = 0``).
+
+    ``affine = (a11, a12, a21, a22, b1, b2)`` maps the primitive into the tool frame;
+    ``reverse`` walks it from ``u = 1`` to ``u = 0``.
+    """
+
+    kind: str
+    data: tuple
+    label: str
+    affine: tuple = _IDENTITY
+    reverse: bool = False
+
+    def _primitive(self, u):
+        d = self.data
+        if self.kind == "line":
+            x0, y0, x1, y1 = d
+            p = np.stack([x0 + u * (x1 - x0), y0 + u * (y1 - y0)], -1)
+            t = np.broadcast_to(np.array([x1 - x0, y1 - y0]), p.shape)
+        elif self.kind == "arc":
+            cx, cy, r, a0, a1 = d
+            a = a0 + u * (a1 - a0)
+            c, s = np.cos(a), np.sin(a)
+            p = np.stack([cx + r * c, cy + r * s], -1)
+            sign = 1.0 if a1 >= a0 else -1.0
+            t = sign * np.stack([-s, c], -1)
+        elif self.kind == "involute":
+            cx, cy, rb, gamma, hand, t0, t1 = d
+            tt = t0 + u * (t1 - t0)
+            ang = gamma + hand * tt
+            c, s = np.cos(ang), np.sin(ang)
+            p = np.stack([cx + rb * (c + hand * tt * s), cy + rb * (s - hand * tt * c)], -1)
+            sign = 1.0 if t1 >= t0 else -1.0
+            t = sign * np.stack([c, s], -1)
+        elif self.kind == "roulette":
+            from gearkit.curves import roulette
+
+            kb, a, ratio, s0, s1 = d
+            p, t = roulette(s0 + u * (s1 - s0), kb, a, ratio, side=1.0 if s0 + s1 >= 0 else -1.0)
+            if s1 < s0:
+                t = -t
+        else:  # pragma: no cover - constructor guards this
+            raise ValueError(f"unknown segment kind {self.kind!r}")
+        return p, t
+
+    def evaluate(self, u):
+        """Points, unit tangents (walking direction) and unit outward normals at ``u``.
+
+        Parameters
+        ----------
+        u : (n,) float64 in [0, 1]
+
+        Returns
+        -------
+        points, tangents, normals : (n, 2) float64
+        """
+        u = np.asarray(u, dtype=float)
+        if self.reverse:
+            u = 1.0 - u
+        p0, t0 = self._primitive(u)
+        a11, a12, a21, a22, b1, b2 = self.affine
+        p = np.empty(p0.shape)
+        p[..., 0] = a11 * p0[..., 0] + a12 * p0[..., 1] + b1
+        p[..., 1] = a21 * p0[..., 0] + a22 * p0[..., 1] + b2
+        tx = a11 * t0[..., 0] + a12 * t0[..., 1]
+        ty = a21 * t0[..., 0] + a22 * t0[..., 1]
+        norm = np.hypot(tx, ty)
+        if self.reverse:
+            norm = -norm
+        t = np.empty(p0.shape)
+        t[..., 0] = tx / norm
+        t[..., 1] = ty / norm
+        n = np.empty(p0.shape)
+        n[..., 0] = -t[..., 1]
+        n[..., 1] = t[..., 0]
+        return p, t, n
+
+    def endpoints(self):
+        p, t, _ = self.evaluate(np.array([0.0, 1.0]))
+        return p, t
+
+
+def transform_chain(chain, matrix, offset=(0.0, 0.0)):
+    """Apply ``x -> matrix @ x + offset`` to a chain of segments.
+
+    A reflection (negative determinant) would put the material on the left, so the
+    chain and each segment are reversed to keep the material on the right.
+    """
+    m = np.asarray(matrix, dtype=float)
+    out = []
+    flip = np.linalg.det(m) < 0
+    for seg in chain:
+        a11, a12, a21, a22, b1, b2 = seg.affine
+        old = np.array([[a11, a12], [a21, a22]])
+        new = m @ old
+        nb = m @ np.array([b1, b2]) + np.asarray(offset, dtype=float)
+        out.append(replace(seg, affine=(new[0, 0], new[0, 1], new[1, 0], new[1, 1], nb[0], nb[1]),
+                           reverse=seg.reverse ^ bool(flip)))
+    return tuple(reversed(out)) if flip else tuple(out)
+
+
+def rotation_matrix(angle):
+    c, s = math.cos(angle), math.sin(angle)
+    return np.array([[c, -s], [s, c]])
+
+
+def line(p0, p1, label):
+    return Segment("line", (float(p0[0]), float(p0[1]), float(p1[0]), float(p1[1])), label)
+
+
+def arc(centre, radius, a0, a1, label):
+    return Segment("arc", (float(centre[0]), float(centre[1]), float(radius), float(a0), float(a1)), label)
+
+
+def corner(point, t_in, t_out, label):
+    """Zero-radius arc at ``point`` turning the walking direction from ``t_in`` to ``t_out``.
+
+    Its normals sweep the angle between the adjacent segments' normals, so the envelope of
+    a chain stays continuous across the corner (a convex corner generates a trochoid).
+    """
+    n_in = np.array([-t_in[1], t_in[0]])
+    n_out = np.array([-t_out[1], t_out[0]])
+    turn = t_in[0] * t_out[1] - t_in[1] * t_out[0]
+    if turn <= 0:  # right turn: convex corner, walked clockwise, normal = (cos a, sin a)
+        a0 = math.atan2(n_in[1], n_in[0])
+        a1 = math.atan2(n_out[1], n_out[0])
+        while a1 > a0:
+            a1 -= 2 * math.pi
+    else:  # left turn: concave corner, walked counter-clockwise, normal = -(cos a, sin a)
+        a0 = math.atan2(-n_in[1], -n_in[0])
+        a1 = math.atan2(-n_out[1], -n_out[0])
+        while a1 < a0:
+            a1 += 2 * math.pi
+    return arc(point, 0.0, a0, a1, label)
