@@ -209,3 +209,29 @@ def test_runout_adds_a_once_per_turn_te_of_its_amplitude():
     assert np.ptp(shift) / 2 == pytest.approx(e, rel=1e-5)
     spectrum = np.abs(np.fft.rfft(shift - shift.mean()))
     assert int(np.argmax(spectrum)) == 1  # once per turn
+
+
+def test_relieved_outline_loses_the_area_of_the_turned_flanks():
+    from scipy.integrate import quad
+
+    c_a, d_ca, z = 0.02, 42.0, 20
+    g0 = GearSpec(z, 2.0)
+    mod = Modification(tip_relief=c_a, tip_relief_diameter=d_ca, relief_shape="arc")
+    p0, p1 = tooth_profile(g0), tooth_profile(GearSpec(z, 2.0, modification=mod))
+    rb, ra = g0.base_diameter / 2, g0.blank_tip_diameter / 2
+    l_start, l_tip = math.sqrt((d_ca / 2) ** 2 - rb ** 2), math.sqrt(ra ** 2 - rb ** 2)
+    arc_r = ((l_tip - l_start) ** 2 + c_a ** 2) / (2 * c_a)  # the arc tangent at the start through (L_tip, C_a)
+
+    def delta(r):
+        x = math.sqrt(r * r - rb * rb) - l_start
+        return arc_r - math.sqrt(arc_r ** 2 - x * x) if x > 0 else 0.0
+
+    # each flank turns by delta / r_b: the polar area r dr times the angle, over the relieved radii
+    removed = 2 * z * quad(lambda r: r * delta(r) / rb, d_ca / 2, ra)[0]
+
+    def area(p):
+        xy = p.outline(1e-6)
+        return 0.5 * abs(np.dot(xy[:, 0], np.roll(xy[:, 1], -1)) - np.dot(xy[:, 1], np.roll(xy[:, 0], -1)))
+    # each outline is within 1e-6 mm of its curve: area error below (2/3) tol x perimeter (~260 mm)
+    assert area(p0) - area(p1) == pytest.approx(removed, abs=2 * (2 / 3) * 1e-6 * 260)
+    assert delta(ra) == pytest.approx(c_a)
