@@ -39,7 +39,7 @@ _PUBLIC = {
                                  "NovikovProfile", "RackSystem", "load_rack_system", "mesh_contact", "meshed_outlines",
                                  "novikov_pair_geometry", "rack_presets", "rack_system"),
     # scenes: placed gears, kinematics, planetary synthesis
-    "gearkit.scene": ("Scene", "load_scene", "scene_layout", "scene_speeds"),
+    "gearkit.scene": ("Scene", "SceneModel", "load_scene", "scene_layout", "scene_speeds"),
     # cams
     "gearkit.families.cam": ("CamProfile", "CamSpec", "MotionProgram", "MotionSegment", "cam_profile"),
     "gearkit.checks.cam": ("CamCheck", "check_cam"),

@@ -147,7 +147,7 @@ def fail_margins(g: PairGeometry) -> dict:
 
 
 def check_pair(spec: PairSpec, limits: CheckLimits = CheckLimits(), geometry: str = "generated",
-               simulate: bool = False) -> PairCheck:
+               simulate: bool = False, *, profiles: tuple | None = None, analysis=None) -> PairCheck:
     """Check a pair: every finding of the module table, from the generated or the formula geometry.
 
     Parameters
@@ -162,14 +162,21 @@ def check_pair(spec: PairSpec, limits: CheckLimits = CheckLimits(), geometry: st
         Also mesh the generated gears over a cycle (:mod:`gearkit.contact`, about a second) and add
         the findings of :mod:`gearkit.checks.simulated`: the simulated contact ratio beside the
         formula's, and interference the formulas miss (or flag where the teeth clear).
+    profiles : tuple of ToothProfile or None
+        The generated gears of ``spec`` (those of :func:`gear_specs`) when the caller has them
+        already (a scene builds each gear once); None generates them.
+    analysis : ContactAnalysis or None
+        The simulation of ``spec`` when the caller has run it already.
 
     Returns
     -------
     PairCheck
     """
     require(geometry in GEOMETRY_MODES, "geometry", f"{geometry!r} is not one of {', '.join(GEOMETRY_MODES)}")
-    profiles = ()
-    if geometry == "generated":
+    if geometry == "generated" and profiles is not None:
+        require(len(profiles) == len(gear_specs(spec)), "profiles", "give one generated profile per gear of the pair")
+        profiles = tuple(profiles)
+    elif geometry == "generated":
         from gearkit.families.involute import tooth_profile
 
         profiles = []
@@ -179,6 +186,9 @@ def check_pair(spec: PairSpec, limits: CheckLimits = CheckLimits(), geometry: st
             except SpecError as exc:  # name the gear of the pair the field belongs to
                 raise SpecError(f"gear{i + 1}.{exc.field}", str(exc).split(": ", 1)[-1]) from None
         profiles = tuple(profiles)
+    else:
+        profiles = ()
+    if profiles:
         forms = tuple(p.form_diameter for p in profiles) + ((None,) if spec.kind == "rack" else ())
         g = pair_geometry(spec, forms)
         # the checked tip is the cut tip: a tooth that points below its blank's tip circle ends at its point
@@ -210,7 +220,7 @@ def check_pair(spec: PairSpec, limits: CheckLimits = CheckLimits(), geometry: st
         findings += internal_findings(spec, g)
     if simulate:
         from gearkit.checks.simulated import simulated_findings
-        findings += simulated_findings(spec, g, findings, limits)
+        findings += simulated_findings(spec, g, findings, limits, analysis)
     return PairCheck(g, CheckReport(tuple(findings)), profiles, inspections)
 
 

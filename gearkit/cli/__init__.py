@@ -14,7 +14,7 @@ from gearkit.errors import GearkitError
 
 #: command modules, in the order ``gearkit --help`` lists them
 COMMANDS = ("demo", "gear", "rack", "check", "pair", "bench", "novikov", "blocking", "cycloid", "contact", "view",
-            "cam")
+            "cam", "scene", "planetary")
 
 
 def build_parser() -> argparse.ArgumentParser:

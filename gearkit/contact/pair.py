@@ -15,9 +15,11 @@ __all__ = ["analyse_loaded", "analyse_pair", "pair_mesh"]
 
 
 def pair_mesh(spec, tol: float | None = None, modifications=(None, None),
-              center_distance_deviation: float = 0.0) -> Mesh:
+              center_distance_deviation: float = 0.0, profiles: tuple | None = None) -> Mesh:
     """The generated gears of ``spec`` in mesh at its operating centre distance (plus
-    ``center_distance_deviation``, mm), each with its :class:`~gearkit.families.involute.modification.Modification`."""
+    ``center_distance_deviation``, mm), each with its :class:`~gearkit.families.involute.modification.Modification`
+    (``profiles``: the generated gears of :func:`gearkit.checks.gear_specs`, unmodified, when the caller
+    has them already)."""
     import dataclasses
 
     from gearkit.pair import gear_specs
@@ -26,7 +28,9 @@ def pair_mesh(spec, tol: float | None = None, modifications=(None, None),
 
     g = pair_geometry(spec)
     specs = [s if m is None else dataclasses.replace(s, modification=m) for s, m in zip(gear_specs(spec), modifications)]
-    first = tooth_profile(specs[0])
+    if profiles is not None and modifications == (None, None) and spec.kind != "rack":
+        return Mesh(profiles[0], profiles[1], g.center_distance + center_distance_deviation, tol)
+    first = profiles[0] if profiles is not None and modifications[0] is None else tooth_profile(specs[0])
     if spec.kind == "rack":
         from gearkit.families.involute.rack import RackSpec, rack_profile
 
@@ -37,13 +41,14 @@ def pair_mesh(spec, tol: float | None = None, modifications=(None, None),
 
 
 def analyse_pair(spec, steps: int = 2000, *, tol: float | None = None, slices: int | None = None,
-                 contact_tol: float | None = None, interference_tol: float | None = None):
+                 contact_tol: float | None = None, interference_tol: float | None = None,
+                 profiles: tuple | None = None):
     """Mesh the generated gears of ``spec`` over one cycle (:func:`~gearkit.contact.simulate`).
 
     A helical pair with a face width is cut into ``slices`` sections (default 20); the pinion's
-    helix angle is the spec's.
+    helix angle is the spec's. ``profiles``: the generated gears, when the caller has them.
     """
-    mesh = pair_mesh(spec, tol)
+    mesh = pair_mesh(spec, tol, profiles=profiles)
     helical = bool(spec.helix_angle_deg) and bool(spec.face_width)
     if slices is None:
         slices = 20 if helical else 1

@@ -378,4 +378,4 @@ class Scene:
             if key == name:
                 return Motion(motion.fixed, motion.locked, motion.inputs or self.motion.inputs,
                               motion.output or self.motion.output)
-        raise SpecError("state", f"no state {name!r} (states: {', '.join(k for k, _ in self.states) or 'none'})")
+        raise SpecError("--state", f"no state {name!r} (states: {', '.join(k for k, _ in self.states) or 'none'})")
