@@ -22,9 +22,11 @@ def main() -> None:
     print(f"alpha_wt = {math.degrees(g.working_pressure_angle):.5f} deg, eps_alpha = {g.contact_ratio:.5f}, "
           f"eps_gamma = {g.total_contact_ratio:.5f}, s_a2 = {g.gears[1].tip_thickness:.5f} mm\n")
 
-    # Internal pair cut by a medium-worn 20-tooth shaper (x_u + x_c = 1.3), z = 46/49, x2 = 0.52.
+    # Internal pair cut by a medium-worn 20-tooth shaper (x_u + x_c = 1.3), z = 46/49, x2 = 0.52 as the
+    # textbook gives it: the shaper's radial setting (gearkit reads a ring's shift by ISO 21771 by default).
     shaper = ShaperCutter(20, addendum=1.3)
-    internal = PairSpec(46, 49, 8.0, 0.0, 0.52, kind="internal", tool1=shaper, tool2=shaper)
+    internal = PairSpec(46, 49, 8.0, 0.0, 0.52, kind="internal", tool1=shaper, tool2=shaper,
+                        shift_convention="cutter")
     res = check_pair(internal)
     print(format_report(res))
     print(f"a_w = {res.geometry.center_distance:.4f} mm, eps (tip to tip) = {res.geometry.contact_ratio_nominal:.5f}\n")

@@ -53,9 +53,11 @@ def main(out_dir: Path) -> None:
     print(f"\n20/40: the teeth jam below a = {a_jam:.10f} mm (formula {tight:.10f}); at 29.98 mm they overlap "
           f"{jammed.interference.max_depth:.5f} mm ({', '.join(jammed.interference.where)})")
 
-    # 3. secondary tip interference of an internal pair (x2 just below the exit-jamming limit 0.6079)
+    # 3. secondary tip interference of an internal pair (x2, the shaper's setting, just below the exit-jamming
+    #    limit 0.6079)
     shaper = ShaperCutter(20, addendum=1.3)
-    internal = analyse_pair(PairSpec(46, 49, 1.0, 0.3, 0.60, kind="internal", tool2=shaper), 100)
+    internal = analyse_pair(PairSpec(46, 49, 1.0, 0.3, 0.60, kind="internal", tool2=shaper,
+                                     shift_convention="cutter"), 100)
     tip = next(e for e in internal.interference.events if e["kind"] == "tip")
     print(f"\n46/49 internal, x2 = 0.60: {', '.join(internal.interference.where)}; the tips overlap "
           f"{tip['depth']:.4f} mm at ({tip['point'][0]:.2f}, {tip['point'][1]:.2f}) mm, far from the mesh at "

@@ -152,7 +152,7 @@ def test_internal_limits_at_x1_zero():
     (exit jamming) the rigid-body tip sweep, give 0.4070967 and 0.4705220; the digest's 0.407106 and
     0.470483 are 1e-5 and 4e-5 off (its root finding). The lines are tested against the recomputed values
     to 1e-6 and against the digest to 5e-5."""
-    c = blocking_contour(PairSpec(46, 49, 1.0, kind="internal", tool1=SHAPER, tool2=SHAPER),
+    c = blocking_contour(PairSpec(46, 49, 1.0, kind="internal", shift_convention="cutter", tool1=SHAPER, tool2=SHAPER),
                          lines=["exit_jamming", "interference.1", "trimming.nu"])
     f = c.field
     jam, fillet = _internal_closed_forms()
@@ -232,6 +232,6 @@ def test_atlas_cell_equals_the_single_contour():
     assert len(cell.region) == len(alone.region)
     assert all(np.array_equal(p, q) for p, q in zip(cell.region, alone.region))
     assert cell.contains(0.5, 0.3) and not cell.contains(1.5, 0.0)
-    ring = PairSpec(46, 49, 1.0, kind="internal", tool1=SHAPER, tool2=SHAPER)
+    ring = PairSpec(46, 49, 1.0, kind="internal", shift_convention="cutter", tool1=SHAPER, tool2=SHAPER)
     with pytest.raises(SpecError, match="ring needs more teeth"):  # no cell is a pair: said, not empty
         blocking_atlas([50], [49], ring, workers=1, **opts)

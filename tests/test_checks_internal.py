@@ -20,7 +20,7 @@ SHAPER = ShaperCutter(20, addendum=1.3)  # medium-worn shaper, x_c = 0.3
 
 def example(x2, z1=46, z2=49, m=8.0, **kw):
     """The textbook's internal example (digest 3.2) with another ring shift."""
-    return PairSpec(z1, z2, m, 0.0, x2, kind="internal", tool1=SHAPER, tool2=SHAPER, **kw)
+    return PairSpec(z1, z2, m, 0.0, x2, kind="internal", shift_convention="cutter", tool1=SHAPER, tool2=SHAPER, **kw)
 
 
 def root(f, lo, hi):
@@ -50,17 +50,17 @@ def test_tip_sweep_contact_is_not_interference():
     """Along the path of contact the tip corners touch the flanks (depth 0): a sound pair is clean,
     with zero backlash and with backlash."""
     for spec in (example(0.52), example(0.52, center_distance=14.95),  # an internal pair opens inwards
-                 PairSpec(20, 61, 2.0, 0.1, 0.3, kind="internal", tool2=ShaperCutter(25), helix_angle_deg=15.0)):
+                 PairSpec(20, 61, 2.0, 0.1, 0.3, kind="internal", shift_convention="cutter", tool2=ShaperCutter(25), helix_angle_deg=15.0)):
         assert tip_sweep(pair_geometry(spec))[0] == 0.0
 
 
 @pytest.mark.parametrize("z2,want", [(34, 9), (50, 9), (77, 9), (78, 8), (100, 8)])
 def test_minimum_tooth_difference(z2, want):
     """Digest 3.3/5.14: zero wheels, h_a* = 1: (z_p)min = 9 for 34 <= z2 <= 77 and 8 for z2 >= 78."""
-    spec = PairSpec(z2 - 20, z2, 1.0, kind="internal", tool2=ShaperCutter(min(20, z2 - 4)))
+    spec = PairSpec(z2 - 20, z2, 1.0, kind="internal", shift_convention="cutter", tool2=ShaperCutter(min(20, z2 - 4)))
     assert min_tooth_difference(spec) == want
-    ok = check_pair(PairSpec(z2 - want, z2, 1.0, kind="internal", tool2=spec.tool2), geometry="formula").report
-    bad = check_pair(PairSpec(z2 - want + 1, z2, 1.0, kind="internal", tool2=spec.tool2), geometry="formula").report
+    ok = check_pair(PairSpec(z2 - want, z2, 1.0, kind="internal", shift_convention="cutter", tool2=spec.tool2), geometry="formula").report
+    bad = check_pair(PairSpec(z2 - want + 1, z2, 1.0, kind="internal", shift_convention="cutter", tool2=spec.tool2), geometry="formula").report
     assert (ok["min_teeth.difference"].status, bad["min_teeth.difference"].status) == ("ok", "fail")
     assert (ok["exit_jamming"].status, bad["exit_jamming"].status) == ("ok", "fail")
 
@@ -86,7 +86,7 @@ def test_tip_fillet_threshold_and_both_sides():
 
 def test_plunge_trimming_example_margin():
     """Digest 3.3: z2 = 49, z0 = 20, zero ring: (X2 - X0)min = 0.1846 m at phi2 = 14.2 deg."""
-    g = pair_geometry(PairSpec(46, 49, 1.0, kind="internal", tool2=SHAPER))
+    g = pair_geometry(PairSpec(46, 49, 1.0, kind="internal", shift_convention="cutter", tool2=SHAPER))
     gap, phi = plunge_trimming(g)
     assert gap == pytest.approx(0.1846, abs=5e-5)
     assert math.degrees(phi) == pytest.approx(14.2, abs=0.05)
@@ -95,11 +95,11 @@ def test_plunge_trimming_example_margin():
 @pytest.mark.parametrize("z2,want", [(36, 19), (37, 18), (50, 18), (81, 18), (82, 19), (100, 19)])
 def test_minimum_cutter_difference(z2, want):
     """Digest 3.3/5.15: (z_pc)min = 18 for 37 <= z2 <= 81 and 19 for z2 >= 82 (and z2 = 36)."""
-    spec = PairSpec(z2 - 12, z2, 1.0, kind="internal", tool2=SHAPER)
+    spec = PairSpec(z2 - 12, z2, 1.0, kind="internal", shift_convention="cutter", tool2=SHAPER)
     assert min_cutter_difference(spec) == want
 
     def plunge(z0):
-        s = PairSpec(z2 - 12, z2, 1.0, kind="internal", tool2=ShaperCutter(z0, addendum=1.3))
+        s = PairSpec(z2 - 12, z2, 1.0, kind="internal", shift_convention="cutter", tool2=ShaperCutter(z0, addendum=1.3))
         return check_pair(s, geometry="formula").report["trimming.plunge"].status
 
     assert (plunge(z2 - want), plunge(z2 - want + 1)) == ("ok", "fail")
@@ -113,7 +113,7 @@ def test_trimming_beyond_nu():
     assert z2min == pytest.approx(63.0105, abs=5e-5)
 
     def nu_status(z2):
-        spec = PairSpec(z2 - 12, z2, 1.0, kind="internal", tool2=SHAPER)
+        spec = PairSpec(z2 - 12, z2, 1.0, kind="internal", shift_convention="cutter", tool2=SHAPER)
         return check_pair(spec, geometry="formula").report["trimming.nu"].status
 
     assert (nu_status(63), nu_status(64)) == ("warn", "ok")
@@ -144,14 +144,14 @@ def test_small_shapers_always_trim_beyond_nu():
     """Digest 1.8: (3.109) holds only for z0 > 2 h_a*/sin^2(a) = 17.097; a 17-tooth shaper trims
     every zero ring."""
     for z2 in (40, 80, 200, 1000):
-        g = pair_geometry(PairSpec(z2 - 12, z2, 1.0, kind="internal", tool2=ShaperCutter(17, addendum=1.3)))
+        g = pair_geometry(PairSpec(z2 - 12, z2, 1.0, kind="internal", shift_convention="cutter", tool2=ShaperCutter(17, addendum=1.3)))
         assert g.gears[1].tip_diameter / 2 < nu_radius(g)
 
 
 def test_ring_tip_inside_its_base_circle():
     """A zero ring with z2 < 2/(1 - cos a) = 33.2 has its tip circle inside its base circle."""
-    small = check_pair(PairSpec(20, 33, 1.0, kind="internal", tool2=ShaperCutter(12)), geometry="formula")
-    large = check_pair(PairSpec(21, 34, 1.0, kind="internal", tool2=ShaperCutter(12)), geometry="formula")
+    small = check_pair(PairSpec(20, 33, 1.0, kind="internal", shift_convention="cutter", tool2=ShaperCutter(12)), geometry="formula")
+    large = check_pair(PairSpec(21, 34, 1.0, kind="internal", shift_convention="cutter", tool2=ShaperCutter(12)), geometry="formula")
     assert (small.report["ring_tip.base"].status, large.report["ring_tip.base"].status) == ("warn", "ok")
 
 

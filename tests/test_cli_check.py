@@ -109,7 +109,7 @@ def test_bad_design_files(tmp_path, capsys, text, needle):
 def test_internal_design_file(tmp_path, capsys):
     """The textbook's internal example as a design file reproduces its numbers (digest 3.2)."""
     path = tmp_path / "internal.toml"
-    path.write_text('kind = "internal"\nmodule = 8.0\n'
+    path.write_text('kind = "internal"\nmodule = 8.0\nring_shift = "cutter"\n'
                     '[gear1]\nteeth = 46\nshift = 0.0\ntool = { type = "shaper", teeth = 20, addendum = 1.3 }\n'
                     '[gear2]\nteeth = 49\nshift = 0.52\ntool = { type = "shaper", teeth = 20, addendum = 1.3 }\n')
     spec, _ = load_design(path)
@@ -151,7 +151,7 @@ def test_rack_pair_and_internal_flags(capsys):
     code, out, _ = run(["--z1", "14", "--rack-pair", "-m", "2", "--x1", "0.2", "--json"], capsys)
     assert code == 0 and json.loads(out)["kind"] == "rack"
     code, out, _ = run(["--z1", "46", "--z2", "49", "-m", "8", "--x2", "0.52", "--internal", "--cutter-teeth", "20",
-                        "--cutter-addendum", "1.3", "--pinion-cutter-teeth", "20", "--json"], capsys)
+                        "--cutter-addendum", "1.3", "--pinion-cutter-teeth", "20", "--ring-shift", "cutter", "--json"], capsys)
     data = json.loads(out)
     assert code == 0 and data["status"] == "warn"
     assert data["center_distance"] == pytest.approx(14.9869, abs=5e-5)

@@ -24,7 +24,7 @@ def test_gear_json_has_the_documented_keys_and_textbook_values(capsys):
 
 def test_internal_gear_from_the_cli_matches_the_textbook(capsys):
     info = _json(capsys, ["gear", "-z", "49", "-m", "8", "-x", "0.52", "--internal", "--cutter-teeth", "20",
-                          "--cutter-addendum", "1.3", "--json"])
+                          "--cutter-addendum", "1.3", "--ring-shift", "cutter", "--json"])
     assert info["tooth_thickness"] == pytest.approx(9.17132, abs=5e-6)
 
 

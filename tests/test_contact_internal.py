@@ -23,7 +23,7 @@ STEPS = 32
 def test_textbook_internal_example_meshes_cleanly():
     """Digest 3.2: z = 46/49, m = 8, x2 = 0.52, both gears shaper-cut: eps = 1.9245 (the ring's tip
     trimmed by its shaper, digest 3.110), no interference, zero backlash."""
-    spec = PairSpec(46, 49, 8.0, 0.0, 0.52, kind="internal", tool1=SHAPER, tool2=SHAPER)
+    spec = PairSpec(46, 49, 8.0, 0.0, 0.52, kind="internal", shift_convention="cutter", tool1=SHAPER, tool2=SHAPER)
     g = pair_geometry(spec)
     res = analyse_pair(spec, STEPS)
     assert not res.interference.found
@@ -35,7 +35,7 @@ def test_textbook_internal_example_meshes_cleanly():
 def _pair(x2):
     """46/49 with a rack-cut pinion (x1 = 0.3): its tip-fillet limit (x2 ~ 0.51) lies below the exit
     jamming limit (x2 ~ 0.61), so near the latter only the secondary tip interference changes."""
-    return PairSpec(46, 49, 1.0, 0.3, x2, kind="internal", tool2=SHAPER)
+    return PairSpec(46, 49, 1.0, 0.3, x2, kind="internal", shift_convention="cutter", tool2=SHAPER)
 
 
 def test_secondary_tip_interference_on_both_sides_of_the_pair_check_threshold():

@@ -145,7 +145,7 @@ def test_pointing_limit_and_tip_thickness_table():
 
 def test_internal_gear_cut_by_a_shaper_reproduces_the_textbook_example():
     # digest §3.2: m = 8, z2 = 49, z0 = 20, x2 = 0.52 -> s2 = 9.17132 mm, Delta2 = -0.424382; root radius 210.560
-    spec = GearSpec(49, 8.0, 0.52, internal=True, tool=ShaperCutter(20, addendum=1.3))
+    spec = GearSpec(49, 8.0, 0.52, internal=True, shift_convention="cutter", tool=ShaperCutter(20, addendum=1.3))
     prof = tooth_profile(spec)
     assert prof.tooth_thickness == pytest.approx(9.17132, abs=5e-6)
     assert prof.tooth_thickness / 8 - math.pi / 2 == pytest.approx(-0.424382, abs=5e-7)
@@ -154,12 +154,12 @@ def test_internal_gear_cut_by_a_shaper_reproduces_the_textbook_example():
 
 def test_trimming_by_the_shaper_emerges_at_the_textbook_limits():
     # digest §1.8 (3.109): z0 = 20 trims zero internal gears below z2 = 63.0105
-    assert tooth_profile(GearSpec(63, 1.0, 0.0, internal=True, tool=ShaperCutter(20))).trimmed
-    assert not tooth_profile(GearSpec(64, 1.0, 0.0, internal=True, tool=ShaperCutter(20))).trimmed
+    assert tooth_profile(GearSpec(63, 1.0, 0.0, internal=True, shift_convention="cutter", tool=ShaperCutter(20))).trimmed
+    assert not tooth_profile(GearSpec(64, 1.0, 0.0, internal=True, shift_convention="cutter", tool=ShaperCutter(20))).trimmed
     # (3.110) with dy = -0.146632: x2_min = 0.522336 for the textbook pair
     def ring(x):
         d_a = 2 * 8 * (49 / 2 - 1 + x - 0.146632)
-        return tooth_profile(GearSpec(49, 8.0, x, internal=True, tool=ShaperCutter(20, addendum=1.3), tip_diameter=d_a))
+        return tooth_profile(GearSpec(49, 8.0, x, internal=True, shift_convention="cutter", tool=ShaperCutter(20, addendum=1.3), tip_diameter=d_a))
     assert ring(0.522336 - 1e-4).trimmed and not ring(0.522336 + 1e-4).trimmed
 
 
@@ -175,7 +175,7 @@ def test_helical_gear_transverse_section_matches_transverse_formulas():
 
 
 @pytest.mark.parametrize("spec", [GearSpec(13, 1.0, 0.0), GearSpec(7, 2.5, 0.4, helix_angle_deg=30),
-                                  GearSpec(97, 0.5, -0.3), GearSpec(49, 8.0, 0.52, internal=True,
+                                  GearSpec(97, 0.5, -0.3), GearSpec(49, 8.0, 0.52, internal=True, shift_convention="cutter",
                                                                    tool=ShaperCutter(20, addendum=1.3))])
 def test_outline_is_closed_simple_and_symmetric(spec):
     prof = tooth_profile(spec)
@@ -205,8 +205,8 @@ def test_outline_is_closed_simple_and_symmetric(spec):
     (dict(teeth=20, module=0.0), "module"), (dict(teeth=20, module=-1.0), "module"),
     (dict(teeth=20, module=float("nan")), "module"), (dict(teeth=20, module=1.0, helix_angle_deg=85.0), "helix_angle_deg"),
     (dict(teeth=20, module=1.0, shift=float("inf")), "shift"),
-    (dict(teeth=20, module=1.0, internal=True, tool=BasicRack()), "tool"),
-    (dict(teeth=22, module=1.0, internal=True, tool=ShaperCutter(20)), "tool.teeth"),
+    (dict(teeth=20, module=1.0, internal=True, shift_convention="cutter", tool=BasicRack()), "tool"),
+    (dict(teeth=22, module=1.0, internal=True, shift_convention="cutter", tool=ShaperCutter(20)), "tool.teeth"),
     (dict(teeth=20, module=1.0, tip_diameter=-3.0), "tip_diameter"),
     (dict(teeth=20, module=1.0, thinning=-0.1), "thinning"),
 ])

@@ -19,7 +19,7 @@ def _oracle_error(spec, step):
     ra = spec.blank_tip_diameter / 2
     if spec.internal:
         rim = ra + 5 * spec.module
-        contours = swept_shaper_gear(spec.teeth, spec.module, spec.shift, spec.tool, ra, step, internal=True,
+        contours = swept_shaper_gear(spec.teeth, spec.module, spec.cutter_setting, spec.tool, ra, step, internal=True,
                                      rim_radius=rim)
         pts = tooth_zone_points(contours, spec.teeth, ra)
         pts = pts[np.hypot(*pts.T) < rim - 0.1 * spec.module]
@@ -41,7 +41,7 @@ def test_rack_oracle_converges_to_the_envelope_at_second_order(spec):
 
 
 def test_shaper_oracle_converges_to_the_envelope_at_first_order_for_a_sharp_cutter():
-    spec = GearSpec(49, 8.0, 0.52, internal=True, tool=ShaperCutter(20, addendum=1.3))
+    spec = GearSpec(49, 8.0, 0.52, internal=True, shift_convention="cutter", tool=ShaperCutter(20, addendum=1.3))
     coarse, fine = _oracle_error(spec, 0.32), _oracle_error(spec, 0.16)
     order = math.log2(coarse / fine)
     assert 0.8 < order < 1.3

@@ -26,7 +26,7 @@ COS_B = math.cos(math.radians(BETA))
 # the textbook's transverse shifts xi = x_n cos(beta)
 HELICAL = PairSpec(8, 14, 6.0, 0.45 / COS_B, 0.03 / COS_B, helix_angle_deg=BETA, face_width=9 * 6.0)
 SHAPER = ShaperCutter(20, addendum=1.3)  # medium-worn shaper, x_u + x_c = 1.3
-INTERNAL = PairSpec(46, 49, 8.0, 0.0, 0.52, kind="internal", tool1=SHAPER, tool2=SHAPER)
+INTERNAL = PairSpec(46, 49, 8.0, 0.0, 0.52, kind="internal", shift_convention="cutter", tool1=SHAPER, tool2=SHAPER)
 
 
 def dms(deg, minutes, seconds):
@@ -244,11 +244,11 @@ def test_backlash_from_thinning_and_centre_distance():
     (dict(teeth1=12, teeth2=30, module=0.0), "module"),
     (dict(teeth1=12, teeth2=30, module=1.0, kind="bevel"), "kind"),
     (dict(teeth1=12, teeth2=30, module=1.0, shift1=4.0), "shift1"),
-    (dict(teeth1=12, teeth2=30, module=1.0, kind="internal"), "tool2"),
-    (dict(teeth1=30, teeth2=30, module=1.0, kind="internal", tool2=ShaperCutter(20)), "teeth2"),
+    (dict(teeth1=12, teeth2=30, module=1.0, kind="internal", shift_convention="cutter"), "tool2"),
+    (dict(teeth1=30, teeth2=30, module=1.0, kind="internal", shift_convention="cutter", tool2=ShaperCutter(20)), "teeth2"),
     (dict(teeth1=12, teeth2=30, module=1.0, kind="rack"), "teeth2"),
     (dict(teeth1=12, teeth2=30, module=1.0, pressure_angle_deg=25.0, tool1=BasicRack()), "pressure_angle_deg"),
-    (dict(teeth1=12, teeth2=40, module=1.0, kind="internal", tool2=ShaperCutter(20), thinning2=0.01), "thinning2"),
+    (dict(teeth1=12, teeth2=40, module=1.0, kind="internal", shift_convention="cutter", tool2=ShaperCutter(20), thinning2=0.01), "thinning2"),
     (dict(teeth1=12, teeth2=30, module=1.0, center_distance=19.0), "center_distance"),
     (dict(teeth1=12, teeth2=30, module=1.0, tip_rule="long"), "tip_rule"),
     (dict(teeth1=12, teeth2=30, module=1.0, helix_angle_deg=61.0), "helix_angle_deg"),

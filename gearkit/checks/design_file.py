@@ -11,6 +11,7 @@ Format (every key optional unless marked; lengths in mm, angles in degrees)::
     tip_rule = "shortened"       # shortened | standard
     center_distance = 60.0       # operating a_w; alone it solves the shifts (see split)
     split = "balanced"           # x1 | equal | balanced (with center_distance)
+    ring_shift = "iso"           # iso | cutter: how an internal pair's gear2.shift is read
 
     [gear1]                      # required (gear2 too, except for a rack pair)
     teeth = 18                   # required
@@ -42,7 +43,7 @@ from gearkit.families.involute import BasicRack, ShaperCutter
 __all__ = ["load_design", "design_from_dict"]
 
 _TOP = {"kind", "module", "pressure_angle_deg", "helix_angle_deg", "face_width", "addendum", "tip_rule",
-        "center_distance", "split", "gear1", "gear2", "limits"}
+        "center_distance", "split", "gear1", "gear2", "limits", "ring_shift"}
 _GEAR = {"teeth", "shift", "tip_diameter", "thinning", "tool"}
 _RACK = {"type", "pressure_angle_deg", "addendum", "dedendum", "fillet_radius", "protuberance",
          "protuberance_angle_deg"}
@@ -121,7 +122,8 @@ def design_from_dict(data: dict) -> tuple:
         g1["teeth"], g2.get("teeth"), data["module"], g1.get("shift", 0.0), g2.get("shift", 0.0), kind, alpha,
         data.get("helix_angle_deg", 0.0), data.get("face_width"), _tool(g1.get("tool"), "gear1.tool", alpha),
         _tool(g2.get("tool"), "gear2.tool", alpha), data.get("addendum", 1.0), data.get("tip_rule", "shortened"),
-        g1.get("tip_diameter"), g2.get("tip_diameter"), None, g1.get("thinning", 0.0), g2.get("thinning", 0.0))
+        g1.get("tip_diameter"), g2.get("tip_diameter"), None, g1.get("thinning", 0.0), g2.get("thinning", 0.0),
+        data.get("ring_shift", "iso"))
     a_w = data.get("center_distance")
     split = data.get("split")
     if a_w is None:

@@ -73,7 +73,8 @@ class PairCheck:
         for i, gear in enumerate(g.gears):
             prof = self.profiles[i] if self.profiles else None
             gears.append({
-                "teeth": gear.teeth, "shift_coeff": gear.shift_coeff, "internal": g.kind == "internal" and i == 1,
+                "teeth": gear.teeth, "shift_coeff": gear.shift_coeff, "shift_convention": gear.shift_convention,
+                "cutter_setting": gear.cutter_setting, "internal": g.kind == "internal" and i == 1,
                 "reference_diameter": gear.reference_diameter, "base_diameter": gear.base_diameter,
                 "working_diameter": gear.working_diameter, "tip_diameter": gear.tip_diameter,
                 "root_diameter": prof.root_diameter if prof else gear.root_diameter,

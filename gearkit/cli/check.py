@@ -21,11 +21,13 @@ from gearkit.errors import SpecError
 _MODEL_FLAGS = ("z1", "z2", "module", "x1", "x2", "center_distance", "split", "pressure_angle_deg",
                 "helix_angle_deg", "width", "internal", "rack_pair", "cutter_teeth", "cutter_shift",
                 "cutter_addendum", "pinion_cutter_teeth", "rack", "addendum", "tip", "da1", "da2",
-                "thinning1", "thinning2", "min_tip_thickness", "min_contact_ratio", "min_tip_clearance")
+                "thinning1", "thinning2", "min_tip_thickness", "min_contact_ratio", "min_tip_clearance",
+                "ring_shift")
 
-SIGN_NOTE = ("Shifts are normal coefficients x_n. For a ring (--internal) the textbook sign holds: positive "
-              "--x2 moves the ring's teeth outward, making them thinner and its tip (inner) diameter larger; "
-              "a shaper-cut gear's shift is the cutter's radial setting.")
+SIGN_NOTE = ("Shifts are normal coefficients x_n. A ring's --x2 is read as ISO 21771 says (--ring-shift iso, the "
+             "default: by its tooth thickness, as if rack-cut; the shaper setting that cuts it is derived) or as "
+             "the shaper's radial setting (--ring-shift cutter); positive --x2 makes the ring's teeth thinner and "
+             "its tip (inner) diameter larger. An external shaper-cut gear's shift is the cutter's radial setting.")
 
 
 def register(subparsers) -> None:
@@ -72,6 +74,9 @@ def add_pair_arguments(p, limits: bool = True) -> None:
     t.add_argument("--rack", choices=("iso53a", "iso53b", "iso53c", "iso53d"),
                    help="ISO 53 basic rack of the rack-cut gears (default: h_aP* 1, h_fP* 1.25, largest fillet)")
     t.add_argument("--cutter-teeth", type=int, help="teeth z0 of the shaper cutter that cuts the ring")
+    t.add_argument("--ring-shift", choices=("iso", "cutter"), default="iso",
+                   help="how the ring's --x2 is read: 'iso' (ISO 21771, by the tooth thickness; default) or "
+                        "'cutter' (the shaper's radial setting)")
     t.add_argument("--cutter-shift", type=float, default=0.0, help="the shaper's own shift x0")
     t.add_argument("--cutter-addendum", type=float, default=1.25, help="the shaper's addendum h_a0* (default 1.25)")
     t.add_argument("--pinion-cutter-teeth", type=int, help="cut the pinion with a shaper of this many teeth")
@@ -101,7 +106,8 @@ def pair_spec_from_args(args, allowed_with_design=()):
 def _given(args, name) -> bool:
     value = getattr(args, name)
     default = {"helix_angle_deg": 0.0, "addendum": 1.0, "tip": "shortened", "thinning1": 0.0, "thinning2": 0.0,
-               "cutter_shift": 0.0, "cutter_addendum": 1.25, "internal": False, "rack_pair": False}.get(name)
+               "cutter_shift": 0.0, "cutter_addendum": 1.25, "internal": False, "rack_pair": False,
+               "ring_shift": "iso"}.get(name)
     return value is not None and value != default
 
 
@@ -133,7 +139,7 @@ def _spec_from_flags(args):
         raise SpecError("--cutter-teeth", "applies to internal pairs (use --pinion-cutter-teeth, or a design file)")
     spec = PairSpec(args.z1, args.z2, args.module, args.x1 or 0.0, args.x2 or 0.0, kind, alpha,
                     args.helix_angle_deg, args.width, tool1, tool2, args.addendum, args.tip, args.da1, args.da2,
-                    None, args.thinning1, args.thinning2)
+                    None, args.thinning1, args.thinning2, args.ring_shift)
     spec = _apply_center_distance(spec, args.center_distance, args.x1, args.x2, args.split)
     limits = CheckLimits(**{k: getattr(args, k) for k in ("min_tip_thickness", "min_contact_ratio",
                                                            "min_tip_clearance") if getattr(args, k) is not None})
@@ -206,6 +212,10 @@ def format_report(result) -> str:
         d_f = prof.root_diameter if prof else gear.root_diameter
         lines.append(f"  {i + 1:<4}{gear.teeth:>5}{_num(gear.shift_coeff)}{_num(gear.tip_diameter)}{_num(d_f)}"
                      f"{_num(gear.form_diameter)}{_num(gear.tip_thickness_normal)}  {'yes' if under else 'no'}")
+    if g.kind == "internal":
+        ring = g.gears[1]
+        lines.append(f"  ring shift x2 read as {'ISO 21771 (by the tooth thickness)' if ring.shift_convention == 'iso' else 'the shaper setting'}"
+                     f"; shaper setting {ring.cutter_setting:.6f}")
     from gearkit.checks.report import format_findings
 
     lines += [""] + format_findings(result.report, 22)

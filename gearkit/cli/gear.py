@@ -38,6 +38,9 @@ def register(subparsers) -> None:
     p.add_argument("-x", "--shift", type=float, default=0.0, help="normal profile shift coefficient x_n")
     p.add_argument("--helix-angle-deg", type=float, default=0.0, help="helix angle, degrees (+ right hand)")
     p.add_argument("--internal", action="store_true", help="internal (ring) gear, cut by a shaper cutter")
+    p.add_argument("--ring-shift", choices=("iso", "cutter"), default="iso",
+                   help="how a ring's -x is read: 'iso' (ISO 21771, by the tooth thickness as if rack-cut; the "
+                        "shaper setting is derived; default) or 'cutter' (the shaper's radial setting)")
     add_tool_flags(p)
     p.add_argument("--tip-diameter", type=float, default=None, help="tip diameter d_a, mm (default d +- 2m(h_a* +- x))")
     p.add_argument("--thinning", type=float, default=0.0, help="tooth thinning for backlash, mm (normal, reference)")
@@ -151,15 +154,26 @@ def build(args):
     from gearkit.families.involute import GearSpec, tooth_profile
 
     spec = GearSpec(args.teeth, args.module, args.shift, args.helix_angle_deg, args.internal,
-                    tool_from_args(args, args.internal), args.tip_diameter, args.thinning)
+                    tool_from_args(args, args.internal), args.tip_diameter, args.thinning,
+                    shift_convention=args.ring_shift)
     return spec, tooth_profile(spec)
+
+
+def _convention(info: dict) -> str:
+    """How the shift is read, for the table: ISO, or the shaper's setting (and the setting an ISO ring needs)."""
+    if info.get("shift_convention") == "cutter":
+        return "shaper cutter setting"
+    if info.get("cutter_setting") is not None:
+        return f"ISO 21771; shaper setting {info['cutter_setting']:.6g}"
+    return "ISO 21771"
 
 
 def format_summary(info: dict) -> str:
     kind = "internal" if info["internal"] else "external"
     rows = [
         f"gearkit gear: {kind} involute gear, z = {info['teeth']}, m_n = {info['module']:g} mm, "
-        f"x = {info['shift_coeff']:g}, beta = {info['helix_angle_deg']:g} deg, tool {info['tool']}",
+        f"x = {info['shift_coeff']:g} ({_convention(info)}), beta = {info['helix_angle_deg']:g} deg, "
+        f"tool {info['tool']}",
         f"  reference diameter d     {info['reference_diameter']:12.6f} mm",
         f"  base diameter d_b        {info['base_diameter']:12.6f} mm",
         f"  tip diameter d_a         {info['tip_diameter']:12.6f} mm",

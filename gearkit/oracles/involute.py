@@ -213,5 +213,6 @@ def swept_gear(spec, step: float, chord: float | None = None):
                                helix_angle_deg=spec.helix_angle_deg, chord=chord)
     if spec.beta:
         raise ValueError("the oracle cuts spur gears with shaper cutters only")
-    return swept_shaper_gear(spec.teeth, spec.module, spec.shift, spec.tool, ra, step, internal=spec.internal,
-                             chord=chord)
+    # the shaper's radial setting (a ring's ISO shift is cut by the setting derived for its thickness)
+    return swept_shaper_gear(spec.teeth, spec.module, spec.cutter_setting, spec.tool, ra, step,
+                             internal=spec.internal, chord=chord)

@@ -66,8 +66,9 @@ def _inverse_delta(spec: PairSpec, which: int, target: float, field: str) -> flo
     tool = spec.tools[which - 1]
     z = spec.teeth1 if which == 1 else spec.teeth2
     internal = which == 2 and spec.kind == "internal"
-    if isinstance(tool, BasicRack):
-        x = target / (2 * math.tan(sec.alpha_n))
+    iso_ring = internal and spec.shift_convention == "iso"
+    if isinstance(tool, BasicRack) or iso_ring:  # the shift is the thickness: x = +-Delta / (2 tan a_n)
+        x = (-target if iso_ring else target) / (2 * math.tan(sec.alpha_n))
         require(_X_RANGE[0] <= x <= _X_RANGE[1], field, f"the centre distance needs x = {x:.4g}, outside [-3, 3]")
         return x
 

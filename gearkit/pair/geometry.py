@@ -29,7 +29,12 @@ __all__ = ["GearGeometry", "PairGeometry", "gear_specs", "pair_geometry"]
 
 @dataclass(frozen=True)
 class GearGeometry:
-    """Per-gear results, transverse section, lengths in mm (``None`` fields: not applicable)."""
+    """Per-gear results, transverse section, lengths in mm (``None`` fields: not applicable).
+
+    ``shift_coeff`` is the gear's shift as given, read by ``shift_convention`` (``"iso"``: by the tooth
+    thickness, as if rack-cut; ``"cutter"``: the shaper's radial setting); ``cutter_setting`` is the
+    shaper's radial setting that cuts the gear (None for a rack-cut gear).
+    """
 
     teeth: int
     shift_coeff: float
@@ -45,6 +50,8 @@ class GearGeometry:
     tip_thickness_normal: float
     undercut: bool
     tool: str
+    shift_convention: str = "iso"
+    cutter_setting: float | None = None
 
 
 @dataclass(frozen=True)
@@ -153,6 +160,8 @@ def pair_geometry(spec: PairSpec, form_diameters: tuple | None = None) -> PairGe
     tool1, tool2 = spec.tools
     z1, z2 = spec.teeth1, spec.teeth2
     x1, x2 = float(spec.shift1), (0.0 if kind == "rack" else float(spec.shift2))
+    # the ring's shaper setting: its shift itself (cutter convention) or derived from the ISO shift
+    x2c = spec.ring_cutter_setting if kind == "internal" else x2
     internal2 = kind == "internal"
     r1 = z1 * mt / 2
     rb1 = r1 * math.cos(at)
@@ -165,7 +174,7 @@ def pair_geometry(spec: PairSpec, form_diameters: tuple | None = None) -> PairGe
     else:
         r2 = z2 * mt / 2
         rb2 = r2 * math.cos(at)
-        d2 = thickness_coeff(sec, z2, x2, tool2, internal2)
+        d2 = thickness_coeff(sec, z2, x2c, tool2, internal2)
         a_ref = r2 - r1 if internal2 else r1 + r2
         alpha_tight = _tight_alpha(kind, sec, z1, z2, d1 + d2)
         tight = (rb2 - rb1 if internal2 else rb1 + rb2) / math.cos(alpha_tight)
@@ -203,7 +212,7 @@ def pair_geometry(spec: PairSpec, form_diameters: tuple | None = None) -> PairGe
             ra2 = r2 - mn * (ha - x2 - cut)
         else:
             ra2 = r2 + mn * (ha + x2 - cut)
-        xe2 = x2 - spec.thinning2 / (2 * mn * math.tan(sec.alpha_n))
+        xe2 = x2c - spec.thinning2 / (2 * mn * math.tan(sec.alpha_n))
         rf2 = root_radius(sec, z2, xe2, tool2, internal2)
         rho_l2 = form_roll(sec, z2, xe2, tool2, internal2)
         if internal2:
@@ -222,7 +231,7 @@ def pair_geometry(spec: PairSpec, form_diameters: tuple | None = None) -> PairGe
         u_a = g_line - math.sqrt(ra2 ** 2 - rb2 ** 2)
         u_hi = g_line - forms[1][1]
     elif internal2:
-        inner2 = max(ra2, rb2, nu_radius(sec, z2, x2, tool2))
+        inner2 = max(ra2, rb2, nu_radius(sec, z2, x2c, tool2))
         u_a = -g_line + math.sqrt(max(ra2, rb2) ** 2 - rb2 ** 2)
         u_lo2 = -g_line + math.sqrt(inner2 ** 2 - rb2 ** 2)
         u_hi = forms[1][1] - g_line
@@ -277,7 +286,8 @@ def pair_geometry(spec: PairSpec, form_diameters: tuple | None = None) -> PairGe
     gears = [_gear(sec, z1, x1, r1, rb1, rw1, ra1, rf1, rho_l1, forms[0][0], t1, False, tool1)]
     if kind != "rack":
         rw2 = rb2 / math.cos(alpha_w)
-        gears.append(_gear(sec, z2, x2, r2, rb2, rw2, ra2, rf2, rho_l2, forms[1][0], t2, internal2, tool2))
+        gears.append(_gear(sec, z2, x2, r2, rb2, rw2, ra2, rf2, rho_l2, forms[1][0], t2, internal2, tool2,
+                           spec.shift_convention if internal2 else None, x2c))
 
     geo = PairGeometry(
         spec=spec, kind=kind, module=mn, transverse_module=mt, pressure_angle=sec.alpha_n,
@@ -307,7 +317,8 @@ def _forms(form_diameters, rho_l1, rho_l2, rb1, rb2, kind):
     return tuple(out)
 
 
-def _gear(sec, z, x, r, rb, rw, ra, rf, rho_l, d_form, t_actual, internal, tool) -> GearGeometry:
+def _gear(sec, z, x, r, rb, rw, ra, rf, rho_l, d_form, t_actual, internal, tool, convention=None,
+          setting=None) -> GearGeometry:
     s_at = tip_thickness(sec, z, t_actual, ra, internal)
     beta_a = math.atan(math.tan(sec.beta) * ra / r)
     return GearGeometry(
@@ -315,7 +326,9 @@ def _gear(sec, z, x, r, rb, rw, ra, rf, rho_l, d_form, t_actual, internal, tool)
         tip_diameter=2 * ra, root_diameter=2 * rf, form_diameter=d_form, form_roll=math.sqrt(max((d_form / 2) ** 2 - rb ** 2, 0.0)),
         thickness_coeff=t_actual, tip_thickness=s_at, tip_thickness_normal=s_at * math.cos(beta_a),
         undercut=bool(rho_l < 0 and not internal),
-        tool=("shaper z0=%d" % tool.teeth) if isinstance(tool, ShaperCutter) else "rack")
+        tool=("shaper z0=%d" % tool.teeth) if isinstance(tool, ShaperCutter) else "rack",
+        shift_convention=convention or ("cutter" if isinstance(tool, ShaperCutter) else "iso"),
+        cutter_setting=(x if setting is None else setting) if isinstance(tool, ShaperCutter) else None)
 
 
 def gear_specs(spec: PairSpec) -> tuple:
@@ -333,7 +346,8 @@ def gear_specs(spec: PairSpec) -> tuple:
         gears.append((spec.teeth2, spec.shift2, beta if internal else -beta, internal, spec.tools[1], spec.thinning2))
     for i, (z, x, b, internal, tool, thin) in enumerate(gears):
         try:
-            out.append(GearSpec(z, spec.module, float(x), b, internal, tool, g.gears[i].tip_diameter, thin))
+            out.append(GearSpec(z, spec.module, float(x), b, internal, tool, g.gears[i].tip_diameter, thin,
+                                shift_convention=spec.shift_convention))
         except SpecError as exc:  # name the gear of the pair the field belongs to
             raise SpecError(f"gear{i + 1}.{exc.field}", str(exc).split(": ", 1)[-1]) from None
     return tuple(out)

@@ -40,7 +40,7 @@ def gear_thickness_coeff(spec, thinning: float | None = None) -> float:
     thin = spec.thinning if thinning is None else float(thinning)
     if isinstance(spec.tool, BasicRack):
         return 2 * spec.shift * math.tan(sec.alpha_n) - thin / spec.module
-    return thickness_coeff(sec, spec.teeth, spec.shift, spec.tool, spec.internal) - thin / spec.module
+    return thickness_coeff(sec, spec.teeth, spec.cutter_setting, spec.tool, spec.internal) - thin / spec.module
 
 
 @dataclass(frozen=True)

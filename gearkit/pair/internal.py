@@ -72,7 +72,7 @@ def exit_jamming_margin(g: PairGeometry) -> float:
 def nu_radius(g: PairGeometry) -> float:
     """O2 N_u (mm) of the ring of ``g``: inside it the shaper trims the ring's involute (3.109/3.110)."""
     ring = g.gears[1]
-    return tooling_nu_radius(_sec(g), ring.teeth, ring.shift_coeff, g.spec.tools[1])
+    return tooling_nu_radius(_sec(g), ring.teeth, ring.cutter_setting, g.spec.tools[1])
 
 
 def plunge_trimming(g: PairGeometry, samples: int = 801) -> tuple[float, float]:
@@ -90,7 +90,7 @@ def plunge_trimming(g: PairGeometry, samples: int = 801) -> tuple[float, float]:
     r2 = _ring_tip(g)
     # half space width of the ring = pi/z2 - half tooth of the ring
     d2 = math.pi / z2 - float(half_angle(sec, z2, ring.thickness_coeff, r2, True))
-    _, _, ra0, _, _ = cutter_machine(sec, z2, ring.shift_coeff, cutter, True)
+    _, _, ra0, _, _ = cutter_machine(sec, z2, ring.cutter_setting, cutter, True)
     d0 = float(half_angle(sec, z0, 2 * cutter.shift * math.tan(sec.alpha_n), ra0, False))
     k = z2 / z0
 

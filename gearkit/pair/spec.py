@@ -5,11 +5,14 @@ Conventions
 * Normal system of ISO 21771: shifts are normal coefficients ``x_n``, the module is ``m_n``, the
   pressure angle ``alpha_n``; the textbook's transverse xi is ``x_n cos(beta)``.
 * The pinion is gear 1; gear 2 is the wheel, the ring of an internal pair, or the rack.
-* A ring's shift follows the textbook: positive ``x2`` moves its teeth outward, making them
-  thinner and its tip (inner) diameter larger.
-* A gear cut by a shaper cutter has ``x`` = radial setting of the cutter: the machine centre
-  distance is ``a_0 = m_t (z +- z_0)/2 + x m_n``, and the tooth thickness follows from it
-  (textbook 3.100-3.102), not from ``2 x tan(alpha)``.
+* A ring's shift ``x2`` is read by ``shift_convention``: ``"iso"`` (default; ISO 21771, by the
+  tooth thickness as if the ring were rack-cut, ``s_n2 = m_n (pi/2 - 2 x2 tan alpha_n)``, the
+  shaper setting that cuts it derived by :func:`~gearkit.families.involute.ring_cutter_setting`),
+  or ``"cutter"`` (the shaper's radial setting, ``a_0 = m_t (z2 - z_0)/2 + x2 m_n``, the thickness
+  following from it, textbook 3.100-3.102). Positive ``x2`` makes the ring's teeth thinner and its
+  tip (inner) diameter larger either way.
+* An external gear cut by a shaper cutter has ``x`` = radial setting of the cutter:
+  ``a_0 = m_t (z + z_0)/2 + x m_n``.
 """
 from __future__ import annotations
 
@@ -18,6 +21,7 @@ from dataclasses import dataclass, replace
 
 from gearkit.errors import SpecError, check_fields, is_int, is_real, require
 from gearkit.families.involute.tools import MIN_PRESSURE_ANGLE_DEG, BasicRack, ShaperCutter
+from gearkit.families.involute.gear import SHIFT_CONVENTIONS, ring_cutter_setting
 
 __all__ = ["KINDS", "TIP_RULES", "PairSpec"]
 
@@ -67,7 +71,10 @@ class PairSpec:
         Operating centre distance a_w (rack pair: distance from the pinion axis to the rack's
         datum line). None is the tight (zero-backlash) mesh of the nominal teeth.
     thinning1, thinning2 : float, mm
-        Reduction of the normal tooth thickness at the reference circle (for backlash).
+        Reduction of the normal tooth thickness at the reference circle (for backlash); the cutter is
+        fed in to cut it (ISO 21771 generating shift x_E), so the root moves with it.
+    shift_convention : {"iso", "cutter"}
+        How a ring's ``shift2`` is read (module doc); "iso" by default.
     """
 
     teeth1: int
@@ -88,6 +95,7 @@ class PairSpec:
     center_distance: float | None = None
     thinning1: float = 0.0
     thinning2: float = 0.0
+    shift_convention: str = "iso"
 
     def __post_init__(self):
         check_fields(self)
@@ -114,6 +122,8 @@ class PairSpec:
                     f"b = {self.face_width!r} must be > 0 mm")
         require(is_real(self.addendum) and 0.0 < self.addendum <= 3.0, "addendum",
                 f"h_a* = {self.addendum!r} must be in (0, 3]")
+        require(self.shift_convention in SHIFT_CONVENTIONS, "shift_convention",
+                f"{self.shift_convention!r} is not one of {', '.join(SHIFT_CONVENTIONS)}")
         require(self.tip_rule in TIP_RULES, "tip_rule", f"{self.tip_rule!r} is not one of {', '.join(TIP_RULES)}")
         for name in ("tip_diameter1", "tip_diameter2", "center_distance"):
             v = getattr(self, name)
@@ -180,6 +190,15 @@ class PairSpec:
             return (self.tool1, self.tool2)
         rack = BasicRack(pressure_angle_deg=self.alpha_n_deg)
         return (self.tool1 or rack, self.tool2 or rack)
+
+    @property
+    def ring_cutter_setting(self) -> float | None:
+        """The ring shaper's radial setting (normal module units) that cuts ``shift2``; None unless internal."""
+        if self.kind != "internal":
+            return None
+        if self.shift_convention == "cutter":
+            return float(self.shift2)
+        return ring_cutter_setting(self.teeth2, self.shift2, self.tool2, self.helix_angle_deg)
 
     def with_shifts(self, shift1: float, shift2: float, center_distance: float | None = None) -> "PairSpec":
         """A copy with other shifts (and operating centre distance)."""

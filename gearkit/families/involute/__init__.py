@@ -7,9 +7,10 @@
 :class:`ShaperCutter`).
 """
 from gearkit.families.involute.tools import BasicRack, ShaperCutter
-from gearkit.families.involute.gear import GearSpec, InvoluteProfile, tooth_profile
+from gearkit.families.involute.gear import (SHIFT_CONVENTIONS, GearSpec, InvoluteProfile, ring_cutter_setting,
+                                            tooth_profile)
 from gearkit.families.involute.modification import Modification
 from gearkit.families.involute.rack import RackProfile, RackSpec, rack_profile
 
-__all__ = ["BasicRack", "GearSpec", "InvoluteProfile", "Modification", "RackProfile", "RackSpec", "ShaperCutter",
-           "rack_profile", "tooth_profile"]
+__all__ = ["SHIFT_CONVENTIONS", "BasicRack", "GearSpec", "InvoluteProfile", "Modification", "RackProfile", "RackSpec",
+           "ShaperCutter", "rack_profile", "ring_cutter_setting", "tooth_profile"]
