@@ -355,4 +355,5 @@ def _result(mesh, g, c1, material, torque, sol, phi, zeta, face_width, width, re
         load=load, pair_teeth=teeth, sharing=sharing, mesh_stiffness=stiffness, contact_pressure=pressure,
         pattern=pattern, pattern_roll_deg=0.5 * (edges[1:] + edges[:-1]), zeta=zeta,
         contact_ratio_loaded=float(on.sum(1).mean()), face_width=float(face_width), steps=len(phi) - 1,
-        slices=int(s_count), cycles=int(cycles), refined_range=float(reach), hertz_change=float(change), torque_residual=residual)
+        slices=int(s_count), cycles=int(cycles), refined_range=float(reach), hertz_change=float(change),
+        torque_residual=residual)

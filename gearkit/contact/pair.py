@@ -27,7 +27,8 @@ def pair_mesh(spec, tol: float | None = None, modifications=(None, None),
     from gearkit.pair import pair_geometry
 
     g = pair_geometry(spec)
-    specs = [s if m is None else dataclasses.replace(s, modification=m) for s, m in zip(gear_specs(spec), modifications)]
+    specs = [s if m is None else dataclasses.replace(s, modification=m)
+             for s, m in zip(gear_specs(spec), modifications)]
     if profiles is not None and modifications == (None, None) and spec.kind != "rack":
         return Mesh(profiles[0], profiles[1], g.center_distance + center_distance_deviation, tol)
     first = profiles[0] if profiles is not None and modifications[0] is None else tooth_profile(specs[0])

@@ -190,7 +190,9 @@ class ToothCompliance:
         shear = np.trapezoid(1.2 * c * c / (g * area), yy)
         comp = np.trapezoid(s * s / (e1 * area), yy)
         s_f = area[0]
-        found = 16 * lever[0] ** 2 / (math.pi * e1 * s_f ** 2) + 2 * math.log(2 * self.root_radius / s_f) / (math.pi * e1)
+        turn = 16 * lever[0] ** 2 / (math.pi * e1 * s_f ** 2)  # the root section turned on the half-plane
+        shift = 2 * math.log(2 * self.root_radius / s_f) / (math.pi * e1)  # and shifted, to the gear centre
+        found = turn + shift
         return float(bend + shear + comp + found)
 
     def __call__(self, radius):
