@@ -10,7 +10,9 @@ For every family and product that exists, the bench measures
   for the same accuracy;
 * the **kernel overhead**: time of the z = 40 involute outline at tol 1e-6 m over the time numpy
   needs to evaluate as many points of the closed-form involute (a ratio that holds on any machine);
-* the **whole-process time** of ``gearkit gear`` for three reference gears.
+* the **whole-process time** of ``gearkit gear`` for three reference gears;
+* **scenes**: the cold cost of each query of a 3-planet set and the four-speed box at each
+  fidelity (ratio, checks, solids) with what it built, and the planetary synthesis time.
 
 :func:`run_bench` returns one JSON-ready dict; :func:`format_table` renders it.
 """
@@ -69,6 +71,12 @@ def run_bench(quick: bool = False, process: bool = True, progress=None) -> dict:
 
         say("contact analysis against its targets")
         out["contact_targets"] = contact_target_rows(quick)
+    if products.available("gearkit.scene"):
+        from gearkit.bench import scenes
+
+        say("scenes: queries at each fidelity, planetary synthesis")
+        out["scenes"] = scenes.scene_rows(quick, repeats)
+        out["synthesis"] = scenes.synthesis_rows(quick, repeats)
     measured = {(r["family"], r["product"]) for r in out["ladder"] + out["products"]}
     out["unmeasured"] = products.unmeasured_products(measured)
     if process:
@@ -140,6 +148,10 @@ def format_table(res: dict) -> str:
         lines.append(f"  {r['family']:9} {r['product']:18} {r['case']:38} {_fmt_s(r['seconds']):>11}{extra}")
     for r in res["unmeasured"]:
         lines.append(f"  {r['family']:9} {r['product']:18} -- {r['note']} ({r['module']})")
+    if res.get("scenes"):
+        from gearkit.bench.scenes import format_rows
+
+        lines += [""] + format_rows(res)
     if res.get("contact_targets"):
         from gearkit.bench.contact import format_contact_rows
 

@@ -100,6 +100,10 @@ def render(res: dict) -> str:
             if r.get("achieved") is not None:
                 t += f" ({r['achieved'] * 1e3:.2f} µm)"
             out.append(f"| {r['gear']} | {r['output']} | {t} | {ref.get(r['gear'], '')} |")
+    if res.get("scenes"):
+        from gearkit.bench.scenes import markdown_rows
+
+        out += [""] + markdown_rows(res)
     if res.get("unmeasured"):
         out.append("")
         names = ", ".join(f"{r['family']} {r['product']} ({r['note']})" for r in res["unmeasured"])

@@ -324,14 +324,10 @@ def _check_planets(scene, radii, tips, positions) -> dict:
     return out
 
 
-def scene_layout(scene) -> "Layout":
-    """The formula layout of ``scene`` (see the module notes); raises SpecError for scenes that
-    cannot exist, naming the gears."""
-    return _layout(scene)
-
-
 @lru_cache(maxsize=256)
-def _layout(scene) -> "Layout":
+def scene_layout(scene) -> "Layout":
+    """The formula layout of ``scene`` (see the module notes; cached per scene); raises SpecError
+    for scenes that cannot exist, naming the gears."""
     helix = scene.helix_angles()
     radii = _radii(scene, helix)
     distances = {m.label: _mesh_distance(scene, m, helix, radii) for m in scene.meshes}
