@@ -263,6 +263,24 @@ def test_clockwise_outline_makes_the_same_prism(tmp_path):
 
 
 @needs_ocp
+def test_cam_step_round_trip(tmp_path):
+    """A generated cam with its bore and keyway: one valid solid named 'cam', agreeing with the mesh."""
+    from gearkit.cli.gear import keyway_from_arg
+    from gearkit.families.cam import CamSpec, MotionProgram, cam_profile
+    from gearkit.solids.cam import cam_solid
+
+    path = tmp_path / "cam.step"
+    flags = ["--prime-radius", "40", "--roller-radius", "8", "--rise", "10", "--rise-deg", "90", "--return-deg", "90",
+             "--width", "10", "--bore", "12", "--keyway", "4x1.5", "--tol", str(TOL)]
+    assert main(["cam", *flags, "-o", str(path)]) == 0
+    spec = CamSpec(40.0, MotionProgram.rise_dwell_return(10.0, 90.0, 0.0, 90.0), roller_radius=8.0)
+    mesh = cam_solid(cam_profile(spec), SolidSpec(10.0, bore=12.0, keyway=keyway_from_arg("4x1.5")), TOL)
+    (name, shape), = _read(path)
+    assert name == "cam"
+    _agree(shape, mesh)
+
+
+@needs_ocp
 def test_part_without_recipe_writes_nothing(tmp_path):
     from gearkit.solids import Solid
 

@@ -72,8 +72,9 @@ def register(subparsers) -> None:
     p.add_argument("--tol", type=float, default=None, help="max deviation of the output from the exact "
                    "profile, mm (default 1e-4 of r0 + stroke)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
-    p.add_argument("-o", "--output", default=None, help="write the profile (.svg .dxf .csv .json) or the solid "
-                   "(.stl .obj .glb; needs --width)")
+    p.add_argument("-o", "--output", default=None, help="write the profile (.svg .dxf .csv .json), the solid "
+                   "(.stl .obj .glb .3mf, exact .step; needs --width) or a page (.html: the cam turning, its "
+                   "follower, solids and check)")
     p.add_argument("--plot", default=None, metavar="FILE", help="picture: s-v-a-j, pressure angle with and "
                    "without friction, the cam (.png or .svg)")
     g = p.add_argument_group("solid (mesh output)")
@@ -123,6 +124,8 @@ def _output_kind(path):
     """'2d', 'mesh' or None for ``-o``; an unknown extension is rejected before any work."""
     if not path:
         return None
+    if str(path).lower().endswith((".html", ".htm")):
+        return "page"
     from gearkit.solids.export import mesh_format
 
     if mesh_format(path) is not None:
@@ -134,6 +137,12 @@ def _output_kind(path):
 
 
 def _write(args, prof, tol, kind) -> dict:
+    if kind == "page":
+        from gearkit.view import write_page
+        from gearkit.view.cam import cam_view
+
+        write_page(args.output, cam_view(prof.spec))
+        return {"path": args.output}
     if kind == "2d":
         from gearkit.export import write_profile
 

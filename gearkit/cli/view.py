@@ -8,7 +8,8 @@ Usage::
 The page animates the 2D mesh (the contact simulation's poses, contact points, path of
 contact, transmission error), shows the solids in 3D (rotate, zoom) and lists the design
 check's findings; it opens offline in any browser. ``gearkit blocking ... -o page.html`` writes
-the same page with the blocking map. Exit status: 0 written, 2 bad input.
+the same page with the blocking map, ``gearkit cam ... -o cam.html`` the cam turning with its
+follower. Exit status: 0 written, 2 bad input.
 """
 from __future__ import annotations
 

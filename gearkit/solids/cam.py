@@ -14,7 +14,7 @@ import numpy as np
 
 from gearkit.errors import SpecError
 from gearkit.solids.gear import bore_points
-from gearkit.solids.solid import Solid, SolidSpec, checked
+from gearkit.solids.solid import Recipe, Solid, SolidSpec, checked
 
 __all__ = ["cam_solid"]
 
@@ -57,5 +57,7 @@ def cam_solid(profile, spec: SolidSpec, tol: float | None = None, name: str = "c
     section = m3.CrossSection([np.ascontiguousarray(lp) for lp in loops], m3.FillRule.Positive)
     area = float(section.area())
     man = checked(m3.Manifold.extrude(section, float(spec.width)), name)
-    return Solid(man, name, {"kind": "cam", "tol": tol, "achieved": profile.achieved(tol), "area": area,
-                             "width": float(spec.width), "bore": spec.bore, "points": int(len(outline))})
+    info = {"kind": "cam", "tol": tol, "achieved": profile.achieved(tol), "area": area, "width": float(spec.width),
+            "bore": spec.bore, "points": int(len(outline))}
+    # the exact pieces rebuild it as B-spline faces for STEP (gearkit.solids.step.prism_shape)
+    return Solid(man, name, info, Recipe("prism", (tuple(profile.pieces), spec, float(tol))))
