@@ -37,8 +37,9 @@ def register(subparsers) -> None:
                    "teeth, mm (default 0.005 m for solids, 0.001 m for outlines)")
     p.add_argument("--width", type=float, default=None, help="face width of the solids, mm (default: the scene's "
                    "face_width, else 8 m)")
-    p.add_argument("-o", "--output", default=None, help="write the placed scene: .glb, .obj, .stl (solids) or "
-                   ".png, .svg (outlines)")
+    p.add_argument("-o", "--output", default=None, help="write the placed scene: .glb, .obj, .stl, .3mf, .step "
+                   "(solids, named parts), .png, .svg (outlines) or .html (a page: the scene turning, its solids "
+                   "and checks)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(run=run)
 
@@ -48,9 +49,15 @@ def run(args) -> int:
     from gearkit.scene.query import SceneModel
     from gearkit.scene.report import format_report, scene_report
 
+    page = args.output is not None and str(args.output).lower().endswith((".html", ".htm"))
     scene = load_scene(args.file)
     model = SceneModel(scene, tol=args.tol, width=args.width, state=args.state)
-    rep = scene_report(model, args.fidelity, args.angle, args.state, args.output)
+    rep = scene_report(model, args.fidelity, args.angle, args.state, None if page else args.output)
+    if page:  # the page: every gear turning with the input, the solids, the meshes' checks
+        from gearkit.view import write_page
+        from gearkit.view.scene import scene_view
+
+        rep["file"] = str(write_page(args.output, scene_view(model, title=f"gearkit: {Path(args.file).name}")))
     if args.json:
         print(json.dumps(rep, indent=2, allow_nan=False))
     else:

@@ -252,5 +252,5 @@ class SceneModel:
 
         if mesh_format(path) is None:
             raise SpecError("output", f"unknown format {suffix!r} for {str(path)!r}; allowed: .obj, .glb, .stl, "
-                            ".png, .svg")
+                            ".3mf, .step, .png, .svg")
         return write_mesh(path, self.parts(angle_deg))
