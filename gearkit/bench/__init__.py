@@ -36,7 +36,7 @@ def run_bench(quick: bool = False, process: bool = True, progress=None) -> dict:
     ``scaling``, ``oracle``, ``oracle_order``, ``products``, ``unmeasured``, ``process``,
     ``overhead``, ``overhead_ratio`` and ``meta`` (lengths in mm, times in s).
     """
-    from gearkit.bench import meshes, oracle, process as proc, products, profiles
+    from gearkit.bench import blocking, meshes, oracle, process as proc, products, profiles
 
     def say(msg):
         if progress is not None:
@@ -57,8 +57,10 @@ def run_bench(quick: bool = False, process: bool = True, progress=None) -> dict:
         say("accuracy ladder: meshes")
         out["ladder"] += meshes.mesh_ladder(quick, repeats)
     if products.available("gearkit.blocking.contour"):
-        say("blocking contour")
-        out["ladder"] += products.blocking_rows(quick)
+        say("blocking contour: ladder, targets, atlas throughput")
+        out["ladder"] += blocking.ladder_rows(quick)
+        out["blocking_targets"] = blocking.target_rows(out["ladder"])
+        out["atlas"] = blocking.atlas_rows(quick)
     say("scaling in z")
     out["scaling"] = profiles.involute_scaling(quick, repeats)
     say("swept-tool oracle convergence")
@@ -114,8 +116,7 @@ def format_table(res: dict) -> str:
                  f"{'count':>9} {'time':>11}")
     for r in res["ladder"]:
         ach = "" if r["achieved"] is None else f"{r['achieved']:10.3e}"
-        ratio = "" if r["achieved"] is None or r["product"] == "blocking contour" else \
-            f"{r['achieved'] / r['tol']:7.3f}"
+        ratio = "" if r["achieved"] is None else f"{r['achieved'] / r['tol']:7.3f}"
         lines.append(f"  {r['product']:16} {r['family']:9} {r['case']:26} {r['tol']:9.1e} {ach:>10} {ratio:>7} "
                      f"{r['vertices']:9d} {_fmt_s(r['seconds']):>11}")
     lines.append("")
@@ -156,6 +157,9 @@ def format_table(res: dict) -> str:
         from gearkit.bench.contact import format_contact_rows
 
         lines += [""] + format_contact_rows(res["contact_targets"])
+    if "blocking_targets" in res:
+        from gearkit.bench.blocking import format_section
+        lines += format_section(res)
     if res["process"]:
         lines.append("")
         lines.append("whole process (gearkit gear ... -o FILE, tol 0.001 mm, median of 5 runs)")

@@ -67,44 +67,6 @@ def unmeasured_products(measured=()):
     return rows
 
 
-def _polyline_gap(points, reference_lines):
-    """Largest distance (shift units) from ``points`` to the nearest reference line polyline."""
-    from gearkit.accuracy import distances_to_polyline
-
-    best = np.full(len(points), np.inf)
-    for comp in reference_lines:
-        if len(comp) >= 2:
-            best = np.minimum(best, distances_to_polyline(points, comp))
-    return float(best.max(initial=0.0))
-
-
-def blocking_rows(quick: bool):
-    """Blocking contour of the 12/30 pair: time and vertex count against the tracing tolerance xtol;
-    achieved = largest distance of a reference trace's vertices (xtol 1e-10) from the lines traced
-    at xtol, line by line (full run only: the reference costs a trace of its own)."""
-    from gearkit.blocking.contour import blocking_contour
-    from gearkit.pair import PairSpec
-
-    pair = PairSpec(12, 30, 1.0)
-    xtols = (1e-6,) if quick else (1e-3, 1e-6, 1e-9)
-    ref = None if quick else blocking_contour(pair, xtol=1e-10)
-    rows = []
-    for xtol in xtols:
-        seconds, contour = median_time(lambda: blocking_contour(pair, xtol=xtol), 1)
-        achieved = None
-        if ref is not None:
-            gaps = []
-            for line in ref.lines:
-                mine = contour.line(line.name).components
-                if len(line.points) and mine:
-                    gaps.append(_polyline_gap(line.points, mine))
-            achieved = max(gaps) if gaps else None
-        rows.append({"family": "involute", "product": "blocking contour", "case": "12/30 m=1", "tol": xtol,
-                     "achieved": achieved, "vertices": int(sum(len(ln.points) for ln in contour.lines)),
-                     "evaluations": int(contour.evaluations), "seconds": seconds})
-    return rows
-
-
 def cycloidal_mesh_rows(quick: bool, repeats: int):
     """Time of the cycloid drive's simulated pin mesh (one mesh period, ``samples`` disc positions)."""
     try:

@@ -1,4 +1,4 @@
-"""An atlas of blocking contours: one contour per (z1, z2) cell, computed in parallel processes.
+"""An atlas of blocking contours: one contour per (z1, z2) cell, computed in parallel.
 
 Printed atlases cover a grid of tooth numbers for one tool; :func:`blocking_atlas` computes the
 same grid for any pair template (tool, pressure angle, helix angle, external or internal) with
@@ -6,21 +6,33 @@ same grid for any pair template (tool, pressure angle, helix angle, external or 
 :func:`~gearkit.blocking.blocking_contour` returns for the template with ``teeth1 = z1``,
 ``teeth2 = z2``; a worker sends it back without its evaluation caches (they are rebuilt on demand).
 
+:func:`write_atlas` writes an atlas as a dataset on disk: one JSON file per cell (its contour and
+recommendation, :func:`atlas_cell`), ``index.json`` (one summary row per cell) and a contact sheet
+``atlas.png``. It is resumable (cells already on disk are skipped) and deterministic (the same
+input gives byte-identical files). The cells run on a local process pool or, given the address
+of a scheduler, on a Dask cluster (``dask.distributed``, imported only then); both run the same
+:func:`atlas_cell`.
+
 >>> atlas = blocking_atlas([13], [16], workers=1, lines=["undercut.1"])
 >>> sorted(atlas.cells), atlas.errors
 ([(13, 16)], {})
 """
 from __future__ import annotations
 
+import json
 import os
+import sys
 import time
-from concurrent.futures import ProcessPoolExecutor
+from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass, replace
+from pathlib import Path
 
 from gearkit.errors import GearkitError, SpecError, require
 from gearkit.pair.spec import PairSpec
 
-__all__ = ["BlockingAtlas", "blocking_atlas"]
+__all__ = ["BlockingAtlas", "blocking_atlas", "atlas_cell", "write_atlas", "cell_name"]
+
+FORMAT = 1  #: version of the dataset's layout (index.json says it)
 
 
 @dataclass(frozen=True)
@@ -113,3 +125,176 @@ def blocking_atlas(z1s, z2s, template: PairSpec | None = None, *, workers: int |
     if not cells and errors:
         raise SpecError("z1s", "no cell of the atlas is a valid pair: " + next(iter(errors.values())))
     return BlockingAtlas(cells, errors, time.perf_counter() - t0, n)
+
+
+def cell_name(z1: int, z2: int) -> str:
+    """File name of a cell in the dataset: ``z1-013_z2-016.json``."""
+    return f"z1-{int(z1):03d}_z2-{int(z2):03d}.json"
+
+
+def atlas_cell(template: PairSpec, z1: int, z2: int, options: dict, criterion: str = "balanced") -> dict:
+    """One cell of a dataset atlas (runs in a worker, local or remote): a JSON-ready record with the
+    contour (no timing: the same on every run), its recommendation, or the reason it has none."""
+    from gearkit.blocking.contour import blocking_contour
+
+    out = {"z1": int(z1), "z2": int(z2)}
+    try:
+        spec = replace(template, teeth1=int(z1), teeth2=int(z2))
+        contour = blocking_contour(spec, **options)
+        rec = contour.recommend(criterion)
+        out["contour"] = contour.to_dict(rec, timing=False)
+    except GearkitError as exc:
+        out["error"] = str(exc)
+    return out
+
+
+def _summary(record: dict, file: str) -> dict:
+    row = {"z1": record["z1"], "z2": record["z2"], "file": file}
+    if "error" in record:
+        row.update(status="error", error=record["error"])
+        return row
+    c = record["contour"]
+    rec = c.get("recommendation") or {}
+    row.update(status="ok", empty=c["region"]["empty"], area=c["region"]["area"],
+               x1=rec.get("x1"), x2=rec.get("x2"), passes=rec.get("passes"))
+    return row
+
+
+def _dump(obj) -> str:
+    return json.dumps(obj, sort_keys=True, allow_nan=False, separators=(",", ":"))
+
+
+class _Progress:
+    """A progress bar on stderr: ``atlas [#####     ] 37/100 cells, 12.3 s``."""
+
+    WIDTH = 30
+
+    def __init__(self, total: int, stream=None):
+        self.total, self.done, self.t0 = total, 0, time.perf_counter()
+        self.stream = sys.stderr if stream is None else stream
+
+    def step(self, n: int = 1) -> None:
+        self.done += n
+        k = int(self.WIDTH * self.done / max(self.total, 1))
+        self.stream.write(f"\ratlas [{'#' * k}{' ' * (self.WIDTH - k)}] {self.done}/{self.total} cells, "
+                          f"{time.perf_counter() - self.t0:.1f} s")
+        if self.done >= self.total:
+            self.stream.write("\n")
+        self.stream.flush()
+
+
+def _run_local(jobs, template, options, criterion, workers, sink):
+    if workers == 1 or len(jobs) <= 1:
+        for z1, z2 in jobs:
+            sink(atlas_cell(template, z1, z2, options, criterion))
+        return
+    with ProcessPoolExecutor(max_workers=min(workers, len(jobs))) as pool:
+        futures = [pool.submit(atlas_cell, template, z1, z2, options, criterion) for z1, z2 in jobs]
+        for fut in as_completed(futures):
+            sink(fut.result())
+
+
+def _run_dask(jobs, template, options, criterion, scheduler, sink):
+    try:
+        from distributed import Client, as_completed as dask_completed
+    except ImportError:
+        raise SpecError("scheduler", "the distributed path needs dask.distributed: pip install 'gearkit[dask]'") from None
+    try:
+        client = Client(scheduler, timeout=DASK_TIMEOUT)
+    except (OSError, TimeoutError) as exc:
+        raise SpecError("scheduler", f"no Dask scheduler answers at {scheduler!r} ({exc})") from None
+    try:
+        futures = client.map(atlas_cell, [template] * len(jobs), [z for z, _ in jobs], [z for _, z in jobs],
+                             [options] * len(jobs), [criterion] * len(jobs), pure=False)
+        for fut in dask_completed(futures):
+            sink(fut.result())
+    finally:
+        client.close()
+
+
+DASK_TIMEOUT = 10  #: seconds to reach the scheduler
+
+
+def write_atlas(z1s, z2s, out_dir, template: PairSpec | None = None, *, workers: int = 2,
+                scheduler: str | None = None, criterion: str = "balanced", progress=True, **options) -> dict:
+    """Write the atlas of ``z1s`` x ``z2s`` to ``out_dir`` (see the module notes); returns the index.
+
+    Parameters
+    ----------
+    z1s, z2s : iterable of int
+    out_dir : str or Path
+        Created if missing. Cells already there (from an interrupted run with the same template and
+        options) are kept; ``index.json`` and ``atlas.png`` are written last.
+    template : PairSpec or None
+        As for :func:`blocking_atlas`.
+    workers : int
+        Local worker processes (1: this process). Ignored with ``scheduler``.
+    scheduler : str or None
+        Address of a Dask scheduler (``tcp://host:8786``): the cells run on its workers.
+    criterion : str
+        Recommendation criterion of every cell.
+    progress : bool or file
+        A progress bar on stderr (or the given stream); False: none.
+    **options
+        Keyword arguments of :func:`~gearkit.blocking.blocking_contour` (``tol``, ``window`` ...).
+    """
+    from gearkit.export import atomic_write
+
+    z1s = sorted({int(z) for z in z1s})
+    z2s = sorted({int(z) for z in z2s})
+    require(z1s and z2s, "z1s", "give at least one tooth number for each gear")
+    template = PairSpec(20, 40, 1.0) if template is None else template
+    require(isinstance(template, PairSpec), "template", "must be a PairSpec")
+    require(isinstance(workers, int) and workers >= 1, "workers", f"{workers!r} must be a positive integer")
+    out = Path(out_dir)
+    cells_dir = out / "cells"
+    try:
+        cells_dir.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise SpecError("output", f"cannot create {str(cells_dir)!r}: {exc.strerror}") from None
+    head = {"format": FORMAT, "template": _template_dict(template), "criterion": criterion,
+            "options": {k: (list(v) if isinstance(v, tuple) else v) for k, v in sorted(options.items())}}
+    index_path = out / "index.json"
+    if (out / "atlas.json").exists():
+        try:
+            old = json.loads((out / "atlas.json").read_text())
+        except (OSError, ValueError):
+            old = None
+        if old is not None and old != json.loads(_dump(head)):
+            raise SpecError("output", f"{str(out)!r} holds an atlas of another template or options; "
+                            "give a new directory")
+    atomic_write(out / "atlas.json", lambda tmp: Path(tmp).write_text(_dump(head)))
+    jobs = [(z1, z2) for z1 in z1s for z2 in z2s if not (cells_dir / cell_name(z1, z2)).exists()]
+    bar = None
+    if progress:
+        bar = _Progress(len(jobs), None if progress is True else progress)
+
+    def sink(record):
+        name = cell_name(record["z1"], record["z2"])
+        atomic_write(cells_dir / name, lambda tmp: Path(tmp).write_text(_dump(record)))
+        if bar:
+            bar.step()
+    if jobs:
+        if scheduler:
+            _run_dask(jobs, template, options, criterion, scheduler, sink)
+        else:
+            _run_local(jobs, template, options, criterion, workers, sink)
+    rows = []
+    records = []
+    for z1 in z1s:
+        for z2 in z2s:
+            name = cell_name(z1, z2)
+            record = json.loads((cells_dir / name).read_text())
+            records.append(record)
+            rows.append(_summary(record, f"cells/{name}"))
+    index = dict(head, cells=rows)
+    atomic_write(index_path, lambda tmp: Path(tmp).write_text(json.dumps(index, sort_keys=True, indent=1)))
+    from gearkit.blocking.plot import contact_sheet
+    contact_sheet(records, z1s, z2s, out / "atlas.png", template)
+    return index
+
+
+def _template_dict(t: PairSpec) -> dict:
+    tools = [repr(tool) for tool in t.tools]
+    return {"kind": t.kind, "module": t.module, "pressure_angle_deg": t.alpha_n_deg,
+            "helix_angle_deg": t.helix_angle_deg, "addendum": t.addendum, "tip_rule": t.tip_rule, "tools": tools}

@@ -1,28 +1,28 @@
 """The blocking contour of a pair: traced lines, the admissible region, point queries.
 
 :func:`blocking_contour` traces every line of a :class:`~gearkit.blocking.field.PairField` in a
-window of the (x1, x2) plane and the boundary of the admissible region (all hard margins >= 0:
+window of the (x1, x2) plane, and the boundary of the admissible region (all hard margins >= 0:
 the shifts at which :func:`~gearkit.checks.check_pair` does not fail), and returns a
 :class:`BlockingContour`.
 
-Speed: every evaluation is one call of the pair formulas (:func:`~gearkit.pair.pair_geometry`)
-at one shift pair; a full contour of z1 = 13, z2 = 16 (about 200 points per line, 17 lines)
-takes some 8,000 of them. The seed grid is shared by all lines and the region, seeds are refined
-only where needed, and the region's vertices are solved on the seed grid's edges and at its
-corners. :func:`~gearkit.blocking.blocking_atlas` spreads many contours over processes.
+Speed: the margins are evaluated as arrays (:mod:`gearkit.blocking.arrays`), many points per
+call: one grid for the topology of every line and of the region, then every vertex solved and
+every chord refined to ``tol`` (:mod:`gearkit.blocking.level`). The number of vertices follows
+the tolerance (a chord's deviation from its curve is at most ``tol``), so coarser is cheaper.
+:func:`~gearkit.blocking.blocking_atlas` spreads many contours over processes.
 """
 from __future__ import annotations
 
 import math
 import time
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
 from gearkit.blocking.field import PairField
-from gearkit.blocking.recommend import recommend
-from gearkit.blocking.region import GRID, admissible_region, polygon_area
-from gearkit.blocking.trace import Window, grid_seeds, trace_curves
+from gearkit.blocking.region import inside_polygons, polygon_area
+from gearkit.blocking.tracing import trace
 from gearkit.checks.limits import CheckLimits
 from gearkit.curves import bracketed_root
 from gearkit.errors import SpecError, require
@@ -31,6 +31,8 @@ from gearkit.pair.tooling import half_angle, section, thickness_coeff
 
 __all__ = ["BlockingContour", "Line", "blocking_contour", "default_window"]
 
+DEFAULT_TOL = 1e-4  #: shift units (1e-4 m_n): far below what a picture or a cutter shows
+TOL_RANGE = (1e-12, 1e-2)  #: allowed tracing tolerances (shift units)
 
 
 @dataclass(frozen=True)
@@ -92,22 +94,35 @@ class BlockingContour:
     window : (x1_lo, x1_hi, x2_lo, x2_hi)
     lines : tuple of Line
     region : tuple of (n, 2) float64
-        Closed polygons (first vertex repeated last, counter-clockwise) of the admissible region.
+        Closed polygons (first vertex repeated last) of the admissible region: outer boundaries
+        counter-clockwise, holes clockwise (even-odd rule: :meth:`in_region`).
     empty_reason : str or None
         Why the region is empty (the binding lines at the best point), None when it is not.
-    xtol : float
-        Accuracy in x of every traced vertex.
+    tol : float
+        Accuracy (shift units) of every traced line: each of its points lies within ``1.25 tol``.
     seconds : float
         Wall time of the computation.
+    evaluations : int
+        Points at which the margins were evaluated.
     """
 
-    def __init__(self, field, window, lines, region, empty_reason, xtol, seconds, evaluations):
+    def __init__(self, field, window, lines, region, empty_reason, tol, seconds, evaluations):
         self.field, self.window, self.lines, self.region = field, window, lines, region
-        self.empty_reason, self.xtol, self.seconds, self.evaluations = empty_reason, xtol, seconds, evaluations
+        self.empty_reason, self.tol, self.seconds, self.evaluations = empty_reason, tol, seconds, evaluations
+
+    @property
+    def xtol(self) -> float:
+        """The tracing tolerance under its old name (deprecated: use ``tol``)."""
+        return self.tol
 
     @property
     def empty(self) -> bool:
         return not self.region
+
+    @property
+    def area(self) -> float:
+        """Area of the admissible region (shift units squared; holes subtracted)."""
+        return float(sum(polygon_area(p) for p in self.region))
 
     def line(self, name: str) -> Line:
         for ln in self.lines:
@@ -124,34 +139,26 @@ class BlockingContour:
                 and d.name != "sliding"}
 
     def contains(self, x1: float, x2: float) -> bool:
-        """True when the design check of the pair at (x1, x2) does not fail (the check's own verdict:
-        every hard margin, the backlash and, for internal pairs, the tip sweep)."""
-        pt = self.field.point(x1, x2, exact=True)
-        if not pt.valid:
-            return False
-        if any(not (m >= 0) for m in pt.hard_margins().values()):
-            return False
-        from gearkit.checks.involute import fail_margins
+        """True when :func:`~gearkit.checks.check_pair` passes the pair at (x1, x2): the check's own
+        verdict, at the contour's limits (see :meth:`~gearkit.blocking.field.PairField.check`)."""
+        return self.field.check(x1, x2)[0]
 
-        g = pt.geometry((True, True))
-        if fail_margins(g)["backlash"] < 0:
-            return False
-        if self.field.internal:
-            from gearkit.pair.internal import tip_sweep
-            return tip_sweep(g)[0] <= 0
-        return True
+    def in_region(self, x1, x2):
+        """Membership of points in the traced region polygons (even-odd), vectorised."""
+        pts = np.column_stack([np.ravel(x1), np.ravel(x2)])
+        out = inside_polygons(self.region, pts)
+        return bool(out[0]) if np.ndim(x1) == 0 else out
 
     def binding(self, x1: float, x2: float) -> list:
-        """Names of the lines (hard and quality) that (x1, x2) violates, hard ones first."""
-        pt = self.field.point(x1, x2, exact=True)
-        if not pt.valid:
+        """Names of the lines (hard and quality) that (x1, x2) violates, hard ones first, then the
+        failing findings of the check that no line maps (e.g. ``tip_interference``)."""
+        ok, failing, why = self.field.check(x1, x2)
+        if why:
             return ["no_pair"]
         m = self.margins(x1, x2)
         out = [n for n, v in m.items() if not (v >= 0)]
-        if self.field.internal and not out:
-            from gearkit.pair.internal import tip_sweep
-            if tip_sweep(pt.geometry((True, True)))[0] > 0:
-                out.append("tip_interference")
+        mapped = {self.field.by_name[n].finding for n in out if n in self.field.by_name}
+        out += [f for f in failing if f not in mapped and f not in out]
         hard = set(self.field.hard)
         return sorted(out, key=lambda n: (n not in hard, n))
 
@@ -159,28 +166,15 @@ class BlockingContour:
         """The ``marked`` object of the CLI: {x1, x2, inside, binding}."""
         return {"x1": float(x1), "x2": float(x2), "inside": self.contains(x1, x2), "binding": self.binding(x1, x2)}
 
-    @property
-    def area(self) -> float:
-        """Area of the admissible region in the (x1, x2) plane (0 when it is empty)."""
-        return sum(abs(polygon_area(p)) for p in self.region)
-
-    def center_distance_line(self, center_distance: float) -> Line:
-        """The line of operating centre distance ``center_distance`` (mm) in this contour's window:
-        the traced one when the contour holds it, else traced now with the same limits and ``xtol``."""
-        name = f"center_distance={float(center_distance):g}"
-        if name in self.field.by_name:
-            return self.line(name)
-        sub = blocking_contour(self.field.template, window=self.window, limits=self.field.limits,
-                              center_distances=(float(center_distance),), xtol=self.xtol, lines=[name])
-        return sub.line(name)
-
     def recommend(self, criterion: str = "balanced", center_distance: float | None = None):
         """The recommended shifts by a named criterion (see :mod:`gearkit.blocking.recommend`)."""
+        from gearkit.blocking.recommend import recommend
         return recommend(self, criterion, center_distance)
 
     # -- export ---------------------------------------------------------------------------------
-    def to_dict(self, recommendation=None, marked=None) -> dict:
-        """JSON-ready: pair, window, lines (name, points), region, recommendation, marked."""
+    def to_dict(self, recommendation=None, marked=None, timing: bool = True) -> dict:
+        """JSON-ready: pair, window, lines (name, points), region, recommendation, marked (and the
+        wall time unless ``timing=False``: the rest is the same on every run)."""
         t = self.field.template
         tools = [getattr(tt, "name", None) or type(tt).__name__ for tt in t.tools]
         out = {
@@ -188,14 +182,14 @@ class BlockingContour:
                      "helix_angle_deg": t.helix_angle_deg, "addendum": t.addendum, "tip_rule": t.tip_rule,
                      "tools": tools,
                      "cutter_teeth": getattr(t.tools[1], "teeth", None) if t.kind == "internal" else None},
-            "window": list(self.window), "xtol": self.xtol,
+            "window": list(self.window), "tol": self.tol,
             "lines": [{"name": ln.name, "code": ln.code, "label": ln.label, "hard": ln.hard, "finding": ln.finding,
                        "points": [c.tolist() for c in ln.components]} for ln in self.lines],
-            "region": {"empty": self.empty, "reason": self.empty_reason,
-                       "area": self.area,
+            "region": {"empty": self.empty, "reason": self.empty_reason, "area": self.area,
                        "polygons": [p.tolist() for p in self.region]},
-            "seconds": self.seconds,
         }
+        if timing:
+            out["seconds"] = self.seconds
         if recommendation is not None:
             out["recommendation"] = recommendation.to_dict()
         if marked is not None:
@@ -208,25 +202,9 @@ class BlockingContour:
         save(self, path, recommendation, marked)
 
 
-def _prefer(field: PairField, needs):
-    """Corrector axis that keeps an undercut gear's shift fixed (one generated gear per point)."""
-    if not any(needs):
-        return None
-
-    def prefer(q):
-        u1 = needs[0] and field.undercut(1, q[0])
-        u2 = needs[1] and field.undercut(2, q[1])
-        if u1 and not u2:
-            return 1
-        if u2 and not u1:
-            return 0
-        return None
-    return prefer
-
-
 def blocking_contour(pair: PairSpec, *, window=None, limits: CheckLimits = CheckLimits(), tip_levels=(0.25, 0.4),
-                     contact_levels=(1.2,), center_distances=(), xtol: float = 1e-6,
-                     points: int = 200, lines=None) -> BlockingContour:
+                     contact_levels=(1.2,), center_distances=(), tol: float | None = None,
+                     points: int | None = None, lines=None, xtol: float | None = None) -> BlockingContour:
     """Compute the blocking contour of ``pair`` (its shifts are ignored).
 
     Parameters
@@ -237,21 +215,37 @@ def blocking_contour(pair: PairSpec, *, window=None, limits: CheckLimits = Check
         The plotted part of the plane; None: :func:`default_window`.
     limits, tip_levels, contact_levels, center_distances
         See :class:`~gearkit.blocking.field.PairField`.
-    xtol : float
-        Accuracy in x of every traced vertex (default 1e-6).
-    points : int
-        Step of the tracing: the window's diagonal / ``points`` (about ``points`` vertices per line
-        that crosses the window).
+    tol : float
+        Accuracy of every traced line in shift units, in [1e-12, 1e-2] (default ``DEFAULT_TOL``,
+        1e-4): every vertex within ``tol / 4`` of its line, every chord within ``tol``.
+    points : int or None
+        Also cap the chords at the window's diagonal / ``points`` (smoother pictures at coarse
+        tolerances); None: the tolerance alone sets the vertices.
     lines : iterable of str or None
         Names of the lines to trace (default all); the region is always traced.
+    xtol : float
+        Deprecated name of ``tol``.
 
     Returns
     -------
     BlockingContour
+
+    Examples
+    --------
+    >>> c = blocking_contour(PairSpec(13, 16, 1.0), tol=1e-4, lines=["pointing.1"])
+    >>> c.contains(0.5, 0.3), c.in_region(0.5, 0.3), c.in_region(1.5, 0.0)
+    (True, True, False)
     """
     t0 = time.perf_counter()
-    require(isinstance(xtol, float) and 1e-12 <= xtol <= 1e-2, "xtol", f"{xtol!r} must be in [1e-12, 1e-2]")
-    require(isinstance(points, int) and 20 <= points <= 5000, "points", f"{points!r} must be in [20, 5000]")
+    if xtol is not None:
+        warnings.warn("blocking_contour: 'xtol' is deprecated, use 'tol'", DeprecationWarning, stacklevel=2)
+        require(tol is None, "tol", "give tol or its deprecated name xtol, not both")
+        tol = xtol
+    tol = DEFAULT_TOL if tol is None else tol
+    require(isinstance(tol, float) and TOL_RANGE[0] <= tol <= TOL_RANGE[1], "tol",
+            f"{tol!r} must be in [{TOL_RANGE[0]:g}, {TOL_RANGE[1]:g}] (shift units)")
+    require(points is None or (isinstance(points, int) and 20 <= points <= 5000), "points",
+            f"{points!r} must be in [20, 5000]")
     field = PairField(pair, limits, tip_levels, contact_levels, center_distances)
     win = default_window(field) if window is None else tuple(float(v) for v in window)
     require(len(win) == 4 and all(math.isfinite(v) and -3.0 <= v <= 3.0 for v in win)
@@ -259,22 +253,8 @@ def blocking_contour(pair: PairSpec, *, window=None, limits: CheckLimits = Check
             f"{win!r} must be (x1_lo, x1_hi, x2_lo, x2_hi) within [-3, 3], lo < hi")
     field.x_ranges = ((win[0], win[1]), (win[2], win[3]))  # undercut form circles: interpolated
     field.exact_forms = False
-    w = Window(*win)
-    h = w.size / points
-    xs = np.linspace(w.lo[0], w.hi[0], GRID)
-    ys = np.linspace(w.lo[1], w.hi[1], GRID)
-    wanted = None if lines is None else set(lines)
-    traced = []
-    for d in field.lines:
-        if wanted is not None and d.name not in wanted:
-            continue
-
-        def f(x1, x2, _n=d.name):
-            return field.margin(_n, x1, x2)
-        vals = np.array([[f(x, y) for x in xs] for y in ys])
-        seeds = grid_seeds(f, xs, ys, vals, xtol, refine=False)
-        comps = trace_curves(f, w, seeds, h, xtol, prefer=_prefer(field, d.needs)) if seeds else []
-        traced.append(Line(d.name, d.code, d.label, d.hard, d.finding, tuple(comps)))
-    region, reason = admissible_region(field, w, xtol)
-    n_eval = len(field._points)
-    return BlockingContour(field, win, tuple(traced), region, reason, xtol, time.perf_counter() - t0, n_eval)
+    max_step = None if points is None else math.hypot(win[1] - win[0], win[3] - win[2]) / points
+    wanted = [d for d in field.lines if lines is None or d.name in set(lines)]
+    t = trace(field, win, [d.name for d in wanted], tol, max_step, region=True)
+    lines_out = tuple(Line(d.name, d.code, d.label, d.hard, d.finding, tuple(t.lines[d.name])) for d in wanted)
+    return BlockingContour(field, win, lines_out, t.region, t.reason, tol, time.perf_counter() - t0, t.evaluations)

@@ -37,6 +37,8 @@ FORM_NODES = 10  #: Chebyshev nodes of the undercut form-circle interpolant (err
 FORM_GAP = 0.005  #: the interpolant ends this far below the undercut onset
 FORM_CHECKS = 2  #: test shifts of the interpolant
 FORM_MARGIN = 0.1  #: the interpolant reaches this far below the window
+FORM_TIPS = (0.0, 1.0, -0.5)  #: blank tips tried (m_n above the blank's own) for a gear with a flank
+FORM_BISECTIONS = 16  #: bisections for the smallest shift at which the generated gear has a tooth
 
 
 @dataclass(frozen=True)
@@ -113,6 +115,7 @@ class PairField:
         self._under = {}
         self._fits = {}
         self._points = {}
+        self._checks = {}
         self.exact_forms = x_ranges is None
         self.x_ranges = None if x_ranges is None else ((x_ranges[0], x_ranges[1]), (x_ranges[2], x_ranges[3]))
         # undercut onset of each external gear (x_min of the check's undercut finding)
@@ -126,7 +129,7 @@ class PairField:
         """Pickled (e.g. from an atlas worker) without the evaluation caches: the evaluated points,
         the undercut flags and the form-circle interpolants (closures) are rebuilt on demand."""
         state = dict(self.__dict__)
-        state["_points"], state["_under"], state["_fits"] = {}, {}, {}
+        state["_points"], state["_under"], state["_fits"], state["_checks"] = {}, {}, {}, {}
         return state
 
     # -- lines ------------------------------------------------------------------------------
@@ -138,7 +141,7 @@ class PairField:
             LineDef("interference.2", "B2", "tip of gear 1 in the fillet of gear 2 (interference)", True,
                     "interference.2", (False, True)),
             LineDef("contact_ratio=1", "B3", "eps_alpha = 1 (the check's contact ratio; admissible above)", True,
-                    "contact_ratio"),
+                    "contact_ratio", (True, True)),
             LineDef("pointing.1", "B4", "s_a1 = 0: gear 1 pointed (admissible: thicker tips)", True, "pointing.1"),
             LineDef("pointing.2", "B5", "s_a2 = 0: gear 2 pointed", True, "pointing.2"),
             LineDef("tip_clearance.1", "B", "tip of gear 1 hits the root of gear 2", True, "tip_clearance.1"),
@@ -157,13 +160,13 @@ class PairField:
             for v in self.tip_levels:
                 out.append(LineDef(f"tip_thickness.{i}={v:g}", "Q", f"s_a{i} = {v:g} m_n", False, f"pointing.{i}"))
         for v in self.contact_levels:
-            out.append(LineDef(f"contact_ratio={v:g}", "Q", f"eps_alpha = {v:g}", False, "contact_ratio"))
+            out.append(LineDef(f"contact_ratio={v:g}", "Q", f"eps_alpha = {v:g}", False, "contact_ratio", (True, True)))
         for v in (1.0,) + self.contact_levels:
             out.append(LineDef(f"contact_ratio_tip={v:g}", "R", f"eps_alpha = {v:g} tip to tip (the atlas' "
                                "line; equals the real one wherever B1 and B2 hold" + (" and the ring is not "
                                "trimmed)" if ring else ")"), False, None))
         out.append(LineDef("sliding", "Q", "equal specific sliding at the ends of the path, |zeta1| = |zeta2|",
-                           False, None))
+                           False, None, (True, True)))
         if ring:
             out.append(LineDef("trimming.nu", "Q", "ring tip circle on O2N_u (inside it the shaper trims the "
                                "ring's involute)", False, "trimming.nu"))
@@ -209,8 +212,11 @@ class PairField:
         ``exact=False`` reads an undercut gear's form circle off a Chebyshev interpolant of the
         generated ones over ``x_ranges`` (see :meth:`form_interpolant`) instead of generating the gear.
         """
-        if not self.undercut(which, x):
-            return None
+        try:
+            if not self.undercut(which, x):
+                return None
+        except SpecError:  # the tool has no machine mesh with this gear: no gear at all
+            return math.nan
         if not exact and self.x_ranges is not None:
             fit = self.form_interpolant(which)
             if fit is not None and fit[0] <= x <= self.x_min[which - 1]:
@@ -225,20 +231,29 @@ class PairField:
             # the check's gear (gear_specs) with its own blank tip: the form circle does not depend on it
             z, beta, thin = ((t.teeth1, t.helix_angle_deg, t.thinning1) if which == 1 else
                              (t.teeth2, -t.helix_angle_deg, t.thinning2))
-            try:
-                gspec = GearSpec(z, t.module, float(x), beta, False, t.tools[which - 1], None, thin)
-                self._forms[key] = tooth_profile(gspec).form_diameter
-            except SpecError:
-                self._forms[key] = math.nan
+            # the form circle does not depend on the tip, but whether a flank is left below it does:
+            # where the blank's own tip leaves none, other tips (a pair's tip moves with its
+            # shortening, up or down) are tried
+            self._forms[key] = math.nan
+            r = z * self._sec.mt / 2
+            for k, up in enumerate(FORM_TIPS):
+                tip = None if k == 0 else 2 * (r + t.module * (t.addendum + float(x) + up))
+                try:
+                    gspec = GearSpec(z, t.module, float(x), beta, False, t.tools[which - 1], tip, thin)
+                    self._forms[key] = tooth_profile(gspec).form_diameter
+                    break
+                except SpecError:
+                    continue
         return self._forms[key]
 
     def form_interpolant(self, which: int):
-        """(lo, hi, error, d_F(x)) interpolating the generated form circle of an undercut gear.
+        """(lo, hi, error, d_F(x), floor) interpolating the generated form circle of an undercut gear.
 
         Chebyshev interpolation, ``FORM_NODES`` nodes, of the roll length rho_F(x) over the undercut
         part ``[lo, hi]`` of ``x_ranges[which - 1]`` that ends ``FORM_GAP`` below the undercut onset
         (closer to it the generated form circle is not smooth); ``error`` is the largest deviation
-        (mm) from the generated gears at ``FORM_CHECKS`` test shifts. None without undercut.
+        (mm) from the generated gears at ``FORM_CHECKS`` test shifts; below ``floor`` the generated gear
+        has no tooth (``-inf`` when it has one down to ``lo``). None without undercut.
         """
         if which in self._fits:
             return self._fits[which]
@@ -247,6 +262,7 @@ class PairField:
         lo, hi = self.x_ranges[which - 1]
         lo -= FORM_MARGIN
         hi = min(hi, x_min - FORM_GAP) if x_min is not None else lo
+        floor = -math.inf
         if x_min is not None and hi > lo:
             import numpy as np
 
@@ -258,6 +274,15 @@ class PairField:
                 d = self.form_diameter(which, float(x))
                 return math.sqrt(max((d / 2) ** 2 - rb ** 2, 0.0))
 
+            if math.isnan(self.form_diameter(which, lo)):  # no tooth at the low end: fit where one exists
+                a, b = lo, hi
+                if math.isnan(self.form_diameter(which, b)):
+                    self._fits[which] = None
+                    return None
+                for _ in range(FORM_BISECTIONS):
+                    m = 0.5 * (a + b)
+                    a, b = (m, b) if math.isnan(self.form_diameter(which, m)) else (a, m)
+                lo, floor = b, a
             n = FORM_NODES
             nodes = np.cos(math.pi * (np.arange(n) + 0.5) / n)
             xs = (lo + hi) / 2 + (hi - lo) / 2 * nodes
@@ -266,15 +291,16 @@ class PairField:
             r_hi = float(np.polynomial.chebyshev.chebval(1.0, coef))
 
             def interp(x, _c=coef, _lo=lo, _hi=hi, _rb=rb, _x0=x_min, _r_hi=r_hi):
-                if x > _hi:  # the last FORM_GAP: straight to rho_F = 0 at the onset
-                    r = _r_hi * (_x0 - x) / (_x0 - _hi)
-                else:
-                    r = float(np.polynomial.chebyshev.chebval((2 * x - _lo - _hi) / (_hi - _lo), _c))
-                return 2.0 * math.hypot(_rb, r)
+                # float or array; the last FORM_GAP: straight to rho_F = 0 at the onset
+                xa = np.asarray(x, dtype=float)
+                r = np.where(xa > _hi, _r_hi * (_x0 - xa) / (_x0 - _hi),
+                             np.polynomial.chebyshev.chebval((2 * xa - _lo - _hi) / (_hi - _lo), _c))
+                d = 2.0 * np.hypot(_rb, r)
+                return float(d) if d.ndim == 0 else d
 
             tests = lo + (hi - lo) * (np.arange(FORM_CHECKS) + 0.5) / FORM_CHECKS
             err = max(abs(interp(x) - self.form_diameter(which, float(x))) / 2 for x in tests)
-            fit = (lo, hi, err, interp)
+            fit = (lo, hi, err, interp, floor)
         self._fits[which] = fit
         return fit
 
@@ -289,6 +315,25 @@ class PairField:
                 self._points.clear()
             pt = self._points[key] = FieldPoint(self, *key)
         return pt
+
+    def check(self, x1: float, x2: float) -> tuple:
+        """The verdict of :func:`~gearkit.checks.check_pair` (generated gears, this field's limits) on
+        the pair at (x1, x2): ``(passes, ids of the failing findings, why no pair exists or "")``."""
+        key = (float(x1), float(x2))
+        out = self._checks.get(key)
+        if out is None:
+            from gearkit.checks import check_pair
+
+            try:
+                report = check_pair(self.spec(*key), self.limits).report
+                failing = tuple(f.id for f in report.findings if f.status == "fail")
+                out = (not failing, failing, "")
+            except SpecError as exc:
+                out = (False, (), str(exc))
+            if len(self._checks) > 10000:
+                self._checks.clear()
+            self._checks[key] = out
+        return out
 
     def margin(self, name: str, x1: float, x2: float) -> float:
         """Margin of line ``name`` at (x1, x2): >= 0 on the admissible side; NaN where no pair exists."""

@@ -8,9 +8,10 @@ from __future__ import annotations
 
 import json
 import os
-import tempfile
 
-__all__ = ["figure", "save"]
+import numpy as np
+
+__all__ = ["figure", "save", "contact_sheet"]
 
 _COLOURS = {"B1": "#b2182b", "B2": "#d6604d", "B3": "#2166ac", "B4": "#1b7837", "B5": "#5aae61",
             "B6": "#762a83", "B": "#444444"}
@@ -30,34 +31,92 @@ def _style(line):
     return dict(color="#555555", lw=0.8, ls="--")
 
 
+_METADATA = {".png": {"Software": None}, ".svg": {"Date": None}}  #: nothing that changes between runs
+LABEL_SPOTS = (0.5, 0.35, 0.65, 0.2, 0.8, 0.1, 0.9)  #: where along a line its label may go (fraction)
+LABEL_GAP = 0.06  #: labels keep this fraction of the window's diagonal from each other and the markers
+
+
+def _short(line) -> str:
+    """The on-line label: the B-code of a hard line (with its name where two lines share a code),
+    a compact name for the others."""
+    if line.hard:
+        return line.code if line.code not in ("B6", "B") else f"{line.code} {line.name.split('.')[0]}"
+    return (line.name.replace("tip_thickness.", "s_a").replace("contact_ratio_tip", "eps_tip")
+            .replace("contact_ratio", "eps").replace("center_distance", "a_w"))
+
+
+def _label_spot(comp, placed, avoid, lo, hi, gap):
+    """The point of ``comp`` (n, 2) for a label: inside the window, away from the labels already
+    ``placed`` and from the markers (``avoid``); the farthest candidate when none is far enough."""
+    inner = (comp >= lo + 0.03 * (hi - lo)).all(axis=1) & (comp <= hi - 0.03 * (hi - lo)).all(axis=1)
+    cand = comp[inner] if inner.any() else comp
+    best, best_d = None, -1.0
+    for f in LABEL_SPOTS:
+        p = cand[min(int(f * len(cand)), len(cand) - 1)]
+        others = placed + avoid
+        d = min((float(np.hypot(*(p - q))) for q in others), default=np.inf)
+        if d >= gap:
+            return p
+        if d > best_d:
+            best, best_d = p, d
+    return best
+
+
 def figure(contour, recommendation=None, marked=None):
-    """A matplotlib Figure of ``contour`` (Agg backend; nothing is shown)."""
+    """A matplotlib Figure of ``contour`` (Agg backend; nothing is shown): the window fitted, the
+    legend beside the axes, one label per line placed apart, the markers on top."""
     import matplotlib
     matplotlib.use("Agg")
     from matplotlib.figure import Figure
-    from matplotlib.patches import Polygon
+    from matplotlib.patches import Patch, PathPatch
+    from matplotlib.path import Path
 
-    fig = Figure(figsize=(7.5, 7.0), dpi=120)
-    ax = fig.add_subplot(1, 1, 1)
     x0, x1, y0, y1 = contour.window
-    for poly in contour.region:
-        ax.add_patch(Polygon(poly, closed=True, facecolor="#fde0b2", edgecolor="none", alpha=0.8, zorder=0))
+    aspect = (y1 - y0) / (x1 - x0)
+    width = 6.2
+    height = min(max(width * aspect, 3.5), 9.0)
+    fig = Figure(figsize=(width + 2.6, height + 0.9), dpi=120, layout="constrained")
+    ax = fig.add_subplot(1, 1, 1)
+    handles = []
+    if contour.region:
+        verts = np.concatenate(contour.region)
+        codes = np.concatenate([[Path.MOVETO] + [Path.LINETO] * (len(p) - 2) + [Path.CLOSEPOLY]
+                                for p in contour.region])
+        ax.add_patch(PathPatch(Path(verts, codes), facecolor="#fde0b2", edgecolor="none", alpha=0.8, zorder=0))
+        handles.append(Patch(facecolor="#fde0b2", edgecolor="none", label="admissible (check passes)"))
+    lo, hi = np.array([x0, y0]), np.array([x1, y1])
+    gap = LABEL_GAP * float(np.hypot(*(hi - lo)))
+    avoid = []
+    if recommendation is not None and recommendation.x1 is not None:
+        avoid.append(np.array([recommendation.x1, recommendation.x2]))
+    if marked is not None:
+        avoid.append(np.array([marked["x1"], marked["x2"]]))
+    placed = []
     for ln in contour.lines:
+        if not ln.components:
+            continue
         st = _style(ln)
         for k, comp in enumerate(ln.components):
-            ax.plot(comp[:, 0], comp[:, 1], zorder=2 if ln.hard else 1,
-                    label=(f"{ln.code} {ln.name}" if ln.hard else ln.name) if k == 0 else None, **st)
-            if len(comp) >= 2 and (ln.hard or ln.code == "Q"):
-                p = comp[len(comp) // 2]
-                ax.annotate(ln.code if ln.hard else ln.name.replace("tip_thickness.", "s_a").replace(
-                    "contact_ratio", "eps"), p, fontsize=7, color=st["color"], zorder=3,
-                    xytext=(3, 3), textcoords="offset points")
-    if recommendation is not None:
-        ax.plot([recommendation.x1], [recommendation.x2], marker="*", ms=14, color="#d01c8b", ls="none",
-                label=f"recommended ({recommendation.criterion})", zorder=4)
+            h, = ax.plot(comp[:, 0], comp[:, 1], zorder=2 if ln.hard else 1, **st,
+                         label=(f"{ln.code} {ln.name}" if ln.hard else ln.name) if k == 0 else None)
+            if k == 0:
+                handles.append(h)
+        if ln.hard or ln.code in ("Q", "C"):
+            comp = max(ln.components, key=len)
+            p = _label_spot(comp, placed, avoid, lo, hi, gap)
+            placed.append(p)
+            ax.annotate(_short(ln), p, fontsize=7, color=st["color"], zorder=3, ha="center", va="center",
+                        bbox=dict(boxstyle="round,pad=0.15", fc="white", ec="none", alpha=0.75))
+    if recommendation is not None and recommendation.x1 is not None:
+        h, = ax.plot([recommendation.x1], [recommendation.x2], marker="*", ms=16, color="#d01c8b", mec="white",
+                     mew=0.8, ls="none", zorder=10,
+                     label=f"recommended ({recommendation.criterion})" + ("" if recommendation.passes
+                                                                          else ", fails the check"))
+        handles.append(h)
     if marked is not None:
-        ax.plot([marked["x1"]], [marked["x2"]], marker="o", ms=8, mfc="none", mec="k", mew=1.5, ls="none",
-                label="design point (%s)" % ("inside" if marked["inside"] else "outside"), zorder=4)
+        h, = ax.plot([marked["x1"]], [marked["x2"]], marker="o", ms=9, mfc="none", mec="k", mew=1.8, ls="none",
+                     zorder=11, label="design point (%s)" % ("inside" if marked["inside"] else "outside"))
+        handles.append(h)
     t = contour.field.template
     kind = "internal" if contour.field.internal else "external"
     ax.set_title(f"Blocking contour: {kind} pair z1 = {t.teeth1}, z2 = {t.teeth2}, alpha_n = {t.alpha_n_deg:g} deg, "
@@ -68,29 +127,95 @@ def figure(contour, recommendation=None, marked=None):
     ax.set_ylabel("x2 (%s shift)" % ("ring" if contour.field.internal else "wheel"))
     ax.grid(True, lw=0.3, color="#cccccc")
     ax.set_aspect("equal", adjustable="box")
-    ax.legend(fontsize=6, loc="upper right", framealpha=0.9)
-    fig.tight_layout()
+    fig.legend(handles=handles, loc="outside right upper", fontsize=7, frameon=False)
     return fig
 
 
 def save(contour, path, recommendation=None, marked=None) -> None:
     """Write ``path`` (.png, .svg or .json) atomically: a temporary file in the same folder, renamed."""
     from gearkit.errors import SpecError
+    from gearkit.export import atomic_write
 
     path = os.fspath(path)
     ext = os.path.splitext(path)[1].lower()
     if ext not in (".png", ".svg", ".json"):
         raise SpecError("output", f"{path!r}: the file name must end in .png, .svg or .json")
-    folder = os.path.dirname(os.path.abspath(path))
-    fd, tmp = tempfile.mkstemp(suffix=ext, prefix=".gearkit-", dir=folder)
-    try:
-        with os.fdopen(fd, "wb") as fh:
+
+    def write(tmp):
+        with open(tmp, "wb") as fh:
             if ext == ".json":
                 fh.write(json.dumps(contour.to_dict(recommendation, marked), indent=1, allow_nan=False).encode())
             else:
-                figure(contour, recommendation, marked).savefig(fh, format=ext[1:])
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
+                figure(contour, recommendation, marked).savefig(fh, format=ext[1:], bbox_inches="tight",
+                                                                metadata=_METADATA[ext])
+    atomic_write(path, write)
+
+
+SHEET_CELL = 0.62  #: inches per cell of the contact sheet
+
+
+def contact_sheet(records, z1s, z2s, path, template) -> None:
+    """The atlas' contact sheet (PNG, atomically): one square per (z1, z2), its admissible region
+    (each cell scaled to its own window) and the recommended point; a cross where no pair exists."""
+    import matplotlib
+    matplotlib.use("Agg")
+    from matplotlib.figure import Figure
+    from matplotlib.patches import PathPatch
+    from matplotlib.path import Path
+
+    from gearkit.export import atomic_write
+
+    col = {z: i for i, z in enumerate(z1s)}
+    row = {z: j for j, z in enumerate(z2s)}
+    verts, codes, stars, crosses, empties = [], [], [], [], []
+    pad = 0.06
+    for rec in records:
+        i, j = col[rec["z1"]], row[rec["z2"]]
+        if "error" in rec:
+            crosses.append((i + 0.5, j + 0.5))
+            continue
+        c = rec["contour"]
+        x0, x1, y0, y1 = c["window"]
+
+        def to_cell(p):
+            p = np.asarray(p, dtype=float)
+            return np.column_stack([i + pad + (1 - 2 * pad) * (p[:, 0] - x0) / (x1 - x0),
+                                    j + pad + (1 - 2 * pad) * (p[:, 1] - y0) / (y1 - y0)])
+        polys = c["region"]["polygons"]
+        if not polys:
+            empties.append((i + 0.5, j + 0.5))
+        for poly in polys:
+            q = to_cell(poly)
+            verts.append(q)
+            codes.append([Path.MOVETO] + [Path.LINETO] * (len(q) - 2) + [Path.CLOSEPOLY])
+        r = c.get("recommendation") or {}
+        if r.get("x1") is not None and r.get("passes"):
+            stars.append(to_cell([[r["x1"], r["x2"]]])[0])
+    n1, n2 = len(z1s), len(z2s)
+    fig = Figure(figsize=(1.2 + SHEET_CELL * n1, 1.0 + SHEET_CELL * n2), dpi=100, layout="constrained")
+    ax = fig.add_subplot(1, 1, 1)
+    for i in range(n1 + 1):
+        ax.axvline(i, color="#bbbbbb", lw=0.5)
+    for j in range(n2 + 1):
+        ax.axhline(j, color="#bbbbbb", lw=0.5)
+    if verts:
+        ax.add_patch(PathPatch(Path(np.concatenate(verts), np.concatenate(codes)), facecolor="#f4a582",
+                               edgecolor="#b2182b", lw=0.4))
+    if stars:
+        s = np.array(stars)
+        ax.plot(s[:, 0], s[:, 1], "*", color="#d01c8b", ms=4, zorder=5)
+    for x, y in crosses:
+        ax.plot([x], [y], "x", color="#999999", ms=5)
+    for x, y in empties:
+        ax.text(x, y, "empty", ha="center", va="center", fontsize=5, color="#b2182b")
+    ax.set_xlim(0, n1)
+    ax.set_ylim(0, n2)
+    ax.set_xticks(np.arange(n1) + 0.5, [str(z) for z in z1s], fontsize=7)
+    ax.set_yticks(np.arange(n2) + 0.5, [str(z) for z in z2s], fontsize=7)
+    ax.tick_params(length=0)
+    ax.set_aspect("equal")
+    ax.set_xlabel("z1 (pinion teeth)")
+    ax.set_ylabel("z2 (%s teeth)" % ("ring" if template.kind == "internal" else "wheel"))
+    ax.set_title(f"Blocking atlas ({template.kind}, alpha_n = {template.alpha_n_deg:g} deg): admissible "
+                 "region of each pair in its own window, star = recommended", fontsize=8)
+    atomic_write(path, lambda tmp: fig.savefig(tmp, format="png", metadata=_METADATA[".png"]))

@@ -13,8 +13,8 @@ import sys
 from gearkit.errors import GearkitError
 
 #: command modules, in the order ``gearkit --help`` lists them
-COMMANDS = ("demo", "gear", "rack", "check", "pair", "bench", "novikov", "blocking", "cycloid", "contact", "view",
-            "cam", "scene", "planetary")
+COMMANDS = ("demo", "gear", "rack", "check", "pair", "bench", "novikov", "blocking", "atlas", "cycloid", "contact",
+            "view", "cam", "scene", "planetary")
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -2,7 +2,7 @@
 
 Usage::
 
-    gearkit blocking --z1 13 --z2 16 [--rack iso53a] [--helix-angle-deg 0]
+    gearkit blocking --z1 13 --z2 16 [--rack iso53a] [--helix-angle-deg 0] [--tol 1e-4]
                      [--internal --cutter-teeth 20] [--mark 0.5,0.3] [-o contour.png|.svg|.json|page.html] [--json]
 
 Exit status: 0 (1 when ``--mark`` is outside the region), 2 for bad input.
@@ -28,20 +28,14 @@ def register(subparsers) -> None:
     g = p.add_argument_group("pair")
     g.add_argument("--z1", type=int, required=True, help="pinion teeth")
     g.add_argument("--z2", type=int, required=True, help="wheel (or ring) teeth")
-    g.add_argument("-m", "--module", type=float, default=1.0, help="normal module m_n, mm (default 1)")
-    g.add_argument("--pressure-angle-deg", type=float, help="normal pressure angle, degrees (default 20)")
-    g.add_argument("--helix-angle-deg", type=float, default=0.0, help="helix angle beta, degrees")
-    g.add_argument("--internal", action="store_true", help="pinion inside a ring (needs --cutter-teeth)")
-    g.add_argument("--addendum", type=float, default=1.0, help="addendum coefficient h_a* (default 1)")
-    t = p.add_argument_group("tools")
-    t.add_argument("--rack", choices=("iso53a", "iso53b", "iso53c", "iso53d"), help="ISO 53 basic rack")
-    t.add_argument("--cutter-teeth", type=int, help="teeth z0 of the shaper cutter that cuts the ring")
-    t.add_argument("--cutter-addendum", type=float, default=1.25, help="the shaper's addendum h_a0* (default 1.25)")
-    t.add_argument("--pinion-cutter-teeth", type=int, help="cut the pinion with a shaper of this many teeth")
+    add_template_arguments(p, g)
     c = p.add_argument_group("contour")
     c.add_argument("--window", help="x1_lo,x1_hi,x2_lo,x2_hi (default: from the undercut and pointing limits)")
-    c.add_argument("--xtol", type=float, default=1e-6, help="accuracy in x of the traced lines (default 1e-6)")
-    c.add_argument("--points", type=int, default=200, help="tracing step = window diagonal / points (default 200)")
+    c.add_argument("--tol", type=float, help="accuracy of the traced lines and the region, shift units: every "
+                   "point within tol of the exact line (default 1e-4; allowed 1e-12 .. 1e-2)")
+    c.add_argument("--xtol", type=float, help="deprecated: the old name of --tol")
+    c.add_argument("--points", type=int, help="also cap the chords at window diagonal / points (smoother "
+                   "pictures at coarse tolerances)")
     c.add_argument("--criterion", choices=("balanced", "strength", "center_distance"), default="balanced",
                    help="recommendation criterion (default balanced: equal sliding, s_a >= 0.25 m, eps >= 1.2)")
     c.add_argument("--center-distance", type=float, help="mm: draw a_w = const and use it with "
@@ -54,6 +48,32 @@ def register(subparsers) -> None:
     p.set_defaults(run=run)
 
 
+def add_template_arguments(p, g) -> None:
+    """The pair options but the tooth numbers (``gearkit blocking`` and ``gearkit atlas``)."""
+    g.add_argument("-m", "--module", type=float, default=1.0, help="normal module m_n, mm (default 1)")
+    g.add_argument("--pressure-angle-deg", type=float, help="normal pressure angle, degrees (default 20)")
+    g.add_argument("--helix-angle-deg", type=float, default=0.0, help="helix angle beta, degrees")
+    g.add_argument("--internal", action="store_true", help="pinion inside a ring (needs --cutter-teeth)")
+    g.add_argument("--addendum", type=float, default=1.0, help="addendum coefficient h_a* (default 1)")
+    t = p.add_argument_group("tools")
+    t.add_argument("--rack", choices=("iso53a", "iso53b", "iso53c", "iso53d"), help="ISO 53 basic rack")
+    t.add_argument("--cutter-teeth", type=int, help="teeth z0 of the shaper cutter that cuts the ring")
+    t.add_argument("--cutter-addendum", type=float, default=1.25, help="the shaper's addendum h_a0* (default 1.25)")
+    t.add_argument("--pinion-cutter-teeth", type=int, help="cut the pinion with a shaper of this many teeth")
+
+
+def tol_from_args(args, command: str = "blocking"):
+    """``--tol``, or its deprecated name ``--xtol`` (with a note on stderr); None: the default."""
+    tol = args.tol
+    if getattr(args, "xtol", None) is not None:
+        print(f"gearkit {command}: --xtol is deprecated, use --tol (the same value, in shift units)",
+              file=sys.stderr)
+        if tol is not None:
+            raise SpecError("--tol", "give --tol or its deprecated name --xtol, not both")
+        tol = args.xtol
+    return tol
+
+
 def _floats(text, n, flag):
     try:
         vals = [float(v) for v in text.split(",")]
@@ -64,7 +84,8 @@ def _floats(text, n, flag):
     return vals
 
 
-def _spec(args):
+def template_spec(args, z1: int, z2: int):
+    """The PairSpec of the template options with tooth numbers z1, z2."""
     from gearkit.pair import PairSpec
     from gearkit.families.involute import BasicRack, ShaperCutter
 
@@ -80,7 +101,7 @@ def _spec(args):
         tool2 = ShaperCutter(args.cutter_teeth, rack.pressure_angle_deg, 0.0, args.cutter_addendum)
     elif args.cutter_teeth is not None:
         raise SpecError("--cutter-teeth", "applies to internal pairs (use --pinion-cutter-teeth)")
-    return PairSpec(args.z1, args.z2, args.module, kind="internal" if args.internal else "external",
+    return PairSpec(z1, z2, args.module, kind="internal" if args.internal else "external",
                     pressure_angle_deg=alpha, helix_angle_deg=args.helix_angle_deg, tool1=tool1, tool2=tool2,
                     addendum=args.addendum)
 
@@ -88,13 +109,12 @@ def _spec(args):
 def run(args) -> int:
     from gearkit.blocking import blocking_contour
 
-    spec = _spec(args)
+    spec = template_spec(args, args.z1, args.z2)
     window = _floats(args.window, 4, "--window") if args.window else None
     cds = (args.center_distance,) if args.center_distance else ()
-    contour = blocking_contour(spec, window=window, xtol=args.xtol, points=args.points, center_distances=cds)
-    rec = None
-    if not contour.empty:
-        rec = contour.recommend(args.criterion, args.center_distance)
+    tol = tol_from_args(args)
+    contour = blocking_contour(spec, window=window, tol=tol, points=args.points, center_distances=cds)
+    rec = contour.recommend(args.criterion, args.center_distance)
     marked = None
     if args.mark:
         x1, x2 = _floats(args.mark, 2, "--mark")
@@ -102,7 +122,7 @@ def run(args) -> int:
     if args.output and str(args.output).lower().endswith((".html", ".htm")):
         from gearkit.view import blocking_view, write_page
 
-        write_page(args.output, blocking_view(spec, contour, rec, marked))
+        write_page(args.output, blocking_view(spec, contour, rec if rec.x1 is not None else None, marked))
     elif args.output:
         contour.save(args.output, rec, marked)
     if args.json:
@@ -117,7 +137,7 @@ def format_summary(contour, rec, marked, output=None) -> str:
     w = contour.window
     out = [f"gearkit blocking: {t.kind} pair z1 = {t.teeth1}, z2 = {t.teeth2}, alpha_n = {t.alpha_n_deg:g} deg, "
            f"beta = {t.helix_angle_deg:g} deg; window x1 [{w[0]:.3f}, {w[1]:.3f}], x2 [{w[2]:.3f}, {w[3]:.3f}]; "
-           f"lines to {contour.xtol:g} in x; {contour.seconds:.2f} s", "", "  code  line                        vertices"]
+           f"lines to tol {contour.tol:g}; {contour.seconds:.2f} s", "", "  code  line                        vertices"]
     for ln in contour.lines:
         n = sum(len(c) for c in ln.components)
         out.append(f"  {ln.code:<5} {ln.name:<27} {n:>6}" + ("" if n else "   (not in the window)"))
@@ -125,10 +145,11 @@ def format_summary(contour, rec, marked, output=None) -> str:
     if contour.empty:
         out.append(f"region: EMPTY -- {contour.empty_reason}")
     else:
-        area = contour.area
-        out.append(f"region: {len(contour.region)} polygon(s), area {area:.4f}")
-    if rec is not None:
+        out.append(f"region: {len(contour.region)} polygon(s), area {contour.area:.4f}")
+    if rec is not None and rec.passes:
         out.append(f"recommended: x1 = {rec.x1:.4f}, x2 = {rec.x2:.4f} -- {rec.reason}")
+    elif rec is not None:
+        out.append(rec.reason)
     if marked is not None:
         verdict = "inside" if marked["inside"] else "OUTSIDE"
         why = ", ".join(marked["binding"]) or "none"

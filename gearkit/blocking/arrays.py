@@ -1,0 +1,385 @@
+"""The pair formulas as arrays: every margin of a blocking contour at many shift pairs at once.
+
+:func:`~gearkit.pair.pair_geometry` derives one pair per call (about 100 µs of Python); a contour
+asks for tens of thousands of points. :func:`margins` evaluates the same closed forms (tight mesh,
+tips by the template's ``tip_rule``) with numpy over arrays ``x1``, ``x2`` in one pass, and returns
+the margins :class:`~gearkit.blocking.field.PairField` defines (the same names, units and signs).
+Where no pair exists (the scalar formulas raise a :class:`~gearkit.errors.SpecError`) the margins
+are NaN. The scalar path stays the reference: the tests hold the two equal at random points.
+
+The form circles are those the check reads off the generated gears: the closed form where a gear
+is not undercut, and for an undercut gear the field's interpolant of the generated ones
+(:meth:`~gearkit.blocking.field.PairField.form_interpolant`).
+
+>>> import numpy as np
+>>> from gearkit.blocking.field import PairField
+>>> from gearkit.pair import PairSpec
+>>> f = PairField(PairSpec(20, 40, 1.0))
+>>> m = margins(f, np.array([0.0, 0.5]), np.array([0.0, 0.2]), ["contact_ratio=1"])
+>>> np.round(m["contact_ratio=1"], 4)
+array([0.6352, 0.4277])
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from gearkit.curves import inv
+from gearkit.families.involute.tools import BasicRack
+
+__all__ = ["margins", "hard_margin", "evaluator", "sliding_ends"]
+
+PLUNGE_SAMPLES = 97  #: samples of the plunge-trimming gap (over a quarter wave of the shaper's corner: at
+#: most two extrema), then Newton on the derivative from the smallest; the check samples 801
+NEWTON = 12  #: most Newton steps of the inverse involute (quadratic from the start: 4 to 6 suffice)
+
+
+def _inv_inverse(v):
+    """The angle ``a`` with ``inv a = v`` (v > 0), arrays: Newton from the right of the root, where
+    ``inv`` is convex (the iterates fall monotonically), stopping at round-off."""
+    a = np.minimum(np.cbrt(3.0 * v), np.arctan(v + np.pi / 2.0))
+    for _ in range(NEWTON):
+        t = np.tan(a)
+        step = (inv(a) - v) / (t * t)
+        a = a - step
+        if not np.any(np.abs(step) > 4e-15 * a):
+            break
+    return a
+
+
+def _gear(sec, z, x, tool, internal):
+    """Per-gear closed forms at shifts ``x`` (array): (Delta, r_f, rho_l, a_0 or None), NaN where no mesh."""
+    mt, mn = sec.mt, sec.mn
+    if isinstance(tool, BasicRack):
+        r = z * mt / 2
+        s = math.sin(sec.alpha_t)
+        delta = 2 * x * math.tan(sec.alpha_n)
+        rf = r + (x - tool.dedendum) * mn
+        rho = r * s - (tool.straight_height - x) * mn / s
+        return delta, rf, rho, None
+    z0 = tool.teeth
+    sign = -1 if internal else 1
+    a0 = mt * (z + sign * z0) / 2 + x * mn
+    rb = z * mt * math.cos(sec.alpha_t) / 2
+    rb0 = z0 * mt * math.cos(sec.alpha_t) / 2
+    ra0 = z0 * mt / 2 + (tool.shift + tool.addendum) * mn
+    rho_t = tool.tip_radius * mn
+    roll_c = rho_t + math.sqrt(max((ra0 - rho_t) ** 2 - rb0 ** 2, 0.0))
+    rc0 = math.hypot(rb0, roll_c)
+    ok = a0 > abs(rb + sign * rb0)
+    a0 = np.where(ok, a0, np.nan)
+    with np.errstate(invalid="ignore"):
+        alpha_c = np.arccos((rb + sign * rb0) / a0)
+    d0 = 2 * tool.shift * math.tan(sec.alpha_n)
+    if internal:
+        delta = (z - z0) * (inv(sec.alpha_t) - inv(alpha_c)) - d0
+    else:
+        delta = (z + z0) * (inv(alpha_c) - inv(sec.alpha_t)) - d0
+    rf = a0 + ra0 if internal else a0 - ra0
+    cutter_roll = math.sqrt(max(rc0 ** 2 - rb0 ** 2, 0.0))
+    along = a0 * np.sin(alpha_c)
+    rho = along + cutter_roll if internal else along - cutter_roll
+    return delta, rf, rho, a0
+
+
+def _half(sec, z, delta, radius, internal):
+    """Half angular tooth thickness at ``radius`` (textbook 3.83), arrays."""
+    rb = z * sec.mt * math.cos(sec.alpha_t) / 2
+    ay = np.arccos(np.clip(rb / radius, -1.0, 1.0))
+    sign = -1.0 if internal else 1.0
+    return (math.pi / 2 + delta) / z + sign * (inv(sec.alpha_t) - inv(ay))
+
+
+def _form_roll(field, which, x, rho_l, rb):
+    """Roll length of the form circle (mm) of gear ``which`` at shifts ``x``: generated where undercut."""
+    rho = np.maximum(rho_l, 0.0)
+    if which == 2 and field.internal:
+        return rho
+    under = rho_l < 0
+    if not under.any():
+        return rho
+    rho = rho.copy()
+    fit = field.form_interpolant(which) if field.x_ranges is not None else None
+    idx = np.flatnonzero(under)
+    xs = x[idx]
+    d = np.full(xs.shape, np.nan)
+    if fit is not None:
+        inside = (xs >= fit[0]) & (xs <= field.x_min[which - 1])
+        d[inside] = fit[3](xs[inside])
+        inside |= xs < fit[4]  # below the shifts where the generated gear has a tooth: NaN
+    else:
+        inside = np.zeros(xs.shape, bool)
+    for k in np.flatnonzero(~inside):  # outside the interpolant: the generated gear itself
+        d[k] = field.form_diameter(which, float(xs[k]), exact=True)
+    with np.errstate(invalid="ignore"):
+        rho[idx] = np.sqrt(np.maximum((d / 2) ** 2 - rb ** 2, 0.0))
+    return rho
+
+
+class _Pair:
+    """The tight-mesh pair geometry at arrays of shifts (transverse section, mm)."""
+
+    def __init__(self, field, x1, x2):
+        t = field.template
+        sec = field._sec
+        self.field, self.sec = field, sec
+        self.internal = internal = field.internal
+        mn, mt, at = sec.mn, sec.mt, sec.alpha_t
+        tool1, tool2 = field._tools
+        z1, z2 = t.teeth1, t.teeth2
+        self.x1, self.x2 = x1, x2
+        self.z1, self.z2 = z1, z2
+        r1, r2 = z1 * mt / 2, z2 * mt / 2
+        rb1, rb2 = r1 * math.cos(at), r2 * math.cos(at)
+        self.r1, self.r2, self.rb1, self.rb2 = r1, r2, rb1, rb2
+        d1, rf1, rho_l1, _ = _gear(sec, z1, x1, tool1, False)
+        d2, rf2, rho_l2, a02 = _gear(sec, z2, x2, tool2, internal)
+        self.a02 = a02
+        with np.errstate(invalid="ignore", divide="ignore"):
+            if internal:
+                value = inv(at) - (d1 + d2) / (z2 - z1)
+                base, a_ref, x_sum = rb2 - rb1, r2 - r1, x2 - x1
+            else:
+                value = inv(at) + (d1 + d2) / (z1 + z2)
+                base, a_ref, x_sum = rb1 + rb2, r1 + r2, x1 + x2
+            bad = ~(value > 1e-9)
+            alpha_tight = _inv_inverse(np.where(bad, 1.0, value))
+            a_w = np.where(bad, np.nan, base / np.cos(alpha_tight))
+            bad |= ~(a_w > base * (1 + 1e-12))
+            a_w = np.where(bad, np.nan, a_w)
+            alpha_w = np.arccos(base / a_w)
+            y = (a_w - a_ref) / mn
+            dy = y - x_sum if internal else x_sum - y
+            cut = dy if t.tip_rule == "shortened" else 0.0
+            ha = t.addendum
+            ra1 = r1 + mn * (ha + x1 - cut)
+            ra2 = r2 - mn * (ha - x2 - cut) if internal else r2 + mn * (ha + x2 - cut)
+            bad |= ~(ra1 > rb1)
+            bad |= ~(ra2 < rf2) if internal else ~(ra2 > rb2)
+            self.bad = bad | np.isnan(d1) | np.isnan(d2)
+            rhoF1 = _form_roll(field, 1, x1, rho_l1, rb1)
+            rhoF2 = _form_roll(field, 2, x2, rho_l2, rb2)
+            self.bad |= np.isnan(rhoF1) | np.isnan(rhoF2)
+            g_line = a_w * np.sin(alpha_w)
+            u_c = rb1 * np.tan(alpha_w)
+            u_e = np.sqrt(ra1 ** 2 - rb1 ** 2)
+            if internal:
+                nu = np.sqrt(a02 ** 2 + 2 * rb2 * (tool2.teeth * mt * math.cos(at) / 2)
+                             - (tool2.teeth * mt * math.cos(at) / 2) ** 2)
+                inner2 = np.maximum(np.maximum(ra2, rb2), nu)
+                u_a = -g_line + np.sqrt(np.maximum(ra2, rb2) ** 2 - rb2 ** 2)
+                u_lo2 = -g_line + np.sqrt(inner2 ** 2 - rb2 ** 2)
+                u_hi = rhoF2 - g_line
+                lo = np.maximum(np.maximum(u_a, rhoF1), u_lo2)
+                self.nu = nu
+            else:
+                u_a = g_line - np.sqrt(ra2 ** 2 - rb2 ** 2)
+                u_hi = g_line - rhoF2
+                lo = np.maximum(u_a, rhoF1)
+            hi = np.minimum(u_e, u_hi)
+            p_bt = math.pi * mt * math.cos(at)
+            self.eps = np.maximum(hi - lo, 0.0) / p_bt
+            self.eps_nominal = (u_e - u_a) / p_bt
+            self.u_a, self.u_e, self.rhoF1, self.u_hi = u_a, u_e, rhoF1, u_hi
+            self.lo, self.hi, self.g_line = lo, hi, g_line
+            if internal:
+                self.clear = (rf2 - a_w - ra1, ra2 - a_w - rf1)
+            else:
+                self.clear = (a_w - ra1 - rf2, a_w - ra2 - rf1)
+            t1 = d1 - t.thinning1 / mn
+            t2 = d2 - t.thinning2 / mn
+            rw1 = rb1 / np.cos(alpha_w)
+            k = 2 * (inv(at) - inv(alpha_w))
+            psi1 = (math.pi + 2 * t1) / z1 + k
+            if internal:
+                eta2 = (math.pi - 2 * t2) / z2 + k
+                self.backlash = rw1 * (z2 / z1 * eta2 - psi1)
+            else:
+                psi2 = (math.pi + 2 * t2) / z2 + k
+                self.backlash = rw1 * (2 * math.pi / z1 - psi1 - z2 / z1 * psi2)
+        self.a_w, self.alpha_w, self.ra1, self.ra2, self.rf1, self.rf2 = a_w, alpha_w, ra1, ra2, rf1, rf2
+        self.t1, self.t2 = t1, t2
+        self._tips = None
+
+    def tip_thickness(self, which):
+        """Normal tip thickness s_an (mm) of gear ``which``."""
+        sec = self.sec
+        z, t, ra, r, rb = ((self.z1, self.t1, self.ra1, self.r1, self.rb1) if which == 1 else
+                           (self.z2, self.t2, self.ra2, self.r2, self.rb2))
+        internal = self.internal and which == 2
+        with np.errstate(invalid="ignore"):
+            rr = np.maximum(ra, rb)
+            s_at = 2 * rr * _half(sec, z, t, rr, internal)
+            beta_a = np.arctan(math.tan(sec.beta) * ra / r)
+            return s_at * np.cos(beta_a)
+
+    def sliding(self):
+        """|zeta1| at the start of the real path minus |zeta2| at its end."""
+        z1, z2 = self.sliding_ends()
+        return z1 - z2
+
+    def sliding_ends(self):
+        """(|zeta1| at the start of the real path, |zeta2| at its end)."""
+        ratio = self.z2 / self.z1
+        with np.errstate(invalid="ignore", divide="ignore"):
+            u0, u1 = self.lo, self.hi
+            rho0 = u0 + self.g_line if self.internal else self.g_line - u0
+            rho1 = u1 + self.g_line if self.internal else self.g_line - u1
+            z1 = 1.0 - rho0 / (ratio * u0)
+            z2 = 1.0 - ratio * u1 / rho1
+            return np.abs(z1), np.abs(z2)
+
+    def exit_jamming(self):
+        """:func:`~gearkit.pair.internal.exit_jamming_margin`, arrays (rad)."""
+        a, ra1 = self.a_w, self.ra1
+        ra2 = np.maximum(self.ra2, self.rb2)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            c1 = (ra2 ** 2 - ra1 ** 2 - a ** 2) / (2 * a * ra1)
+            c2 = (ra2 ** 2 - ra1 ** 2 + a ** 2) / (2 * a * ra2)
+            d1 = np.arccos(np.clip(c1, -1.0, 1.0))
+            d2 = np.arccos(np.clip(c2, -1.0, 1.0))
+            aa1 = np.arccos(self.rb1 / ra1)
+            aa2 = np.arccos(self.rb2 / ra2)
+            out = (self.z1 * (inv(aa1) + d1) + (self.z2 - self.z1) * inv(self.alpha_w)
+                   - self.z2 * (inv(aa2) + d2))
+        return np.where(ra2 >= ra1 + a, np.inf, out)
+
+    def plunge_gap(self, sel=None):
+        """min (X2 - X0) of :func:`~gearkit.pair.internal.plunge_trimming` (mm) at the points ``sel``:
+        ``PLUNGE_SAMPLES`` samples, then Newton on the derivative from the smallest one (to round-off)."""
+        sec = self.sec
+        cutter = self.field._tools[1]
+        z2, z0 = self.z2, cutter.teeth
+        r2 = np.maximum(self.ra2, self.rb2)
+        t2 = self.t2
+        if sel is not None:
+            r2, t2 = r2[sel], np.asarray(t2)[sel]
+        with np.errstate(invalid="ignore"):
+            d2 = math.pi / z2 - _half(sec, z2, t2, r2, True)
+        ra0 = z0 * sec.mt / 2 + (cutter.shift + cutter.addendum) * sec.mn
+        d0 = float(_half(sec, z0, np.float64(2 * cutter.shift * math.tan(sec.alpha_n)), np.float64(ra0), False))
+        k = z2 / z0
+        hi = math.pi / (2 * k)
+        phi = np.linspace(0.0, hi, PLUNGE_SAMPLES)
+        r2c, d2c = r2[:, None], d2[:, None]
+        vals = r2c * np.sin(phi[None] + d2c) - ra0 * np.sin(k * phi[None] + d0)
+        vals = np.where(np.isnan(vals), np.inf, vals)
+        i = np.argmin(vals, axis=1)
+        best = vals[np.arange(len(i)), i]
+        p = phi[i]
+        lo_b, hi_b = phi[np.maximum(i - 1, 0)], phi[np.minimum(i + 1, PLUNGE_SAMPLES - 1)]
+        for _ in range(12):
+            g1 = r2 * np.cos(p + d2) - ra0 * k * np.cos(k * p + d0)
+            g2 = -r2 * np.sin(p + d2) + ra0 * k * k * np.sin(k * p + d0)
+            with np.errstate(invalid="ignore", divide="ignore"):
+                p = np.clip(np.where(g2 > 0, p - g1 / g2, p), lo_b, hi_b)
+        val = r2 * np.sin(p + d2) - ra0 * np.sin(k * p + d0)
+        return np.where(val < best, val, best)
+
+
+    def margin(self, name, sel=None):
+        """Margin ``name`` (see :func:`margins`) at the points ``sel`` (indices; None: all)."""
+        field = self.field
+        mn = field.module
+        tol = 1e-9 * mn
+        base, _, level = name.partition("=")
+        pick = (lambda a: a) if sel is None else (lambda a: np.asarray(a)[sel])
+        if base.startswith("undercut."):
+            i = int(base[-1])
+            return pick((self.x1, self.x2)[i - 1] - field.x_min[i - 1])
+        if base == "interference.1":
+            v = (self.u_a - self.rhoF1 + tol) / mn
+        elif base == "interference.2":
+            v = (self.u_hi - self.u_e + tol) / mn
+        elif base in ("pointing.1", "pointing.2"):
+            s = self.tip_thickness(int(base[-1]))
+            v = np.where(s == 0, -5e-324, s) / mn
+        elif base in ("tip_clearance.1", "tip_clearance.2"):
+            v = self.clear[int(base[-1]) - 1] / mn
+        elif name == "contact_ratio=1":
+            v = self.eps - 1.0
+        elif base == "contact_ratio":
+            v = self.eps - float(level)
+        elif base == "contact_ratio_tip":
+            v = self.eps_nominal - float(level)
+        elif base.startswith("tip_thickness."):
+            v = self.tip_thickness(int(base[-1])) / mn - float(level)
+        elif base == "sliding":
+            v = self.sliding()
+        elif base == "exit_jamming":
+            v = self.exit_jamming()
+        elif base == "trimming.plunge":
+            gap = self.plunge_gap(sel) / mn
+            v = np.where(gap > 0, gap, np.minimum(gap, -5e-324))
+            return np.where(pick(self.bad), np.nan, v)
+        elif base == "trimming.nu":
+            v = (self.ra2 - self.nu) / mn
+        elif base == "center_distance":
+            v = (self.a_w - float(level)) / mn
+        elif base == "backlash":
+            v = (self.backlash + tol) / mn
+        else:
+            raise KeyError(name)
+        return np.where(pick(self.bad), np.nan, pick(v))
+
+
+def _points(x1, x2):
+    x1 = np.atleast_1d(np.asarray(x1, dtype=float))
+    x2 = np.atleast_1d(np.asarray(x2, dtype=float))
+    x1, x2 = np.broadcast_arrays(x1, x2)
+    return x1.ravel().copy(), x2.ravel().copy()
+
+
+def margins(field, x1, x2, names) -> dict:
+    """Margins ``names`` of ``field`` at the shift pairs ``(x1[i], x2[i])``: name -> (n,) float64, NaN
+    where no pair exists (see :meth:`~gearkit.blocking.field.PairField.margin` for names and units)."""
+    g = _Pair(field, *_points(x1, x2))
+    return {name: g.margin(name) for name in names}
+
+
+def sliding_ends(field, x1, x2):
+    """(|zeta1| at the start, |zeta2| at the end of the real path, eps_alpha) at the points, arrays."""
+    g = _Pair(field, *_points(x1, x2))
+    z1, z2 = g.sliding_ends()
+    bad = g.bad
+    return np.where(bad, np.nan, z1), np.where(bad, np.nan, z2), np.where(bad, np.nan, g.eps)
+
+
+def hard_margin(field, x1, x2, names=None):
+    """The smallest hard margin at each point, NaN where no pair exists."""
+    return evaluator(field, ["region"], None)(np.column_stack(_points(x1, x2)), np.zeros(np.size(x1), int))
+
+
+def evaluator(field, names, window):
+    """``F(points (n, 2), which (n,) int) -> (n,)``: margin ``names[which[i]]`` at ``points[i]``, all
+    from one evaluation of the pair formulas. The name ``"region"`` is the smallest hard margin
+    and, with a ``window``, the distances to its edges (-1 where no pair exists:
+    the function of :mod:`gearkit.blocking.region`)."""
+    hard = list(field.hard)  # not the backlash: zero at the tight mesh by construction (the check
+    # forgives 1e-9 m_n of round-off); a plateau at 1e-9 would hide the region's real edges
+
+    def F(p, which):
+        p = np.asarray(p, dtype=float).reshape(-1, 2)
+        which = np.asarray(which)
+        g = _Pair(field, p[:, 0].copy(), p[:, 1].copy())
+        out = np.empty(len(p))
+        for u in np.unique(which):
+            sel = np.flatnonzero(which == u)
+            name = names[u]
+            if name != "region":
+                out[sel] = g.margin(name, sel)
+                continue
+            with np.errstate(invalid="ignore"):
+                m = np.minimum.reduce([g.margin(n, sel) for n in hard])
+            if window is None:
+                out[sel] = m
+                continue
+            q = p[sel]
+            w = np.minimum(np.minimum(q[:, 0] - window[0], window[1] - q[:, 0]),
+                           np.minimum(q[:, 1] - window[2], window[3] - q[:, 1]))
+            with np.errstate(invalid="ignore"):
+                v = np.minimum(w, m)
+            out[sel] = np.where(np.isnan(v), np.minimum(w, -1.0), v)
+        return out
+    return F

@@ -1,0 +1,98 @@
+"""``gearkit atlas``: blocking contours of every pair of a grid of tooth numbers, as a dataset.
+
+Usage::
+
+    gearkit atlas --z1 10:100:10 --z2 10:100:10 [--criterion balanced] [--tol 1e-4] [-o DIR]
+                  [--workers 2 | --scheduler tcp://host:8786] [--internal --cutter-teeth 20] [--json]
+
+Writes ``DIR/cells/z1-010_z2-020.json`` (one contour and recommendation per cell),
+``DIR/index.json`` (a summary row per cell) and the contact sheet ``DIR/atlas.png``. Cells already in
+``DIR`` are kept (an interrupted run resumes); the same input writes identical files.
+
+Exit status: 0 ok, 2 bad input or I/O, 130 interrupted.
+"""
+from __future__ import annotations
+
+import json
+import sys
+
+from gearkit.errors import SpecError
+
+RANGE_MAX = 400  #: largest tooth number of an atlas axis
+
+
+def register(subparsers) -> None:
+    from gearkit.cli.blocking import add_template_arguments
+
+    p = subparsers.add_parser(
+        "atlas", help="blocking contours of a grid of tooth numbers: a dataset, an index and a contact sheet",
+        description="Compute the blocking contour and the recommended shifts of every pair (z1, z2) of a grid "
+                    "and write them as a dataset: one JSON file per cell, index.json, and the contact sheet "
+                    "atlas.png. Resumable (cells on disk are kept) and deterministic. Runs on a local process "
+                    "pool, or on a Dask cluster with --scheduler (needs gearkit[dask]).",
+        epilog="Exit status: 0 ok, 2 bad input or I/O, 130 interrupted.")
+    g = p.add_argument_group("pairs")
+    g.add_argument("--z1", required=True, help="pinion teeth: START:STOP:STEP (STOP included) or a,b,c")
+    g.add_argument("--z2", required=True, help="wheel (ring) teeth: START:STOP:STEP or a,b,c")
+    add_template_arguments(p, g)
+    c = p.add_argument_group("contours")
+    c.add_argument("--tol", type=float, help="accuracy of every traced line, shift units (default 1e-4)")
+    c.add_argument("--criterion", choices=("balanced", "strength"), default="balanced",
+                   help="recommendation criterion of every cell (default balanced)")
+    r = p.add_argument_group("running")
+    r.add_argument("--workers", type=int, default=2, help="local worker processes (default 2)")
+    r.add_argument("--scheduler", help="address of a Dask scheduler (tcp://host:8786): run the cells there")
+    r.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
+    o = p.add_argument_group("output")
+    o.add_argument("-o", "--output", default="atlas", help="directory of the dataset (default ./atlas)")
+    o.add_argument("--json", action="store_true", help="print the index as one JSON object")
+    p.set_defaults(run=run)
+
+
+def parse_teeth(text: str, flag: str) -> list:
+    """``10:100:10`` (stop included) or ``13,16,20`` -> sorted tooth numbers; SpecError naming ``flag``."""
+    try:
+        if ":" in text:
+            parts = [int(v) for v in text.split(":")]
+            if len(parts) not in (2, 3):
+                raise ValueError
+            start, stop = parts[0], parts[1]
+            step = parts[2] if len(parts) == 3 else 1
+            if step <= 0:
+                raise SpecError(flag, f"{text!r}: the step must be positive")
+            values = list(range(start, stop + 1, step))
+        else:
+            values = [int(v) for v in text.split(",")]
+    except ValueError:
+        raise SpecError(flag, f"{text!r} is not START:STOP:STEP or comma-separated tooth numbers") from None
+    if not values or min(values) < 3 or max(values) > RANGE_MAX:
+        raise SpecError(flag, f"{text!r}: tooth numbers must lie in [3, {RANGE_MAX}]")
+    return sorted(set(values))
+
+
+def run(args) -> int:
+    from gearkit.blocking.atlas import write_atlas
+    from gearkit.cli.blocking import template_spec
+
+    z1s = parse_teeth(args.z1, "--z1")
+    z2s = parse_teeth(args.z2, "--z2")
+    if args.workers < 1:
+        raise SpecError("--workers", f"{args.workers} must be a positive integer")
+    template = template_spec(args, z1s[0], max(z2s[-1], z1s[0] + 8) if args.internal else z2s[0])
+    options = {} if args.tol is None else {"tol": args.tol}
+    index = write_atlas(z1s, z2s, args.output, template, workers=args.workers, scheduler=args.scheduler,
+                        criterion=args.criterion, progress=not args.no_progress, **options)
+    if args.json:
+        print(json.dumps(index, allow_nan=False))
+    else:
+        cells = index["cells"]
+        ok = sum(1 for c in cells if c["status"] == "ok")
+        empty = sum(1 for c in cells if c.get("empty"))
+        print(f"gearkit atlas: {len(cells)} cells ({ok} pairs, {empty} with an empty region, "
+              f"{len(cells) - ok} not a pair) in {args.output}/ (index.json, cells/, atlas.png)")
+    return 0
+
+
+if __name__ == "__main__":  # pragma: no cover
+    from gearkit.cli import main
+    sys.exit(main(["atlas", *sys.argv[1:]]))

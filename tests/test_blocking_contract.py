@@ -1,0 +1,180 @@
+"""Issue 19: the blocking contour's contract -- the region is the map of check_pair, lines within
+2 tol of a much finer trace with the same topology, recommendations that check_pair passes --
+with the issue's reproducers as regression tests.
+
+Tolerances: ``TOL`` is the tracing tolerance of the contours under test; the contract is that every
+point of a traced line lies within ``CONTRACT * tol`` of the exact line (``CONTRACT = 2``). A random
+point closer than ``CONTRACT * tol`` to the region's boundary may fall on either side (the polygon is
+exact only to that distance), so the property tests skip such points (a handful at most).
+"""
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from gearkit.accuracy import distances_to_polyline
+from gearkit.blocking import blocking_contour
+from gearkit.blocking.arrays import margins
+from gearkit.blocking.field import PairField
+from gearkit.checks import check_pair
+from gearkit.curves import polyline_self_intersections
+from gearkit.errors import SpecError
+from gearkit.pair import PairSpec
+from gearkit.families.involute import BasicRack, ShaperCutter
+
+TOL = 1e-4
+CONTRACT = 2.0
+SAMPLES = 30  #: random points per contour in the property tests (each costs one check_pair, ~15 ms)
+
+
+def _check_passes(spec, x1, x2) -> bool:
+    """The verdict of check_pair itself (generated gears) on ``spec`` at shifts (x1, x2)."""
+    try:
+        return check_pair(replace(spec, shift1=float(x1), shift2=float(x2))).ok
+    except SpecError:
+        return False
+
+
+def _boundary_distance(contour, p) -> float:
+    return min((distances_to_polyline(np.asarray(p, float)[None], q)[0] for q in contour.region), default=np.inf)
+
+
+# the issue's pairs: (spec, window) -- external and internal, default and user windows
+CASES = {
+    "13/16": (PairSpec(13, 16, 1.0), None),
+    "57/130 ring": (PairSpec(57, 130, 1.0, kind="internal", tool2=ShaperCutter(28)), None),
+    "16/84 window": (PairSpec(16, 84, 1.0), (-1.29, 0.29, -1.05, 1.28)),
+    "16/59 ring": (PairSpec(16, 59, 1.0, kind="internal", tool2=ShaperCutter(19)), None),
+    "42/65 window": (PairSpec(42, 65, 1.0), (-0.698, 1.364, -1.412, -0.948)),
+    "45/55 ring": (PairSpec(45, 55, 1.0, kind="internal", tool2=ShaperCutter(30)), None),
+}
+
+
+@pytest.fixture(scope="module", params=sorted(CASES))
+def case(request):
+    spec, window = CASES[request.param]
+    return request.param, spec, blocking_contour(spec, window=window, tol=TOL, lines=["sliding"])
+
+
+def test_region_is_the_map_of_check_pair(case):
+    """Property test: at random points of the window, the region's polygons (even-odd) hold exactly
+    the points check_pair passes; the polygons are simple (no bow-ties)."""
+    name, spec, c = case
+    assert all(len(polyline_self_intersections(q)[0]) == 0 for q in c.region), name
+    rng = np.random.default_rng(sum(map(ord, name)))
+    w = c.window
+    pts = np.column_stack([rng.uniform(w[0], w[1], SAMPLES), rng.uniform(w[2], w[3], SAMPLES)])
+    inside = c.in_region(pts[:, 0], pts[:, 1])
+    for p, r in zip(pts, inside):
+        ok = _check_passes(spec, *p)
+        if ok != r:
+            assert _boundary_distance(c, p) <= CONTRACT * TOL, (name, p, ok)
+        assert c.contains(*p) == ok  # membership (--mark) is the check's verdict
+
+
+def test_issue_points_of_the_region():
+    """(0.45, -0.80) of the 57/130 ring pair passes the check and lies in the region (it was left out);
+    the 16/59 ring pair's region visits no vertex twice (it was a bow-tie at (1.3825, 1.0421))."""
+    spec, _ = CASES["57/130 ring"]
+    c = blocking_contour(spec, tol=TOL, lines=[])
+    assert _check_passes(spec, 0.45, -0.80) and c.in_region(0.45, -0.80) and c.contains(0.45, -0.80)
+    spec, _ = CASES["16/59 ring"]
+    c = blocking_contour(spec, tol=TOL, lines=[])
+    for q in c.region:
+        assert len(np.unique(q[:-1], axis=0)) == len(q) - 1
+
+
+def test_a_user_window_cuts_the_region_without_moving_it():
+    """16/84 with a user window: the region is the default window's region cut by the window (the
+    interference.1 crossing kept, no edge moved): the two agree at random points."""
+    spec, window = CASES["16/84 window"]
+    cut = blocking_contour(spec, window=window, tol=TOL, lines=[])
+    whole = blocking_contour(spec, tol=TOL, lines=[])
+    rng = np.random.default_rng(84)
+    pts = np.column_stack([rng.uniform(window[0], window[1], 400), rng.uniform(window[2], window[3], 400)])
+    a, b = cut.in_region(pts[:, 0], pts[:, 1]), whole.in_region(pts[:, 0], pts[:, 1])
+    for p in pts[a != b]:
+        assert min(_boundary_distance(cut, p), _boundary_distance(whole, p)) <= CONTRACT * TOL
+
+
+def _gap(points, lines) -> float:
+    """Largest distance from ``points`` to the nearest of the polylines ``lines``."""
+    best = np.full(len(points), np.inf)
+    for q in lines:
+        best = np.minimum(best, distances_to_polyline(points, q))
+    return float(best.max(initial=0.0))
+
+
+@pytest.mark.parametrize("tol", [1e-2, 1e-3, 1e-5])
+def test_lines_lie_within_two_tol_of_a_much_finer_trace(tol):
+    """Every line and the region at ``tol`` against a trace at 1e-8: the same components (no gap,
+    no spurious loop, no duplicate), each point of either within 2 tol of the other."""
+    names = ["interference.1", "contact_ratio=1", "pointing.1", "sliding", "tip_thickness.1=0.25"]
+    spec = PairSpec(13, 16, 1.0)
+    fine = blocking_contour(spec, tol=1e-8, lines=names)
+    c = blocking_contour(spec, tol=tol, lines=names)
+    for ref, mine in [(fine.line(n).components, c.line(n).components) for n in names] + [(fine.region, c.region)]:
+        assert len(mine) == len(ref)
+        for a, b in zip(sorted(mine, key=len), sorted(ref, key=len)):
+            assert np.array_equal(a[0], a[-1]) == np.array_equal(b[0], b[-1])  # closed stays closed
+        assert _gap(np.concatenate(ref), mine) <= CONTRACT * tol
+        assert _gap(np.concatenate(mine), ref) <= CONTRACT * tol
+    assert c.evaluations < fine.evaluations  # coarser costs less
+
+
+def test_vectorised_margins_are_the_pair_formulas():
+    """The array margins equal the scalar ones (pair_geometry and the check functions) to round-off
+    wherever both exist, for an external, a helical and an internal pair."""
+    specs = [PairSpec(13, 16, 1.0), PairSpec(12, 30, 2.0, helix_angle_deg=15.0),
+             PairSpec(46, 49, 1.0, kind="internal", tool2=ShaperCutter(20))]
+    rng = np.random.default_rng(15)
+    for spec in specs:
+        c = blocking_contour(spec, tol=1e-2, lines=[])
+        f = c.field
+        w = c.window
+        x1, x2 = rng.uniform(w[0], w[1], 40), rng.uniform(w[2], w[3], 40)
+        names = [d.name for d in f.lines]
+        vec = margins(f, x1, x2, names)
+        compared = 0
+        for n in names:
+            sc = np.array([f.margin(n, a, b) for a, b in zip(x1, x2)])
+            both = np.isfinite(sc) & np.isfinite(vec[n])
+            assert np.allclose(vec[n][both], sc[both], rtol=1e-9, atol=1e-11), n
+            compared += both.sum()
+        assert compared > 0.5 * len(names) * len(x1)
+
+
+README_EXAMPLES = [
+    (PairSpec(13, 16, 1.0), {}),
+    (PairSpec(20, 40, 1.0, tool1=BasicRack.iso53("B"), tool2=BasicRack.iso53("B")), {"criterion": "strength"}),
+    (PairSpec(13, 16, 1.0), {"criterion": "center_distance", "center_distance": 14.8}),
+    (PairSpec(46, 49, 1.0, kind="internal", tool2=ShaperCutter(20)), {}),
+]
+
+
+@pytest.mark.parametrize("spec,kw", README_EXAMPLES)
+def test_readme_recommendations_pass_check_pair(spec, kw):
+    """The README's four blocking examples recommend points that check_pair itself passes (the
+    internal one recommended x1 = 1.6705, x2 = 1.3878, which failed four checks)."""
+    cds = (kw["center_distance"],) if "center_distance" in kw else ()
+    rec = blocking_contour(spec, center_distances=cds).recommend(**kw)
+    assert rec.passes and _check_passes(spec, rec.x1, rec.x2)
+
+
+def test_recommendation_in_a_user_window():
+    """42/65 in the issue's window recommended (-0.434, -0.948), short on interference.1; 16/84 with a
+    user window and the default criterion raised SpecError('criterion'). Both now pass check_pair."""
+    for spec, window in (CASES["42/65 window"], CASES["16/84 window"]):
+        rec = blocking_contour(spec, window=window, tol=TOL).recommend()
+        assert rec.passes and _check_passes(spec, rec.x1, rec.x2)
+        assert window[0] <= rec.x1 <= window[1] and window[2] <= rec.x2 <= window[3]
+
+
+def test_field_form_circles_where_the_blank_tip_leaves_no_flank():
+    """57/130 ring, x1 = -2.7255: the pinion's own blank tip lies below its form circle, the pair's
+    (raised by the negative tip shortening) does not; the field reads the generated form circle the
+    check reads (53.5738 mm, from check_pair's profile) instead of calling the pair invalid."""
+    spec = PairSpec(57, 130, 1.0, kind="internal", tool2=ShaperCutter(28))
+    f = PairField(spec)
+    d = check_pair(replace(spec, shift1=-2.7255, shift2=1.357)).profiles[0].form_diameter
+    assert f.form_diameter(1, -2.7255) == pytest.approx(d, abs=1e-9)
