@@ -21,18 +21,15 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 
-from gearkit.checks.involute import fail_margins, min_shift_undercut
+from gearkit.blocking.point import FieldPoint
+from gearkit.checks.involute import min_shift_undercut
 from gearkit.checks.limits import CheckLimits
 from gearkit.errors import SpecError, require
-from gearkit.pair.geometry import pair_geometry
-
-_pair_geometry = getattr(pair_geometry, "__wrapped__", pair_geometry)
 from gearkit.pair.spec import PairSpec
 from gearkit.pair.tooling import form_roll, section
 
 __all__ = ["LineDef", "PairField"]
 
-NAN = float("nan")
 FORM_NODES = 10  #: Chebyshev nodes of the undercut form-circle interpolant (error ~1e-9 m_n)
 FORM_GAP = 0.005  #: the interpolant ends this far below the undercut onset
 FORM_CHECKS = 2  #: test shifts of the interpolant
@@ -338,104 +335,3 @@ class PairField:
     def margin(self, name: str, x1: float, x2: float) -> float:
         """Margin of line ``name`` at (x1, x2): >= 0 on the admissible side; NaN where no pair exists."""
         return self.point(x1, x2).margin(name)
-
-
-class FieldPoint:
-    """Lazy evaluation of one shift pair: geometry and margins computed on first use, then kept."""
-
-    __slots__ = ("field", "x1", "x2", "exact", "_geo", "_m", "_invalid")
-
-    def __init__(self, field: PairField, x1: float, x2: float, exact: bool = True):
-        self.field, self.x1, self.x2, self.exact = field, x1, x2, exact
-        self._geo, self._m, self._invalid = {}, {}, None
-
-    @property
-    def valid(self) -> bool:
-        """False where no pair exists at these shifts (the check raises a SpecError there)."""
-        if self._invalid is None:
-            try:
-                self.geometry()
-                self._invalid = ""
-            except SpecError as exc:
-                self._invalid = str(exc)
-        return not self._invalid
-
-    def geometry(self, needs=(False, False)):
-        """The pair geometry, with the generated form circles of the gears flagged in ``needs``."""
-        needs = (bool(needs[0]), bool(needs[1]))
-        g = self._geo.get(needs)
-        if g is not None:
-            return g
-        f = self.field
-        forms = tuple(f.form_diameter(i + 1, x, exact=self.exact) if need else None
-                      for i, (need, x) in enumerate(zip(needs, (self.x1, self.x2))))
-        if any(d is not None and math.isnan(d) for d in forms):
-            raise SpecError("shift", "the generated gear has no tooth at this shift")
-        key = forms if any(d is not None for d in forms) else None
-        g = self._geo.get(key)
-        if g is None:
-            # the function itself, not its cache: a point keeps its own geometries (and thousands of
-            # traced points would only evict the check's entries)
-            g = self._geo[key] = _pair_geometry(f.spec(self.x1, self.x2), key)
-        self._geo[needs] = g
-        return g
-
-    def _fail(self, g) -> dict:
-        """:func:`~gearkit.checks.involute.fail_margins` of ``g``, kept per geometry."""
-        key = ("fail", id(g))
-        out = self._geo.get(key)
-        if out is None:
-            out = self._geo[key] = fail_margins(g)
-        return out
-
-    def margin(self, name: str) -> float:
-        m = self._m.get(name)
-        if m is None:
-            try:
-                m = self._compute(name)
-            except SpecError:
-                m = NAN
-            self._m[name] = m
-        return m
-
-    def _compute(self, name: str) -> float:
-        f = self.field
-        mn = f.module
-        base, _, level = name.partition("=")
-        if base.startswith("undercut."):
-            i = int(base[-1])
-            return (self.x1, self.x2)[i - 1] - f.x_min[i - 1]
-        d = f.by_name.get(name)
-        g = self.geometry(d.needs if d is not None else (False, False))
-        if base in ("interference.1", "interference.2", "pointing.1", "pointing.2", "tip_clearance.1",
-                    "tip_clearance.2"):
-            return self._fail(g)[base] / mn
-        if name == "contact_ratio=1":
-            return self._fail(g)["contact_ratio"]
-        if base == "contact_ratio":
-            return g.contact_ratio - float(level)
-        if base == "contact_ratio_tip":
-            return g.contact_ratio_nominal - float(level)
-        if base.startswith("tip_thickness."):
-            return g.gears[int(base[-1]) - 1].tip_thickness_normal / mn - float(level)
-        if base == "sliding":
-            z1 = g.specific_sliding["start"][0]
-            z2 = g.specific_sliding["end"][1]
-            return abs(z1) - abs(z2)
-        if base == "exit_jamming":
-            from gearkit.pair.internal import exit_jamming_margin
-            return exit_jamming_margin(g)
-        if base == "trimming.plunge":
-            from gearkit.pair.internal import plunge_trimming
-            gap = plunge_trimming(g)[0]
-            return gap / mn if gap > 0 else min(gap / mn, -5e-324)
-        if base == "trimming.nu":
-            from gearkit.pair.internal import nu_radius
-            return (g.gears[1].tip_diameter / 2 - nu_radius(g)) / mn
-        if base == "center_distance":
-            return (g.center_distance - float(level)) / mn
-        raise KeyError(name)
-
-    def hard_margins(self) -> dict:
-        """Every hard margin (module units / ratio / rad), NaN where no pair exists."""
-        return {n: self.margin(n) for n in self.field.hard}

@@ -41,8 +41,7 @@ JUMP_FACTOR = 100.0  #: a solved vertex with |F| above this times slope x tol si
 def grid_values(F, xs, ys, which: int = 0) -> np.ndarray:
     """``F`` (function ``which``) at the nodes of the grid ``xs`` x ``ys``: ``values[j, i]``."""
     gx, gy = np.meshgrid(xs, ys)
-    pts = np.column_stack([gx.ravel(), gy.ravel()])
-    return F(pts, np.full(len(pts), which)).reshape(gx.shape)
+    return F(np.column_stack([gx.ravel(), gy.ravel()]), np.full(gx.size, which)).reshape(gx.shape)
 
 
 def segment_roots(F, a, b, fa, fb, tol: float, which) -> np.ndarray:
@@ -176,8 +175,7 @@ def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=()) 
 
 def _runs(mask):
     """(start, stop) of the runs of True in ``mask``."""
-    m = np.concatenate([[False], mask, [False]]).astype(int)
-    d = np.diff(m)
+    d = np.diff(np.concatenate([[False], mask, [False]]).astype(int))
     return list(zip(np.flatnonzero(d == 1), np.flatnonzero(d == -1)))
 
 
@@ -333,8 +331,8 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=()) -> 
             state[n] = (k, p, g, todo)
         for n, chords in cuts.items():  # positions of cut chords after this round's insertions
             k, p, g, todo = state[n]
-            marks = _cut_positions(p, [state_before[n][1][c] for c in chords])
-            pieces = np.split(np.arange(len(p)), [i + 1 for i in marks])
+            at = _cut_positions(p, [state_before[n][1][c] for c in chords])
+            pieces = np.split(np.arange(len(p)), [i + 1 for i in at])
             first = True
             for piece in pieces:
                 if len(piece) < 2:

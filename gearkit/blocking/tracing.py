@@ -47,7 +47,7 @@ def empty_reason(field: PairField, F, which: int, window, xs, ys, values) -> str
     x1, x2 = best_point(F, which, window, xs, ys, values)
     pt = field.point(x1, x2)
     if not pt.valid:
-        return f"no pair exists in the window (e.g. at x1 = {x1:.4f}, x2 = {x2:.4f}: {pt._invalid})"
+        return f"no pair exists in the window (e.g. at x1 = {x1:.4f}, x2 = {x2:.4f}: {pt.why})"
     names = list(field.hard)
     m = array_margins(field, [x1], [x2], names)
     bad = [(n, float(m[n][0])) for n in names if not (m[n][0] >= 0)]

@@ -176,7 +176,8 @@ def measure_chordal(profile, d_y: float | None = None, helix_angle: float = 0.0)
     try:
         s_arc = profile.thickness_at(r_y)
     except ValueError:
-        require(False, "chordal_diameter", f"d_y = {d_y:.6g} mm misses the tooth flank")
+        s_arc = None
+    require(s_arc is not None, "chordal_diameter", f"d_y = {d_y:.6g} mm misses the tooth flank")
     psi = s_arc / (2 * r_y)
     point = np.array([[r_y * math.sin(psi), r_y * math.cos(psi)]])
     r_a = profile.tip_diameter / 2
