@@ -83,6 +83,19 @@ def _gear(sec, z, x, tool, internal):
     return delta, rf, rho, a0
 
 
+def _ring_setting(sec, t, x):
+    """:func:`~gearkit.families.involute.ring_cutter_setting` at ISO ring shifts ``x`` (array): the
+    shaper's radial setting, NaN where no setting cuts a tooth that thick."""
+    cutter = t.tools[1]
+    dz = t.teeth2 - cutter.teeth
+    an = math.radians(cutter.pressure_angle_deg)
+    at = math.atan(math.tan(an) / math.cos(sec.beta))
+    value = inv(at) + 2 * (x - cutter.shift) * math.tan(an) / dz
+    ok = value > 0
+    ac = _inv_inverse(np.where(ok, value, 1.0))
+    return np.where(ok, dz / (2 * math.cos(sec.beta)) * (math.cos(at) / np.cos(ac) - 1.0), np.nan)
+
+
 def _half(sec, z, delta, radius, internal):
     """Half angular tooth thickness at ``radius`` (textbook 3.83), arrays."""
     rb = z * sec.mt * math.cos(sec.alpha_t) / 2
@@ -133,8 +146,14 @@ class _Pair:
         r1, r2 = z1 * mt / 2, z2 * mt / 2
         rb1, rb2 = r1 * math.cos(at), r2 * math.cos(at)
         self.r1, self.r2, self.rb1, self.rb2 = r1, r2, rb1, rb2
-        d1, rf1, rho_l1, _ = _gear(sec, z1, x1, tool1, False)
-        d2, rf2, rho_l2, a02 = _gear(sec, z2, x2, tool2, internal)
+        # a ring's shift read by the ISO convention is cut by the shaper setting x2c (closed form);
+        # the thickness allowance feeds the tool in (generating shift x_E) for roots and form circles
+        x2c = _ring_setting(sec, t, x2) if internal and t.shift_convention == "iso" else x2
+        k_e = 2 * mn * math.tan(sec.alpha_n)
+        d1, _, _, _ = _gear(sec, z1, x1, tool1, False)
+        _, rf1, rho_l1, _ = _gear(sec, z1, x1 - t.thinning1 / k_e, tool1, False)
+        d2, _, _, a02 = _gear(sec, z2, x2c, tool2, internal)
+        _, rf2, rho_l2, _ = _gear(sec, z2, x2c - t.thinning2 / k_e, tool2, internal)
         self.a02 = a02
         with np.errstate(invalid="ignore", divide="ignore"):
             if internal:

@@ -19,6 +19,7 @@ from gearkit.blocking.level import grid_values
 
 __all__ = ["padded_grid", "pad", "orient_loops", "inside_polygons", "polygon_area", "best_point"]
 
+SPLIT_DEPTH = 20  #: most self-crossings split out of one loop
 FINE = 41  #: nodes per side of the local grid that looks for the best point of an empty region
 
 
@@ -55,6 +56,21 @@ def pad(values, fill: float):
     return out
 
 
+def _simple_loops(p, depth: int = 0) -> list:
+    """A closed loop split at its self-crossings into simple loops (a crossing of two of its edges
+    within the tolerance band, e.g. where two parts of the region nearly touch)."""
+    from gearkit.curves import polyline_self_intersections
+
+    ei, ej, ti, _ = polyline_self_intersections(p)
+    if not ei.size or depth > SPLIT_DEPTH:
+        return [p]
+    i, j = int(ei[0]), int(ej[0])
+    x = p[i] + ti[0] * (p[i + 1] - p[i])
+    a = np.vstack([p[:i + 1], x[None], p[j + 1:]])
+    b = np.vstack([x[None], p[i + 1:j + 1], x[None]])
+    return [q for part in (a, b) if len(part) >= 4 for q in _simple_loops(part, depth + 1)]
+
+
 def orient_loops(loops, window, tol: float) -> tuple:
     """The region's polygons from the traced loops of ``R = 0``: closed, clipped to the window,
     slivers below the tolerance dropped, outer boundaries counter-clockwise and holes clockwise."""
@@ -69,6 +85,7 @@ def orient_loops(loops, window, tol: float) -> tuple:
         p = np.clip(p, lo, hi)
         if abs(polygon_area(p)) > (10 * tol) ** 2 or len(p) > 6:
             closed.append(p)
+    closed = [q for p in closed for q in _simple_loops(p)]
     out = []
     for i, p in enumerate(closed):
         others = [q for j, q in enumerate(closed) if j != i]
