@@ -28,7 +28,7 @@ import numpy as np
 from gearkit.curves import inv
 from gearkit.families.involute.tools import BasicRack
 
-__all__ = ["margins", "hard_margin", "evaluator", "sliding_ends"]
+__all__ = ["margins", "evaluator", "sliding_ends"]
 
 PLUNGE_SAMPLES = 97  #: samples of the plunge-trimming gap (over a quarter wave of the shaper's corner: at
 #: most two extrema), then Newton on the derivative from the smallest; the check samples 801
@@ -363,11 +363,6 @@ def sliding_ends(field, x1, x2):
     z1, z2 = g.sliding_ends()
     bad = g.bad
     return np.where(bad, np.nan, z1), np.where(bad, np.nan, z2), np.where(bad, np.nan, g.eps)
-
-
-def hard_margin(field, x1, x2, names=None):
-    """The smallest hard margin at each point, NaN where no pair exists."""
-    return evaluator(field, ["region"], None)(np.column_stack(_points(x1, x2)), np.zeros(np.size(x1), int))
 
 
 def evaluator(field, names, window):
