@@ -8,6 +8,7 @@ from pathlib import Path
 import pytest
 
 from gearkit.cli import main
+from gearkit.errors import SpecError
 from gearkit.pair import PairSpec, pair_geometry
 from gearkit.scene import Gear, Mesh, Motion, Scene, load_scene, scene_layout
 from gearkit.scene.query import SceneModel
@@ -152,3 +153,36 @@ def test_cli_planetary_json_keys(capsys):
     assert (best["sun"], best["planet"], best["ring"], best["planets"]) == (21, 43, 108, 3)
     assert best["planet_angles_deg"] == pytest.approx([0, 120, 240]) and best["phasing"] == "in_phase"
     assert main(["planetary", "--ratio", "1.5", "--planets", "3", "-m", "1"]) == 2
+
+
+@pytest.mark.parametrize("internal, a_w", [(False, 315.0), (True, 157.5)])
+def test_reverted_trains_examples_4_and_5_are_coaxial(internal, a_w):
+    """Ex.4 (36, 144 at m 3.5; 35, 105 at m 4.5: a = 315 mm) and Ex.5 (18, 72; 35, 105 internal:
+    a = 157.5 mm): input and output share an axis; turning the second mesh off that axis is an error."""
+    teeth = (18, 72) if internal else (36, 144)
+
+    def scene(angle):
+        gears = (Gear("z1", teeth[0], module=3.5), Gear("z2", teeth[1], module=3.5, shaft="mid"),
+                 Gear("z3", 35, module=4.5, shaft="mid"), Gear("z4", 105, module=4.5, internal=internal))
+        return Scene(gears, (Mesh("z1", "z2"), Mesh("z3", "z4", angle_deg=angle)), coaxial=(("z1", "z4"),),
+                     motion=Motion(inputs={"z1": 1}, output="z4"))
+
+    lay = scene_layout(scene(180.0))
+    assert [m.center_distance for m in lay.meshes] == pytest.approx([a_w, a_w], abs=1e-9)
+    assert lay.positions["z4"] == pytest.approx(lay.positions["z1"], abs=1e-9)
+    assert SceneModel(scene(180.0)).ratio() == (-12 if internal else 12)
+    with pytest.raises(SpecError, match="loop through z3-z4 does not close"):
+        scene_layout(scene(170.0))
+
+
+def test_helical_scene_hands_follow_the_meshes():
+    """A helical planetary: the sun's hand is given; the planets take the opposite hand (external
+    mesh) and the ring the planets' (internal mesh); each solid twists with its own hand."""
+    scene = Scene((Gear("sun", 20), Gear("planet", 40, count=3, carrier="carrier"), Gear("ring", 100, internal=True)),
+                  (Mesh("sun", "planet"), Mesh("planet", "ring")), module=2.0, helix_angle_deg=12.0, face_width=10.0,
+                  motion=Motion(fixed=("ring",), inputs={"sun": 1}, output="carrier"))
+    assert scene.helix_angles() == {"sun": 12.0, "planet": -12.0, "ring": -12.0}
+    lay = scene_layout(scene)
+    assert [lay.gear_spec(n).helix_angle_deg for n in ("sun", "planet", "ring")] == [12.0, -12.0, -12.0]
+    # the transverse module sets the carrier radius: a = m_n (z_s + z_p) / (2 cos beta)
+    assert lay.radii["planet"] == pytest.approx(2.0 * 60 / (2 * math.cos(math.radians(12.0))), abs=1e-9)
