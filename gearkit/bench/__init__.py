@@ -52,7 +52,7 @@ def run_bench(quick: bool = False, process: bool = True, progress=None) -> dict:
     out["overhead_ratio"] = out["overhead"]["overhead_ratio"]
     say("accuracy ladder: 2D profiles")
     out["ladder"] = (profiles.involute_ladder(quick, repeats) + profiles.novikov_ladder(quick, repeats)
-                     + profiles.cycloidal_ladder(quick, repeats))
+                     + profiles.cycloidal_ladder(quick, repeats) + profiles.cam_ladder(quick, repeats))
     if products.available("gearkit.solids"):
         say("accuracy ladder: meshes")
         out["ladder"] += meshes.mesh_ladder(quick, repeats)

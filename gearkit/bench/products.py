@@ -20,6 +20,7 @@ PRODUCT_MODULES = {
     ("cycloidal", "contact simulation"): "gearkit.families.cycloidal.mesh",
     ("novikov", "profile"): "gearkit.families.novikov",
     ("novikov", "contact simulation"): "gearkit.families.novikov.mesh",
+    ("cam", "profile"): "gearkit.families.cam",
 }
 
 

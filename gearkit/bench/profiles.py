@@ -193,3 +193,29 @@ def overhead(repeats: int = 21):
     return {"overhead_ratio": kernel / base, "overhead_ratio_sampling": sampling / base, "kernel_seconds": kernel,
             "sampling_seconds": sampling, "baseline_seconds": base, "points": int(n), "teeth": 40,
             "tol": tol, "target": 5.0}
+
+
+def cam_ladder(quick: bool, repeats: int):
+    """The digest's cam (cycloidal rise 20 mm over 60 deg, dwell 60, return 60; translating roller
+    R_p = 10 mm, r0 = 56.7702 mm): generate + sample at each tol (mm), the achieved deviation measured
+    by dense re-evaluation of the exact envelope pieces against the outline."""
+    try:
+        from gearkit.families.cam import CamSpec, MotionProgram, cam_profile
+    except ImportError:
+        return []
+    spec = CamSpec(56.7702, MotionProgram.rise_dwell_return(20.0, 60.0, 60.0, 60.0), roller_radius=10.0)
+    generate = getattr(cam_profile, "__wrapped__", cam_profile)
+    rows = []
+    for tol in (LADDER_TOLS[::2] if quick else LADDER_TOLS):
+        def run():
+            prof = generate(spec)
+            return prof, prof.outline(tol)
+
+        seconds, (prof, outline) = median_time(run, repeats)
+        w = _dense_parameters(int(min(max(DENSITY * len(outline) // len(prof.pieces), 400), 200_000)))
+        exact = np.concatenate([pc(w) for pc in prof.pieces])
+        achieved = float(distances_to_polyline(exact, outline, closed=True).max())
+        rows.append({"family": "cam", "product": "profile", "case": "roller r0=56.77 cycloidal", "tol": tol,
+                     "tol_m": tol, "achieved": achieved, "ratio": achieved / tol, "sampler_achieved": prof.achieved(tol),
+                     "vertices": int(len(outline)), "seconds": seconds})
+    return rows
