@@ -95,15 +95,16 @@ def test_program_rejects_a_rise_that_does_not_fit_and_a_follower_that_does_not_r
 
 # ----------------------------------------------------------------------------- profiles
 
-# constant velocity is left out: its pitch curve has corners (velocity jumps), where the roller's
-# arc about the corner is not yet inserted into the outline (a known gap, flagged by the checks)
-@pytest.mark.parametrize("law", [law for law in CLOSED_FORM_LAWS if law != "constant_velocity"])
+# constant velocity included: its pitch curve has corners (velocity jumps), where the profile is the
+# roller's arc about the corner (convex) or the crossing of the two flanks (concave)
+@pytest.mark.parametrize("law", CLOSED_FORM_LAWS)
 @pytest.mark.parametrize("offset", [0.0, 6.0, -6.0])
 def test_roller_profile_is_the_offset_of_the_exact_pitch_curve(law, offset):
     tol, rr = 1e-3, 8.0
     spec = CamSpec(60.0, digest_program(law), roller_radius=rr, offset=offset)
     prof = cam_profile(spec)
     assert not prof.undercut
+    assert len(prof.corner_loops) == (2 if law == "constant_velocity" else 0)  # the two concave corners
     out = prof.outline(tol)
     phi = np.linspace(0.0, 2 * math.pi, 400001)
     pitch = polar_pitch(spec, phi)  # 4e5 chords: their own sag is below 1e-8 mm
@@ -255,11 +256,13 @@ def test_knife_edge_profile_is_the_pitch_curve():
 
 
 @pytest.mark.parametrize("kw", [dict(roller_radius=10.0), dict(roller_radius=37.0), dict(contact="knife"),
-                                dict(roller_radius=8.0, follower="rocker", pivot_distance=80.0, arm_length=50.0)])
+                                dict(roller_radius=8.0, follower="rocker", pivot_distance=80.0, arm_length=50.0),
+                                dict(roller_radius=10.0, law="constant_velocity")])
 def test_swept_follower_oracle_agrees_with_the_envelope(kw):
     from gearkit.oracles.cam import oracle_error_bound, swept_cam
 
-    spec = CamSpec(56.7702, digest_program(), **kw)
+    kw = dict(kw)
+    spec = CamSpec(56.7702, digest_program(kw.pop("law", "cycloidal")), **kw)
     swept = swept_cam(spec)
     out = cam_profile(spec).outline(1e-4)
     bound = oracle_error_bound(spec) + 1e-4

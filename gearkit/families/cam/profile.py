@@ -50,6 +50,68 @@ def _refine(f, wa, wb, lo_a, hi_a, lo_b, hi_b):
     return float(x[0]), float(x[1])
 
 
+class CamCurve:
+    """The whole envelope over one turn as one exact curve of ``w`` in [0, 1].
+
+    Between the joins where the follower's velocity jumps (a constant-velocity law) it is the
+    kernel's branch solved along the cam angle. At such a join the relative motion's instant
+    centre jumps while the cam angle stands still; the follower's contact sweeps from the old
+    pole's contact to the new one's (a roller turns about the pitch curve's corner: an arc of the
+    roller; a flat face slides: a piece of the face) — inserted here as a section of its own with
+    the pole moving on the straight line between the two.
+    """
+
+    def __init__(self, branch: Branch, start: float, corners):
+        self.branch = branch
+        self.start = start
+        # sections: ("motion", phi0, phi1) and ("corner", phi, pole0, pole1), each with a weight in w
+        sections, phi = [], start
+        for phi_c, p0, p1, weight in sorted((((c - start) % _TWO_PI) + start, p0, p1, wt)
+                                            for c, p0, p1, wt in corners):
+            if phi_c > phi:
+                sections.append(("motion", phi, phi_c, phi_c - phi))
+            sections.append(("corner", phi_c, p0, p1, weight))
+            phi = phi_c
+        sections.append(("motion", phi, start + _TWO_PI, start + _TWO_PI - phi))
+        total = sum(sec[-1] for sec in sections)
+        self.sections = sections
+        self.edges = np.concatenate([[0.0], np.cumsum([sec[-1] for sec in sections]) / total])
+        self.edges[-1] = 1.0
+
+    def locate(self, w):
+        """Section index and local parameter in [0, 1] of each ``w``."""
+        w = np.atleast_1d(np.asarray(w, dtype=float))
+        k = np.clip(np.searchsorted(self.edges, w, side="right") - 1, 0, len(self.sections) - 1)
+        lo, hi = self.edges[k], self.edges[k + 1]
+        return k, np.clip((w - lo) / (hi - lo), 0.0, 1.0)
+
+    def phi(self, w):
+        """Cam angle (rad, from ``start``) at ``w``."""
+        k, t = self.locate(w)
+        out = np.empty(len(k))
+        for i, sec in enumerate(self.sections):
+            m = k == i
+            out[m] = sec[1] + t[m] * (sec[2] - sec[1]) if sec[0] == "motion" else sec[1]
+        return out
+
+    def __call__(self, w):
+        k, t = self.locate(w)
+        out = np.empty((len(k), 2))
+        br = self.branch
+        for i, sec in enumerate(self.sections):
+            m = k == i
+            if not m.any():
+                continue
+            if sec[0] == "motion":
+                out[m] = br(sec[1] + t[m] * (sec[2] - sec[1]))
+                continue
+            poles = sec[2][None, :] * (1.0 - t[m, None]) + sec[3][None, :] * t[m, None]
+            u, _ = touching(br.segment, poles, br.root)
+            pts = br.segment.evaluate(u)[0]
+            out[m] = br.motion.to_blank(pts, np.full(int(m.sum()), sec[1]))
+        return out
+
+
 class CamProfile:
     """A generated disc cam. Lengths in mm, cam frame (the cam at angle 0).
 
@@ -66,7 +128,10 @@ class CamProfile:
         self._cache = {}
         start = self._start_angle()
         self.start = start
-        self.branch = Branch(self.tool, self.motion, start, start + _TWO_PI, "near", along="motion")
+        # the branch's own parameter is the cam angle itself: the curve maps w onto it and the corners
+        self.envelope = Branch(self.tool, self.motion, 0.0, 1.0, "near", along="motion")
+        scale = spec.prime_radius + spec.stroke
+        self.branch = CamCurve(_AngleBranch(self.envelope), start, self._corners(scale))
         self.pieces, self.loops = self._trim()
 
     # -- construction ---------------------------------------------------------------------
@@ -79,6 +144,18 @@ class CamProfile:
             return float(phi[np.argmax(s + a)])
         k = 1.0 / self.pitch_curvature_radius(phi)
         return float(phi[np.argmin(k)])
+
+    def _corners(self, scale):
+        """Joins where the velocity jumps: ``(phi, pole before, pole after, weight)`` (tool frame)."""
+        out = []
+        for phi, dv, _, _ in self.spec.motion.jumps():
+            if abs(dv) <= 1e-12 * scale:
+                continue
+            before = self.motion.tool_pole(np.array([phi - 1e-9]))[0]  # the law is linear there (constant velocity)
+            after = self.motion.tool_pole(np.array([phi]))[0]
+            before = before + (before - self.motion.tool_pole(np.array([phi - 2e-9]))[0])  # extrapolated to phi
+            out.append((phi, before, after, float(np.linalg.norm(after - before)) / scale))
+        return out
 
     def _trim(self):
         w = np.linspace(0.0, 1.0, 4 * _SCAN + 1)
@@ -107,7 +184,7 @@ class CamProfile:
         return tuple(pieces), tuple(loops)
 
     def _phi(self, w):
-        return float(np.mod(self.start + _TWO_PI * w, _TWO_PI))
+        return float(np.mod(self.branch.phi([w])[0], _TWO_PI))
 
     # -- exact curves ---------------------------------------------------------------------
     def contact(self, phi):
@@ -175,9 +252,18 @@ class CamProfile:
         return c[:, 0] - self.reference[0] if self.spec.follower == "translating" else c[:, 0]
 
     @property
+    def corner_loops(self) -> tuple:
+        """Loops cut at a concave corner of the pitch curve (a velocity jump): the follower switches
+        flanks there at once, which the motion law already asks for (flagged as a hard impact)."""
+        corners = [phi % _TWO_PI for phi, dv, _, _ in self.spec.motion.jumps() if dv]
+        return tuple(lp for lp in self.loops if any(_within(c, lp) for c in corners))
+
+    @property
     def undercut(self) -> bool:
-        """True when a loop of the envelope was cut away (the cam cannot give the motion there)."""
-        return bool(self.loops)
+        """True when a loop of the envelope was cut away where the motion is smooth (the roller is
+        larger than the pitch curve's convex radius of curvature, or a flat-faced cam is not convex):
+        the cam cannot give the motion there."""
+        return len(self.loops) > len(self.corner_loops)
 
     # -- sampled geometry ----------------------------------------------------------------
     def _sample(self, tol: float):
@@ -218,6 +304,23 @@ class CamProfile:
             hi = max(hi, phase_extreme(rad, 0.0, 1.0, 1025))
             lo = min(lo, -phase_extreme(lambda w: -rad(w), 0.0, 1.0, 1025))
         return lo, hi
+
+
+def _within(phi, loop) -> bool:
+    """``phi`` lies in the loop's cam-angle interval (which may wrap through 0)."""
+    a, b = loop
+    return (phi - a) % _TWO_PI <= (b - a) % _TWO_PI
+
+
+class _AngleBranch:
+    """A branch evaluated at cam angles directly (its parameter runs over ``[0, 1]`` = one radian)."""
+
+    def __init__(self, branch):
+        self.segment, self.motion, self.root = branch.segment, branch.motion, branch.root
+        self._branch = branch
+
+    def __call__(self, phi):
+        return self._branch(np.asarray(phi, dtype=float))
 
 
 @functools.lru_cache(maxsize=32)
