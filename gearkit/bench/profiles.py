@@ -216,6 +216,7 @@ def cam_ladder(quick: bool, repeats: int):
         exact = np.concatenate([pc(w) for pc in prof.pieces])
         achieved = float(distances_to_polyline(exact, outline, closed=True).max())
         rows.append({"family": "cam", "product": "profile", "case": "roller r0=56.77 cycloidal", "tol": tol,
-                     "tol_m": tol, "achieved": achieved, "ratio": achieved / tol, "sampler_achieved": prof.achieved(tol),
+                     "tol_m": tol, "achieved": achieved, "ratio": achieved / tol,
+                     "sampler_achieved": prof.achieved(tol),
                      "vertices": int(len(outline)), "seconds": seconds})
     return rows
