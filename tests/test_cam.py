@@ -297,7 +297,7 @@ def test_along_motion_and_along_tool_give_the_same_envelope_of_a_rolling_pin():
     generates the same curve whether solved per pin point (for the roll) or per roll (for the point)."""
     from gearkit.envelope import Branch
     from gearkit.motion import RollingMotion
-    from gearkit.tools import arc
+    from gearkit.segments import arc
 
     motion = RollingMotion(blank_centre=-40.0, tool_centre=None)  # a rack's pin on a disc of radius 40
     pin = arc((0.0, 3.0), 2.0, 2.0 * math.pi, math.pi, "pin")  # the half facing the blank, clockwise
