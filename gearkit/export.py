@@ -1,4 +1,7 @@
-"""Writing results to files: atomically, in the formats users load elsewhere.
+"""Reading design files and writing results to files: atomically, in the formats users load elsewhere.
+
+:func:`read_toml` reads every TOML file gearkit accepts (designs, scenes, racks, cams): a missing,
+unreadable, binary or non-UTF-8 file is one ``SpecError`` naming it.
 
 Every writer goes through :func:`atomic_write`: the file is written to a temporary file in
 the target directory and renamed over the target only when complete, so a failed export
@@ -39,20 +42,95 @@ def json_number(v):
     return v if math.isfinite(v) else None
 
 
+def read_toml(path, field: str = "design") -> dict:
+    """The tables of a TOML file; any problem reading it is one :class:`SpecError` naming the file.
+
+    Examples
+    --------
+    >>> read_toml("/nonexistent.toml")
+    Traceback (most recent call last):
+    ...
+    gearkit.errors.SpecError: design: cannot read '/nonexistent.toml': No such file or directory
+    """
+    try:
+        import tomllib as toml
+    except ImportError:  # Python 3.10
+        try:
+            import tomli as toml
+        except ImportError:
+            raise SpecError(field, "reading TOML on Python 3.10 needs the 'tomli' package") from None
+    try:
+        with open(path, "rb") as fh:
+            return toml.load(fh)
+    except OSError as exc:
+        raise SpecError(field, f"cannot read {str(path)!r}: {exc.strerror or exc}") from None
+    except UnicodeDecodeError:
+        raise SpecError(field, f"{str(path)!r} is not a TOML text file (not UTF-8)") from None
+    except toml.TOMLDecodeError as exc:
+        raise SpecError(field, f"{str(path)!r} is not valid TOML: {exc}") from None
+
+
+def check_output_path(path, field: str = "-o") -> Path:
+    """Raise ``SpecError`` unless a file can be written at ``path``: checked before any work.
+
+    The path must not be a directory, and its folder must exist and be writable.
+
+    Examples
+    --------
+    >>> check_output_path(".")
+    Traceback (most recent call last):
+    ...
+    gearkit.errors.SpecError: -o: '.' is a directory; give a file name
+    >>> check_output_path("/nonexistent-folder/x.svg")
+    Traceback (most recent call last):
+    ...
+    gearkit.errors.SpecError: -o: directory '/nonexistent-folder' does not exist
+    """
+    target = Path(path)
+    if str(path) == "" or target.is_dir():
+        raise SpecError(field, f"{str(path)!r} is a directory; give a file name")
+    directory = target.parent if str(target.parent) else Path(".")
+    if not directory.is_dir():
+        what = "is not a directory" if directory.exists() else "does not exist"
+        raise SpecError(field, f"directory {str(directory)!r} {what}")
+    if not os.access(directory, os.W_OK | os.X_OK):
+        raise SpecError(field, f"directory {str(directory)!r} is not writable")
+    return target
+
+
+def check_output_dir(path, field: str = "--out-dir") -> Path:
+    """Raise ``SpecError`` unless ``path`` is a directory, or can be made one (not a file)."""
+    target = Path(path)
+    probe = target
+    while not probe.exists():
+        if probe.parent == probe:
+            break
+        probe = probe.parent
+    if not probe.is_dir():
+        raise SpecError(field, f"{str(probe)!r} is a file, not a directory")
+    if not os.access(probe, os.W_OK | os.X_OK):
+        raise SpecError(field, f"directory {str(probe)!r} is not writable")
+    return target
+
+
 def atomic_write(path, write) -> Path:
     """Call ``write(tmp_path)`` then rename the temporary file over ``path``.
+
+    The temporary file lives in the target's folder (``.NAME.*.part``); it is removed whatever
+    happens (an error, Ctrl-C, SIGTERM through the CLI's handler), so a failed or interrupted
+    export leaves nothing behind. The written file gets the usual permissions (0644 under the
+    common umask 022).
 
     Parameters
     ----------
     path : str or Path
     write : callable taking the temporary file's path (str); it writes the whole file.
 
-    Raises whatever ``write`` raises, after removing the temporary file.
+    Raises whatever ``write`` raises, after removing the temporary file; ``SpecError`` when the
+    path cannot be written (:func:`check_output_path`).
     """
-    target = Path(path)
+    target = check_output_path(path, "output")
     directory = target.parent if str(target.parent) else Path(".")
-    if not directory.is_dir():
-        raise SpecError("output", f"directory {str(directory)!r} does not exist")
     fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".part", dir=directory)
     os.close(fd)
     try:

@@ -74,8 +74,8 @@ def test_bench_is_a_registered_command():
     from gearkit.cli import COMMANDS, build_parser
 
     assert "bench" in COMMANDS
-    args = build_parser().parse_args(["bench", "--quick", "--json", "x.json"])
-    assert args.quick and args.json == "x.json"
+    args = build_parser().parse_args(["bench", "--quick", "-o", "x.json"])
+    assert args.quick and args.output == "x.json" and args.json is False
 
 
 def test_closed_form_baseline_is_the_involute():

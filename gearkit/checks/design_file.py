@@ -32,7 +32,6 @@ With ``center_distance``: no shifts given -> they are solved and split by ``spli
 """
 from __future__ import annotations
 
-import sys
 from dataclasses import replace
 
 from gearkit.checks.limits import CheckLimits
@@ -48,17 +47,6 @@ _GEAR = {"teeth", "shift", "tip_diameter", "thinning", "tool"}
 _RACK = {"type", "pressure_angle_deg", "addendum", "dedendum", "fillet_radius", "protuberance",
          "protuberance_angle_deg"}
 _SHAPER = {"type", "teeth", "pressure_angle_deg", "shift", "addendum", "dedendum", "tip_radius"}
-
-
-def _toml():
-    if sys.version_info >= (3, 11):
-        import tomllib
-        return tomllib
-    try:
-        import tomli
-    except ImportError:  # pragma: no cover - depends on the interpreter
-        raise SpecError("design", "reading TOML on Python 3.10 needs the 'tomli' package") from None
-    return tomli
 
 
 def _unknown(table: dict, allowed: set, where: str):
@@ -148,12 +136,7 @@ def design_from_dict(data: dict) -> tuple:
 
 def load_design(path) -> tuple:
     """Read a TOML design file: ``(PairSpec, CheckLimits)``; any problem is a :class:`SpecError`."""
-    toml = _toml()
-    try:
-        with open(path, "rb") as fh:
-            data = toml.load(fh)
-    except OSError as exc:
-        raise SpecError("design", f"cannot read {path}: {exc.strerror}") from None
-    except toml.TOMLDecodeError as exc:
-        raise SpecError("design", f"{path} is not valid TOML: {exc}") from None
+    from gearkit.export import read_toml
+
+    data = read_toml(path, "design")
     return design_from_dict(data)

@@ -10,18 +10,34 @@ import argparse
 import importlib
 import sys
 
-from gearkit.errors import GearkitError
 
 #: command modules, in the order ``gearkit --help`` lists them
 COMMANDS = ("demo", "gear", "rack", "check", "pair", "bench", "novikov", "blocking", "atlas", "cycloid", "contact",
             "view", "cam", "scene", "planetary")
 
 
+def version() -> str:
+    """The installed version of gearkit (the source tree's when not installed)."""
+    try:
+        from importlib.metadata import version as _v
+
+        return _v("gearkit")
+    except Exception:  # running from a source tree that is not installed
+        return "0+unknown"
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="gearkit",
-        description="Gear geometry and tooth-contact kernel: generate, check and export gears (lengths in mm).",
+        description="Gear geometry and tooth-contact kernel: generate, check and export gears (lengths in mm). "
+                    "Exit status: 0 ok, 1 a design check fails, 2 bad input or a file problem, 130/143 "
+                    "interrupted, 70 an internal error (a bug).",
     )
+    parser.add_argument("--version", action="version", version=f"gearkit {version()}")
+    parser.add_argument("--debug", action="store_true",
+                        help="show the traceback of an internal error (also accepted after the command)")
+    parser.add_argument("--progress", action="store_true",
+                        help="draw progress bars on stderr even when it is not a terminal (also after the command)")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
     for name in COMMANDS:
         importlib.import_module(f"gearkit.cli.{name}").register(sub)
@@ -29,21 +45,23 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Run the CLI; return the exit status (0 ok, 1 a check failed, 2 bad input)."""
+    """Run the CLI; return the exit status (0 ok, 1 a check failed, 2 bad input, 130/143 interrupted)."""
+    from gearkit.cli.shell import Progress, run_guarded
+
+    argv = list(sys.argv[1:] if argv is None else argv)
+    debug = "--debug" in argv
+    progress = "--progress" in argv
+    argv = [a for a in argv if a not in ("--debug", "--progress")]
     parser = build_parser()
     try:
         args = parser.parse_args(argv)
-    except SystemExit as exc:  # argparse reports bad flags itself and exits 2
+    except SystemExit as exc:  # argparse reports bad flags itself and exits 2 (0 for --help/--version)
         return int(exc.code or 0)
+    Progress.enabled_default = True if progress else None
     try:
-        return int(args.run(args) or 0)
-    except GearkitError as exc:
-        print(f"gearkit {args.command}: error: {exc}", file=sys.stderr)
-        return 2
-    except BrokenPipeError:  # output piped into a reader that stopped early (e.g. `| head`)
-        import os
-        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
-        return 0
+        return run_guarded(args, debug=debug)
+    finally:
+        Progress.enabled_default = None
 
 
 if __name__ == "__main__":  # pragma: no cover

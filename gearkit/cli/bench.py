@@ -13,7 +13,9 @@ def register(subparsers) -> None:
                     "oracle's convergence; the kernel's overhead over numpy's closed-form involute; whole-process "
                     "times of 'gearkit gear'. Lengths in mm.")
     p.add_argument("--quick", action="store_true", help="fewer cases and repeats (under a minute)")
-    p.add_argument("--json", metavar="FILE", default=None, help="also write the results as JSON to FILE")
+    p.add_argument("-o", "--output", metavar="FILE", default=None,
+                   help="also write the results as JSON to FILE (checked before the bench runs)")
+    p.add_argument("--json", action="store_true", help="print the results as one JSON object instead of the table")
     p.add_argument("--no-process", action="store_true", help="skip the whole-process (subprocess) timings")
     p.set_defaults(run=run)
 
@@ -25,15 +27,15 @@ def run(args) -> int:
 
     res = run_bench(quick=args.quick, process=not args.no_process,
                     progress=lambda msg: print(f"gearkit bench: {msg} ...", file=sys.stderr, flush=True))
-    print(format_table(res))
-    if args.json:
+    text = json.dumps(res, indent=1, allow_nan=False) + "\n"
+    print(text if args.json else format_table(res), end="" if args.json else "\n")
+    if args.output:
         from gearkit.export import atomic_write
-
-        text = json.dumps(res, indent=1, allow_nan=False) + "\n"
 
         def write(tmp):
             with open(tmp, "w", encoding="utf-8") as fh:
                 fh.write(text)
 
-        atomic_write(args.json, write)
+        atomic_write(args.output, write)
+        print(f"gearkit bench: wrote {args.output}", file=sys.stderr)
     return 0

@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import math
 import os
-import tempfile
 
 import numpy as np
 
@@ -37,17 +36,9 @@ def write_figure(fig, path) -> str:
     fmt = os.path.splitext(path)[1].lower().lstrip(".")
     if fmt not in _FORMATS:
         raise SpecError("output", f"{path!r}: the plot format must be one of {', '.join(_FORMATS)} (from the suffix)")
-    folder = os.path.dirname(os.path.abspath(path))
-    fd, tmp = tempfile.mkstemp(prefix=".gearkit-", suffix="." + fmt, dir=folder)
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            fig.savefig(fh, format=fmt)
-        os.chmod(tmp, 0o644)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
+    from gearkit.export import atomic_write
+
+    atomic_write(path, lambda tmp: fig.savefig(tmp, format=fmt))
     return path
 
 

@@ -137,8 +137,10 @@ def load_scene(path) -> Scene:
     p = Path(path)
     try:
         text = p.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise SpecError(str(p), f"cannot read the scene file ({exc.__class__.__name__}: {exc})") from None
+    except OSError as exc:
+        raise SpecError(str(p), f"cannot read the scene file: {exc.strerror or exc}") from None
+    except UnicodeDecodeError:
+        raise SpecError(str(p), "not a TOML text file (not UTF-8)") from None
     try:
         return scene_from_text(text)
     except SpecError as exc:

@@ -28,7 +28,6 @@ Format (lengths in mm, angles in degrees; keys as in :class:`~gearkit.families.c
 """
 from __future__ import annotations
 
-import sys
 
 from gearkit.errors import SpecError
 from gearkit.families.cam.laws import MotionProgram, MotionSegment
@@ -87,15 +86,7 @@ def cam_from_dict(data: dict) -> CamSpec:
 
 def load_cam_design(path) -> CamSpec:
     """Read a TOML cam design file; any problem is a :class:`SpecError` naming it."""
-    if sys.version_info >= (3, 11):
-        import tomllib as toml
-    else:  # pragma: no cover - depends on the interpreter
-        import tomli as toml
-    try:
-        with open(path, "rb") as fh:
-            data = toml.load(fh)
-    except OSError as exc:
-        raise SpecError("design", f"cannot read {path}: {exc.strerror}") from None
-    except toml.TOMLDecodeError as exc:
-        raise SpecError("design", f"{path} is not valid TOML: {exc}") from None
+    from gearkit.export import read_toml
+
+    data = read_toml(path, "design")
     return cam_from_dict(data)

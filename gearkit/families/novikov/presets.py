@@ -24,7 +24,6 @@ same keys at its top level::
 """
 from __future__ import annotations
 
-import sys
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
@@ -126,17 +125,6 @@ class RackSystem:
 
 # ----------------------------------------------------------------------------- TOML
 
-def _toml():
-    if sys.version_info >= (3, 11):
-        import tomllib
-        return tomllib
-    try:  # pragma: no cover - depends on the interpreter
-        import tomli
-    except ImportError:  # pragma: no cover
-        raise SpecError("rack", "reading TOML on Python 3.10 needs the 'tomli' package") from None
-    return tomli  # pragma: no cover
-
-
 def _arc_from(d, where):
     if d is None:
         return None
@@ -186,8 +174,9 @@ def rack_system_from_dict(d: dict, name: str = "custom") -> RackSystem:
 @lru_cache(maxsize=1)
 def rack_presets() -> dict:
     """The preset rack systems by name (from ``gearkit/data/novikov_racks.toml``)."""
-    with open(PRESETS_FILE, "rb") as fh:
-        data = _toml().load(fh)
+    from gearkit.export import read_toml
+
+    data = read_toml(PRESETS_FILE, "rack")
     return {name: rack_system_from_dict(table, name) for name, table in data.items()}
 
 
@@ -196,11 +185,9 @@ def load_rack_system(path) -> RackSystem:
     p = Path(path)
     if not p.is_file():
         raise SpecError("rack", f"no rack file {str(p)!r}")
-    try:
-        with open(p, "rb") as fh:
-            data = _toml().load(fh)
-    except _toml().TOMLDecodeError as exc:
-        raise SpecError("rack", f"{p.name} is not valid TOML ({exc})") from None
+    from gearkit.export import read_toml
+
+    data = read_toml(p, "rack")
     return rack_system_from_dict(data, p.stem)
 
 

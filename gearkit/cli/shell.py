@@ -1,0 +1,161 @@
+"""What every ``gearkit`` command gets by construction: exit codes, one-line errors, signals,
+output paths checked before any work, bounded work and a progress bar.
+
+Exit status: 0 ok, 1 a design check fails, 2 bad input or a file problem (one line naming the
+file or field), 130 interrupted (Ctrl-C), 143 terminated (SIGTERM), 70 an internal error (a bug:
+one line and a hint to rerun with ``--debug`` for the traceback).
+
+Examples
+--------
+>>> describe_os_error(FileNotFoundError(2, "No such file or directory", "/nope/a.toml"))
+"'/nope/a.toml': No such file or directory"
+>>> refuse_size("--tol", 3.2e7, 2e6, "points", "--max-points")
+Traceback (most recent call last):
+...
+gearkit.errors.SpecError: --tol: the output would have about 3.2e+07 points (limit 2e+06); raise --max-points to compute it anyway
+"""
+from __future__ import annotations
+
+import os
+import signal
+import sys
+import time
+
+from gearkit.errors import GearkitError, SpecError
+
+EXIT_OK, EXIT_FAILS, EXIT_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED, EXIT_TERMINATED = 0, 1, 2, 70, 130, 143
+
+#: argparse destinations that name a file a command writes, and those that name a folder
+OUTPUT_DESTS = ("output", "plot")
+OUTPUT_DIR_DESTS = ("out_dir",)
+
+
+class Terminated(BaseException):
+    """SIGTERM turned into an exception, so temporary files are removed on the way out."""
+
+
+def describe_os_error(exc: OSError) -> str:
+    """One line for a file problem: the file's name and what is wrong."""
+    name = exc.filename if exc.filename is not None else ""
+    reason = exc.strerror or str(exc)
+    return f"{str(name)!r}: {reason}" if name != "" else reason
+
+
+def refuse_size(field: str, estimate: float, limit: float, unit: str, override: str) -> None:
+    """Raise ``SpecError`` when an output's estimated size exceeds ``limit``, naming the override."""
+    if estimate > limit:
+        raise SpecError(field, f"the output would have about {estimate:.2g} {unit} (limit {limit:.2g}); "
+                               f"raise {override} to compute it anyway")
+
+
+def output_paths(args) -> list:
+    """``(flag, path, is_folder)`` for every output a parsed command line names."""
+    found = []
+    for dest in OUTPUT_DESTS + OUTPUT_DIR_DESTS:
+        value = getattr(args, dest, None)
+        for path in (value if isinstance(value, list) else [value]):
+            if isinstance(path, str):
+                flag = "--" + dest.replace("_", "-") if dest != "output" else "-o"
+                found.append((flag, path, dest in OUTPUT_DIR_DESTS))
+    return found
+
+
+def check_outputs(args) -> None:
+    """Check every output path before the command does any work (exit 2 on a bad one)."""
+    from gearkit.export import check_output_dir, check_output_path
+
+    for flag, path, folder in output_paths(args):
+        (check_output_dir if folder else check_output_path)(path, flag)
+
+
+def _on_sigterm(signum, frame):
+    raise Terminated()
+
+
+def run_guarded(args, debug: bool = False) -> int:
+    """Run ``args.run(args)`` and turn every way it can end into an exit status and at most one line."""
+    prefix = f"gearkit {getattr(args, 'command', '')}".rstrip()
+    previous = None
+    try:
+        previous = signal.signal(signal.SIGTERM, _on_sigterm)
+    except ValueError:  # not the main thread: leave signals alone
+        previous = None
+    try:
+        check_outputs(args)
+        return int(args.run(args) or 0)
+    except GearkitError as exc:
+        print(f"{prefix}: error: {exc}", file=sys.stderr)
+        return EXIT_INPUT
+    except BrokenPipeError:  # output piped into a reader that stopped early (e.g. `| head`)
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return EXIT_OK
+    except OSError as exc:
+        if debug:
+            raise
+        print(f"{prefix}: error: {describe_os_error(exc)}", file=sys.stderr)
+        return EXIT_INPUT
+    except KeyboardInterrupt:
+        print(f"\n{prefix}: interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    except Terminated:
+        print(f"{prefix}: terminated", file=sys.stderr)
+        return EXIT_TERMINATED
+    except MemoryError:
+        print(f"{prefix}: error: out of memory; ask for less (a coarser --tol, fewer steps or teeth)",
+              file=sys.stderr)
+        return EXIT_INPUT
+    except Exception as exc:  # a bug: one line, the traceback only on request
+        if debug:
+            raise
+        text = str(exc).splitlines()[0] if str(exc) else ""
+        print(f"{prefix}: internal error: {type(exc).__name__}: {text} (a bug; rerun with "
+              f"'gearkit --debug {getattr(args, 'command', '')} ...' for the traceback)", file=sys.stderr)
+        return EXIT_INTERNAL
+    finally:
+        if previous is not None:
+            signal.signal(signal.SIGTERM, previous)
+
+
+class Progress:
+    """A progress bar on stderr, drawn only on a terminal or when asked (``--progress``).
+
+    ``with Progress("contact", total) as bar: ... bar.update(k)``; it redraws at most ten times
+    a second and clears its line when done.
+
+    Examples
+    --------
+    >>> with Progress("steps", 4, enabled=False) as bar:
+    ...     bar.update(2)
+    >>> bar.done
+    2
+    """
+
+    enabled_default = None  # set by the command line's --progress
+
+    def __init__(self, label: str, total: int, enabled: bool | None = None, stream=None):
+        self.label, self.total, self.done = label, max(int(total), 1), 0
+        self.stream = stream if stream is not None else sys.stderr
+        if enabled is None:
+            enabled = Progress.enabled_default
+        if enabled is None:
+            enabled = bool(getattr(self.stream, "isatty", lambda: False)())
+        self.enabled, self._last = enabled, 0.0
+
+    def __enter__(self):
+        return self
+
+    def update(self, done: int) -> None:
+        self.done = int(done)
+        now = time.monotonic()
+        if self.enabled and (now - self._last > 0.1 or self.done >= self.total):
+            self._last = now
+            frac = min(self.done / self.total, 1.0)
+            bar = "#" * int(30 * frac)
+            self.stream.write(f"\r{self.label} [{bar:<30}] {100 * frac:3.0f}%")
+            self.stream.flush()
+
+    def __exit__(self, *exc):
+        if self.enabled:
+            self.stream.write("\r" + " " * (len(self.label) + 38) + "\r")
+            self.stream.flush()
+        return False
