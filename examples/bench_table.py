@@ -3,7 +3,7 @@
     python examples/bench_table.py            # full bench, rewrite README.md between the markers
     python examples/bench_table.py --quick    # the quick bench (under a minute)
     python examples/bench_table.py --print    # print the block, leave README.md alone
-    python examples/bench_table.py --from-json bench.json   # render a saved `gearkit bench --json` run
+    python examples/bench_table.py --from-json bench.json   # render a saved `gearkit bench -o bench.json` run
 
 The block lives between ``<!-- bench:start -->`` and ``<!-- bench:end -->``; nothing outside
 the markers is touched. The numbers are measured, never typed.

@@ -55,7 +55,7 @@ LAYERS = (
     ("pair", ("gearkit.pair",)),
     ("checks/contact", ("gearkit.checks", "gearkit.contact")),
     ("blocking/solids/scene", ("gearkit.blocking", "gearkit.solids", "gearkit.scene")),
-    ("cli/bench/view", ("gearkit.cli", "gearkit.bench", "gearkit.view")),
+    ("cli/bench/view", ("gearkit.cli", "gearkit.bench", "gearkit.view", "gearkit.__main__")),
 )
 #: the envelope path, which the oracles must not import (they are its independent check)
 ENVELOPE_PATH = ("gearkit.segments", "gearkit.motion", "gearkit.envelope", "gearkit.boundary", "gearkit.profile")

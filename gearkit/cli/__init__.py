@@ -36,6 +36,9 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--version", action="version", version=f"gearkit {version()}")
     parser.add_argument("--debug", action="store_true",
                         help="show the traceback of an internal error (also accepted after the command)")
+    parser.add_argument("--max-points", type=int, default=None, metavar="N",
+                        help="raise the size limit a refused output names (points, faces, steps; also after the "
+                             "command)")
     parser.add_argument("--progress", action="store_true",
                         help="draw progress bars on stderr even when it is not a terminal (also after the command)")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
@@ -46,22 +49,49 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv: list[str] | None = None) -> int:
     """Run the CLI; return the exit status (0 ok, 1 a check failed, 2 bad input, 130/143 interrupted)."""
-    from gearkit.cli.shell import Progress, run_guarded
+    from gearkit.cli.shell import MAX_POINTS, Progress, run_guarded
 
     argv = list(sys.argv[1:] if argv is None else argv)
     debug = "--debug" in argv
     progress = "--progress" in argv
     argv = [a for a in argv if a not in ("--debug", "--progress")]
+    argv, max_points = _take_max_points(argv)
+    if isinstance(max_points, str):
+        print(f"gearkit: error: --max-points: {max_points}", file=sys.stderr)
+        return 2
     parser = build_parser()
     try:
         args = parser.parse_args(argv)
     except SystemExit as exc:  # argparse reports bad flags itself and exits 2 (0 for --help/--version)
         return int(exc.code or 0)
     Progress.enabled_default = True if progress else None
+    MAX_POINTS[0] = max_points
     try:
         return run_guarded(args, debug=debug)
     finally:
         Progress.enabled_default = None
+        MAX_POINTS[0] = None
+
+
+def _take_max_points(argv):
+    """``--max-points N`` (anywhere on the line) taken out: ``(argv, N or None)``, or an error text."""
+    out, value = [], None
+    i = 0
+    while i < len(argv):
+        a = argv[i]
+        if a == "--max-points" or a.startswith("--max-points="):
+            text = a.split("=", 1)[1] if "=" in a else (argv[i + 1] if i + 1 < len(argv) else "")
+            i += 1 if "=" in a else 2
+            try:
+                value = int(float(text))
+            except (ValueError, OverflowError):
+                return argv, f"{text!r} must be a positive whole number"
+            if value < 1:
+                return argv, f"{text!r} must be a positive whole number"
+            continue
+        out.append(a)
+        i += 1
+    return out, value
 
 
 if __name__ == "__main__":  # pragma: no cover

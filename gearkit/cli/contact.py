@@ -72,6 +72,10 @@ def _spec(args):
     return pair_spec_from_args(args)
 
 
+#: default limit of the positions simulated (--steps per cycle times --cycles): about 15 s
+MAX_POSITIONS = 100_000
+
+
 def run(args) -> int:
     from gearkit.checks import check_pair
     from gearkit.checks.simulated import simulated_findings
@@ -82,6 +86,9 @@ def run(args) -> int:
         v = getattr(args, name)
         if v is not None and v < 1:
             raise SpecError(f"--{name}", f"{v} must be a positive integer")
+    from gearkit.cli.shell import bound
+
+    bound("--steps", args.steps * max(args.cycles or 1, 1), MAX_POSITIONS, "mesh positions (--steps x --cycles)")
     check = check_pair(spec, limits)
     analysis = analyse_pair(spec, args.steps, tol=args.tol, slices=args.slices, contact_tol=args.contact_tol)
     findings = simulated_findings(spec, check.geometry, check.report.findings, limits, analysis)

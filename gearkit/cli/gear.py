@@ -221,6 +221,8 @@ def run(args) -> int:
     tol = args.tol if args.tol is not None else 1e-3 * spec.module
     if not tol > 0:
         raise SpecError("--tol", f"{tol!r} must be a positive length in mm")
+    if args.output:
+        bound_outline(prof, tol, spec.module)
     info = prof.summary(tol)
     dims, findings = inspection_of(args, spec, prof, tol)
     if args.output:
@@ -241,6 +243,25 @@ def run(args) -> int:
     return 0
 
 
+#: default size limits of an output (``--max-points`` raises them): about 100 MB of SVG or STL
+MAX_OUTLINE_POINTS, MAX_FACES = 2_000_000, 2_000_000
+
+
+def bound_outline(prof, tol: float, module: float) -> None:
+    """Refuse an outline of more than ``MAX_OUTLINE_POINTS`` points at ``tol``, estimated first.
+
+    Chords within ``tol`` of a curve need ``tol**-0.5`` points, so the count at ``tol`` is the count
+    at a coarse tolerance scaled by ``sqrt(coarse / tol)``.
+    """
+    import math
+
+    from gearkit.cli.shell import bound
+
+    coarse = max(tol, 1e-3 * module)
+    n = len(prof.outline(coarse)) * math.sqrt(coarse / tol)
+    bound("--tol", n, MAX_OUTLINE_POINTS, "outline points")
+
+
 def _run_solid(args, spec, prof) -> int:
     from gearkit.solids import default_mesh_tol, gear_solid
     from gearkit.solids.export import mesh_format, write_mesh
@@ -248,7 +269,12 @@ def _run_solid(args, spec, prof) -> int:
     tol = args.tol if args.tol is not None else default_mesh_tol(spec.module)
     if not tol > 0:
         raise SpecError("--tol", f"{tol!r} must be a positive length in mm")
-    solid = gear_solid(prof, solid_spec_from_args(args), tol, name="gear")
+    from gearkit.cli.shell import bound
+    from gearkit.solids.gear import estimate_faces
+
+    solid_spec = solid_spec_from_args(args)
+    bound("--tol", estimate_faces(prof, solid_spec, tol), MAX_FACES, "facets")
+    solid = gear_solid(prof, solid_spec, tol, name="gear")
     info = prof.summary(tol)
     if mesh_format(args.output) in ("step", "stp"):
         from gearkit.solids.step import write_step

@@ -58,6 +58,10 @@ def _pair_spec(args):
     return pair_spec_from_args(args, allowed_with_design=("width",))[0]
 
 
+#: default limit of --sweep (each position is a boolean intersection of the two solids)
+MAX_SWEEP = 1000
+
+
 def run(args) -> int:
     from gearkit.cli.gear import keyway_from_arg
 
@@ -68,6 +72,9 @@ def run(args) -> int:
             raise SpecError("output", f"{args.output!r}: the assembly is written as .obj, .glb, .3mf, .step or .stl")
     if args.sweep < 0:
         raise SpecError("--sweep", f"{args.sweep} must be >= 0")
+    from gearkit.cli.shell import bound
+
+    bound("--sweep", args.sweep, MAX_SWEEP, "rotations (each a 3D intersection)")
     spec = _pair_spec(args)
     from gearkit.solids.pair import pair_assembly
 

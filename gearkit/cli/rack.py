@@ -33,6 +33,8 @@ def run(args) -> int:
     from gearkit.errors import SpecError
     from gearkit.families.involute.rack import RackSpec, rack_profile
 
+    if not 1 <= args.count <= 100_000:
+        raise SpecError("--count", f"{args.count} teeth is outside [1, 100000]")
     args.cutter_shift, args.cutter_addendum = 0.0, 1.25
     spec = RackSpec(args.module, tool_from_args(args, False), args.helix_angle_deg, args.thinning)
     prof = rack_profile(spec)
@@ -50,6 +52,11 @@ def run(args) -> int:
 
         height = args.height if args.height is not None else (prof.tip_height - prof.root_height) + 3 * spec.module
         width = args.width if args.width is not None else 10 * spec.module
+        from gearkit.cli.gear import MAX_FACES
+        from gearkit.cli.shell import bound
+
+        one = rack_solid(prof, length=prof.pitch, height=height, width=width, tol=tol, start=-prof.pitch / 2)
+        bound("--count", one.faces * args.count, MAX_FACES, "facets")
         bar = rack_solid(prof, length=args.count * prof.pitch, height=height, width=width, tol=tol,
                          start=-prof.pitch / 2)
         bar.export(args.output)
@@ -60,6 +67,10 @@ def run(args) -> int:
 
         from gearkit.export import write_profile
 
+        from gearkit.cli.gear import MAX_OUTLINE_POINTS
+        from gearkit.cli.shell import bound
+
+        bound("--count", len(prof.outline(tol, teeth=1)) * args.count, MAX_OUTLINE_POINTS, "outline points")
         line = prof.outline(tol, teeth=args.count)
         base = prof.root_height - 2.0 * spec.module
         body = np.concatenate([line, [[line[-1, 0], base], [line[0, 0], base]]])

@@ -12,7 +12,7 @@ Examples
 >>> refuse_size("--tol", 3.2e7, 2e6, "points", "--max-points")
 Traceback (most recent call last):
 ...
-gearkit.errors.SpecError: --tol: the output would have about 3.2e+07 points (limit 2e+06); raise --max-points to compute it anyway
+gearkit.errors.SpecError: --tol: this needs about 3.2e+07 points (limit 2e+06); raise --max-points to compute it anyway
 """
 from __future__ import annotations
 
@@ -41,10 +41,28 @@ def describe_os_error(exc: OSError) -> str:
     return f"{str(name)!r}: {reason}" if name != "" else reason
 
 
+#: the ``--max-points`` override of every size limit (None: each limit's default)
+MAX_POINTS: list = [None]
+
+
+def bound(field: str, estimate: float, default_limit: float, unit: str) -> None:
+    """Refuse (exit 2) work whose estimated size exceeds the limit (``--max-points N`` overrides it).
+
+    Examples
+    --------
+    >>> bound("--steps", 1e6, 1e5, "mesh positions")
+    Traceback (most recent call last):
+    ...
+    gearkit.errors.SpecError: --steps: this needs about 1e+06 mesh positions (limit 1e+05); raise --max-points to compute it anyway
+    """
+    limit = MAX_POINTS[0] if MAX_POINTS[0] is not None else default_limit
+    refuse_size(field, estimate, limit, unit, "--max-points")
+
+
 def refuse_size(field: str, estimate: float, limit: float, unit: str, override: str) -> None:
     """Raise ``SpecError`` when an output's estimated size exceeds ``limit``, naming the override."""
     if estimate > limit:
-        raise SpecError(field, f"the output would have about {estimate:.2g} {unit} (limit {limit:.2g}); "
+        raise SpecError(field, f"this needs about {estimate:.2g} {unit} (limit {limit:.2g}); "
                                f"raise {override} to compute it anyway")
 
 
