@@ -1,0 +1,231 @@
+"""Issue 13, each row a test: no traceback ever, nothing left at the destination, bounded work.
+
+Every case runs the CLI in-process (``gearkit.cli.main``) and reads its exit status and stderr:
+exit 2 with one line naming the file or field for bad input and file problems, 130/143 for an
+interrupt, 70 with a ``--debug`` hint for an internal error.
+"""
+import json
+import os
+import signal
+import subprocess
+import sys
+
+import pytest
+
+from gearkit.cli import COMMANDS, build_parser, main
+
+
+def run(capsys, *argv):
+    code = main(list(argv))
+    out, err = capsys.readouterr()
+    assert "Traceback" not in err and "Traceback" not in out
+    return code, out, err
+
+
+def one_error_line(err: str) -> str:
+    lines = [ln for ln in err.splitlines() if ln.strip()]
+    assert len(lines) == 1, err
+    return lines[0]
+
+
+def leftovers(folder):
+    return sorted(p.name for p in folder.iterdir() if p.name.endswith(".part") or p.name.startswith(".gearkit-"))
+
+
+@pytest.mark.parametrize("argv", [
+    ["gear", "-z", "20", "-m", "2", "-o", "{d}.svg"],
+    ["gear", "-z", "20", "-m", "2", "--width", "5", "-o", "{d}.stl"],
+    ["blocking", "--z1", "13", "--z2", "16", "-o", "{d}.png"],
+    ["pair", "--z1", "20", "--z2", "40", "-m", "2", "--width", "5", "-o", "{d}.stl"],
+    ["bench", "--quick", "-o", "{d}.json"],
+])
+def test_output_onto_a_directory_is_refused_before_any_work(capsys, tmp_path, argv, monkeypatch):
+    import gearkit.bench
+
+    monkeypatch.setattr(gearkit.bench, "run_bench", lambda **kw: pytest.fail("the bench ran"))
+    target = tmp_path / ("out" + argv[-1][3:])
+    target.mkdir()
+    code, _, err = run(capsys, *[a.replace("{d}", str(tmp_path / "out")) for a in argv])
+    assert code == 2
+    assert "is a directory" in one_error_line(err) and "-o" in err
+    assert list(target.iterdir()) == [] and leftovers(tmp_path) == []
+
+
+@pytest.mark.parametrize("argv", [
+    ["blocking", "--z1", "13", "--z2", "16", "-o", "/nonexistent-gk/c.png"],
+    ["contact", "--z1", "20", "--z2", "40", "-m", "2", "-o", "/nonexistent-gk/te.png"],
+    ["bench", "--quick", "-o", "/nonexistent-gk/b.json"],
+    ["gear", "-z", "20", "-m", "2", "-o", "/nonexistent-gk/g.svg"],
+])
+def test_output_into_a_missing_directory_is_refused_before_any_work(capsys, argv, monkeypatch):
+    import gearkit.bench
+
+    monkeypatch.setattr(gearkit.bench, "run_bench", lambda **kw: pytest.fail("the bench ran"))
+    code, _, err = run(capsys, *argv)
+    assert code == 2 and "'/nonexistent-gk' does not exist" in one_error_line(err)
+
+
+def test_every_output_flag_of_every_command_is_checked(tmp_path, monkeypatch):
+    """An unwritable folder is refused for every registered command's output flags (by construction)."""
+    import gearkit.export
+    from gearkit.cli.shell import OUTPUT_DESTS, check_outputs
+    from gearkit.errors import SpecError
+
+    locked = tmp_path / "locked"
+    locked.mkdir()
+    real = os.access
+    monkeypatch.setattr(gearkit.export.os, "access", lambda p, mode: False if str(p) == str(locked) else real(p, mode))
+    parser = build_parser()
+    sub = next(a for a in parser._actions if a.dest == "command")
+    checked = 0
+    for name in COMMANDS:
+        for action in sub.choices[name]._actions:
+            if action.dest in OUTPUT_DESTS:
+                ns = type("A", (), {})()
+                value = str(locked / "f.png")
+                setattr(ns, action.dest, [value] if isinstance(action.default, list) else value)
+                with pytest.raises(SpecError, match="is not writable"):
+                    check_outputs(ns)
+                checked += 1
+    assert checked >= 10  # every command that writes a file has -o (and cam --plot)
+
+
+def test_unwritable_directory_end_to_end(capsys, tmp_path, monkeypatch):
+    import gearkit.export
+
+    real = os.access
+    monkeypatch.setattr(gearkit.export.os, "access", lambda p, mode: False if str(p) == str(tmp_path) else real(p, mode))
+    code, _, err = run(capsys, "gear", "-z", "20", "-m", "2", "-o", str(tmp_path / "g.svg"))
+    assert code == 2 and "is not writable" in one_error_line(err)
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_os_error_while_writing_is_one_line_exit_2(capsys, tmp_path, monkeypatch):
+    """A file problem found only while writing (permission, disk full) is one line, exit 2."""
+    import tempfile
+
+    def denied(*a, **k):
+        raise PermissionError(13, "Permission denied", str(tmp_path / ".g.svg.x.part"))
+
+    monkeypatch.setattr(tempfile, "mkstemp", denied)
+    code, _, err = run(capsys, "gear", "-z", "20", "-m", "2", "-o", str(tmp_path / "g.svg"))
+    assert code == 2 and "Permission denied" in one_error_line(err)
+
+
+def test_demo_out_dir_onto_a_file(capsys, tmp_path):
+    f = tmp_path / "afile"
+    f.write_text("keep")
+    code, _, err = run(capsys, "demo", "--out-dir", str(f))
+    assert code == 2 and "is a file, not a directory" in one_error_line(err)
+    assert f.read_text() == "keep"
+
+
+@pytest.mark.parametrize("content", [b"\xff\xfe\x00\x01binary", "z1 = 'é'".encode("latin-1")])
+def test_binary_or_non_utf8_toml(capsys, tmp_path, content):
+    f = tmp_path / "file.toml"
+    f.write_bytes(content)
+    code, _, err = run(capsys, "check", str(f))
+    assert code == 2 and "file.toml" in one_error_line(err) and "UTF-8" in err
+
+
+def test_large_shift_on_a_huge_gear_is_no_traceback(capsys):
+    code, out, err = run(capsys, "gear", "-z", "997", "-m", "25", "-x", "3", "--json")
+    assert code in (0, 2)
+    if code == 0:
+        assert json.loads(out)["teeth"] == 997
+    else:
+        one_error_line(err)
+
+
+def _interrupt_while_writing(monkeypatch, raiser):
+    """Make the SVG writer write half a file, then be interrupted."""
+    import gearkit.export
+
+    real = gearkit.export._svg
+
+    def half(loops, tmp):
+        real(loops, tmp)
+        raiser()
+
+    monkeypatch.setattr(gearkit.export, "_svg", half)
+
+
+def test_ctrl_c_during_an_export_exits_130_and_leaves_nothing(capsys, tmp_path, monkeypatch):
+    def ctrl_c():
+        raise KeyboardInterrupt
+
+    _interrupt_while_writing(monkeypatch, ctrl_c)
+    code, _, err = run(capsys, "gear", "-z", "20", "-m", "2", "-o", str(tmp_path / "g.svg"))
+    assert code == 130 and one_error_line(err) == "gearkit gear: interrupted"
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_sigterm_during_an_export_exits_143_and_leaves_nothing(capsys, tmp_path, monkeypatch):
+    _interrupt_while_writing(monkeypatch, lambda: os.kill(os.getpid(), signal.SIGTERM))
+    before = signal.getsignal(signal.SIGTERM)
+    code, _, err = run(capsys, "gear", "-z", "20", "-m", "2", "-o", str(tmp_path / "g.svg"))
+    assert code == 143 and one_error_line(err) == "gearkit gear: terminated"
+    assert list(tmp_path.iterdir()) == []
+    assert signal.getsignal(signal.SIGTERM) is before  # the handler is put back
+
+
+def test_internal_error_is_one_line_with_a_debug_hint(capsys, monkeypatch):
+    import gearkit.cli.gear
+
+    def bug(args):
+        raise ZeroDivisionError("float division by zero")
+
+    monkeypatch.setattr(gearkit.cli.gear, "build", bug)
+    code, _, err = run(capsys, "gear", "-z", "20", "-m", "2")
+    line = one_error_line(err)
+    assert code == 70 and "internal error: ZeroDivisionError" in line and "--debug" in line
+    with pytest.raises(ZeroDivisionError):
+        main(["gear", "-z", "20", "-m", "2", "--debug"])
+
+
+@pytest.mark.parametrize("argv, field", [
+    (["gear", "-z", "20", "-m", "2", "--tol", "1e-12", "-o", "{t}/g.svg"], "tol"),
+    (["gear", "-z", "20", "-m", "2", "--tol", "1e-11", "-o", "{t}/g.svg"], "tol"),
+    (["gear", "-z", "20", "-m", "2", "--helix-angle-deg", "20", "--width", "20", "--tol", "1e-6", "-o", "{t}/h.stl"],
+     "--tol"),
+    (["rack", "-m", "2", "-n", "10000", "-o", "{t}/r.stl"], "--count"),
+    (["rack", "-m", "2", "-n", "100001"], "--count"),
+    (["rack", "-m", "2", "-n", "0"], "--count"),
+    (["pair", "--z1", "20", "--z2", "40", "-m", "2", "--width", "10", "--sweep", "100000"], "--sweep"),
+    (["contact", "--z1", "20", "--z2", "40", "-m", "2", "--steps", "1000000"], "--steps"),
+])
+def test_work_that_would_hang_or_fill_a_disk_is_refused(capsys, tmp_path, argv, field):
+    code, _, err = run(capsys, *[a.replace("{t}", str(tmp_path)) for a in argv])
+    line = one_error_line(err)
+    assert code == 2 and f"{field}:" in line
+    if "about" in line:  # a size refusal says its estimate and the override
+        assert "--max-points" in line
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_max_points_lets_a_refused_output_through(capsys, tmp_path):
+    argv = ["rack", "-m", "2", "-n", "50", "-o", str(tmp_path / "r.svg")]
+    assert main(["--max-points", "10", *argv]) == 2
+    assert "--max-points" in capsys.readouterr().err
+    assert main(["--max-points", "1000000", *argv]) == 0
+    assert (tmp_path / "r.svg").is_file()
+
+
+def test_written_files_are_0644(capsys, tmp_path):
+    old = os.umask(0o022)
+    try:
+        assert main(["blocking", "--z1", "13", "--z2", "16", "-o", str(tmp_path / "c.json")]) in (0, 1)
+        assert main(["gear", "-z", "20", "-m", "2", "-o", str(tmp_path / "g.svg")]) == 0
+    finally:
+        os.umask(old)
+    for f in tmp_path.iterdir():
+        assert f.stat().st_mode & 0o777 == 0o644, f
+
+
+def test_version_and_python_dash_m(capsys):
+    with pytest.raises(SystemExit) as exc:
+        build_parser().parse_args(["--version"])
+    assert exc.value.code == 0 and capsys.readouterr().out.startswith("gearkit ")
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path))
+    res = subprocess.run([sys.executable, "-m", "gearkit", "--version"], capture_output=True, text=True, env=env)
+    assert res.returncode == 0 and res.stdout.startswith("gearkit ")
