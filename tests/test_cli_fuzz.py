@@ -1,0 +1,174 @@
+"""The command line under random and hostile argument vectors (issue 13).
+
+For every command registered in ``gearkit.cli.COMMANDS`` (new commands are covered by
+construction), argument vectors are drawn from the command's own argparse actions: its flags
+with values of the declared type biased towards the legal range, hostile numbers (0, negative,
+huge, nan, inf), unknown choices, paths that are folders, missing folders, binary files, and
+stray tokens. Each vector runs in-process through ``gearkit.cli.main`` in a scratch folder, with
+a timer that interrupts a long run as Ctrl-C would. Asserted for every run:
+
+- the exit status is 0, 1, 2 or 130 (never 70, an internal error, nor anything else);
+- no traceback on stdout or stderr, and an exit 2 says why on stderr;
+- on 0 or 1 with ``--json``, stdout is one strict JSON value (no NaN/Infinity);
+- no partial file (``*.part``) is left in the scratch folder.
+
+About 2000 examples in all (tens of seconds). ``GEARKIT_FUZZ_EXAMPLES=N`` runs N per command
+(e.g. 5000 for a long run) and ``GEARKIT_FUZZ_SECONDS`` sets the per-run timer (default 0.4 s).
+"""
+import contextlib
+import io
+import json
+import os
+import signal
+import tempfile
+from pathlib import Path
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from gearkit.cli import COMMANDS, build_parser, main
+
+EXAMPLES = int(os.environ.get("GEARKIT_FUZZ_EXAMPLES", "150"))
+SECONDS = float(os.environ.get("GEARKIT_FUZZ_SECONDS", "0.4"))
+ALLOWED = {0, 1, 2, 130}
+
+PARSER = build_parser()
+SUBPARSERS = next(a for a in PARSER._actions if a.dest == "command").choices
+
+HOSTILE_NUMBERS = ["0", "-1", "-0", "nan", "inf", "-inf", "1e308", "-1e308", "1e-300", "2e9", "99999999999999999999",
+                   "0x10", "1_000", " 3", "3.", ".5", "1e", "--1"]
+SUFFIXES = ["svg", "dxf", "csv", "json", "png", "stl", "obj", "glb", "3mf", "step", "html", "toml", "txt", ""]
+WORDS = ["", "-", "--", "standard", "x", "1,2", "0.5,0.3", "3x1.4", "a,b,c,d", "1,2,3,4", "dca24", "é", "--json"]
+
+
+def _text():
+    return st.text(alphabet=st.characters(blacklist_categories=("Cs", "Cc")), max_size=8)
+
+
+def _path(scratch: Path):
+    """Paths a user might give: fresh names of every suffix, a folder, a missing folder, a binary file."""
+    return st.one_of(
+        st.sampled_from(SUFFIXES).map(lambda s: str(scratch / f"out.{s}")),
+        st.sampled_from([str(scratch / "folder.svg"), str(scratch / "missing" / "x.png"), str(scratch / "bin.toml"),
+                         str(scratch / "afile"), str(scratch), "", "."]),
+    )
+
+
+def _value(action, scratch: Path):
+    if action.choices is not None:
+        return st.one_of(st.sampled_from(sorted(map(str, action.choices))), _text())
+    kind = action.type
+    if kind is int:
+        return st.one_of(st.integers(-3, 60).map(str), st.sampled_from(HOSTILE_NUMBERS), st.integers().map(str))
+    if kind is float:
+        return st.one_of(st.floats(-5, 60).map(repr), st.sampled_from(HOSTILE_NUMBERS),
+                         st.floats(allow_nan=True, allow_infinity=True).map(repr))
+    return st.one_of(_path(scratch), st.sampled_from(WORDS), _text(), st.sampled_from(HOSTILE_NUMBERS))
+
+
+def _takes_value(action) -> bool:
+    return action.nargs != 0
+
+
+def _tokens(action, scratch: Path):
+    """The tokens of one use of ``action`` (its flag and value(s))."""
+    flag = st.sampled_from(action.option_strings) if action.option_strings else st.just(None)
+    n = action.nargs
+    count = 0 if n == 0 else (n if isinstance(n, int) else 1)
+    if n in ("*", "+"):
+        count = 2
+    values = st.lists(_value(action, scratch), min_size=count, max_size=count)
+    return st.tuples(flag, values).map(lambda fv: ([fv[0]] if fv[0] else []) + fv[1])
+
+
+@st.composite
+def argv_for(draw, name: str, scratch: Path):
+    parser = SUBPARSERS[name]
+    actions = [a for a in parser._actions if a.dest != "help"]
+    out = [name]
+    for action in actions:
+        if not action.option_strings:  # positional
+            if action.nargs in ("?", "*") and draw(st.booleans()):
+                continue
+            out += draw(_tokens(action, scratch))
+        elif action.required or draw(st.integers(0, 3)) == 0:
+            out += draw(_tokens(action, scratch))
+    if draw(st.integers(0, 5)) == 0:
+        out.insert(draw(st.integers(1, len(out))), draw(st.sampled_from(WORDS + HOSTILE_NUMBERS)))
+    return out
+
+
+def _scratch() -> Path:
+    root = Path(tempfile.mkdtemp(prefix="gearkit-fuzz-"))
+    (root / "folder.svg").mkdir()
+    (root / "bin.toml").write_bytes(b"\xff\xfe\x00\x01")
+    (root / "afile").write_text("not a folder")
+    return root
+
+
+class _Timer:
+    """Interrupt a run after ``SECONDS`` as Ctrl-C would (exit 130 is a legal answer)."""
+
+    def __enter__(self):
+        def fire(signum, frame):
+            raise KeyboardInterrupt
+
+        self.previous = signal.signal(signal.SIGALRM, fire)
+        signal.setitimer(signal.ITIMER_REAL, SECONDS)
+        return self
+
+    def __exit__(self, *exc):
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, self.previous)
+        return False
+
+
+def _strict_json(text: str):
+    def bad(name):
+        raise ValueError(f"non-strict JSON constant {name}")
+
+    return json.loads(text, parse_constant=bad)
+
+
+def run_one(argv, scratch: Path):
+    out, err = io.StringIO(), io.StringIO()
+    cwd = os.getcwd()
+    os.chdir(scratch)
+    try:
+        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err), _Timer():
+            code = main(list(argv))
+    finally:
+        os.chdir(cwd)
+    return code, out.getvalue(), err.getvalue()
+
+
+@pytest.mark.parametrize("name", sorted(SUBPARSERS))
+def test_cli_fuzz(name):
+    scratch = _scratch()
+
+    @settings(max_examples=EXAMPLES, deadline=None, derandomize=True, database=None,
+              suppress_health_check=list(HealthCheck))
+    @given(argv=argv_for(name, scratch))
+    def check(argv):
+        code, out, err = run_one(argv, scratch)
+        where = f"gearkit {' '.join(map(repr, argv))}\nstderr: {err[-800:]}"
+        assert code in ALLOWED, where
+        assert "Traceback" not in err and "Traceback" not in out, where
+        if code == 2:
+            assert err.strip(), where
+        if code in (0, 1) and "--json" in argv and out.strip():
+            try:
+                _strict_json(out)
+            except ValueError as exc:
+                raise AssertionError(f"{where}\nstdout is not strict JSON: {exc}") from None
+        parts = [p.name for p in scratch.rglob("*") if p.name.endswith(".part")]
+        assert parts == [], where
+
+    check()
+
+
+def test_every_registered_command_is_fuzzed():
+    """The fuzz covers what the parser registers: a new command is fuzzed without touching this file."""
+    assert set(SUBPARSERS) >= set(COMMANDS)
+    assert len(COMMANDS) >= 14
