@@ -29,10 +29,37 @@ from hypothesis import strategies as st
 
 from gearkit.cli import COMMANDS, build_parser, main
 
-EXAMPLES = int(os.environ.get("GEARKIT_FUZZ_EXAMPLES", "150"))
+EXAMPLES = int(os.environ.get("GEARKIT_FUZZ_EXAMPLES", "125"))
 SECONDS = float(os.environ.get("GEARKIT_FUZZ_SECONDS", "0.4"))
 ALLOWED = {0, 1, 2, 130}
 
+def _import_everything() -> None:
+    """Import gearkit's modules and the libraries they load lazily, once, before any timer runs.
+
+    In a real process an interrupt ends the process; here the next example runs in the same
+    interpreter, and a library whose first import was cut short is left half-registered.
+    """
+    import importlib
+    import pkgutil
+
+    import gearkit
+
+    for mod in pkgutil.walk_packages(gearkit.__path__, "gearkit."):
+        if mod.name.endswith("__main__"):  # running it would run the command line
+            continue
+        try:
+            importlib.import_module(mod.name)
+        except ImportError:  # an optional extra that is not installed (e.g. the STEP writer)
+            pass
+    for lib in ("ezdxf", "trimesh", "manifold3d", "matplotlib.backends.backend_agg",
+                "matplotlib.backends.backend_svg", "scipy.optimize", "scipy.spatial"):
+        try:
+            importlib.import_module(lib)
+        except ImportError:
+            pass
+
+
+_import_everything()
 PARSER = build_parser()
 SUBPARSERS = next(a for a in PARSER._actions if a.dest == "command").choices
 
