@@ -46,7 +46,7 @@ def register(subparsers) -> None:
     o = p.add_argument_group("output")
     o.add_argument("-o", "--output", default="atlas", help="directory of the dataset (default ./atlas)")
     o.add_argument("--json", action="store_true", help="print the index as one JSON object")
-    p.set_defaults(run=run)
+    p.set_defaults(run=run, output_is_folder=True)  # -o names the dataset's folder (checked as one)
 
 
 def parse_teeth(text: str, flag: str) -> list:

@@ -25,7 +25,8 @@ from gearkit.errors import GearkitError, SpecError
 
 EXIT_OK, EXIT_FAILS, EXIT_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED, EXIT_TERMINATED = 0, 1, 2, 70, 130, 143
 
-#: argparse destinations that name a file a command writes, and those that name a folder
+#: argparse destinations that name a file a command writes, and those that name a folder (a command
+#: whose ``-o`` is a folder sets ``output_is_folder=True`` in its defaults)
 OUTPUT_DESTS = ("output", "plot")
 OUTPUT_DIR_DESTS = ("out_dir",)
 
@@ -69,12 +70,13 @@ def refuse_size(field: str, estimate: float, limit: float, unit: str, override: 
 def output_paths(args) -> list:
     """``(flag, path, is_folder)`` for every output a parsed command line names."""
     found = []
+    folder_output = bool(getattr(args, "output_is_folder", False))  # a command whose -o is a folder says so
     for dest in OUTPUT_DESTS + OUTPUT_DIR_DESTS:
         value = getattr(args, dest, None)
         for path in (value if isinstance(value, list) else [value]):
             if isinstance(path, str):
                 flag = "--" + dest.replace("_", "-") if dest != "output" else "-o"
-                found.append((flag, path, dest in OUTPUT_DIR_DESTS))
+                found.append((flag, path, dest in OUTPUT_DIR_DESTS or (dest == "output" and folder_output)))
     return found
 
 
