@@ -178,3 +178,17 @@ def test_field_form_circles_where_the_blank_tip_leaves_no_flank():
     f = PairField(spec)
     d = check_pair(replace(spec, shift1=-2.7255, shift2=1.357)).profiles[0].form_diameter
     assert f.form_diameter(1, -2.7255) == pytest.approx(d, abs=1e-9)
+
+
+def test_the_bench_measure_sees_a_line_off_its_place():
+    """The bench's achieved deviation (nearest exact zero of each vertex and chord middle) reads a
+    line moved by 0.01 in x1 as about 0.01 off (the undercut onset line is x1 = const: exactly)."""
+    from dataclasses import replace as dc_replace
+
+    from gearkit.bench.blocking import deviation
+
+    c = blocking_contour(PairSpec(13, 16, 1.0), tol=TOL, lines=["undercut.1"])
+    assert deviation(c) <= CONTRACT * TOL
+    ln = c.line("undercut.1")
+    c.lines = (dc_replace(ln, components=tuple(q + [0.01, 0.0] for q in ln.components)),)
+    assert deviation(c) == pytest.approx(0.01, rel=1e-6)

@@ -34,7 +34,7 @@ MAX_ROUNDS = 60  #: rounds of chord splitting
 MAX_PIECES = 64  #: most pieces one chord is split into in one round
 ROOT_ITERATIONS = 100
 WIDE_REACH = 1.0  #: a chord's second search for its curve reaches this many chord lengths to each side
-WIDE_REGION = False  #: the wider search for measured curves too
+WIDE_REGION = True  #: the wider search for measured curves too
 JUMP_FACTOR = 100.0  #: a solved vertex with |F| above this times slope x tol sits on a jump, not a zero
 
 
