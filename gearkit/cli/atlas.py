@@ -44,7 +44,8 @@ def register(subparsers) -> None:
     r.add_argument("--scheduler", help="address of a Dask scheduler (tcp://host:8786): run the cells there")
     r.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
     o = p.add_argument_group("output")
-    o.add_argument("-o", "--output", default="atlas", help="directory of the dataset (default ./atlas)")
+    o.add_argument("-o", "--output-dir", dest="out_dir", default="atlas",
+                   help="directory of the dataset (default ./atlas; an existing one is resumed)")
     o.add_argument("--json", action="store_true", help="print the index as one JSON object")
     p.set_defaults(run=run, output_is_folder=True)  # -o names the dataset's folder (checked as one)
 
@@ -80,7 +81,7 @@ def run(args) -> int:
         raise SpecError("--workers", f"{args.workers} must be a positive integer")
     template = template_spec(args, z1s[0], max(z2s[-1], z1s[0] + 8) if args.internal else z2s[0])
     options = {} if args.tol is None else {"tol": args.tol}
-    index = write_atlas(z1s, z2s, args.output, template, workers=args.workers, scheduler=args.scheduler,
+    index = write_atlas(z1s, z2s, args.out_dir, template, workers=args.workers, scheduler=args.scheduler,
                         criterion=args.criterion, progress=not args.no_progress, **options)
     if args.json:
         print(json.dumps(index, allow_nan=False))
@@ -89,7 +90,7 @@ def run(args) -> int:
         ok = sum(1 for c in cells if c["status"] == "ok")
         empty = sum(1 for c in cells if c.get("empty"))
         print(f"gearkit atlas: {len(cells)} cells ({ok} pairs, {empty} with an empty region, "
-              f"{len(cells) - ok} not a pair) in {args.output}/ (index.json, cells/, atlas.png)")
+              f"{len(cells) - ok} not a pair) in {args.out_dir}/ (index.json, cells/, atlas.png)")
     return 0
 
 
