@@ -180,7 +180,11 @@ def _dxf(loops, tmp):
     doc.units = ezdxf.units.MM
     msp = doc.modelspace()
     for loop in loops:
-        msp.add_lwpolyline([tuple(map(float, p)) for p in loop], close=True)
+        # in bulk: appending vertex by vertex copies the vertex array each time (quadratic)
+        vertices = np.zeros((len(loop), 5))  # x, y, start width, end width, bulge
+        vertices[:, :2] = loop
+        pl = msp.add_lwpolyline([], close=True)
+        pl.lwpoints.set(vertices)
     doc.saveas(tmp)
 
 

@@ -203,3 +203,38 @@ def test_11_clock_gearing_with_many_pinion_teeth_names_the_field():
     # with the wheel addendum given, the pair is valid and generates
     spec = gk.CycloidPairSpec(1.0, 98, 104, clock=True, addendum2=2.5)
     assert spec.addendum(2) == pytest.approx(2.5)
+
+
+# -- 5. end faces that survive single precision ---------------------------------------------------
+@pytest.mark.parametrize("z, m, bore", [(225, 0.02, None), (1050, 1.0, None), (1050, 1.0, 300.0)])
+def test_5_large_and_small_gears_build_valid_solids(z, m, bore):
+    prof = gk.tooth_profile(gk.GearSpec(z, m))
+    width, tol = 5.0 * m, 5e-3 * m
+    solid = gk.gear_solid(prof, gk.SolidSpec(width, bore=bore), tol=tol)
+    out = prof.outline(tol / 4)
+    x, y = out[:, 0], out[:, 1]
+    area = 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y)) - (0 if bore is None else math.pi * bore ** 2 / 4)
+    # the solid's volume is its section times the width; section and polyline differ by ~tol per length
+    perimeter = float(np.sum(np.hypot(np.diff(x, append=x[0]), np.diff(y, append=y[0]))))
+    assert solid.volume == pytest.approx(area * width, abs=2 * tol * perimeter * width)
+
+
+def test_5_cli_5000_teeth_stl_is_watertight(tmp_path, capsys):
+    trimesh = pytest.importorskip("trimesh")
+    out = tmp_path / "g.stl"
+    assert main(["gear", "-z", "5000", "-m", "1", "--width", "5", "-o", str(out)]) == 0
+    mesh = trimesh.load(out)
+    assert mesh.is_watertight and mesh.volume == pytest.approx(math.pi * 2500.0 ** 2 * 5.0, rel=1e-3)
+
+
+# -- 8. DXF in bulk -------------------------------------------------------------------------------
+def test_8_dxf_holds_the_outline_vertex_for_vertex(tmp_path):
+    ezdxf = pytest.importorskip("ezdxf")
+    from gearkit.export import write_profile
+
+    prof = gk.tooth_profile(gk.GearSpec(2000, 1.0))
+    loop = prof.outline(1e-3)
+    path = tmp_path / "g.dxf"
+    write_profile(path, [loop])
+    (pl,) = ezdxf.readfile(path).modelspace().query("LWPOLYLINE")
+    assert pl.closed and np.array_equal(np.array(pl.get_points("xy")), loop)

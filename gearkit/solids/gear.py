@@ -70,8 +70,41 @@ def _triangulate(polygons) -> np.ndarray:
     return tri.reshape(-1, 3)
 
 
+def _zipper(outer, inner) -> np.ndarray:
+    """Triangles ``(k, 3)`` of the band between two closed CCW polygons around the origin whose
+    polar angles increase along them (a z-gon, a circle): indices ``< len(outer)`` are outer
+    vertices, the rest inner ones. Each triangle joins an edge of one polygon to the vertex of the
+    other whose angle is nearest, so none is a sliver however many vertices there are."""
+    def turned(p):
+        ang = np.arctan2(p[:, 1], p[:, 0])
+        k0 = int(np.argmin(ang))
+        ang = np.roll(ang, -k0)
+        ang = ang[0] + np.mod(ang - ang[0], 2.0 * math.pi)
+        return k0, np.append(ang, ang[0] + 2.0 * math.pi)
+    no, ni = len(outer), len(inner)
+    ko, ao = turned(outer)
+    ki, ai = turned(inner)
+    i = j = 0
+    tris = []
+    while i < no or j < ni:
+        if j == ni or (i < no and ao[i + 1] <= ai[j + 1]):
+            tris.append(((ko + i) % no, (ko + i + 1) % no, no + (ki + j) % ni))
+            i += 1
+        else:
+            tris.append(((ko + i) % no, no + (ki + j + 1) % ni, no + (ki + j) % ni))
+            j += 1
+    return np.asarray(tris, dtype=np.int64)
+
+
 class _Section:
-    """The transverse section of one gear: tooth polyline repeated over the teeth, end faces."""
+    """The transverse section of one gear: tooth polyline repeated over the teeth, end faces.
+
+    An external gear's end face (when each tooth's space centres see each other inside it) is
+    built from cells: one tooth down to a core polygon a tenth of a pitch below its space centres,
+    triangulated once and repeated, and the core (a fan from the axis, or a band to the bore).
+    Every triangle then spans at least a tenth of a pitch across, so none degenerates when written
+    in single precision (a cell closed by the chord between space centres met the root arc in
+    triangles thinner than a float32 step from z ~ 1000 on)."""
 
     def __init__(self, poly, teeth: int, internal: bool):
         self.tooth = poly.points  # (n + 1, 2)
@@ -87,27 +120,39 @@ class _Section:
         self._cells = None
         t = self.tooth
         if not internal and (t[1:-1, 1] > t[0, 1]).all():  # the chord between space centres is inside
-            self._cells = _triangulate([t])
-            self.inradius = float(np.hypot(t[0, 0], t[0, 1])) * math.cos(math.pi / teeth)
+            r_space = float(np.hypot(t[0, 0], t[0, 1]))
+            self.core_radius = r_space - 0.1 * 2.0 * r_space * math.sin(math.pi / teeth)
+            u0, u1 = t[0] / np.hypot(*t[0]), t[-1] / np.hypot(*t[-1])
+            cell = np.concatenate([t, [self.core_radius * u1, self.core_radius * u0]])
+            self._cells = _triangulate([cell])
+            self.inradius = self.core_radius * math.cos(math.pi / teeth)
 
-    def face(self, theta: float, base: int, wall, wall_base: int) -> np.ndarray:
-        """Triangles (counter-clockwise seen from +z) of an end face, teeth turned by ``theta``.
+    def face(self, mesh, theta: float, base: int, z: float, wall, wall_base: int) -> np.ndarray:
+        """Triangles (counter-clockwise seen from +z) of an end face at ``z``, teeth turned by ``theta``.
 
         ``base``: index of the slice's first outline vertex; ``wall``: the CCW polygon of the
         bore or groove (external gear: a hole, may be None) or of the rim or groove (ring),
-        whose vertices start at ``wall_base``.
+        whose vertices start at ``wall_base``. Core vertices are added to ``mesh``.
         """
         n, count = self.n, self.count
         fits = wall is None or np.hypot(wall[:, 0], wall[:, 1]).max() < getattr(self, "inradius", 0.0)
         if self._cells is not None and fits:
+            spaces = _rotate(self.outline[::n], theta)
+            core = spaces * (self.core_radius / np.hypot(spaces[:, 0], spaces[:, 1]))[:, None]
+            core_base = mesh.add(core, z)
             k = np.arange(self.z)[:, None, None]
-            cells = ((k * n + self._cells[None]) % count + base).reshape(-1, 3)
-            zgon = _rotate(self.outline[::n], theta)
+            cells = self._cells[None]
+            on_tooth = cells <= n
+            cells = np.where(on_tooth, (k * n + cells) % count + base,
+                             core_base + (k + (cells == n + 1)) % self.z).reshape(-1, 3)
             if wall is None:
-                return np.concatenate([cells, _triangulate([zgon]) * n + base])
-            tri = _triangulate([zgon, wall[::-1]])
-            core = np.where(tri < self.z, tri * n + base, wall_base + (len(wall) - 1 - (tri - self.z)))
-            return np.concatenate([cells, core])
+                centre = mesh.add(np.zeros((1, 2)), z)
+                j = np.arange(self.z)
+                fan = np.stack([core_base + j, core_base + (j + 1) % self.z, np.full(self.z, centre)], 1)
+                return np.concatenate([cells, fan])
+            tri = _zipper(core, wall)
+            ring = np.where(tri < self.z, core_base + tri, wall_base + (tri - self.z))
+            return np.concatenate([cells, ring])
         turned = _rotate(self.outline, theta)
         if self.internal:
             tri = _triangulate([wall, turned[::-1]])
@@ -263,8 +308,8 @@ def gear_solid(profile, spec: SolidSpec, tol: float | None = None, name: str = "
         groove = _groove(profile, radii, wall, internal, tol)
         info["achieved"] = max(info["achieved"], _sag(groove, float(np.hypot(*groove[0]))))
         g0, g1 = mesh.wall(groove, run, b - run, hole=internal)
-        mesh.cap(sec.face(k * run, lo[1], groove, g0), up=True)
-        mesh.cap(sec.face(k * run, hi[0], groove, g1), up=False)
+        mesh.cap(sec.face(mesh, k * run, lo[1], run, groove, g0), up=True)
+        mesh.cap(sec.face(mesh, k * run, hi[0], b - run, groove, g1), up=False)
         top = 0.0
     else:
         if spec.herringbone:
@@ -278,8 +323,8 @@ def gear_solid(profile, spec: SolidSpec, tol: float | None = None, name: str = "
     w0 = w1 = 0
     if wall is not None:
         w0, w1 = mesh.wall(wall, 0.0, b, hole=not internal)
-    mesh.cap(sec.face(0.0, lo[0], wall, w0), up=False)
-    mesh.cap(sec.face(top, hi[1], wall, w1), up=True)
+    mesh.cap(sec.face(mesh, 0.0, lo[0], 0.0, wall, w0), up=False)
+    mesh.cap(sec.face(mesh, top, hi[1], b, wall, w1), up=True)
     return mesh.solid(name, info, Recipe("gear", (profile, spec, tol)))
 
 
