@@ -225,7 +225,7 @@ def check_novikov(spec: NovikovPairSpec, limits: NovikovLimits = NovikovLimits()
     ``simulate`` meshes the generated gears in the transverse plane (one solve per contact zone and
     an interference scan at ``tol``, default 1e-5 m_n).
     """
-    from gearkit.families.novikov.mesh import mesh_contact
+    from gearkit.families.novikov.mesh import NoContact, mesh_contact
 
     g = novikov_pair_geometry(spec)
     profiles = (tooth_profile(spec.gear(1)), tooth_profile(spec.gear(2)))
@@ -248,8 +248,17 @@ def check_novikov(spec: NovikovPairSpec, limits: NovikovLimits = NovikovLimits()
                                 f"concave contact of one flank ({frac:.5f} p_x; their normals cross the axis "
                                 f"{g.pole_axial_distance:.4f} mm apart); {2 * lo}..{2 * hi} contact points at a time "
                                 f"(mean {g.mean_contacts:.3f})"))
-    contacts = ()
+    contacts, missing = [], []
     if simulate:
-        contacts = tuple(mesh_contact(spec, k, tol=tol) for k in range(len(racks.zones)))
+        for k in range(len(racks.zones)):
+            try:
+                contacts.append(mesh_contact(spec, k, tol=tol))
+            except NoContact:
+                missing.append(k)
+    contacts = tuple(contacts)
     findings += _mesh_findings(g, contacts, limits)
+    findings += [Finding(f"mesh.contact.{k}", "fail", g.center_distance, None,
+                         f"zone {k}: the working flanks of the generated gears do not meet at a_w = "
+                         f"{g.center_distance:.6g} mm (no contact solution): the pair does not mesh there")
+                 for k in missing]
     return NovikovCheck(g, CheckReport(tuple(findings)), profiles, contacts)

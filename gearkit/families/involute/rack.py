@@ -130,15 +130,26 @@ def _basic_rack_half(spec: RackSpec) -> HalfTooth:
 
     x_tip = x_flank(ha)
     require(x_tip > 0, "tool", "the rack tooth is pointed below its tip line")
+    side_angle, side_x, flank_end = a, x_flank, []
+    if rack.protuberance > 0:  # the space bottom is the cutter's tip: widened by the protuberance
+        ap, pr = rack.alpha_protuberance, rack.protuberance * m
+        y_x = -hf + rack._protuberance_top() * m  # where the protuberance flank meets the main flank
+
+        def side_x(y):
+            return x_flank(-hf) - pr / math.cos(a) - (y + hf) * math.tan(ap)
+        side_angle, flank_end = ap, [(x_flank(y_x), y_x)]
     yc = -hf + rho
-    xc = x_flank(yc) + rho / math.cos(a)  # fillet centre, in the space
-    touch = (xc - rho * math.cos(a), yc - rho * math.sin(a))
-    chain = [line((0.0, ha), (x_tip, ha), "tip"), line((x_tip, ha), touch, "flank"),
-             arc((xc, yc), rho, math.pi + a, 1.5 * math.pi, "fillet"),
-             line((xc, -hf), (p / 2, -hf), "root")]
+    xc = side_x(yc) + rho / math.cos(side_angle)  # fillet centre, in the space
+    touch = (xc - rho * math.cos(side_angle), yc - rho * math.sin(side_angle))
+    ends = [(x_tip, ha)] + flank_end + [touch]
+    chain = [line((0.0, ha), (x_tip, ha), "tip")]
+    chain += [line(ends[k], ends[k + 1], "flank" if k == 0 else "fillet") for k in range(len(ends) - 1)]
+    chain += [arc((xc, yc), rho, math.pi + side_angle, 1.5 * math.pi, "fillet"),
+              line((xc, -hf), (p / 2, -hf), "root")]
     chain = transform_chain(chain, stretch)
     pieces = tuple(_segment_piece(s, s.label) for s in chain)
-    return HalfTooth(pieces, ("corner", "smooth", "smooth"), False, spec.transverse_pitch / 2)
+    joins = ("corner",) + ("corner",) * (len(pieces) - 4) + ("smooth", "smooth")
+    return HalfTooth(pieces, joins, False, spec.transverse_pitch / 2)
 
 
 def _shaper_rack_half(spec: RackSpec) -> HalfTooth:

@@ -130,7 +130,10 @@ class BasicRack:
         """The tip rounding actually used (rho_fP*, module units)."""
         if self.fillet_radius is not None:
             return self.fillet_radius
-        return min(self.clearance / (1 - math.sin(self.alpha)), self.max_fillet)
+        rho = min(self.clearance / (1 - math.sin(self.alpha)), self.max_fillet)
+        if self.protuberance > 0:  # and leave the protuberance flank a tenth of its height
+            rho = min(rho, 0.9 * self._protuberance_top() / (1 - math.sin(self.alpha_protuberance)))
+        return rho
 
     @property
     def straight_height(self) -> float:

@@ -59,6 +59,11 @@ class MeshContact:
     tol: float
 
 
+class NoContact(GeometryError):
+    """The working flanks do not meet at this centre distance: the pair does not mesh there (a
+    finding of the check, not bad input)."""
+
+
 def _rot(a):
     c, s = math.cos(a), math.sin(a)
     return np.array([[c, -s], [s, c]])
@@ -110,7 +115,7 @@ def _solve(x0, args, scale):
         if np.abs(step).max() < 1e-15 and np.abs(f[:2]).max() < 1e-12 * scale:
             break
     if np.abs(_residual(x, *args)[:2]).max() > 1e-9 * scale:
-        raise GeometryError("the contact of the working flanks could not be solved")
+        raise NoContact("the contact of the working flanks could not be solved")
     return x
 
 
