@@ -74,6 +74,10 @@ def _chord_deviation(a, b, q):
     return np.linalg.norm(q - foot, axis=-1)
 
 
+#: an interval is accepted when its probed deviation is within this fraction of tol: between the
+#: probes a chord's deviation can run above the largest probed one (by ~5 % where the curvature
+#: grows from 0 to its largest across the interval), so the accepted chords keep that margin
+PROBE_MARGIN = 0.9
 #: an interval whose longest quarter chord exceeds this multiple of the mean quarter chord moves
 #: unevenly in its parameter: a narrow feature (a fast, sharply bent stretch) may sit between probes
 UNEVEN = 2.5
@@ -96,7 +100,8 @@ def adaptive_sample(evaluate, tol: float, n_init: int = 5, max_rounds: int = 60,
     """Sample an exact curve so that every chord is within ``tol`` of it.
 
     Each round probes every interval at its quarter points. An interval whose chord deviates by
-    ``dev > tol`` is split into ``k = ceil(1.1 sqrt(dev / tol))`` equal parameter parts (at most
+    ``dev > PROBE_MARGIN tol`` is split into ``k = ceil(1.1 sqrt(dev / (PROBE_MARGIN tol)))`` equal
+    parameter parts (at most
     ``max_split``): a chord's deviation shrinks as the square of its length, so one round usually
     settles an interval and the rounds (each a call of ``evaluate``, the cost that dominates for
     short chains) stay few. An interval that moves *unevenly* in its parameter (one quarter
@@ -142,10 +147,10 @@ def adaptive_sample(evaluate, tol: float, n_init: int = 5, max_rounds: int = 60,
     for _ in range(max_rounds):
         lo, hi = w[:-1], w[1:]
         probes, q, dev, uneven = _probe(evaluate, w, pts, tol)
-        bad = dev > tol
+        bad = dev > PROBE_MARGIN * tol
         if not (bad.any() or uneven.any()):
             return w, pts, float(dev.max(initial=0.0))
-        k = np.clip(np.ceil(1.1 * np.sqrt(dev[bad] / tol)), 2, max(2, max_split)).astype(int)
+        k = np.clip(np.ceil(1.1 * np.sqrt(dev[bad] / (PROBE_MARGIN * tol))), 2, max(2, max_split)).astype(int)
         quarters = uneven & ~bad  # split at the probes already evaluated
         new_w = [probes[bad, 1], probes[quarters].ravel()]
         new_p = [q[bad, 1], q[quarters].reshape(-1, 2)]

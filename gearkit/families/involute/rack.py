@@ -144,11 +144,12 @@ def _basic_rack_half(spec: RackSpec) -> HalfTooth:
     ends = [(x_tip, ha)] + flank_end + [touch]
     chain = [line((0.0, ha), (x_tip, ha), "tip")]
     chain += [line(ends[k], ends[k + 1], "flank" if k == 0 else "fillet") for k in range(len(ends) - 1)]
-    chain += [arc((xc, yc), rho, math.pi + side_angle, 1.5 * math.pi, "fillet"),
-              line((xc, -hf), (p / 2, -hf), "root")]
+    chain.append(arc((xc, yc), rho, math.pi + side_angle, 1.5 * math.pi, "fillet"))
+    if p / 2 - xc > 1e-12 * p:  # the largest fillet meets its mirror at the space centre: no root line
+        chain.append(line((xc, -hf), (p / 2, -hf), "root"))
     chain = transform_chain(chain, stretch)
     pieces = tuple(_segment_piece(s, s.label) for s in chain)
-    joins = ("corner",) + ("corner",) * (len(pieces) - 4) + ("smooth", "smooth")
+    joins = ("corner",) * len(ends) + ("smooth",) * (len(pieces) - 1 - len(ends))
     return HalfTooth(pieces, joins, False, spec.transverse_pitch / 2)
 
 
