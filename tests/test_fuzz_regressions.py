@@ -238,3 +238,43 @@ def test_8_dxf_holds_the_outline_vertex_for_vertex(tmp_path):
     write_profile(path, [loop])
     (pl,) = ezdxf.readfile(path).modelspace().query("LWPOLYLINE")
     assert pl.closed and np.array_equal(np.array(pl.get_points("xy")), loop)
+
+
+# -- 6. a Novikov pair that does not mesh is a failing finding -------------------------------------
+def test_6_novikov_pair_that_does_not_mesh_fails_the_check(capsys):
+    res = gk.check_novikov(gk.NovikovPairSpec(20, 60, 1.0, 15.0, 20.0, center_distance=41.7))
+    rep = res.report
+    assert rep.status == "fail" and rep["mesh.contact.0"].status == "fail"
+    assert "do not meet" in rep["mesh.contact.0"].message
+    _strict(json.dumps(rep.to_dict(), allow_nan=False))
+    argv = ["novikov", "--z1", "20", "--z2", "60", "-m", "1", "--helix-angle-deg", "15", "--width", "20",
+            "--center-distance", "41.7"]
+    assert main(argv) == 1
+    capsys.readouterr()
+
+
+# -- 7. protuberance racks --------------------------------------------------------------------------
+def test_7_protuberance_rack_outline_is_simple_and_carries_the_protuberance():
+    from gearkit.curves import polyline_self_intersections
+
+    rack = gk.BasicRack(dedendum=1.3, protuberance=0.1)
+    prof = gk.rack_profile(gk.RackSpec(1.0, rack))
+    out = prof.outline(1e-3, teeth=2)
+    assert len(polyline_self_intersections(out)[0]) == 0
+    # the space bottom is the cutter's tip: at the root line the space is wider than the main flank
+    # gives by pr / cos(alpha) (closed form of the protuberance flank)
+    alpha, ap = rack.alpha, rack.alpha_protuberance
+    pieces = prof.half.pieces
+    x_top, y_top = pieces[1](np.array([1.0]))[0]
+    assert y_top == pytest.approx(-1.3 + rack.protuberance_top, abs=EXACT)
+    x_prot_at_root = x_top + (y_top + 1.3) * math.tan(ap)
+    x_main_at_root = math.pi / 4 + 1.3 * math.tan(alpha)
+    assert x_main_at_root - x_prot_at_root == pytest.approx(0.1 / math.cos(alpha), abs=EXACT)
+
+
+def test_7_default_fillet_of_a_protuberance_rack_is_accepted():
+    rack = gk.BasicRack(protuberance=0.05)
+    # it stays below the protuberance flank: rho (1 - sin a_pr) < its top
+    assert rack.fillet * (1 - math.sin(rack.alpha_protuberance)) < rack.protuberance_top
+    gear = gk.tooth_profile(gk.GearSpec(30, 2.0, tool=rack))
+    assert gear.half_points(2e-3)[1] <= 2e-3

@@ -133,7 +133,7 @@ def _basic_rack_half(spec: RackSpec) -> HalfTooth:
     side_angle, side_x, flank_end = a, x_flank, []
     if rack.protuberance > 0:  # the space bottom is the cutter's tip: widened by the protuberance
         ap, pr = rack.alpha_protuberance, rack.protuberance * m
-        y_x = -hf + rack._protuberance_top() * m  # where the protuberance flank meets the main flank
+        y_x = -hf + rack.protuberance_top * m  # where the protuberance flank meets the main flank
 
         def side_x(y):
             return x_flank(-hf) - pr / math.cos(a) - (y + hf) * math.tan(ap)

@@ -149,6 +149,11 @@ class BasicRack:
     def protuberance_height(self) -> float:
         return self._protuberance_top() if self.protuberance > 0 else 0.0
 
+    @property
+    def protuberance_top(self) -> float:
+        """Height (module units) above the cutter tip line where the protuberance flank meets the main flank."""
+        return self._protuberance_top()
+
     def _protuberance_top(self) -> float:
         """Height above the cutter tip line where the protuberance flank meets the main flank."""
         a, ap = self.alpha, self.alpha_protuberance
