@@ -80,7 +80,7 @@ def _chord_deviation(a, b, q):
 PROBE_MARGIN = 0.9
 #: an interval whose longest quarter chord exceeds this multiple of the mean quarter chord moves
 #: unevenly in its parameter: a narrow feature (a fast, sharply bent stretch) may sit between probes
-UNEVEN = 2.5
+UNEVEN = 1.8
 
 
 def _probe(evaluate, w, pts, tol):

@@ -66,10 +66,18 @@ def _report():
                                      "spec_error": c["spec_error"], "defect": 0}) + "\n")
 
 
+def _progress(name, c):
+    """Every 500 specs of a long run, one line of counts to ``REPORT.progress`` (watch a run live)."""
+    if REPORT and c["tried"] % 500 == 0:
+        with open(REPORT + ".progress", "a") as fh:
+            fh.write(json.dumps({"property": name, **c}) + "\n")
+
+
 def _run(name, build, check):
     """Build under raised numpy errors; a SpecError must name a field; count the outcome."""
     c = COUNTS.setdefault(name, Counter())
     c["tried"] += 1
+    _progress(name, c)
     old = np.seterr(all="raise")
     try:
         try:
@@ -348,6 +356,7 @@ def test_gear_command_line(data, capsys):
         argv += ["--tol", data.draw(st.sampled_from(["1e-3", "1e-12", "0", "inf"]))]
     c = COUNTS.setdefault("gear_command_line", Counter())
     c["tried"] += 1
+    _progress("gear_command_line", c)
     try:
         code = main(argv)
     except SystemExit as exc:  # argparse refuses a malformed number: exit 2
