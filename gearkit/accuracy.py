@@ -80,7 +80,7 @@ def _chord_deviation(a, b, q):
 PROBE_MARGIN = 0.9
 #: an interval whose longest quarter chord exceeds this multiple of the mean quarter chord moves
 #: unevenly in its parameter: a narrow feature (a fast, sharply bent stretch) may sit between probes
-UNEVEN = 1.8
+UNEVEN = 2.0
 
 
 def _probe(evaluate, w, pts, tol):

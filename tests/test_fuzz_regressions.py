@@ -98,6 +98,9 @@ def test_2_formula_simulation_disagreement_fails():
 @pytest.mark.parametrize("make, tol", [
     (lambda: gk.pin_gear_wheel(gk.PinGearSpec(1.0, 50, 60, 0.04)), 3e-5),
     (lambda: gk.disc_profile(gk.DriveSpec(3, 2, 13.0, 8.0, 3.8)), 0.01),
+    # found by the property suite: a square-root end where the disc's two pin walks meet
+    (lambda: gk.disc_profile(gk.DriveSpec(26, 24, 1.0, 0.06041524333826525, 0.019230769230769232)),
+     3.846153846153846e-05),
 ])
 def test_3_sampler_does_not_skip_narrow_features(make, tol):
     prof = make()
