@@ -13,7 +13,11 @@ import numpy as np
 
 from gearkit.errors import check_fields, is_real, require
 
-_PROBES = np.array([0.25, 0.5, 0.75])
+#: probe fractions of every interval: quarter points, and eighths at both ends (where a square-root
+#: end, x ~ sqrt(w), puts the chord's largest deviation)
+_PROBES = np.array([0.125, 0.25, 0.5, 0.75, 0.875])
+_MID = 2
+_WIDTHS = np.diff(np.concatenate([[0.0], _PROBES, [1.0]]))
 
 
 @dataclass(frozen=True)
@@ -78,9 +82,9 @@ def _chord_deviation(a, b, q):
 #: probes a chord's deviation can run above the largest probed one (by ~5 % where the curvature
 #: grows from 0 to its largest across the interval), so the accepted chords keep that margin
 PROBE_MARGIN = 0.9
-#: an interval whose longest quarter chord exceeds this multiple of the mean quarter chord moves
-#: unevenly in its parameter: a narrow feature (a fast, sharply bent stretch) may sit between probes
-UNEVEN = 2.0
+#: an interval whose fastest leg between probes (chord / parameter width) exceeds this multiple of its
+#: mean speed moves unevenly in its parameter: a narrow feature (a fast, bent stretch) may sit between probes
+UNEVEN = 2.5
 
 
 def _probe(evaluate, w, pts, tol):
@@ -92,21 +96,22 @@ def _probe(evaluate, w, pts, tol):
     walk = np.concatenate([pts[:-1, None, :], q, pts[1:, None, :]], axis=1)
     legs = np.linalg.norm(np.diff(walk, axis=1), axis=-1)
     length = legs.sum(axis=1)
-    uneven = (legs.max(axis=1) > UNEVEN * length / legs.shape[1]) & (length > tol)
+    speed = legs / _WIDTHS  # mean speed of each leg, against the interval's mean speed (its length)
+    uneven = (speed.max(axis=1) > UNEVEN * length) & (length > tol)
     return probes, q, dev, uneven
 
 
 def adaptive_sample(evaluate, tol: float, n_init: int = 5, max_rounds: int = 60, max_split: int = 16):
     """Sample an exact curve so that every chord is within ``tol`` of it.
 
-    Each round probes every interval at its quarter points. An interval whose chord deviates by
-    ``dev > PROBE_MARGIN tol`` is split into ``k = ceil(1.1 sqrt(dev / (PROBE_MARGIN tol)))`` equal
-    parameter parts (at most
+    Each round probes every interval at its quarter points and eighths at both ends. An interval
+    whose chord deviates by ``dev > PROBE_MARGIN tol`` is split into
+    ``k = ceil(1.1 sqrt(dev / (PROBE_MARGIN tol)))`` equal parameter parts (at most
     ``max_split``): a chord's deviation shrinks as the square of its length, so one round usually
     settles an interval and the rounds (each a call of ``evaluate``, the cost that dominates for
-    short chains) stay few. An interval that moves *unevenly* in its parameter (one quarter
-    carries more than ``UNEVEN / 4`` of the walk through its probes, and the walk is longer than
-    ``tol``) is split at its probes however small its probed deviation: that is where a narrow
+    short chains) stay few. An interval that moves *unevenly* in its parameter (the walk through
+    its probes is ``UNEVEN`` times faster on one leg than on average, and longer than ``tol``) is
+    split at its probes however small its probed deviation: that is where a narrow
     feature (a short, sharply bent stretch the parameter runs through fast) hides between
     probes, and the quadratic model behind the probes only holds once the speed is even.
     Intervals still too coarse split again.
@@ -126,12 +131,12 @@ def adaptive_sample(evaluate, tol: float, n_init: int = 5, max_rounds: int = 60,
     w : (k,) float64
     points : (k, 2) float64, on the curve
     achieved : float, mm
-        Largest chord deviation measured at the quarter points of every final interval.
+        Largest chord deviation measured at the probes of every final interval.
 
     Examples
     --------
     A bump of height 0.1 that the parameter crosses within a few thousandths near w = 0.053: the
-    quarter points of the first interval all land on its chord (a sampler that trusts its probes
+    probes of the first interval all land on its chord (a sampler that trusts its probes
     reports 2e-9 and is 0.1 off); the uneven walk through them gives it away:
 
     >>> def f(w):
@@ -152,8 +157,8 @@ def adaptive_sample(evaluate, tol: float, n_init: int = 5, max_rounds: int = 60,
             return w, pts, float(dev.max(initial=0.0))
         k = np.clip(np.ceil(1.1 * np.sqrt(dev[bad] / (PROBE_MARGIN * tol))), 2, max(2, max_split)).astype(int)
         quarters = uneven & ~bad  # split at the probes already evaluated
-        new_w = [probes[bad, 1], probes[quarters].ravel()]
-        new_p = [q[bad, 1], q[quarters].reshape(-1, 2)]
+        new_w = [probes[bad, _MID], probes[quarters].ravel()]
+        new_p = [q[bad, _MID], q[quarters].reshape(-1, 2)]
         if (k > 2).any():  # the midpoint is already evaluated; other split points are new
             many = k > 2
             kk = k[many]
