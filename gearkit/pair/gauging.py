@@ -63,7 +63,9 @@ def _first_peak(pieces, score):
     i = int(falls[0]) if falls.size else values.size - 1
     k, j = divmod(i, _GRID)
     piece = pieces[k]
-    if j == 0 and k > 0 and values[i - 1] >= values[i]:  # the peak sits on the join with the previous piece
+    # the peak sits on the join, the previous piece's end clearly above (a tie at a shared point is
+    # round-off: it stays with the piece the walk is on, so the label does not flip with the last bit)
+    if j == 0 and k > 0 and values[i - 1] > values[i] + 1e-12 * scale:
         k, j, piece = k - 1, _GRID - 1, pieces[k - 1]
     return _refine(piece, t[max(j - 1, 0)], t[min(j + 1, _GRID - 1)], score, float(t[j]))
 
