@@ -229,3 +229,30 @@ def test_version_and_python_dash_m(capsys):
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path))
     res = subprocess.run([sys.executable, "-m", "gearkit", "--version"], capture_output=True, text=True, env=env)
     assert res.returncode == 0 and res.stdout.startswith("gearkit ")
+
+
+@pytest.mark.parametrize("argv, field", [
+    (["gear", "-z", "20", "-m", "2", "--cutter-teeth", "0"], "cutter.teeth"),
+    (["rack", "-m", "2", "--cutter-teeth", "0"], "cutter.teeth"),
+    (["gear", "-z", "20", "-m", "2", "--herringbone", "--width", "20", "-o", "{t}/h.stl"], "herringbone"),
+    (["pair", "--z1", "20", "--z2", "40", "-m", "2", "--width", "10", "--herringbone"], "herringbone"),
+])
+def test_nonsense_is_refused_not_ignored(capsys, tmp_path, argv, field):
+    code, _, err = run(capsys, *[a.replace("{t}", str(tmp_path)) for a in argv])
+    assert code == 2 and f"{field}:" in one_error_line(err)
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("argv", [
+    ["gear", "-z", "20", "-m", "2", "-o", "{t}/g.svg"],
+    ["gear", "-z", "20", "-m", "2", "--json", "-o", "{t}/g.dxf"],
+    ["rack", "-m", "2", "-n", "3", "--json", "-o", "{t}/r.csv"],
+    ["pair", "--z1", "20", "--z2", "40", "-m", "2", "--width", "5", "-o", "{t}/p.stl"],
+])
+def test_every_write_says_wrote_file(capsys, tmp_path, argv):
+    argv = [a.replace("{t}", str(tmp_path)) for a in argv]
+    code, out, err = run(capsys, *argv)
+    assert code in (0, 1)
+    assert f"wrote {argv[-1]}" in out + err
+    if "--json" in argv:
+        json.loads(out)  # the line goes to stderr, stdout stays one JSON object

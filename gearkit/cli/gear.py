@@ -142,7 +142,8 @@ def tool_from_args(args, internal: bool):
 
     alpha = 20.0 if args.pressure_angle_deg is None else args.pressure_angle_deg
     if args.cutter_teeth is not None or internal:
-        return ShaperCutter(args.cutter_teeth or 20, alpha, args.cutter_shift, args.cutter_addendum)
+        return ShaperCutter(20 if args.cutter_teeth is None else args.cutter_teeth, alpha, args.cutter_shift,
+                            args.cutter_addendum)
     if args.rack == "standard":
         return BasicRack(alpha, name="standard")
     if args.pressure_angle_deg not in (None, 20.0):

@@ -100,9 +100,19 @@ def run_guarded(args, debug: bool = False) -> int:
         previous = signal.signal(signal.SIGTERM, _on_sigterm)
     except ValueError:  # not the main thread: leave signals alone
         previous = None
+    tee = _Tee(sys.stdout)
     try:
         check_outputs(args)
-        return int(args.run(args) or 0)
+        before = {path: _stamp(path) for _, path, folder in output_paths(args) if not folder}
+        sys.stdout = tee
+        try:
+            code = int(args.run(args) or 0)
+        finally:
+            sys.stdout = tee.stream
+        for path, stamp in before.items():  # every command says what it wrote
+            if _stamp(path) not in (None, stamp) and f"wrote {path}" not in tee.seen:
+                print(f"{prefix}: wrote {path}", file=sys.stderr)
+        return code
     except GearkitError as exc:
         print(f"{prefix}: error: {exc}", file=sys.stderr)
         return EXIT_INPUT
@@ -134,6 +144,30 @@ def run_guarded(args, debug: bool = False) -> int:
     finally:
         if previous is not None:
             signal.signal(signal.SIGTERM, previous)
+
+
+def _stamp(path):
+    """A file's identity and modification time (None if there is none), to see whether a run wrote it."""
+    try:
+        st = os.stat(path)
+    except (OSError, ValueError):
+        return None
+    return (st.st_ino, st.st_mtime_ns, st.st_size)
+
+
+class _Tee:
+    """Stand-in for stdout that remembers what a command printed (to tell whether it said "wrote")."""
+
+    def __init__(self, stream):
+        self.stream, self.seen = stream, ""
+
+    def write(self, text):
+        if len(self.seen) < 1_000_000:
+            self.seen += text
+        return self.stream.write(text)
+
+    def __getattr__(self, name):
+        return getattr(self.stream, name)
 
 
 class Progress:

@@ -263,6 +263,8 @@ def gear_solid(profile, spec: SolidSpec, tol: float | None = None, name: str = "
     tol = default_mesh_tol(profile.module) if tol is None else check_tol(tol, profile.module)
     beta_deg = helix_angle(profile, spec)
     beta = math.radians(beta_deg)
+    if spec.herringbone and beta == 0.0:
+        raise SpecError("herringbone", "a herringbone gear needs a helix angle (--helix-angle-deg)")
     k = math.tan(beta) / reference_radius(profile, abs(beta))
     internal = bool(profile.internal)
     if internal and spec.bore is not None:
