@@ -121,10 +121,7 @@ def rotate(points, angle):
     """Rotate ``(n, 2)`` points counter-clockwise about the origin by ``angle`` (scalar or ``(n,)``)."""
     p = np.asarray(points, dtype=float)
     c, s = np.cos(angle), np.sin(angle)
-    out = np.empty(np.broadcast_shapes(p.shape, np.shape(c) + (2,)))
-    out[..., 0] = c * p[..., 0] - s * p[..., 1]
-    out[..., 1] = s * p[..., 0] + c * p[..., 1]
-    return out
+    return np.stack([c * p[..., 0] - s * p[..., 1], s * p[..., 0] + c * p[..., 1]], -1)
 
 
 def polar_from_y(points):

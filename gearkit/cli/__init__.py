@@ -1,8 +1,11 @@
 """The ``gearkit`` command line: a thin shell over the public API.
 
 Every command lives in its own module ``gearkit.cli.<name>`` exposing
-``register(subparsers)``; registration must stay cheap (heavy imports happen
-inside the command's run function), so ``gearkit <cmd>`` pays only for what it uses.
+``register(subparsers)``; heavy imports happen inside the command's run function.
+The parser is lazy: ``gearkit <cmd> ...`` imports and registers only the module of
+``<cmd>`` (:data:`COMMANDS` lists the modules, :data:`MODULE_OF` names the module of a
+command whose name differs from it), so a command pays only for what it uses; the
+full parser (every module) is built only for ``gearkit --help`` and unknown commands.
 """
 from __future__ import annotations
 
@@ -14,6 +17,8 @@ import sys
 #: command modules, in the order ``gearkit --help`` lists them
 COMMANDS = ("demo", "gear", "rack", "check", "pair", "bench", "novikov", "blocking", "atlas", "cycloid", "contact",
             "view", "cam", "scene", "planetary")
+#: command name -> module, where they differ (a module may register several commands)
+MODULE_OF = {"cycloidal-drive": "cycloid"}
 
 
 def version() -> str:
@@ -26,14 +31,26 @@ def version() -> str:
         return "0+unknown"
 
 
-def build_parser() -> argparse.ArgumentParser:
+def command_module(command: str | None) -> str | None:
+    """The module (in :data:`COMMANDS`) that registers ``command``; None when unknown."""
+    if command is None:
+        return None
+    module = MODULE_OF.get(command, command)
+    return module if module in COMMANDS else None
+
+
+def build_parser(command: str | None = None) -> argparse.ArgumentParser:
+    """The argument parser: with a known ``command``, only its module is imported and registered."""
     parser = argparse.ArgumentParser(
         prog="gearkit",
         description="Gear geometry and tooth-contact kernel: generate, check and export gears (lengths in mm). "
                     "Exit status: 0 ok, 1 a design check fails, 2 bad input or a file problem, 130/143 "
                     "interrupted, 70 an internal error (a bug).",
     )
-    parser.add_argument("--version", action="version", version=f"gearkit {version()}")
+    # the version is looked up (importlib.metadata: slow) only for the full parser: a command's
+    # parser never sees a top-level --version
+    parser.add_argument("--version", action="version",
+                        version=f"gearkit {version()}" if command_module(command) is None else "gearkit")
     parser.add_argument("--debug", action="store_true",
                         help="show the traceback of an internal error (also accepted after the command)")
     parser.add_argument("--max-points", type=int, default=None, metavar="N",
@@ -42,7 +59,8 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--progress", action="store_true",
                         help="draw progress bars on stderr even when it is not a terminal (also after the command)")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
-    for name in COMMANDS:
+    module = command_module(command)
+    for name in (module,) if module else COMMANDS:
         importlib.import_module(f"gearkit.cli.{name}").register(sub)
     return parser
 
@@ -59,7 +77,7 @@ def main(argv: list[str] | None = None) -> int:
     if isinstance(max_points, str):
         print(f"gearkit: error: --max-points: {max_points}", file=sys.stderr)
         return 2
-    parser = build_parser()
+    parser = build_parser(argv[0] if argv and not argv[0].startswith("-") else None)  # lazy: only its module
     try:
         args = parser.parse_args(argv)
     except SystemExit as exc:  # argparse reports bad flags itself and exits 2 (0 for --help/--version)

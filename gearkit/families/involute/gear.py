@@ -300,15 +300,25 @@ class InvoluteProfile(ToothProfile):
         rb = self.base_diameter / 2.0
         rf = self.form_diameter / 2.0
         # pieces run from the tip to the root, so the undercut region starts at t = 0 of the piece
-        # after the flank: sample densely there (the region can be a few micrometres tall)
-        t = np.unique(np.concatenate([np.geomspace(1e-12, 1.0, 3000), np.linspace(0.0, 1.0, 1001)]))
-        pts = np.concatenate([p(t) for p in self.half.pieces if p.label != "tip"])
-        rho, psi = polar_from_y(pts)
-        sel = (rho >= rb) & (rho <= rf)
-        if not sel.any():
-            return 0.0
-        depth = rho[sel] * (self._involute_half_angle(rho[sel]) - psi[sel])
-        return float(max(depth.max(), 0.0))
+        # after the flank (it can be a few micrometres tall): a coarse sample, geometric near t = 0,
+        # finds the deepest sample of each piece, then the bracket around it is resampled twice
+        t = np.unique(np.concatenate([np.geomspace(1e-12, 1.0, 96), np.linspace(0.0, 1.0, 65)]))
+        best = 0.0
+        for piece in self.half.pieces:
+            if piece.label == "tip":
+                continue
+            ts = t
+            for _ in range(3):
+                rho, psi = polar_from_y(piece(ts))
+                sel = (rho >= rb) & (rho <= rf)
+                if not sel.any():
+                    break
+                depth = np.where(sel, rho * (self._involute_half_angle(np.where(sel, rho, rb)) - psi), -np.inf)
+                i = int(np.argmax(depth))
+                best = max(best, float(depth[i]))
+                lo, hi = ts[max(i - 1, 0)], ts[min(i + 1, len(ts) - 1)]
+                ts = np.linspace(lo, hi, 65)
+        return best
 
     def summary(self, tol: float | None = None) -> dict:
         """Key values as a JSON-ready dict (lengths in mm, transverse section)."""
