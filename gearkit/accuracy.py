@@ -178,6 +178,39 @@ def adaptive_sample(evaluate, tol: float, n_init: int = 5, max_rounds: int = 60,
     return w, pts, float(dev.max(initial=0.0))
 
 
+#: point pairs up to which :func:`distances_to_polyline` searches directly instead of through a k-d tree
+_DIRECT = 4_000_000
+
+
+def nearest(points, queries, k: int = 1, block: int = 1 << 21):
+    """The ``k`` nearest of ``points`` to each of ``queries`` by direct search: ``(dist, idx)``.
+
+    Shapes as a k-d tree query gives them: ``(m,)`` for ``k = 1``, else ``(m, k)`` (the k
+    columns in no particular order). For the few hundred to few thousand sample points of
+    one tooth a blocked direct search is as fast as building a tree and imports nothing;
+    :func:`distances_to_polyline` switches to a k-d tree above ``_DIRECT`` point pairs.
+
+    Examples
+    --------
+    >>> d, i = nearest([[0.0, 0.0], [1.0, 0.0], [3.0, 0.0]], [[0.9, 0.0], [2.5, 1.0]])
+    >>> i.tolist(), [round(float(x), 6) for x in d]
+    ([1, 2], [0.1, 1.118034])
+    """
+    a = np.asarray(points, dtype=float)
+    q = np.asarray(queries, dtype=float).reshape(-1, a.shape[1])
+    k = min(int(k), len(a))
+    idx = np.empty((len(q), k), dtype=np.intp)
+    dist = np.empty((len(q), k))
+    step = max(1, block // max(len(a), 1))
+    for s in range(0, len(q), step):
+        diff = q[s:s + step, None, :] - a[None, :, :]
+        d2 = np.einsum("ijk,ijk->ij", diff, diff)
+        part = np.argmin(d2, axis=1)[:, None] if k == 1 else np.argpartition(d2, k - 1, axis=1)[:, :k]
+        idx[s:s + step] = part
+        dist[s:s + step] = np.sqrt(np.take_along_axis(d2, part, axis=1))
+    return (dist[:, 0], idx[:, 0]) if k == 1 else (dist, idx)
+
+
 def distances_to_polyline(points, polyline, closed: bool = False, neighbours: int = 6):
     """Distance of each point to a (dense) polyline, via its nearest vertices' edges.
 
@@ -191,12 +224,15 @@ def distances_to_polyline(points, polyline, closed: bool = False, neighbours: in
     -------
     (k,) float64, mm
     """
-    from scipy.spatial import cKDTree
-
     a = np.asarray(polyline, dtype=float)
     q = np.asarray(points, dtype=float)
     n = len(a)
-    _, idx = cKDTree(a).query(q, k=min(neighbours, n))
+    if n * len(q) <= _DIRECT:  # small: a direct search, no tree to build (and no scipy import)
+        _, idx = nearest(a, q, k=min(neighbours, n))
+    else:
+        from scipy.spatial import cKDTree
+
+        _, idx = cKDTree(a).query(q, k=min(neighbours, n))
     idx = np.atleast_2d(idx.T).T if idx.ndim == 1 else idx
     best = np.full(len(q), np.inf)
     for col in range(idx.shape[1]):

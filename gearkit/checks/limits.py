@@ -60,7 +60,7 @@ def min_teeth_undercut(tool, shift: float, module: float = 1.0, pressure_angle_d
     the rack's straight-flank height. Shaper: the root of ``rho_l(z) = 0`` (the involute reaches
     the base circle), found numerically; 3 when every tooth number from 3 is free of undercut.
     """
-    from scipy.optimize import brentq  # lazy: keeps `import gearkit` light
+    from gearkit.roots import brentq
     alpha = tool.pressure_angle_deg if pressure_angle_deg is None else pressure_angle_deg
     sec = section(module, alpha, helix_angle_deg)
     if isinstance(tool, BasicRack):

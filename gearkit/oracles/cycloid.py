@@ -107,7 +107,7 @@ def clock_addendum_by_rolling(pinion_teeth: int, wheel_teeth: int, module: float
     the traced point ``s`` back along the rolling circle (equal arcs). A is the height above the
     pitch circle where the traced point crosses the centre line.
     """
-    from scipy.optimize import brentq
+    from gearkit.roots import brentq
 
     r2 = module * wheel_teeth / 2.0
     a = module * pinion_teeth / 4.0

@@ -61,7 +61,7 @@ def thickness_sum_for_center_distance(spec: PairSpec, center_distance: float) ->
 
 def _inverse_delta(spec: PairSpec, which: int, target: float, field: str) -> float:
     """The shift x of gear ``which`` (1 or 2) whose thickness coefficient is ``target``."""
-    from scipy.optimize import brentq  # lazy: keeps `import gearkit` light
+    from gearkit.roots import brentq
     sec = section(spec.module, spec.alpha_n_deg, spec.helix_angle_deg)
     tool = spec.tools[which - 1]
     z = spec.teeth1 if which == 1 else spec.teeth2
@@ -99,7 +99,7 @@ def _split_equal(spec: PairSpec, total: float) -> tuple[float, float]:
 
 def _split_balanced(spec: PairSpec, total: float, center_distance: float) -> tuple[float, float]:
     """Pinion shift with |zeta1(A)| = |zeta2(E)| on the nominal tip-to-tip path."""
-    from scipy.optimize import brentq  # lazy: keeps `import gearkit` light
+    from gearkit.roots import brentq
 
     def imbalance(x1):
         """|zeta1(A)| - |zeta2(E)|; None when an end of the path lies beyond N1 or N2."""

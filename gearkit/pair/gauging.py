@@ -32,10 +32,10 @@ _GRID = 161  # samples per piece before refining an extreme (pieces are smooth b
 
 def _refine(piece, lo: float, hi: float, score, fallback: float):
     """Refine a sampled maximum of ``score`` on ``piece`` between parameters ``lo`` and ``hi``."""
-    from scipy.optimize import minimize_scalar  # lazy: keeps `import gearkit` light
-    res = minimize_scalar(lambda w: -float(score(piece(np.array([w])))[0]), bounds=(lo, hi), method="bounded",
-                          options={"xatol": 1e-14})
-    w = float(res.x) if -res.fun > float(score(piece(np.array([fallback])))[0]) else fallback
+    from gearkit.roots import fminbound
+
+    x, fun = fminbound(lambda w: -float(score(piece(np.array([w])))[0]), lo, hi, xatol=1e-14)
+    w = x if -fun > float(score(piece(np.array([fallback])))[0]) else fallback
     point = piece(np.array([w]))[0]
     return float(score(point[None])[0]), point, piece.label
 
@@ -108,7 +108,7 @@ def measure_over_pins(profile, d_p: float, beta_b: float = 0.0) -> tuple[OverPin
     label : str
         The feature the pin touches.
     """
-    from scipy.optimize import brentq  # lazy: keeps `import gearkit` light
+    from gearkit.roots import brentq
     require(math.isfinite(d_p) and d_p > 0, "pin_diameter", f"{d_p!r} must be a positive length in mm")
     z = profile.teeth
     rho = d_p / (2 * math.cos(beta_b))

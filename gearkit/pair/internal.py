@@ -82,7 +82,7 @@ def plunge_trimming(g: PairGeometry, samples: int = 801) -> tuple[float, float]:
     shaper tooth's (sharp) tip corner; ``d2`` is half the ring's angular space width at its tip,
     ``d0`` half the shaper's angular tooth thickness at its tip. The minimum must be positive.
     """
-    from scipy.optimize import minimize_scalar  # lazy: keeps `import gearkit` light
+    from gearkit.roots import fminbound
     sec = _sec(g)
     ring = g.gears[1]
     cutter = g.spec.tools[1]
@@ -103,9 +103,9 @@ def plunge_trimming(g: PairGeometry, samples: int = 801) -> tuple[float, float]:
     i = int(np.argmin(values))
     lo_b, hi_b = phi[max(i - 1, 0)], phi[min(i + 1, samples - 1)]
     if hi_b > lo_b:
-        res = minimize_scalar(gap, bounds=(lo_b, hi_b), method="bounded", options={"xatol": 1e-13})
-        if res.fun < values[i]:
-            return float(res.fun), float(res.x)
+        x, fun = fminbound(gap, lo_b, hi_b, xatol=1e-13)
+        if fun < values[i]:
+            return fun, x
     return float(values[i]), float(phi[i])
 
 

@@ -168,7 +168,7 @@ def _driving(spec):
 
 def phase_extreme(func, p0: float, p1: float, n: int = 2001) -> float:
     """Largest ``func(phi)`` on ``[p0, p1]``: a dense grid, then a bounded search around its best node."""
-    from scipy.optimize import minimize_scalar
+    from gearkit.roots import fminbound
 
     grid = np.linspace(p0, p1, n)
     vals = func(grid)
@@ -176,9 +176,8 @@ def phase_extreme(func, p0: float, p1: float, n: int = 2001) -> float:
     lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, n - 1)]
     if hi <= lo:
         return float(vals[k])
-    res = minimize_scalar(lambda x: -float(func(np.array([x]))[0]), bounds=(lo, hi), method="bounded",
-                          options={"xatol": 1e-12})
-    return max(float(vals[k]), -float(res.fun))
+    _, fun = fminbound(lambda x: -float(func(np.array([x]))[0]), lo, hi, xatol=1e-12)
+    return max(float(vals[k]), -fun)
 
 
 def smallest_prime_radius(spec, efficiency: float | None = None, mu: float | None = None) -> float:

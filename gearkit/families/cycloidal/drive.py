@@ -274,7 +274,7 @@ def min_curvature_radius(spec: DriveSpec):
     the pins: the offset cannot loop). ``inf`` is the exact value for the Python API; JSON reports
     carry it as ``null`` with a message.
     """
-    from scipy.optimize import minimize_scalar
+    from gearkit.roots import fminbound
 
     phi = np.linspace(0.0, math.pi, 2049)
     rho = curvature_radius(spec, phi) * -spec.sign
@@ -283,9 +283,8 @@ def min_curvature_radius(spec: DriveSpec):
     if not np.isfinite(crit[i]):
         return math.inf, None
     lo, hi = phi[max(i - 1, 0)], phi[min(i + 1, len(phi) - 1)]
-    res = minimize_scalar(lambda p: float(-spec.sign * curvature_radius(spec, p)), bounds=(lo, hi),
-                          method="bounded", options={"xatol": 1e-13})
-    best = min((float(crit[i]), float(phi[i])), (float(res.fun), float(res.x)))
+    x, fun = fminbound(lambda p: float(-spec.sign * curvature_radius(spec, p)), lo, hi, xatol=1e-13)
+    best = min((float(crit[i]), float(phi[i])), (fun, x))
     return best
 
 
@@ -297,7 +296,7 @@ def _root_psi(spec: DriveSpec) -> float:
 def psi_max(spec: DriveSpec) -> float:
     """psi_max (rad): relative angle over which family 0's flank runs from its root to where it meets
     the tooth's symmetry axis (reference digest eq. 16); pi/|Z_g| for |dz| = 1."""
-    from scipy.optimize import brentq
+    from gearkit.roots import brentq
 
     if abs(spec.tooth_difference) == 1:
         return math.pi / spec.lobes

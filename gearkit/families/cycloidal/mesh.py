@@ -21,6 +21,7 @@ from functools import lru_cache
 
 import numpy as np
 
+from gearkit.accuracy import nearest
 from gearkit.families.cycloidal.disc import disc_profile
 from gearkit.families.cycloidal.drive import DriveSpec, frame_phase, turn_polar
 
@@ -59,8 +60,6 @@ class _Outline:
     """
 
     def __init__(self, spec: DriveSpec, samples: int = 128):
-        from scipy.spatial import cKDTree
-
         disc = disc_profile(spec)
         self.disc = disc
         self.half = math.pi / disc.teeth
@@ -68,14 +67,14 @@ class _Outline:
         self.rolls = np.concatenate(rolls)
         self.bounds = np.concatenate([np.repeat([[a[0], a[-1]]], len(a), axis=0) for a in rolls])
         pts = disc.at_roll(self.rolls)
-        self.tree = cKDTree(pts)
+        self.points = pts
         self.spacing = float(np.linalg.norm(np.diff(pts, axis=0), axis=1).max())
         first = disc.half.pieces[0]
         self.tip = first.curve if not hasattr(first.curve, "solve") else None
 
     def _start(self, q):
         """Distance to the sampled flank and the nearest sample's index."""
-        return self.tree.query(q)
+        return nearest(self.points, q)
 
     def _refine(self, q, idx):
         """Newton in the roll from the samples ``idx``: exact distance to the flank and foot point."""
@@ -226,7 +225,7 @@ def backlash(spec: DriveSpec, psi0: float = 0.0, direction: int = 1, contact_tol
     counter-clockwise. 0 when a pin already touches (or interferes) at ``psi0``; ``inf`` when no pin
     is met within one disc pitch.
     """
-    from scipy.optimize import brentq
+    from gearkit.roots import brentq
 
     outline, contact_tol = _tols(spec, contact_tol)
 

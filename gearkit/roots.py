@@ -1,0 +1,132 @@
+"""Scalar root finding and bounded minimisation: the kernel's own, so that the paths of
+``gearkit gear``, ``check``, ``cycloidal-drive`` and ``novikov`` need no scipy import
+(scipy costs more to import than those commands take to run).
+
+Both are Brent's classic methods: :func:`brentq` (bracketed root, inverse quadratic
+interpolation with bisection safeguard) and :func:`fminbound` (golden section with
+parabolic steps). They stop at the same tolerances as the scipy functions of the same
+names, so results agree to those tolerances.
+
+Examples
+--------
+>>> import math
+>>> round(brentq(lambda x: x * x - 2.0, 0.0, 2.0, xtol=1e-15), 14)
+1.41421356237309
+>>> x, fx = fminbound(math.cos, 3.0, 4.0, xatol=1e-12)
+>>> round(x, 7), round(fx, 12)
+(3.1415927, -1.0)
+"""
+from __future__ import annotations
+
+import math
+
+__all__ = ["brentq", "fminbound"]
+
+_EPS = 2.220446049250313e-16
+_GOLDEN = 0.5 * (3.0 - math.sqrt(5.0))
+
+
+def brentq(f, a: float, b: float, xtol: float = 2e-12, rtol: float = 4 * _EPS, maxiter: int = 100) -> float:
+    """A root of ``f`` in ``[a, b]`` where ``f(a)`` and ``f(b)`` differ in sign.
+
+    Stops when the bracket is below ``xtol + rtol * |x|``. Raises ``ValueError`` when the
+    ends do not bracket a sign change, ``RuntimeError`` after ``maxiter`` steps.
+    """
+    fa, fb = float(f(a)), float(f(b))
+    if fa == 0.0:
+        return float(a)
+    if fb == 0.0:
+        return float(b)
+    if (fa > 0) == (fb > 0):
+        raise ValueError("f(a) and f(b) must have different signs")
+    c, fc = a, fa
+    d = e = b - a
+    for _ in range(maxiter):
+        if (fb > 0) == (fc > 0):  # keep the root between b and c
+            c, fc = a, fa
+            d = e = b - a
+        if abs(fc) < abs(fb):  # b is the best estimate
+            a, b, c = b, c, b
+            fa, fb, fc = fb, fc, fb
+        tol = 0.5 * (xtol + rtol * abs(b))
+        m = 0.5 * (c - b)
+        if abs(m) <= tol or fb == 0.0:
+            return float(b)
+        if abs(e) >= tol and abs(fa) > abs(fb):  # try interpolation
+            s = fb / fa
+            if a == c:  # secant
+                p, q = 2.0 * m * s, 1.0 - s
+            else:  # inverse quadratic
+                q, r = fa / fc, fb / fc
+                p = s * (2.0 * m * q * (q - r) - (b - a) * (r - 1.0))
+                q = (q - 1.0) * (r - 1.0) * (s - 1.0)
+            if p > 0:
+                q = -q
+            else:
+                p = -p
+            if 2.0 * p < min(3.0 * m * q - abs(tol * q), abs(e * q)):
+                e, d = d, p / q
+            else:
+                d = e = m
+        else:
+            d = e = m
+        a, fa = b, fb
+        b = b + (d if abs(d) > tol else math.copysign(tol, m))
+        fb = float(f(b))
+    raise RuntimeError(f"brentq: no convergence in {maxiter} iterations")
+
+
+def fminbound(f, lo: float, hi: float, xatol: float = 1e-5, maxiter: int = 500) -> tuple[float, float]:
+    """A local minimum ``(x, f(x))`` of ``f`` on ``[lo, hi]`` (Brent's bounded method).
+
+    Stops when x is known to within ``sqrt(eps) |x| + xatol / 3`` either side (the
+    tolerance of scipy's bounded scalar minimiser).
+    """
+    a, b = float(lo), float(hi)
+    x = w = v = a + _GOLDEN * (b - a)
+    fx = fw = fv = float(f(x))
+    d = e = 0.0
+    sqrt_eps = math.sqrt(_EPS)
+    for _ in range(maxiter):
+        m = 0.5 * (a + b)
+        tol1 = sqrt_eps * abs(x) + xatol / 3.0
+        tol2 = 2.0 * tol1
+        if abs(x - m) <= tol2 - 0.5 * (b - a):
+            break
+        golden = True
+        if abs(e) > tol1:  # try a parabola through x, w, v
+            r = (x - w) * (fx - fv)
+            q = (x - v) * (fx - fw)
+            p = (x - v) * q - (x - w) * r
+            q = 2.0 * (q - r)
+            if q > 0:
+                p = -p
+            q = abs(q)
+            r, e = e, d
+            if abs(p) < abs(0.5 * q * r) and q * (a - x) < p < q * (b - x):
+                d = p / q
+                u = x + d
+                if (u - a) < tol2 or (b - u) < tol2:
+                    d = math.copysign(tol1, m - x)
+                golden = False
+        if golden:
+            e = (b - x) if x < m else (a - x)
+            d = _GOLDEN * e
+        u = x + (d if abs(d) >= tol1 else math.copysign(tol1, d))
+        fu = float(f(u))
+        if fu <= fx:
+            if u >= x:
+                a = x
+            else:
+                b = x
+            v, fv, w, fw, x, fx = w, fw, x, fx, u, fu
+        else:
+            if u < x:
+                a = u
+            else:
+                b = u
+            if fu <= fw or w == x:
+                v, fv, w, fw = w, fw, u, fu
+            elif fu <= fv or v == x or v == w:
+                v, fv = u, fu
+    return x, fx
