@@ -86,3 +86,29 @@ def test_closed_form_baseline_is_the_involute():
     # an involute point's distance from the centre is r_b sqrt(1 + t^2)
     assert np.allclose(np.hypot(*pts.T), 2.0 * np.sqrt(1 + t * t), rtol=1e-14)
     assert math.isclose(float(pts[0, 0]), 2.0)
+
+
+def test_target_rows_pass_reads_measured_against_target_and_every_row_is_printed():
+    """Generic target rows: pass is measured <= target; rows from any producer (contact here)
+    are printed with their verdict, and the floor and load average head the table."""
+    from gearkit.bench.targets import contact_targets, format_target_rows, markdown_target_rows, target_row
+
+    assert target_row("a", 0.1, 0.1, "s")["pass"] is True
+    assert target_row("a", 0.1000001, 0.1, "s")["pass"] is False
+    assert target_row("a", None, 0.1, "s")["pass"] is None and target_row("a", 1.0, None, "s")["pass"] is None
+    contact = [{"case": "rigid cycle 20/40 m=2", "steps": 2000, "slices": 1, "seconds": 0.9, "cpu_seconds": 0.55,
+                "target": 0.1},
+               {"case": "loaded", "steps": 500, "slices": 10, "seconds": 1.0, "cpu_seconds": 0.8, "target": None}]
+    rows = contact_targets(contact)
+    assert [(r["name"], r["measured"], r["target"], r["pass"]) for r in rows] == [
+        ("rigid cycle 20/40 m=2, 2000 steps", 0.55, 0.1, False)]  # rows without a target are no target rows
+    res = {"targets": rows + [target_row("gear z=12 -> STL", 1.12, 1.15, "x floor")],
+           "floor": {"cpu_seconds": 0.125, "wall_seconds": 0.2, "runs": 5, "command": "python -c \"import numpy\""},
+           "meta": {"load_before": 3.5, "load_after": 4.0, "cpus": 2}}
+    text = "\n".join(format_target_rows(res))
+    assert "125 ms CPU" in text and "load average 3.5 before, 4.0 after" in text
+    lines = text.splitlines()
+    assert "FAIL" in next(x for x in lines if x.strip().startswith("rigid cycle"))
+    assert "pass" in next(x for x in lines if x.strip().startswith("gear z=12"))
+    md = markdown_target_rows(res)
+    assert sum(x.startswith("| rigid cycle") or x.startswith("| gear z=12") for x in md) == 2

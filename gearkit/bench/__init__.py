@@ -11,6 +11,9 @@ For every family and product that exists, the bench measures
 * the **kernel overhead**: time of the z = 40 involute outline at tol 1e-6 m over the time numpy
   needs to evaluate as many points of the closed-form involute (a ratio that holds on any machine);
 * the **whole-process time** of ``gearkit gear`` for three reference gears;
+* **targets**: every speed target beside its measurement (generic rows
+  ``{name, measured, target, unit, pass}``, see :mod:`gearkit.bench.targets`): whole-process
+  CPU time over the import floor measured in the same run, kernel overhead, contact cycles;
 * **scenes**: the cold cost of each query of a 3-planet set and the four-speed box at each
   fidelity (ratio, checks, solids) with what it built, and the planetary synthesis time.
 
@@ -34,9 +37,10 @@ def run_bench(quick: bool = False, process: bool = True, progress=None) -> dict:
     -------
     dict with keys ``ladder`` (list of {family, product, tol, achieved, vertices, seconds, ...}),
     ``scaling``, ``oracle``, ``oracle_order``, ``products``, ``unmeasured``, ``process``,
-    ``overhead``, ``overhead_ratio`` and ``meta`` (lengths in mm, times in s).
+    ``overhead``, ``overhead_ratio``, ``targets`` (list of {name, measured, target, unit, pass}),
+    ``floor`` (the import floor, when ``process``) and ``meta`` (lengths in mm, times in s).
     """
-    from gearkit.bench import blocking, meshes, oracle, process as proc, products, profiles
+    from gearkit.bench import blocking, meshes, oracle, process as proc, products, profiles, targets
 
     def say(msg):
         if progress is not None:
@@ -50,6 +54,9 @@ def run_bench(quick: bool = False, process: bool = True, progress=None) -> dict:
     say("overhead against the closed-form involute")
     out["overhead"] = profiles.overhead(11 if quick else 31)
     out["overhead_ratio"] = out["overhead"]["overhead_ratio"]
+    out["targets"] = [targets.target_row("kernel overhead: z=40 outline at tol 1e-6 m over numpy's closed form",
+                                         out["overhead_ratio"], targets.OVERHEAD_TARGET, "x closed form",
+                                         f"sampling alone {out['overhead']['overhead_ratio_sampling']:.1f}x")]
     say("accuracy ladder: 2D profiles")
     out["ladder"] = (profiles.involute_ladder(quick, repeats) + profiles.novikov_ladder(quick, repeats)
                      + profiles.cycloidal_ladder(quick, repeats) + profiles.cam_ladder(quick, repeats))
@@ -73,6 +80,7 @@ def run_bench(quick: bool = False, process: bool = True, progress=None) -> dict:
 
         say("contact analysis against its targets")
         out["contact_targets"] = contact_target_rows(quick)
+        out["targets"] += targets.contact_targets(out["contact_targets"])
     if products.available("gearkit.scene"):
         from gearkit.bench import scenes
 
@@ -82,7 +90,9 @@ def run_bench(quick: bool = False, process: bool = True, progress=None) -> dict:
     measured = {(r["family"], r["product"]) for r in out["ladder"] + out["products"]}
     out["unmeasured"] = products.unmeasured_products(measured)
     if process:
-        say("whole-process times")
+        say("whole-process times against the import floor")
+        out["floor"], rows = targets.process_target_rows(3 if quick else 5)
+        out["targets"] = rows + out["targets"]
         out["process"] = proc.process_times(5)
     else:
         out["process"] = []
@@ -105,6 +115,8 @@ def _fmt_s(s):
 
 def format_table(res: dict) -> str:
     """The bench result as a plain-text report."""
+    from gearkit.bench.targets import format_target_rows
+
     lines = []
     ov = res["overhead"]
     lines.append("gearkit bench" + (" (quick)" if res["meta"]["quick"] else "")
@@ -167,6 +179,7 @@ def format_table(res: dict) -> str:
             status = "" if r["ok"] else f"  FAILED: {r.get('error', '')}"
             ach = "" if r.get("achieved") is None else f"  achieved {r['achieved'] * 1e3:.2f} um"
             lines.append(f"  {r['gear']:32} {r['output']:30} {_fmt_s(r['seconds']):>11}{ach}{status}")
+    lines += [""] + format_target_rows(res)
     lines.append("")
     lines.append(f"bench time {res['meta']['seconds']:.1f} s; load average {res['meta'].get('load_before')} before, "
                  f"{res['meta'].get('load_after')} after, on {res['meta'].get('cpus')} CPUs (load from other work "

@@ -13,6 +13,7 @@ import math
 import numpy as np
 
 from gearkit.accuracy import distances_to_polyline
+from gearkit.bench.targets import OVERHEAD_TARGET
 from gearkit.bench.timing import baseline_seconds, median_time
 
 #: requested tolerances of the ladder, in modules
@@ -192,7 +193,7 @@ def overhead(repeats: int = 21):
     base = baseline_seconds(n, spec.base_diameter / 2.0, spec.blank_tip_diameter / 2.0, repeats)
     return {"overhead_ratio": kernel / base, "overhead_ratio_sampling": sampling / base, "kernel_seconds": kernel,
             "sampling_seconds": sampling, "baseline_seconds": base, "points": int(n), "teeth": 40,
-            "tol": tol, "target": 5.0}
+            "tol": tol, "target": OVERHEAD_TARGET}
 
 
 def cam_ladder(quick: bool, repeats: int):

@@ -302,7 +302,7 @@ class InvoluteProfile(ToothProfile):
         # pieces run from the tip to the root, so the undercut region starts at t = 0 of the piece
         # after the flank (it can be a few micrometres tall): a coarse sample, geometric near t = 0,
         # finds the deepest sample of each piece, then the bracket around it is resampled twice
-        t = np.unique(np.concatenate([np.geomspace(1e-12, 1.0, 96), np.linspace(0.0, 1.0, 65)]))
+        t = np.sort(np.concatenate([np.geomspace(1e-12, 1.0, 96), np.linspace(0.0, 1.0, 65)]))
         best = 0.0
         for piece in self.half.pieces:
             if piece.label == "tip":

@@ -1,0 +1,158 @@
+"""Speed targets beside their measurements: one generic row shape for every product.
+
+A target row is ``{name, measured, target, unit, pass}`` (plus optional ``note``): ``pass`` is
+``measured <= target`` (None without a target or a measurement). Every producer of targets
+(whole-process times here, contact analysis, blocking contours, ...) returns such rows and
+:func:`format_target_rows` / :func:`markdown_target_rows` print them all in one table.
+
+The whole-process targets are ratios to the **import floor** measured in the same run: the CPU
+time of ``python -c "import numpy, manifold3d"`` (the least any command that writes a mesh must
+pay). CPU time of the child process (user + system) is what passes or fails: it holds on a
+shared machine where wall time is inflated by other work; wall time is reported beside it.
+
+Examples
+--------
+>>> row = target_row("rigid cycle", 0.05, 0.1, "s CPU")
+>>> row["pass"], target_row("unmeasured", None, 1.0, "s")["pass"]
+(True, None)
+"""
+from __future__ import annotations
+
+import os
+import resource
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+__all__ = ["target_row", "process_target_rows", "contact_targets", "format_target_rows", "markdown_target_rows"]
+
+FLOOR_COMMAND = ("import numpy, manifold3d",)
+
+#: (name, gearkit arguments, target ratio to the floor); ``{out}`` is a file in a temporary folder
+PROCESS_TARGETS = (
+    ("gear z=12 m=2 b=5 -> STL", ["gear", "-z", "12", "-m", "2", "--width", "5", "-o", "{out}.stl"], 1.15),
+    ("gear z=40 m=2 b=5 -> STL", ["gear", "-z", "40", "-m", "2", "--width", "5", "-o", "{out}.stl"], 1.15),
+    ("gear helical z=20 m=2 b=10 beta=20 -> STL",
+     ["gear", "-z", "20", "-m", "2", "--helix-angle-deg", "20", "--width", "10", "-o", "{out}.stl"], 1.15),
+    ("gear z=200 m=1 b=5 -> STL", ["gear", "-z", "200", "-m", "1", "--width", "5", "-o", "{out}.stl"], 1.15),
+    ("check 20/40 m=2", ["check", "--z1", "20", "--z2", "40", "-m", "2"], 1.3),
+    ("cycloidal-drive 12 pins", ["cycloidal-drive", "--pins", "12", "--lobes", "11", "--pin-circle-radius", "40",
+                                 "--pin-radius", "3", "--eccentricity", "1.5"], 1.3),
+)
+TOL_MM = 0.001
+#: kernel overhead: the z = 40 outline at tol 1e-6 m over numpy's closed form for as many points
+OVERHEAD_TARGET = 3.0
+
+
+def target_row(name: str, measured, target, unit: str, note: str | None = None) -> dict:
+    """One target row; ``pass`` is ``measured <= target`` (None when either is missing)."""
+    ok = None if measured is None or target is None else bool(measured <= target)
+    row = {"name": name, "measured": measured, "target": target, "unit": unit, "pass": ok}
+    if note:
+        row["note"] = note
+    return row
+
+
+def _child_times(cmd, env) -> tuple[float, float, int]:
+    """(CPU s, wall s, exit code) of one child process."""
+    r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.perf_counter()
+    proc = subprocess.run(cmd, capture_output=True, text=True, env=env)
+    wall = time.perf_counter() - t0
+    r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime), wall, proc.returncode
+
+
+def process_target_rows(runs: int = 5) -> tuple[dict, list]:
+    """The import floor and the whole-process target rows, medians of ``runs`` runs each.
+
+    Returns
+    -------
+    floor : dict ``{cpu_seconds, wall_seconds, runs}``
+    rows : list of target rows (measured = CPU time / floor CPU time)
+    """
+    from gearkit.bench.process import _gearkit_command
+
+    env = dict(os.environ)
+    env.pop("PYTHONDONTWRITEBYTECODE", None)  # a user's install runs from cached bytecode
+    floor_cmd = [sys.executable, "-c", *FLOOR_COMMAND]
+    floor_cpu, floor_wall = [], []
+
+    def floor_sample():
+        cpu, wall, _ = _child_times(floor_cmd, env)
+        floor_cpu.append(cpu)
+        floor_wall.append(wall)
+
+    _child_times(floor_cmd, env)
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        measured = []
+        for name, args, target in PROCESS_TARGETS:
+            cmd = _gearkit_command() + [a.replace("{out}", os.path.join(tmp, "out")) for a in args]
+            if args[0] == "gear":
+                cmd += ["--tol", str(TOL_MM)]
+            code = _child_times(cmd, env)[2]  # warm-up: bytecode cached, files in the page cache
+            cpu, wall = [], []
+            for _ in range(runs):
+                floor_sample()  # interleaved: a change of load hits floor and command alike
+                c, w, code = _child_times(cmd, env)
+                cpu.append(c)
+                wall.append(w)
+            measured.append((name, target, float(np.median(cpu)), float(np.median(wall)), code))
+    floor = {"cpu_seconds": float(np.median(floor_cpu)), "wall_seconds": float(np.median(floor_wall)),
+             "runs": len(floor_cpu), "command": f"python -c \"{FLOOR_COMMAND[0]}\""}
+    for name, target, cpu, wall, code in measured:
+        note = f"{cpu * 1e3:.0f} ms CPU, {wall * 1e3:.0f} ms wall"
+        if code not in (0, 1):
+            rows.append(target_row(name, None, target, "x floor", f"exit {code}"))
+        else:
+            rows.append(target_row(name, cpu / floor["cpu_seconds"], target, "x floor", note))
+    return floor, rows
+
+
+def contact_targets(rows) -> list:
+    """The contact bench's rows (:func:`gearkit.bench.contact.contact_target_rows`) as target rows."""
+    return [target_row(f"{r['case']}, {r['steps']} steps" + (f", {r['slices']} slices" if r["slices"] > 1 else ""),
+                       r["cpu_seconds"], r["target"], "s CPU", f"{r['seconds']:.3f} s wall")
+            for r in rows if r["target"] is not None]
+
+
+def _num(x):
+    return "" if x is None else (f"{x:.3g}" if abs(x) >= 1e-3 else f"{x:.2e}")
+
+
+def _verdict(row):
+    return "" if row["pass"] is None else ("pass" if row["pass"] else "FAIL")
+
+
+def _header(res):
+    floor = res.get("floor")
+    meta = res["meta"]
+    fl = "" if not floor else (f"import floor `{floor['command']}` {floor['cpu_seconds'] * 1e3:.0f} ms CPU "
+                               f"({floor['wall_seconds'] * 1e3:.0f} ms wall), measured in this run; ")
+    return (f"{fl}load average {meta.get('load_before')} before, {meta.get('load_after')} after, on "
+            f"{meta.get('cpus')} CPUs; pass/fail reads CPU time")
+
+
+def format_target_rows(res: dict) -> list:
+    """Plain-text lines: every target beside its measurement."""
+    rows = res.get("targets") or []
+    lines = ["targets (" + _header(res) + ")",
+             f"  {'name':52} {'measured':>10} {'target':>8} {'unit':12} {'':4}  note"]
+    for r in rows:
+        lines.append(f"  {r['name']:52} {_num(r['measured']):>10} {_num(r['target']):>8} {r['unit']:12} "
+                     f"{_verdict(r):4}  {r.get('note', '')}")
+    return lines
+
+
+def markdown_target_rows(res: dict) -> list:
+    """Markdown lines of the target table."""
+    out = ["**Targets** (" + _header(res) + ")", "", "| target | measured | target | unit | pass | note |",
+           "|---|---:|---:|---|---|---|"]
+    for r in res.get("targets") or []:
+        out.append(f"| {r['name']} | {_num(r['measured'])} | {_num(r['target'])} | {r['unit']} | {_verdict(r)} "
+                   f"| {r.get('note', '')} |")
+    return out
