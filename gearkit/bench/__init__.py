@@ -54,7 +54,7 @@ def run_bench(quick: bool = False, process: bool = True, progress=None) -> dict:
     say("overhead against the closed-form involute")
     out["overhead"] = profiles.overhead(11 if quick else 31)
     out["overhead_ratio"] = out["overhead"]["overhead_ratio"]
-    out["targets"] = [targets.target_row("kernel overhead: z=40 outline at tol 1e-6 m over numpy's closed form",
+    out["targets"] = [targets.target_row("kernel overhead: z=40 outline, tol 1e-6 m",
                                          out["overhead_ratio"], targets.OVERHEAD_TARGET, "x closed form",
                                          f"sampling alone {out['overhead']['overhead_ratio_sampling']:.1f}x")]
     say("accuracy ladder: 2D profiles")
