@@ -202,12 +202,13 @@ def nearest(points, queries, k: int = 1, block: int = 1 << 21):
     idx = np.empty((len(q), k), dtype=np.intp)
     dist = np.empty((len(q), k))
     step = max(1, block // max(len(a), 1))
+    a2 = np.einsum("ij,ij->i", a, a)
     for s in range(0, len(q), step):
-        diff = q[s:s + step, None, :] - a[None, :, :]
-        d2 = np.einsum("ijk,ijk->ij", diff, diff)
-        part = np.argmin(d2, axis=1)[:, None] if k == 1 else np.argpartition(d2, k - 1, axis=1)[:, :k]
+        qs = q[s:s + step]
+        rank = a2 - 2.0 * (qs @ a.T)  # |q - a|^2 - |q|^2: one matrix product ranks the points
+        part = np.argmin(rank, axis=1)[:, None] if k == 1 else np.argpartition(rank, k - 1, axis=1)[:, :k]
         idx[s:s + step] = part
-        dist[s:s + step] = np.sqrt(np.take_along_axis(d2, part, axis=1))
+        dist[s:s + step] = np.linalg.norm(a[part] - qs[:, None, :], axis=-1)  # exact, not from the expansion
     return (dist[:, 0], idx[:, 0]) if k == 1 else (dist, idx)
 
 
