@@ -27,7 +27,7 @@ import time
 
 import numpy as np
 
-__all__ = ["target_row", "process_target_rows", "contact_targets", "format_target_rows", "markdown_target_rows"]
+__all__ = ["target_row", "process_target_rows", "mesh_target_rows", "contact_targets", "format_target_rows", "markdown_target_rows"]
 
 FLOOR_COMMAND = ("import numpy, manifold3d",)
 
@@ -111,6 +111,53 @@ def process_target_rows(runs: int = 5) -> tuple[dict, list]:
         else:
             rows.append(target_row(name, cpu / floor["cpu_seconds"], target, "x floor", note))
     return floor, rows
+
+
+#: the large-mesh case: spur z = 1000, m = 1, b = 5 mm, STL at tol 1e-3 mm
+BIG_GEAR = (1000, 1.0, 5.0, 1e-3)
+BIG_GEAR_CPU_TARGET = 0.3  # s
+RSS_PER_FACE_TARGET = 0.4  # KB
+
+_BIG_GEAR_SCRIPT = """
+import resource, sys, time
+import numpy, manifold3d
+from gearkit.families.involute import GearSpec, tooth_profile
+from gearkit.solids import SolidSpec, gear_solid
+from gearkit.solids.export import write_mesh
+z, m, b, tol = (float(a) for a in sys.argv[1:5])
+base = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+t0 = time.process_time()
+solid = gear_solid(tooth_profile(GearSpec(int(z), m)), SolidSpec(b), tol)
+write_mesh(sys.argv[5], [solid])
+cpu = time.process_time() - t0
+print(cpu, solid.faces, resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - base)
+"""
+
+
+def mesh_target_rows(runs: int = 3) -> list:
+    """z = 1000 spur to STL at tol 1e-3 mm, each run in a fresh process: CPU time from spec to file
+    (median) and the peak resident memory it adds over the imports, per face (KB; Linux counts KB)."""
+    z, m, b, tol = BIG_GEAR
+    env = dict(os.environ)
+    env.pop("PYTHONDONTWRITEBYTECODE", None)
+    samples = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for _ in range(max(1, runs)):
+            proc = subprocess.run([sys.executable, "-c", _BIG_GEAR_SCRIPT, str(z), str(m), str(b), str(tol),
+                                   os.path.join(tmp, "big.stl")], capture_output=True, text=True, env=env)
+            if proc.returncode != 0:
+                err = (proc.stderr.strip().splitlines() or [""])[-1]
+                return [target_row(f"z={z} m={m:g} b={b:g} tol {tol:g} -> STL, CPU", None, BIG_GEAR_CPU_TARGET,
+                                   "s CPU", err)]
+            cpu, faces, rss = proc.stdout.split()
+            samples.append((float(cpu), int(faces), float(rss)))
+    cpu = float(np.median([c for c, _, _ in samples]))
+    faces = samples[0][1]
+    rss = float(np.median([r for _, _, r in samples])) / faces
+    return [target_row(f"z={z} m={m:g} b={b:g} tol {tol:g} -> STL, CPU", cpu, BIG_GEAR_CPU_TARGET, "s CPU",
+                       f"{faces} faces, spec to file"),
+            target_row(f"z={z} -> STL, peak RSS per face", rss, RSS_PER_FACE_TARGET, "KB",
+                       "peak resident memory added over the imports, divided by the faces")]
 
 
 def contact_targets(rows) -> list:
