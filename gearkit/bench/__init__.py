@@ -55,7 +55,7 @@ def run_bench(quick: bool = False, process: bool = True, progress=None) -> dict:
     out["overhead"] = profiles.overhead(11 if quick else 31)
     out["overhead_ratio"] = out["overhead"]["overhead_ratio"]
     out["targets"] = [targets.target_row("kernel overhead: z=40 outline, tol 1e-6 m",
-                                         out["overhead_ratio"], targets.OVERHEAD_TARGET, "x closed form",
+                                         out["overhead_ratio"], profiles.OVERHEAD_TARGET, "x closed form",
                                          f"sampling alone {out['overhead']['overhead_ratio_sampling']:.1f}x")]
     say("accuracy ladder: 2D profiles")
     out["ladder"] = (profiles.involute_ladder(quick, repeats) + profiles.novikov_ladder(quick, repeats)

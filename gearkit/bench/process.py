@@ -24,7 +24,7 @@ REFERENCE_GEARS = (
 TOL_MM = 0.001
 
 
-def _gearkit_command():
+def gearkit_command():
     exe = os.path.join(os.path.dirname(sys.executable), "gearkit")
     return [exe] if os.path.exists(exe) else [sys.executable, "-m", "gearkit.cli"]
 
@@ -59,7 +59,7 @@ def process_times(runs: int = 5):
     with tempfile.TemporaryDirectory() as tmp:
         for name, flags, b in REFERENCE_GEARS:
             out = os.path.join(tmp, "gear.stl" if stl else "gear.svg")
-            cmd = _gearkit_command() + ["gear"] + flags + ["--tol", str(TOL_MM), "-o", out]
+            cmd = gearkit_command() + ["gear"] + flags + ["--tol", str(TOL_MM), "-o", out]
             if stl and width_flag:
                 cmd += [width_flag, str(b)]
             times, ok, err = [], True, ""

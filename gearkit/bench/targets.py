@@ -43,8 +43,6 @@ PROCESS_TARGETS = (
                                  "--pin-radius", "3", "--eccentricity", "1.5"], 1.3),
 )
 TOL_MM = 0.001
-#: kernel overhead: the z = 40 outline at tol 1e-6 m over numpy's closed form for as many points
-OVERHEAD_TARGET = 3.0
 
 
 def target_row(name: str, measured, target, unit: str, note: str | None = None) -> dict:
@@ -74,7 +72,7 @@ def process_target_rows(runs: int = 5) -> tuple[dict, list]:
     floor : dict ``{cpu_seconds, wall_seconds, runs}``
     rows : list of target rows (measured = CPU time / floor CPU time)
     """
-    from gearkit.bench.process import _gearkit_command
+    from gearkit.bench.process import gearkit_command
 
     env = dict(os.environ)
     env.pop("PYTHONDONTWRITEBYTECODE", None)  # a user's install runs from cached bytecode
@@ -91,7 +89,7 @@ def process_target_rows(runs: int = 5) -> tuple[dict, list]:
     with tempfile.TemporaryDirectory() as tmp:
         measured = []
         for name, args, target in PROCESS_TARGETS:
-            cmd = _gearkit_command() + [a.replace("{out}", os.path.join(tmp, "out")) for a in args]
+            cmd = gearkit_command() + [a.replace("{out}", os.path.join(tmp, "out")) for a in args]
             if args[0] == "gear":
                 cmd += ["--tol", str(TOL_MM)]
             code = _child_times(cmd, env)[2]  # warm-up: bytecode cached, files in the page cache
