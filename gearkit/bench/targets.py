@@ -27,7 +27,8 @@ import time
 
 import numpy as np
 
-__all__ = ["target_row", "process_target_rows", "mesh_target_rows", "contact_targets", "format_target_rows", "markdown_target_rows"]
+__all__ = ["target_row", "process_target_rows", "mesh_target_rows", "vertex_target_rows", "fewest_vertices",
+           "contact_targets", "format_target_rows", "markdown_target_rows"]
 
 FLOOR_COMMAND = ("import numpy, manifold3d",)
 
@@ -156,6 +157,62 @@ def mesh_target_rows(runs: int = 3) -> list:
                        f"{faces} faces, spec to file"),
             target_row(f"z={z} -> STL, peak RSS per face", rss, RSS_PER_FACE_TARGET, "KB",
                        "peak resident memory added over the imports, divided by the faces")]
+
+
+VERTEX_TARGET = 1.2  # x the fewest vertices a chord-at-tol polyline needs
+
+
+def _chord_deviation(points, i: int, j: int) -> float:
+    """Largest distance of ``points[i+1:j]`` from the chord ``points[i] -> points[j]``."""
+    a, d = points[i], points[j] - points[i]
+    q = points[i + 1:j] - a
+    if not len(q):
+        return 0.0
+    return float(np.abs(q[:, 0] * d[1] - q[:, 1] * d[0]).max() / np.hypot(*d))
+
+
+def fewest_vertices(points, tol: float) -> int:
+    """Vertices of a polyline through a subset of the dense ``points`` (in order, ends kept) whose
+    chords stay within ``tol`` of every point they skip: each chord reaches as far as a doubling
+    then bisecting search finds (greedy farthest reach).
+
+    Examples
+    --------
+    >>> import math
+    >>> t = np.linspace(0.0, np.pi / 2, 2001)
+    >>> n = fewest_vertices(np.stack([np.cos(t), np.sin(t)], -1), 1e-3)
+    >>> n == math.ceil((np.pi / 2) / (2 * math.acos(1 - 1e-3))) + 1  # chord angle h: sagitta 1 - cos(h/2) = tol
+    True
+    """
+    pts = np.asarray(points, dtype=float)
+    n, i, count = len(pts), 0, 1
+    while i < n - 1:
+        step = 1
+        while i + 2 * step < n and _chord_deviation(pts, i, i + 2 * step) <= tol:
+            step *= 2
+        lo, hi = i + step, min(i + 2 * step, n - 1)
+        if _chord_deviation(pts, i, hi) <= tol:
+            lo = hi
+        while hi - lo > 1:
+            mid = (lo + hi) // 2
+            lo, hi = (mid, hi) if _chord_deviation(pts, i, mid) <= tol else (lo, mid)
+        i, count = lo, count + 1
+    return count
+
+
+def vertex_target_rows() -> list:
+    """The half tooth's vertex count at tol against :func:`fewest_vertices` on a 1000x finer
+    sampling of the same exact curve (spur z = 40, m = 1 mm)."""
+    from gearkit.families.involute import GearSpec, tooth_profile
+
+    prof = tooth_profile(GearSpec(40, 1.0))
+    rows = []
+    for tol in (1e-3, 1e-4):
+        have = len(prof.half_points(tol)[0])
+        least = fewest_vertices(prof.half_points(tol / 1000)[0], tol)
+        rows.append(target_row(f"2D half tooth z=40 m=1 tol {tol:g} mm, vertices", have / least, VERTEX_TARGET,
+                               "x fewest", f"{have} vertices, fewest chord-at-tol {least}"))
+    return rows
 
 
 def contact_targets(rows) -> list:
