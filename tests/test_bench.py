@@ -102,6 +102,12 @@ def test_target_rows_pass_reads_measured_against_target_and_every_row_is_printed
     rows = contact_targets(contact)
     assert [(r["name"], r["measured"], r["target"], r["pass"]) for r in rows] == [
         ("rigid cycle 20/40 m=2, 2000 steps", 0.55, 0.1, False)]  # rows without a target are no target rows
+    from gearkit.bench.targets import blocking_targets
+
+    blocking = blocking_targets([{"target": "blocking ladder: time grows as tol falls", "measured": None,
+                                  "limit": None, "unit": "", "pass": False}])
+    assert blocking == [{"name": "blocking ladder: time grows as tol falls", "measured": None, "target": None,
+                         "unit": "", "pass": False}]  # a verdict that is not a number comparison is kept
     res = {"targets": rows + [target_row("gear z=12 -> STL", 1.12, 1.15, "x floor")],
            "floor": {"cpu_seconds": 0.125, "wall_seconds": 0.2, "runs": 5, "command": "python -c \"import numpy\""},
            "meta": {"load_before": 3.5, "load_after": 4.0, "cpus": 2}}

@@ -71,6 +71,7 @@ def run_bench(quick: bool = False, process: bool = True, progress=None) -> dict:
         say("blocking contour: ladder, targets, atlas throughput")
         out["ladder"] += blocking.ladder_rows(quick)
         out["blocking_targets"] = blocking.target_rows(out["ladder"])
+        out["targets"] += targets.blocking_targets(out["blocking_targets"])
         out["atlas"] = blocking.atlas_rows(quick)
     say("scaling in z")
     out["scaling"] = profiles.involute_scaling(quick, repeats)

@@ -28,7 +28,7 @@ import time
 import numpy as np
 
 __all__ = ["target_row", "process_target_rows", "mesh_target_rows", "vertex_target_rows", "fewest_vertices",
-           "contact_targets", "format_target_rows", "markdown_target_rows"]
+           "contact_targets", "blocking_targets", "format_target_rows", "markdown_target_rows"]
 
 FLOOR_COMMAND = ("import numpy, manifold3d",)
 
@@ -220,6 +220,13 @@ def contact_targets(rows) -> list:
     return [target_row(f"{r['case']}, {r['steps']} steps" + (f", {r['slices']} slices" if r["slices"] > 1 else ""),
                        r["cpu_seconds"], r["target"], "s CPU", f"{r['seconds']:.3f} s wall")
             for r in rows if r["target"] is not None]
+
+
+def blocking_targets(rows) -> list:
+    """The blocking bench's rows (``{target, measured, limit, unit, pass}``) as target rows (their
+    verdicts kept: some compare more than a number, e.g. that time grows as tol falls)."""
+    return [{"name": r["target"], "measured": r["measured"], "target": r["limit"], "unit": r["unit"] or "",
+             "pass": r["pass"]} for r in rows]
 
 
 def _num(x):
