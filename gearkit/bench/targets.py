@@ -124,12 +124,22 @@ from gearkit.families.involute import GearSpec, tooth_profile
 from gearkit.solids import SolidSpec, gear_solid
 from gearkit.solids.export import write_mesh
 z, m, b, tol = (float(a) for a in sys.argv[1:5])
-base = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+
+
+def peak_kb():  # this image's high-water mark (ru_maxrss would carry over the forking parent's)
+    try:
+        with open("/proc/self/status") as fh:
+            return float(next(line.split()[1] for line in fh if line.startswith("VmHWM:")))
+    except (OSError, StopIteration):
+        return float(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss)
+
+
+base = peak_kb()
 t0 = time.process_time()
 solid = gear_solid(tooth_profile(GearSpec(int(z), m)), SolidSpec(b), tol)
 write_mesh(sys.argv[5], [solid])
 cpu = time.process_time() - t0
-print(cpu, solid.faces, resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - base)
+print(cpu, solid.faces, peak_kb() - base)
 """
 
 
