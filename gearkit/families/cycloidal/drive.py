@@ -262,7 +262,8 @@ def curvature_radius(spec: DriveSpec, phi):
     k1, z = g.k1, g.equivalent_pins
     phi = np.asarray(phi, dtype=float)
     s = 1.0 + k1 * k1 - 2.0 * k1 * np.cos(phi)
-    return g.pin_circle_radius * s ** 1.5 / (k1 * (1.0 + z) * np.cos(phi) - (1.0 + z * k1 * k1))
+    with np.errstate(divide="ignore"):  # an inflection (denominator 0) has an infinite radius
+        return g.pin_circle_radius * s ** 1.5 / (k1 * (1.0 + z) * np.cos(phi) - (1.0 + z * k1 * k1))
 
 
 def min_curvature_radius(spec: DriveSpec):
