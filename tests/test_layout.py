@@ -196,3 +196,27 @@ def test_no_module_is_over_400_lines():
     long = {str(p.relative_to(PACKAGE.parent)): n for p in PACKAGE.rglob("*.py")
             if (n := len(p.read_text().splitlines())) > 400}
     assert long == {}
+
+
+# ----------------------------------------------------------------------------- one CLI vocabulary
+
+#: flags every command spells the same way: declared only through gearkit/cli/common.py
+SHARED_FLAGS = ("-o", "--output", "--tol", "--json", "-m", "--module", "-z", "--teeth", "-x", "--shift", "--keyway")
+#: known exceptions, each with its reason: ``gearkit bench --json FILE`` writes a file (not the flag)
+CLI_EXCEPTIONS = {("bench.py", "--json")}
+
+
+def test_the_shared_cli_flags_are_declared_only_in_cli_common():
+    import re
+
+    declared = re.compile(r"""add_argument\(\s*["'](-[-\w]+)["']""")
+    offenders = []
+    for path in sorted((PACKAGE / "cli").glob("*.py")):
+        if path.name == "common.py":
+            continue
+        for flag in declared.findall(path.read_text()):
+            if flag in SHARED_FLAGS and (path.name, flag) not in CLI_EXCEPTIONS:
+                offenders.append(f"{path.name}: {flag}")
+    assert offenders == []
+    common = (PACKAGE / "cli" / "common.py").read_text()
+    assert all(f'"{flag}"' in common for flag in ("-o", "--tol", "--json", "-m", "-z", "-x"))

@@ -13,9 +13,9 @@ Exit status: 0 ok, 2 bad input or I/O, 130 interrupted.
 """
 from __future__ import annotations
 
-import json
 import sys
 
+from gearkit.cli.common import add_json_flag, add_output_flag, add_tol_flag, print_json
 from gearkit.errors import SpecError
 
 RANGE_MAX = 400  #: largest tooth number of an atlas axis
@@ -36,7 +36,7 @@ def register(subparsers) -> None:
     g.add_argument("--z2", required=True, help="wheel (ring) teeth: START:STOP:STEP or a,b,c")
     add_template_arguments(p, g)
     c = p.add_argument_group("contours")
-    c.add_argument("--tol", type=float, help="accuracy of every traced line, shift units (default 1e-4)")
+    add_tol_flag(c, "accuracy of every traced line, shift units (default 1e-4)")
     c.add_argument("--criterion", choices=("balanced", "strength"), default="balanced",
                    help="recommendation criterion of every cell (default balanced)")
     r = p.add_argument_group("running")
@@ -44,9 +44,8 @@ def register(subparsers) -> None:
     r.add_argument("--scheduler", help="address of a Dask scheduler (tcp://host:8786): run the cells there")
     r.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
     o = p.add_argument_group("output")
-    o.add_argument("-o", "--output-dir", dest="out_dir", default="atlas",
-                   help="directory of the dataset (default ./atlas; an existing one is resumed)")
-    o.add_argument("--json", action="store_true", help="print the index as one JSON object")
+    add_output_flag(o, "directory of the dataset (default ./atlas; an existing one is resumed)", default="atlas")
+    add_json_flag(o, "print the index as one JSON object")
     p.set_defaults(run=run, output_is_folder=True)  # -o names the dataset's folder (checked as one)
 
 
@@ -81,16 +80,16 @@ def run(args) -> int:
         raise SpecError("--workers", f"{args.workers} must be a positive integer")
     template = template_spec(args, z1s[0], max(z2s[-1], z1s[0] + 8) if args.internal else z2s[0])
     options = {} if args.tol is None else {"tol": args.tol}
-    index = write_atlas(z1s, z2s, args.out_dir, template, workers=args.workers, scheduler=args.scheduler,
+    index = write_atlas(z1s, z2s, args.output, template, workers=args.workers, scheduler=args.scheduler,
                         criterion=args.criterion, progress=not args.no_progress, **options)
     if args.json:
-        print(json.dumps(index, allow_nan=False))
+        print_json(index, indent=None)
     else:
         cells = index["cells"]
         ok = sum(1 for c in cells if c["status"] == "ok")
         empty = sum(1 for c in cells if c.get("empty"))
         print(f"gearkit atlas: {len(cells)} cells ({ok} pairs, {empty} with an empty region, "
-              f"{len(cells) - ok} not a pair) in {args.out_dir}/ (index.json, cells/, atlas.png)")
+              f"{len(cells) - ok} not a pair) in {args.output}/ (index.json, cells/, atlas.png)")
     return 0
 
 

@@ -9,9 +9,9 @@ Exit status: 0 (1 when ``--mark`` is outside the region), 2 for bad input.
 """
 from __future__ import annotations
 
-import json
 import sys
 
+from gearkit.cli.common import add_json_flag, add_module_flag, add_output_flag, add_tol_flag, print_json
 from gearkit.errors import SpecError
 
 
@@ -31,8 +31,8 @@ def register(subparsers) -> None:
     add_template_arguments(p, g)
     c = p.add_argument_group("contour")
     c.add_argument("--window", help="x1_lo,x1_hi,x2_lo,x2_hi (default: from the undercut and pointing limits)")
-    c.add_argument("--tol", type=float, help="accuracy of the traced lines and the region, shift units: every "
-                   "point within tol of the exact line (default 1e-4; allowed 1e-12 .. 1e-2)")
+    add_tol_flag(c, "accuracy of the traced lines and the region, shift units: every point within tol of the "
+                    "exact line (default 1e-4; allowed 1e-12 .. 1e-2)")
     c.add_argument("--xtol", type=float, help="deprecated: the old name of --tol")
     c.add_argument("--points", type=int, help="also cap the chords at window diagonal / points (smoother "
                    "pictures at coarse tolerances)")
@@ -42,15 +42,15 @@ def register(subparsers) -> None:
                    "--criterion center_distance")
     c.add_argument("--mark", help="x1,x2: a design point to mark and test")
     o = p.add_argument_group("output")
-    o.add_argument("-o", "--output", help="write contour.png, contour.svg, contour.json, or page.html: the map "
-                   "beside the recommended pair animated, its solids and its check (atomically)")
-    o.add_argument("--json", action="store_true", help="print one JSON object")
+    add_output_flag(o, "write contour.png, contour.svg, contour.json, or page.html: the map beside the "
+                    "recommended pair animated, its solids and its check (atomically)")
+    add_json_flag(o)
     p.set_defaults(run=run)
 
 
 def add_template_arguments(p, g) -> None:
     """The pair options but the tooth numbers (``gearkit blocking`` and ``gearkit atlas``)."""
-    g.add_argument("-m", "--module", type=float, default=1.0, help="normal module m_n, mm (default 1)")
+    add_module_flag(g, "normal module m_n, mm (default 1)", default=1.0)
     g.add_argument("--pressure-angle-deg", type=float, help="normal pressure angle, degrees (default 20)")
     g.add_argument("--helix-angle-deg", type=float, default=0.0, help="helix angle beta, degrees")
     g.add_argument("--internal", action="store_true", help="pinion inside a ring (needs --cutter-teeth)")
@@ -126,7 +126,7 @@ def run(args) -> int:
     elif args.output:
         contour.save(args.output, rec, marked)
     if args.json:
-        print(json.dumps(contour.to_dict(rec, marked), allow_nan=False))
+        print_json(contour.to_dict(rec, marked), indent=None)
     else:
         print(format_summary(contour, rec, marked, args.output))
     return 1 if marked is not None and not marked["inside"] else 0

@@ -13,10 +13,11 @@ Exit status: 0 when no finding fails, 1 when one fails, 2 for bad input (one lin
 """
 from __future__ import annotations
 
-import json
 import math
 import sys
 
+from gearkit.cli.common import (add_json_flag, add_keyway_flag, add_output_flag, add_tol_flag, keyway_from_arg,
+                                output_kind, print_json, tol_from)
 from gearkit.errors import SpecError
 
 #: spec fields as the flags that set them, for error lines a user can act on
@@ -69,18 +70,16 @@ def register(subparsers) -> None:
     p.add_argument("--limit-deg", type=float, default=None, help="allowed pressure angle, degrees (default 30 "
                    "translating, 45 rocker)")
     p.add_argument("--groove", action="store_true", help="grooved (form-closed) cam: the return is driven too")
-    p.add_argument("--tol", type=float, default=None, help="max deviation of the output from the exact "
-                   "profile, mm (default 1e-4 of r0 + stroke)")
-    p.add_argument("--json", action="store_true", help="print one JSON object")
-    p.add_argument("-o", "--output", default=None, help="write the profile (.svg .dxf .csv .json), the solid "
-                   "(.stl .obj .glb .3mf, exact .step; needs --width) or a page (.html: the cam turning, its "
-                   "follower, solids and check)")
+    add_tol_flag(p, "max deviation of the output from the exact profile, mm (default 1e-4 of r0 + stroke)")
+    add_json_flag(p)
+    add_output_flag(p, "write the profile (.svg .dxf .csv .json), the solid (.stl .obj .glb .3mf, exact .step; needs "
+                    "--width) or a page (.html: the cam turning, its follower, solids and check)")
     p.add_argument("--plot", default=None, metavar="FILE", help="picture: s-v-a-j, pressure angle with and "
                    "without friction, the cam (.png or .svg)")
     g = p.add_argument_group("solid (mesh output)")
     g.add_argument("--width", type=float, default=None, help="cam width, mm")
     g.add_argument("--bore", type=float, default=None, help="bore diameter, mm")
-    g.add_argument("--keyway", default=None, metavar="WxD", help="keyway width x depth in the bore, mm")
+    add_keyway_flag(g)
     g.add_argument("--ascii", action="store_true", help="ASCII STL instead of binary")
     p.set_defaults(run=run)
 
@@ -121,19 +120,10 @@ def spec_from_args(args):
 
 
 def _output_kind(path):
-    """'2d', 'mesh' or None for ``-o``; an unknown extension is rejected before any work."""
-    if not path:
-        return None
-    if str(path).lower().endswith((".html", ".htm")):
+    """'page' (.html), '2d', 'mesh' or None for ``-o``; an unknown extension is rejected before any work."""
+    if path and str(path).lower().endswith((".html", ".htm")):
         return "page"
-    from gearkit.solids.export import mesh_format
-
-    if mesh_format(path) is not None:
-        return "mesh"
-    from gearkit.export import profile_format
-
-    profile_format(path)
-    return "2d"
+    return output_kind(path)
 
 
 def _write(args, prof, tol, kind) -> dict:
@@ -148,7 +138,6 @@ def _write(args, prof, tol, kind) -> dict:
 
         write_profile(args.output, [prof.outline(tol)], {"family": "cam", "tol": tol})
         return {"path": args.output, "tol": tol, "points": int(len(prof.outline(tol)))}
-    from gearkit.cli.gear import keyway_from_arg
     from gearkit.solids import SolidSpec
     from gearkit.solids.cam import cam_solid
     from gearkit.solids.export import write_mesh
@@ -175,9 +164,7 @@ def run(args) -> int:
             if value is not None:
                 raise SpecError(flag, "applies to a mesh output only (-o .stl .obj .glb)")
     spec = spec_from_args(args)
-    if args.tol is not None and not (math.isfinite(args.tol) and args.tol > 0):
-        raise SpecError("--tol", f"{args.tol!r} must be a positive length in mm")
-    result = check_cam(spec, args.tol)
+    result = check_cam(spec, tol_from(args.tol, None))
     tol = result.values["tolerance"]["requested"]
     out = result.to_dict()
     prof = cam_profile(spec)
@@ -189,7 +176,7 @@ def run(args) -> int:
         save(prof, args.plot, tol)
         out["plot"] = args.plot
     if args.json:
-        print(json.dumps(out, indent=2, default=_json_default))
+        print_json(out, default=_json_default, allow_nan=True)
     else:
         print(format_summary(spec, result, out))
     return 0 if result.report.ok else 1

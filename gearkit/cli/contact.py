@@ -19,16 +19,15 @@ Exit status: 0 when no simulated finding fails, 1 when one does, 2 for bad input
 """
 from __future__ import annotations
 
-import json
 import math
 import sys
 
+from gearkit.cli.common import (SIGN_NOTE, add_json_flag, add_output_flag, add_pair_arguments, add_tol_flag,
+                                pair_spec_from_args, print_json)
 from gearkit.errors import SpecError
 
 
 def register(subparsers) -> None:
-    from gearkit.cli.check import SIGN_NOTE, add_pair_arguments
-
     p = subparsers.add_parser(
         "contact",
         help="mesh the generated teeth over a cycle: transmission error, contact ratio, backlash, interference",
@@ -36,17 +35,16 @@ def register(subparsers) -> None:
                     "generated teeth meshed rigidly over one mesh cycle. " + SIGN_NOTE,
         epilog="Exit status: 0 no simulated finding fails, 1 one fails, 2 bad input.")
     add_pair_arguments(p)
-    p.add_argument("--json", action="store_true", help="print one JSON object")
+    add_json_flag(p)
     sim = p.add_argument_group("simulation")
     sim.add_argument("--steps", type=int, default=2000, help="driver angles per mesh cycle (default 2000)")
     sim.add_argument("--slices", type=int, help="transverse slices of a helical pair (default 20 with --width)")
-    sim.add_argument("--tol", type=float, help="chord tolerance (mm) that locates contacts before they are "
-                     "refined on the exact teeth (default 0.001 m_n)")
+    add_tol_flag(sim, "chord tolerance (mm) that locates contacts before they are refined on the exact teeth "
+                      "(default 0.001 m_n)")
     sim.add_argument("--contact-tol", type=float, help="normal clearance (mm) counted as contact (default: "
                      "round-off, the geometric contact)")
-    sim.add_argument("-o", "--output", action="append", default=[], metavar="FILE",
-                     help="write a plot (.png or .svg): the path of contact if FILE's name contains 'path', "
-                          "else the transmission error; repeatable")
+    add_output_flag(sim, "write a plot (.png or .svg): the path of contact if FILE's name contains 'path', else the "
+                    "transmission error; repeatable", action="append", default=[], metavar="FILE")
     ld = p.add_argument_group("loaded contact (external pairs; needs --width)")
     ld.add_argument("--torque", type=float, help="pinion torque, N m: analyse the pair under load")
     ld.add_argument("--tip-relief", metavar="AMOUNT[@DIAMETER]", help="linear tip relief on both gears, mm; "
@@ -67,8 +65,6 @@ def register(subparsers) -> None:
 
 
 def _spec(args):
-    from gearkit.cli.check import pair_spec_from_args
-
     return pair_spec_from_args(args)
 
 
@@ -113,7 +109,7 @@ def run(args) -> int:
         out["files"] = written
         if loaded is not None:
             out["loaded"] = loaded.to_dict()
-        print(json.dumps(out, indent=2, allow_nan=False))
+        print_json(out)
     else:
         print(format_summary(spec, check, analysis, findings, written, loaded))
     return 1 if any(f.status == "fail" for f in findings) else 0

@@ -13,10 +13,11 @@ both commands.
 """
 from __future__ import annotations
 
-import json
 import math
 import sys
 
+from gearkit.cli.common import (add_json_flag, add_module_flag, add_output_flag, add_tol_flag, output_kind, print_json,
+                                tol_from)
 from gearkit.errors import SpecError
 
 _SCALARS = (int, float, str, bool, type(None))
@@ -50,7 +51,7 @@ def register(subparsers) -> None:
                     "hypocycloidal dedenda), clock gearing (--clock: radial pinion flanks), or pin gearing "
                     "(--pins RHO: the pinion is a pin wheel and the wheel is cut by its pins); check it.",
         epilog="Exit status: 0 no finding fails, 1 a finding fails, 2 bad input.")
-    c.add_argument("-m", "--module", type=float, required=True, help="module, mm")
+    add_module_flag(c, "module, mm", required=True)
     c.add_argument("--pinion-teeth", type=int, required=True, help="z1 (pins of the pin wheel with --pins)")
     c.add_argument("--wheel-teeth", type=int, required=True, help="z2")
     kind = c.add_mutually_exclusive_group()
@@ -68,25 +69,10 @@ def register(subparsers) -> None:
 
 
 def _output_flags(p) -> None:
-    p.add_argument("--tol", type=float, default=None, help="accuracy of exported points/facets, mm")
+    add_tol_flag(p, "accuracy of exported points/facets, mm")
     p.add_argument("--width", type=float, default=None, help="face width of solids, mm")
-    p.add_argument("-o", "--output", default=None,
-                   help="write: .svg .dxf .csv .json (2D outlines) or .stl .obj .glb .3mf .step (solids)")
-    p.add_argument("--json", action="store_true", help="print one JSON object")
-
-
-def _formats(path):
-    """('2d' | 'mesh' | None) for an output path; unknown extensions rejected before any work."""
-    if not path:
-        return None
-    from gearkit.solids.export import mesh_format
-
-    if mesh_format(path) is not None:
-        return "mesh"
-    from gearkit.export import profile_format
-
-    profile_format(path)
-    return "2d"
+    add_output_flag(p, "write: .svg .dxf .csv .json (2D outlines) or .stl .obj .glb .3mf .step (solids)")
+    add_json_flag(p)
 
 
 def _num(v, digits=6):
@@ -109,17 +95,14 @@ def _format(title: str, values: dict, report) -> str:
 
 
 def _tol(args, scale, default_factor):
-    tol = args.tol if args.tol is not None else default_factor * scale
-    if not (math.isfinite(tol) and tol > 0):
-        raise SpecError("--tol", f"{tol!r} must be a positive length in mm")
-    return tol
+    return tol_from(args.tol, default_factor * scale)
 
 
 def run_drive(args) -> int:
     from gearkit.checks.cycloidal import check_drive
     from gearkit.families.cycloidal import DriveSpec
 
-    fmt = _formats(args.output)
+    fmt = output_kind(args.output)
     spec = DriveSpec(args.pins, args.lobes, args.pin_circle_radius, args.pin_radius, args.eccentricity,
                      args.equidistant_mod, args.shift_mod, args.disc_eccentricity, args.tip_radius)
     if not 1 <= args.samples <= 100000:
@@ -129,7 +112,7 @@ def run_drive(args) -> int:
     if fmt is not None:
         out["output"] = _write_drive(args, spec, fmt)
     if args.json:
-        print(json.dumps(out, indent=2, allow_nan=False))
+        print_json(out)
     else:
         kind = "disc" if spec.sign > 0 else "ring"
         title = (f"gearkit cycloidal-drive: {kind}, Z_b = {spec.pins} pins, Z_g = {spec.lobes}, dz = "
@@ -185,7 +168,7 @@ def _pair_spec(args):
 
 
 def run_cycloid(args) -> int:
-    fmt = _formats(args.output)
+    fmt = output_kind(args.output)
     if args.pins is not None:
         from gearkit.checks.cycloidal import check_pin_gearing
         from gearkit.families.cycloidal import PinGearSpec
@@ -211,7 +194,7 @@ def run_cycloid(args) -> int:
     if fmt is not None:
         out["output"] = _write_pair(args, spec, fmt)
     if args.json:
-        print(json.dumps(out, indent=2, allow_nan=False))
+        print_json(out)
     else:
         print(_format(title, result.values, result.report) + (f"\nwrote {out['output']['path']}" if "output" in out
                                                             else ""))

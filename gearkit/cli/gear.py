@@ -7,25 +7,9 @@ extension (.stl .obj .glb .3mf .step) it writes the solid (``--width`` required)
 """
 from __future__ import annotations
 
-import json
-
+from gearkit.cli.common import (add_gear_flags, add_json_flag, add_keyway_flag, add_output_flag, add_tol_flag,
+                                add_tool_flags, keyway_from_arg, print_json, tol_from, tool_from_args)
 from gearkit.errors import SpecError
-
-RACKS = ("standard", "iso53a", "iso53b", "iso53c", "iso53d")
-
-
-def add_tool_flags(p) -> None:
-    """Tool flags shared by commands that build one involute gear."""
-    p.add_argument("--pressure-angle-deg", type=float, default=None,
-                   help="normal pressure angle of the rack/cutter, degrees (default 20)")
-    p.add_argument("--rack", choices=RACKS, default="standard",
-                   help="generating rack: 'standard' (h_a*=1, c*=0.25, largest tip rounding 0.38 m) or an ISO 53 "
-                        "profile (default standard)")
-    p.add_argument("--cutter-teeth", type=int, default=None,
-                   help="cut with a shaper cutter of this many teeth (required with --internal; default 20 then)")
-    p.add_argument("--cutter-shift", type=float, default=0.0, help="shaper cutter's own shift coefficient x0")
-    p.add_argument("--cutter-addendum", type=float, default=1.25, help="shaper cutter addendum h_a0* (module units)")
-
 
 def register(subparsers) -> None:
     p = subparsers.add_parser(
@@ -33,9 +17,7 @@ def register(subparsers) -> None:
         description="Generate an involute gear (external, internal, spur or helical) as the envelope of its "
                     "cutter; print key values (mm, transverse section) and export the profile. For an internal "
                     "gear positive -x moves the ring's teeth outward (thinner teeth, larger tip diameter).")
-    p.add_argument("-z", "--teeth", type=int, required=True, help="number of teeth")
-    p.add_argument("-m", "--module", type=float, required=True, help="normal module, mm")
-    p.add_argument("-x", "--shift", type=float, default=0.0, help="normal profile shift coefficient x_n")
+    add_gear_flags(p)
     p.add_argument("--helix-angle-deg", type=float, default=0.0, help="helix angle, degrees (+ right hand)")
     p.add_argument("--internal", action="store_true", help="internal (ring) gear, cut by a shaper cutter")
     p.add_argument("--ring-shift", choices=("iso", "cutter"), default="iso",
@@ -44,11 +26,11 @@ def register(subparsers) -> None:
     add_tool_flags(p)
     p.add_argument("--tip-diameter", type=float, default=None, help="tip diameter d_a, mm (default d +- 2m(h_a* +- x))")
     p.add_argument("--thinning", type=float, default=0.0, help="tooth thinning for backlash, mm (normal, reference)")
-    p.add_argument("--tol", type=float, default=None, help="accuracy: max deviation of any output point, chord or "
-                   "facet from the exact profile or tooth surface, mm (default 0.001*m for 2D, 0.005*m for meshes)")
-    p.add_argument("-o", "--output", default=None, help="write the profile (.svg .dxf .csv .json) or the solid "
-                   "(.stl .obj .glb .3mf, or exact B-rep .step; needs --width)")
-    p.add_argument("--json", action="store_true", help="print one JSON object instead of the table")
+    add_tol_flag(p, "accuracy: max deviation of any output point, chord or facet from the exact profile or tooth "
+                 "surface, mm (default 0.001*m for 2D, 0.005*m for meshes)")
+    add_output_flag(p, "write the profile (.svg .dxf .csv .json) or the solid (.stl .obj .glb .3mf, or exact B-rep "
+                    ".step; needs --width)")
+    add_json_flag(p, "print one JSON object instead of the table")
     add_inspection_flags(p)
     add_solid_flags(p)
     p.set_defaults(run=run)
@@ -100,23 +82,12 @@ def add_solid_flags(p) -> None:
     g.add_argument("--gap", type=float, default=0.0, help="central gap of a double-helical gear, mm (with "
                    "--herringbone; grooved a module below the root)")
     g.add_argument("--bore", type=float, default=None, help="bore diameter, mm")
-    g.add_argument("--keyway", default=None, metavar="WxD", help="keyway width x depth in the bore, mm (e.g. 3x1.4)")
+    add_keyway_flag(g, help="keyway width x depth in the bore, mm (e.g. 3x1.4)")
     rim = g.add_mutually_exclusive_group()
     rim.add_argument("--outer-diameter", type=float, default=None, help="ring gear's outer diameter, mm")
     rim.add_argument("--rim", type=float, default=None, help="ring gear's rim thickness beyond the root, mm "
                      "(default 2 modules)")
     g.add_argument("--ascii", action="store_true", help="ASCII STL instead of binary")
-
-
-def keyway_from_arg(text):
-    """``"3x1.4"`` -> (3.0, 1.4); None stays None."""
-    if text is None:
-        return None
-    try:
-        w, d = (float(v) for v in text.lower().split("x"))
-    except ValueError:
-        raise SpecError("--keyway", f"{text!r} must be WIDTHxDEPTH in mm, e.g. 3x1.4") from None
-    return (w, d)
 
 
 def solid_spec_from_args(args, helix_angle_deg=None):
@@ -135,20 +106,6 @@ def _solid_only_flags(args) -> list:
              ("--outer-diameter", args.outer_diameter is not None), ("--rim", args.rim is not None),
              ("--ascii", args.ascii)]
     return [name for name, given in flags if given]
-
-
-def tool_from_args(args, internal: bool):
-    from gearkit.families.involute import BasicRack, ShaperCutter
-
-    alpha = 20.0 if args.pressure_angle_deg is None else args.pressure_angle_deg
-    if args.cutter_teeth is not None or internal:
-        return ShaperCutter(20 if args.cutter_teeth is None else args.cutter_teeth, alpha, args.cutter_shift,
-                            args.cutter_addendum)
-    if args.rack == "standard":
-        return BasicRack(alpha, name="standard")
-    if args.pressure_angle_deg not in (None, 20.0):
-        raise SpecError("--pressure-angle-deg", f"ISO 53 profiles have 20 degrees; use --rack standard for {alpha}")
-    return BasicRack.iso53(args.rack[-1])
 
 
 def build(args):
@@ -219,9 +176,7 @@ def run(args) -> int:
     spec, prof = build(args)
     if mesh:
         return _run_solid(args, spec, prof)
-    tol = args.tol if args.tol is not None else 1e-3 * spec.module
-    if not tol > 0:
-        raise SpecError("--tol", f"{tol!r} must be a positive length in mm")
+    tol = tol_from(args.tol, 1e-3 * spec.module)
     if args.output:
         bound_outline(prof, tol, spec.module)
     info = prof.summary(tol)
@@ -234,7 +189,7 @@ def run(args) -> int:
     info.update(dims)
     info["findings"] = [f.to_dict() for f in findings]
     if args.json:
-        print(json.dumps(info, indent=2, allow_nan=False))
+        print_json(info)
     else:
         from gearkit.checks.report import CheckReport, format_findings
 
@@ -267,9 +222,7 @@ def _run_solid(args, spec, prof) -> int:
     from gearkit.solids import default_mesh_tol, gear_solid
     from gearkit.solids.export import mesh_format, write_mesh
 
-    tol = args.tol if args.tol is not None else default_mesh_tol(spec.module)
-    if not tol > 0:
-        raise SpecError("--tol", f"{tol!r} must be a positive length in mm")
+    tol = tol_from(args.tol, default_mesh_tol(spec.module))
     from gearkit.cli.shell import bound
     from gearkit.solids.gear import estimate_faces
 
@@ -289,7 +242,7 @@ def _run_solid(args, spec, prof) -> int:
     info["solid"] = solid.summary()
     info["output"] = args.output
     if args.json:
-        print(json.dumps(info, indent=2, allow_nan=False))
+        print_json(info)
     else:
         print(format_summary(info) + "\n" + format_solid(info["solid"]))
     return 0

@@ -10,12 +10,13 @@ Exit status: 0 when no finding fails, 1 when one fails, 2 for bad input.
 """
 from __future__ import annotations
 
-import json
 import math
 import sys
 from pathlib import Path
 
+from gearkit.cli.common import add_json_flag, add_module_flag, add_output_flag, add_tol_flag, print_json, tol_from
 from gearkit.errors import SpecError
+
 
 def register(subparsers) -> None:
     p = subparsers.add_parser(
@@ -27,7 +28,7 @@ def register(subparsers) -> None:
     g = p.add_argument_group("pair")
     g.add_argument("--z1", type=int, help="pinion teeth (required)")
     g.add_argument("--z2", type=int, help="wheel teeth (required)")
-    g.add_argument("-m", "--module", type=float, help="normal module m_n, mm (required)")
+    add_module_flag(g, "normal module m_n, mm (required)")
     g.add_argument("--helix-angle-deg", type=float, help="helix angle beta, degrees (required; 0 fails the "
                    "overlap check)")
     g.add_argument("--width", type=float, help="face width b, mm (required)")
@@ -39,11 +40,10 @@ def register(subparsers) -> None:
     lim.add_argument("--min-overlap-ratio", type=float, help="warn below this eps_beta (default 1.1; fail below 1)")
     out = p.add_argument_group("output")
     out.add_argument("--no-mesh", action="store_true", help="skip the simulated mesh (contact and interference)")
-    out.add_argument("--tol", type=float, help="tolerance of written outlines/meshes, mm (default 1e-3 m_n in 2D, "
-                     "the solids' default in 3D)")
-    out.add_argument("--json", action="store_true", help="print one JSON object")
-    out.add_argument("-o", "--output", help="write the pair in mesh: 2D .svg .dxf .csv .json, or helical solids "
-                     ".obj .stl .glb .3mf .step (one gear when the file is named gear*, or with --gear)")
+    add_tol_flag(out, "tolerance of written outlines/meshes, mm (default 1e-3 m_n in 2D, the solids' default in 3D)")
+    add_json_flag(out)
+    add_output_flag(out, "write the pair in mesh: 2D .svg .dxf .csv .json, or helical solids .obj .stl .glb .3mf "
+                    ".step (one gear when the file is named gear*, or with --gear)")
     out.add_argument("--gear", type=int, choices=(1, 2), help="3D output of this gear only (1 pinion, 2 wheel)")
     p.set_defaults(run=run)
 
@@ -68,7 +68,7 @@ def _write(spec, args, info):
     from gearkit.export import write_profile
     from gearkit.families.novikov.mesh import meshed_outlines
 
-    tol = args.tol if args.tol is not None else 1e-3 * spec.module
+    tol = tol_from(args.tol, 1e-3 * spec.module)
     return write_profile(path, meshed_outlines(spec, tol), info)
 
 
@@ -80,7 +80,7 @@ def _write_3d(spec, args) -> dict:
     from gearkit.families.novikov.mesh import mesh_contact
     from gearkit.solids import SolidSpec, default_mesh_tol, gear_solid, write_mesh
 
-    tol = args.tol if args.tol is not None else default_mesh_tol(spec.module)
+    tol = tol_from(args.tol, default_mesh_tol(spec.module))
     body = SolidSpec(width=spec.face_width)
     stem = Path(args.output).name.lower()
     which = args.gear if args.gear is not None else (1 if stem.startswith("gear") else None)
@@ -102,14 +102,16 @@ def run(args) -> int:
 
     spec = _spec(args)
     limits = NovikovLimits() if args.min_overlap_ratio is None else NovikovLimits(args.min_overlap_ratio)
-    if args.tol is not None and not (math.isfinite(args.tol) and args.tol > 0):
-        raise SpecError("--tol", f"{args.tol!r} must be a positive length in mm")
+    tol_from(args.tol, None)  # a bad --tol fails before the check runs
     result = check_novikov(spec, limits, simulate=not args.no_mesh)
     info = result.to_dict()
     if args.output:
         written = _write(spec, args, {k: info[k] for k in ("center_distance", "overlap_ratio", "contact_radii")})
         info["output"] = {"path": args.output, **(written if isinstance(written, dict) else {})}
-    print(json.dumps(info, indent=2, allow_nan=False) if args.json else format_report(result))
+    if args.json:
+        print_json(info)
+    else:
+        print(format_report(result))
     if args.output and not args.json:
         extra = info["output"].get("interference_volume")
         print(f"wrote {args.output}" + ("" if extra is None else

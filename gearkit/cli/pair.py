@@ -12,9 +12,10 @@ Exit status: 0 the gears run free at every sampled rotation, 1 they interfere, 2
 """
 from __future__ import annotations
 
-import json
 import math
 
+from gearkit.cli.common import (add_json_flag, add_keyway_flag, add_output_flag, add_pair_arguments, add_tol_flag,
+                                keyway_from_arg, pair_spec_from_args, print_json)
 from gearkit.errors import SpecError
 
 def register(subparsers) -> None:
@@ -24,37 +25,32 @@ def register(subparsers) -> None:
                     "tooth of one sits in the middle of a space of the other; write the assembly (OBJ with "
                     "named parts, GLB, or STL) and measure the interference volume of the two solids.",
         epilog="Exit status: 0 the gears run free at every sampled rotation, 1 they interfere, 2 bad input.")
-    from gearkit.cli.check import add_pair_arguments
-
     add_pair_arguments(p, limits=False)
     s = p.add_argument_group("solids")
     s.add_argument("--herringbone", action="store_true", help="double-helical gears (needs a helix angle)")
     s.add_argument("--gap", type=float, default=0.0, help="central gap of double-helical gears, mm")
     s.add_argument("--bore1", type=float, default=None, help="pinion bore diameter, mm")
     s.add_argument("--bore2", type=float, default=None, help="wheel bore diameter, mm")
-    s.add_argument("--keyway1", default=None, metavar="WxD", help="pinion keyway width x depth, mm")
-    s.add_argument("--keyway2", default=None, metavar="WxD", help="wheel keyway width x depth, mm")
+    add_keyway_flag(s, "--keyway1", "pinion keyway width x depth, mm")
+    add_keyway_flag(s, "--keyway2", "wheel keyway width x depth, mm")
     rim = s.add_mutually_exclusive_group()
     rim.add_argument("--outer-diameter", type=float, default=None, help="ring's outer diameter, mm")
     rim.add_argument("--rim", type=float, default=None, help="ring's rim thickness beyond its root, mm")
     s.add_argument("--rack-length", type=float, default=None, help="rack bar length, mm (default 2 d_a1)")
     s.add_argument("--rack-height", type=float, default=None, help="rack bar height, mm (tooth depth + 2 m)")
-    s.add_argument("--tol", type=float, default=None, help="max deviation of any vertex or facet from the exact "
-                   "tooth surface, mm (default 0.005*m)")
+    add_tol_flag(s, "max deviation of any vertex or facet from the exact tooth surface, mm (default 0.005*m)")
     o = p.add_argument_group("output")
     o.add_argument("--angle-deg", type=float, default=0.0, help="pinion rotation for the export and the "
                    "interference, degrees")
     o.add_argument("--sweep", type=int, default=0, metavar="N",
                    help="also measure the interference at N rotations over one pinion pitch")
-    o.add_argument("-o", "--output", default=None, help="write the assembly: .obj .glb .3mf .step (named parts) or .stl")
+    add_output_flag(o, "write the assembly: .obj .glb .3mf .step (named parts) or .stl")
     o.add_argument("--ascii", action="store_true", help="ASCII STL instead of binary")
-    o.add_argument("--json", action="store_true", help="print one JSON object")
+    add_json_flag(o)
     p.set_defaults(run=run)
 
 
 def _pair_spec(args):
-    from gearkit.cli.check import pair_spec_from_args
-
     return pair_spec_from_args(args, allowed_with_design=("width",))[0]
 
 
@@ -63,8 +59,6 @@ MAX_SWEEP = 1000
 
 
 def run(args) -> int:
-    from gearkit.cli.gear import keyway_from_arg
-
     if args.output:
         from gearkit.solids.export import mesh_format
 
@@ -101,7 +95,7 @@ def run(args) -> int:
         asm.export(args.output, angle, ascii=args.ascii)
         info["output"] = args.output
     if args.json:
-        print(json.dumps(info, indent=2, allow_nan=False))
+        print_json(info)
     else:
         print(format_assembly(info, worst))
     return 0 if worst <= 0.0 else 1

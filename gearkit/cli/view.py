@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import sys
 
+from gearkit.cli.common import add_output_flag, add_pair_arguments, pair_spec_from_args
 from gearkit.errors import SpecError
 
 
@@ -27,7 +28,6 @@ def register(subparsers) -> None:
                     "check's findings. It needs no network to open.",
         epilog="Exit status: 0 written, 2 bad input.")
     sub = p.add_subparsers(dest="what", metavar="WHAT", required=True)
-    from gearkit.cli.check import add_pair_arguments
 
     pair = sub.add_parser("pair", help="an involute pair (the flags of 'gearkit check')")
     add_pair_arguments(pair)
@@ -49,7 +49,7 @@ def register(subparsers) -> None:
 def _common(p) -> None:
     p.add_argument("--cycles", type=int, default=None, help="mesh cycles animated (default: one turn of the "
                    "pinion, or of the drive's crank)")
-    p.add_argument("-o", "--output", required=True, help="the page, .html")
+    add_output_flag(p, "the page, .html", required=True)
 
 
 def _check_output(args) -> None:
@@ -60,7 +60,6 @@ def _check_output(args) -> None:
 
 
 def run_pair(args) -> int:
-    from gearkit.cli.check import pair_spec_from_args
     from gearkit.view import pair_view, write_page
 
     _check_output(args)

@@ -1,0 +1,274 @@
+"""The command line's shared vocabulary: the flags every command spells the same way, parsed once.
+
+A command module holds only what is particular to it; everything two commands share is here:
+
+* one gear: ``-z/--teeth``, ``-m/--module``, ``-x/--shift`` and the tool flags (:func:`add_tool_flags`,
+  :func:`tool_from_args`);
+* a pair: the design file (``gearkit check design.toml``) or the pair, tool and limit flags
+  (:func:`add_pair_arguments`, :func:`pair_spec_from_args`);
+* output: ``--tol`` (a max deviation in mm, validated by :func:`tol_from`), ``--json`` (one JSON object
+  on stdout, :func:`print_json`), ``-o/--output FILE``, ``--keyway WxD`` (:func:`keyway_from_arg`).
+
+Bad input raises :class:`~gearkit.errors.SpecError` naming the flag; :func:`gearkit.cli.main` prints it
+on one line and exits 2.
+"""
+from __future__ import annotations
+
+import json
+import math
+
+from gearkit.errors import SpecError
+
+__all__ = ["RACKS", "SIGN_NOTE", "add_gear_flags", "add_json_flag", "add_keyway_flag", "add_module_flag",
+           "add_output_flag", "add_pair_arguments",
+           "add_tol_flag", "add_tool_flags", "keyway_from_arg", "output_kind", "pair_spec_from_args", "print_json",
+           "tol_from",
+           "tool_from_args"]
+
+RACKS = ("standard", "iso53a", "iso53b", "iso53c", "iso53d")
+
+
+def add_tool_flags(p) -> None:
+    """Tool flags shared by commands that build one involute gear."""
+    p.add_argument("--pressure-angle-deg", type=float, default=None,
+                   help="normal pressure angle of the rack/cutter, degrees (default 20)")
+    p.add_argument("--rack", choices=RACKS, default="standard",
+                   help="generating rack: 'standard' (h_a*=1, c*=0.25, largest tip rounding 0.38 m) or an ISO 53 "
+                        "profile (default standard)")
+    p.add_argument("--cutter-teeth", type=int, default=None,
+                   help="cut with a shaper cutter of this many teeth (required with --internal; default 20 then)")
+    p.add_argument("--cutter-shift", type=float, default=0.0, help="shaper cutter's own shift coefficient x0")
+    p.add_argument("--cutter-addendum", type=float, default=1.25, help="shaper cutter addendum h_a0* (module units)")
+
+
+def add_gear_flags(p, required: bool = True) -> None:
+    """``-z/--teeth``, ``-m/--module`` and ``-x/--shift`` of one involute gear."""
+    p.add_argument("-z", "--teeth", type=int, required=required, help="number of teeth")
+    add_module_flag(p, "normal module, mm", required=required)
+    p.add_argument("-x", "--shift", type=float, default=0.0, help="normal profile shift coefficient x_n")
+
+
+def add_module_flag(p, help: str, **kwargs) -> None:
+    """``-m/--module``: the (normal) module in mm."""
+    p.add_argument("-m", "--module", type=float, help=help, **kwargs)
+
+
+def add_keyway_flag(p, flag: str = "--keyway", help: str = "keyway width x depth in the bore, mm") -> None:
+    """``--keyway WxD`` (or ``flag``): a keyway in a bore, read by :func:`keyway_from_arg`."""
+    p.add_argument(flag, default=None, metavar="WxD", help=help)
+
+
+def add_tol_flag(p, help: str) -> None:
+    """``--tol``: the max deviation (mm) of the command's output; None when not given."""
+    p.add_argument("--tol", type=float, default=None, help=help)
+
+
+def add_json_flag(p, help: str = "print one JSON object") -> None:
+    """``--json``: print one JSON object instead of the table."""
+    p.add_argument("--json", action="store_true", help=help)
+
+
+def add_output_flag(p, help: str, **kwargs) -> None:
+    """``-o/--output FILE``: what the command writes (its formats go in ``help``)."""
+    kwargs.setdefault("default", None)
+    p.add_argument("-o", "--output", help=help, **kwargs)
+
+
+def tol_from(value, default: float | None) -> float | None:
+    """The ``--tol`` value (``default`` when not given), checked to be a positive finite length; None
+    when neither is given (the command's own default applies downstream).
+
+    Examples
+    --------
+    >>> tol_from(None, 0.002), tol_from(0.01, 0.002), tol_from(None, None)
+    (0.002, 0.01, None)
+    """
+    tol = default if value is None else value
+    if tol is None:
+        return None
+    if not (isinstance(tol, (int, float)) and math.isfinite(tol) and tol > 0):
+        raise SpecError("--tol", f"{tol!r} must be a positive length in mm")
+    return float(tol)
+
+
+def output_kind(path) -> str | None:
+    """``"2d"`` (a profile file), ``"mesh"`` (a solid file) or None (no ``-o``) for an output path; an
+    unknown extension is rejected (SpecError) before any work."""
+    if not path:
+        return None
+    from gearkit.solids.export import mesh_format
+
+    if mesh_format(path) is not None:
+        return "mesh"
+    from gearkit.export import profile_format
+
+    profile_format(path)
+    return "2d"
+
+
+def print_json(obj, indent: int | None = 2, **kwargs) -> None:
+    """Print ``obj`` as one JSON object (non-finite numbers are an error: use ``gearkit.export.json_number``)."""
+    kwargs.setdefault("allow_nan", False)
+    print(json.dumps(obj, indent=indent, **kwargs))
+
+
+def keyway_from_arg(text):
+    """``"3x1.4"`` -> (3.0, 1.4); None stays None."""
+    if text is None:
+        return None
+    try:
+        w, d = (float(v) for v in text.lower().split("x"))
+    except ValueError:
+        raise SpecError("--keyway", f"{text!r} must be WIDTHxDEPTH in mm, e.g. 3x1.4") from None
+    return (w, d)
+
+
+def tool_from_args(args, internal: bool):
+    from gearkit.families.involute import BasicRack, ShaperCutter
+
+    alpha = 20.0 if args.pressure_angle_deg is None else args.pressure_angle_deg
+    if args.cutter_teeth is not None or internal:
+        return ShaperCutter(20 if args.cutter_teeth is None else args.cutter_teeth, alpha, args.cutter_shift, args.cutter_addendum)
+    if args.rack == "standard":
+        return BasicRack(alpha, name="standard")
+    if args.pressure_angle_deg not in (None, 20.0):
+        raise SpecError("--pressure-angle-deg", f"ISO 53 profiles have 20 degrees; use --rack standard for {alpha}")
+    return BasicRack.iso53(args.rack[-1])
+
+
+#: flags that describe the pair (not allowed together with a design file)
+_MODEL_FLAGS = ("z1", "z2", "module", "x1", "x2", "center_distance", "split", "pressure_angle_deg",
+                "helix_angle_deg", "width", "internal", "rack_pair", "cutter_teeth", "cutter_shift",
+                "cutter_addendum", "pinion_cutter_teeth", "rack", "addendum", "tip", "da1", "da2",
+                "thinning1", "thinning2", "min_tip_thickness", "min_contact_ratio", "min_tip_clearance",
+                "ring_shift")
+
+SIGN_NOTE = ("Shifts are normal coefficients x_n. A ring's --x2 is read as ISO 21771 says (--ring-shift iso, the "
+             "default: by its tooth thickness, as if rack-cut; the shaper setting that cuts it is derived) or as "
+             "the shaper's radial setting (--ring-shift cutter); positive --x2 makes the ring's teeth thinner and "
+             "its tip (inner) diameter larger. An external shaper-cut gear's shift is the cutter's radial setting.")
+
+
+def add_pair_arguments(p, limits: bool = True) -> None:
+    """The design-file argument and the pair, tool (and limit) flags every pair command shares."""
+    p.add_argument("design", nargs="?", help="TOML design file (instead of the pair flags)")
+    g = p.add_argument_group("pair")
+    g.add_argument("--z1", type=int, help="pinion teeth")
+    g.add_argument("--z2", type=int, help="wheel (or ring) teeth")
+    add_module_flag(g, "normal module m_n, mm")
+    g.add_argument("--x1", type=float, help="pinion normal shift coefficient x_n1 (default 0)")
+    g.add_argument("--x2", type=float, help="wheel/ring normal shift coefficient x_n2 (default 0; ring: see above)")
+    g.add_argument("--center-distance", type=float, help="operating centre distance a_w, mm (rack pair: pinion "
+                   "axis to rack datum). Alone: the shifts are solved and split by --split; with --x1: x2 "
+                   "follows; with --x1 and --x2: the pair runs at a_w (backlash)")
+    g.add_argument("--split", choices=("x1", "equal", "balanced"), help="shift split for --center-distance "
+                   "(default balanced: equal specific sliding at the roots)")
+    g.add_argument("--pressure-angle-deg", type=float, help="normal pressure angle alpha_n, degrees (default 20)")
+    g.add_argument("--helix-angle-deg", type=float, default=0.0, help="helix angle beta, degrees")
+    g.add_argument("--width", type=float, help="face width b, mm (for the overlap ratio)")
+    kind = g.add_mutually_exclusive_group()
+    kind.add_argument("--internal", action="store_true", help="pinion inside a ring (needs --cutter-teeth)")
+    kind.add_argument("--rack-pair", action="store_true", help="pinion and rack (no --z2)")
+    g.add_argument("--addendum", type=float, default=1.0, help="addendum coefficient h_a* (default 1)")
+    g.add_argument("--tip", choices=("shortened", "standard"), default="shortened",
+                   help="tip diameters: keep the standard clearance (default) or d_a = d + 2 m_n (h_a* + x)")
+    g.add_argument("--da1", type=float, help="given pinion tip diameter, mm")
+    g.add_argument("--da2", type=float, help="given wheel/ring tip diameter, mm")
+    g.add_argument("--thinning1", type=float, default=0.0, help="pinion normal tooth thinning for backlash, mm")
+    g.add_argument("--thinning2", type=float, default=0.0, help="wheel normal tooth thinning for backlash, mm")
+    t = p.add_argument_group("tools")
+    t.add_argument("--rack", choices=("iso53a", "iso53b", "iso53c", "iso53d"),
+                   help="ISO 53 basic rack of the rack-cut gears (default: h_aP* 1, h_fP* 1.25, largest fillet)")
+    t.add_argument("--cutter-teeth", type=int, help="teeth z0 of the shaper cutter that cuts the ring")
+    t.add_argument("--ring-shift", choices=("iso", "cutter"), default="iso",
+                   help="how the ring's --x2 is read: 'iso' (ISO 21771, by the tooth thickness; default) or "
+                        "'cutter' (the shaper's radial setting)")
+    t.add_argument("--cutter-shift", type=float, default=0.0, help="the shaper's own shift x0")
+    t.add_argument("--cutter-addendum", type=float, default=1.25, help="the shaper's addendum h_a0* (default 1.25)")
+    t.add_argument("--pinion-cutter-teeth", type=int, help="cut the pinion with a shaper of this many teeth")
+    if not limits:
+        p.set_defaults(min_tip_thickness=None, min_contact_ratio=None, min_tip_clearance=None)
+        return
+    lim = p.add_argument_group("limits")
+    lim.add_argument("--min-tip-thickness", type=float, help="warn below this s_an / m_n (default 0.25)")
+    lim.add_argument("--min-contact-ratio", type=float, help="warn below this eps_alpha (default 1.2)")
+    lim.add_argument("--min-tip-clearance", type=float, help="warn below this c / m_n (default 0.1)")
+
+
+def pair_spec_from_args(args, allowed_with_design=()):
+    """``(PairSpec, CheckLimits)`` from a design file or from the pair flags (not both: flags other
+    than ``allowed_with_design`` next to a design file are a ``SpecError``)."""
+    if args.design is not None:
+        extra = [name for name in _MODEL_FLAGS
+                 if hasattr(args, name) and name not in allowed_with_design and _given(args, name)]
+        if extra:
+            raise SpecError("design", "give either a design file or pair flags, not both "
+                            f"(also got --{extra[0].replace('_', '-')})")
+        from gearkit.checks import load_design
+        return load_design(args.design)
+    return _spec_from_flags(args)
+
+
+def _given(args, name) -> bool:
+    value = getattr(args, name)
+    default = {"helix_angle_deg": 0.0, "addendum": 1.0, "tip": "shortened", "thinning1": 0.0, "thinning2": 0.0,
+               "cutter_shift": 0.0, "cutter_addendum": 1.25, "internal": False, "rack_pair": False,
+               "ring_shift": "iso"}.get(name)
+    return value is not None and value != default
+
+
+def _spec_from_flags(args):
+    from gearkit.checks import CheckLimits
+    from gearkit.pair import PairSpec
+    from gearkit.families.involute import BasicRack, ShaperCutter
+
+    kind = "internal" if args.internal else "rack" if args.rack_pair else "external"
+    for name, flag in (("z1", "--z1"), ("module", "-m/--module")):
+        if getattr(args, name) is None:
+            raise SpecError(flag, "is required (or give a design file)")
+    if kind == "rack":
+        if args.z2 is not None:
+            raise SpecError("--z2", "a rack pair has no z2")
+    elif args.z2 is None:
+        raise SpecError("--z2", "is required")
+    alpha = args.pressure_angle_deg
+    rack = BasicRack.iso53(args.rack[-1]) if args.rack else BasicRack(20.0 if alpha is None else alpha)
+    tool1 = rack
+    if args.pinion_cutter_teeth is not None:
+        tool1 = ShaperCutter(args.pinion_cutter_teeth, rack.pressure_angle_deg, args.cutter_shift, args.cutter_addendum)
+    tool2 = rack
+    if kind == "internal":
+        if args.cutter_teeth is None:
+            raise SpecError("--cutter-teeth", "an internal gear is cut by a shaper: give its tooth number z0")
+        tool2 = ShaperCutter(args.cutter_teeth, rack.pressure_angle_deg, args.cutter_shift, args.cutter_addendum)
+    elif args.cutter_teeth is not None:
+        raise SpecError("--cutter-teeth", "applies to internal pairs (use --pinion-cutter-teeth, or a design file)")
+    spec = PairSpec(args.z1, args.z2, args.module, args.x1 or 0.0, args.x2 or 0.0, kind, alpha,
+                    args.helix_angle_deg, args.width, tool1, tool2, args.addendum, args.tip, args.da1, args.da2,
+                    None, args.thinning1, args.thinning2, args.ring_shift)
+    spec = _apply_center_distance(spec, args.center_distance, args.x1, args.x2, args.split)
+    limits = CheckLimits(**{k: getattr(args, k) for k in ("min_tip_thickness", "min_contact_ratio",
+                                                           "min_tip_clearance") if getattr(args, k) is not None})
+    return spec, limits
+
+
+def _apply_center_distance(spec, a_w, x1, x2, split):
+    """Resolve the shifts/centre-distance combinations (see ``--center-distance``)."""
+    from dataclasses import replace
+
+    from gearkit.pair import shifts_for_center_distance
+
+    if a_w is None:
+        if split is not None:
+            raise SpecError("split", "applies only with a centre distance")
+        return spec
+    if x1 is not None and x2 is not None:
+        if split is not None:
+            raise SpecError("split", "both shifts are given: nothing to split")
+        return replace(spec, center_distance=a_w)
+    if x2 is not None:
+        raise SpecError("x2", "with a centre distance give x1 (x2 follows), both shifts, or neither")
+    if x1 is not None and split not in (None, "x1"):
+        raise SpecError("split", f"x1 is given, so the split is 'x1', not {split!r}")
+    rule = "x1" if x1 is not None else (split or "balanced")
+    return shifts_for_center_distance(spec, a_w, rule)
