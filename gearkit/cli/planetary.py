@@ -14,7 +14,7 @@ Exit status: 0 sets found, 1 none passes, 2 bad input.
 """
 from __future__ import annotations
 
-import json
+from gearkit.cli.common import add_json_flag, add_module_flag, print_json
 
 
 def register(subparsers) -> None:
@@ -27,7 +27,7 @@ def register(subparsers) -> None:
         epilog="Exit status: 0 sets found, 1 none passes, 2 bad input.")
     p.add_argument("--ratio", type=float, required=True, help="target i_1B = w_sun / w_carrier (ring fixed)")
     p.add_argument("--planets", type=int, required=True, metavar="K", help="number of planets")
-    p.add_argument("-m", "--module", type=float, required=True, help="normal module, mm")
+    add_module_flag(p, "normal module, mm", required=True)
     p.add_argument("--ratio-tol", type=float, default=0.0, help="relative ratio tolerance (default 0: exact)")
     p.add_argument("--max-teeth", type=int, default=200, help="largest tooth number of any gear (default 200)")
     p.add_argument("--min-teeth", type=int, default=17, help="smallest external gear (default 17)")
@@ -37,7 +37,7 @@ def register(subparsers) -> None:
     p.add_argument("--count", type=int, default=5, help="how many sets to list (default 5)")
     p.add_argument("--textbook", action="store_true", help="the textbook's limits instead (zero gears: ring >= 85, "
                    "planet in a ring >= 20, difference >= 8, exact coaxiality, equal spacing, no pair checks)")
-    p.add_argument("--json", action="store_true", help="print one JSON object")
+    add_json_flag(p)
     p.set_defaults(run=run)
 
 
@@ -55,7 +55,7 @@ def run(args) -> int:
     out = {"ratio": args.ratio, "planets": args.planets, "module": args.module, "scheme": args.scheme,
            "ratio_tol": args.ratio_tol, "candidates": [s.to_dict() for s in sets]}
     if args.json:
-        print(json.dumps(out, indent=2, allow_nan=False))
+        print_json(out)
     else:
         print(_table(out))
     return 0 if sets else 1

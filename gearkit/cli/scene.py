@@ -14,8 +14,9 @@ Exit status: 0 no mesh fails, 1 one fails, 2 bad input or I/O.
 """
 from __future__ import annotations
 
-import json
 from pathlib import Path
+
+from gearkit.cli.common import add_json_flag, add_output_flag, add_tol_flag, print_json
 
 
 def register(subparsers) -> None:
@@ -33,14 +34,13 @@ def register(subparsers) -> None:
     p.add_argument("--state", default=None, help="report the motion of this state (a [states.NAME] table)")
     p.add_argument("--angle", type=float, default=0.0, metavar="DEG",
                    help="input angle for the export and the 3D interference, degrees (default 0)")
-    p.add_argument("--tol", type=float, default=None, help="max deviation of outlines and solids from the exact "
-                   "teeth, mm (default 0.005 m for solids, 0.001 m for outlines)")
+    add_tol_flag(p, "max deviation of outlines and solids from the exact teeth, mm (default 0.005 m for solids, "
+                 "0.001 m for outlines)")
     p.add_argument("--width", type=float, default=None, help="face width of the solids, mm (default: the scene's "
                    "face_width, else 8 m)")
-    p.add_argument("-o", "--output", default=None, help="write the placed scene: .glb, .obj, .stl, .3mf, .step "
-                   "(solids, named parts), .png, .svg (outlines) or .html (a page: the scene turning, its solids "
-                   "and checks)")
-    p.add_argument("--json", action="store_true", help="print one JSON object")
+    add_output_flag(p, "write the placed scene: .glb, .obj, .stl, .3mf, .step (solids, named parts), .png, .svg "
+                    "(outlines) or .html (a page: the scene turning, its solids and checks)")
+    add_json_flag(p)
     p.set_defaults(run=run)
 
 
@@ -59,7 +59,7 @@ def run(args) -> int:
 
         rep["file"] = str(write_page(args.output, scene_view(model, title=f"gearkit: {Path(args.file).name}")))
     if args.json:
-        print(json.dumps(rep, indent=2, allow_nan=False))
+        print_json(rep)
     else:
         print(format_report(rep, Path(args.file).name))
     return 0 if rep["ok"] else 1
