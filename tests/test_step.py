@@ -265,7 +265,7 @@ def test_clockwise_outline_makes_the_same_prism(tmp_path):
 @needs_ocp
 def test_cam_step_round_trip(tmp_path):
     """A generated cam with its bore and keyway: one valid solid named 'cam', agreeing with the mesh."""
-    from gearkit.cli.gear import keyway_from_arg
+    from gearkit.cli.common import keyway_from_arg
     from gearkit.families.cam import CamSpec, MotionProgram, cam_profile
     from gearkit.solids.cam import cam_solid
 
