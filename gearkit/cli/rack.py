@@ -3,6 +3,7 @@ from __future__ import annotations
 
 from gearkit.cli.common import (RACKS, add_json_flag, add_module_flag, add_output_flag, add_tol_flag, print_json,
                                 tol_from, tool_from_args)
+from gearkit.errors import SpecError
 
 
 def register(subparsers) -> None:
