@@ -202,8 +202,8 @@ def test_no_module_is_over_400_lines():
 
 #: flags every command spells the same way: declared only through gearkit/cli/common.py
 SHARED_FLAGS = ("-o", "--output", "--tol", "--json", "-m", "--module", "-z", "--teeth", "-x", "--shift", "--keyway")
-#: known exceptions, each with its reason: ``gearkit bench --json FILE`` writes a file (not the flag)
-CLI_EXCEPTIONS = {("bench.py", "--json")}
+#: known exceptions (module, flag), each with its reason; none today
+CLI_EXCEPTIONS = set()
 
 
 def test_the_shared_cli_flags_are_declared_only_in_cli_common():

@@ -3,6 +3,8 @@ from __future__ import annotations
 
 import sys
 
+from gearkit.cli.common import add_json_flag, add_output_flag
+
 
 def register(subparsers) -> None:
     p = subparsers.add_parser(
@@ -13,9 +15,8 @@ def register(subparsers) -> None:
                     "oracle's convergence; the kernel's overhead over numpy's closed-form involute; whole-process "
                     "times of 'gearkit gear'. Lengths in mm.")
     p.add_argument("--quick", action="store_true", help="fewer cases and repeats (under a minute)")
-    p.add_argument("-o", "--output", metavar="FILE", default=None,
-                   help="also write the results as JSON to FILE (checked before the bench runs)")
-    p.add_argument("--json", action="store_true", help="print the results as one JSON object instead of the table")
+    add_output_flag(p, "also write the results as JSON to FILE (checked before the bench runs)", metavar="FILE")
+    add_json_flag(p, "print the results as one JSON object instead of the table")
     p.add_argument("--no-process", action="store_true", help="skip the whole-process (subprocess) timings")
     p.set_defaults(run=run)
 
