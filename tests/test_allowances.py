@@ -29,3 +29,23 @@ def test_root_moves_with_the_allowance_as_iso_21771_says():
     # the pair geometry agrees: the root of a thinned gear is that of x_E
     g = pair_geometry(PairSpec(30, 40, 1.0, thinning1=0.06))
     assert g.gears[0].root_diameter == pytest.approx(prof.root_diameter, abs=GEN)
+
+
+def test_demo_exports_the_geometry_it_checks(tmp_path, capsys):
+    # the 13/40 pair's shortened tips (d_a = d + 2 m (h_a* + x - dy)) are written, not the rule-free 31.2/84.0
+    import numpy as np
+    import trimesh
+
+    from gearkit.cli import main
+    assert main(["demo", "--out-dir", str(tmp_path)]) == 0
+    capsys.readouterr()
+    from gearkit.curves import inv_inverse
+    alpha_w = inv_inverse(math.tan(A20) - A20 + 2 * 0.3 * math.tan(A20) / 53)  # tight mesh, x1 + x2 = 0.3
+    y = (53 / 2) * (math.cos(A20) / math.cos(alpha_w) - 1)
+    dy = 0.3 - y
+    for name, z, x in (("pinion", 13, 0.3), ("wheel", 40, 0.0)):
+        d_a = 2 * z + 2 * 2.0 * (1 + x - dy)  # independent of the pair module: the textbook's tip shortening
+        mesh = trimesh.load(tmp_path / f"{name}.stl")
+        r_max = float(np.max(np.hypot(mesh.vertices[:, 0], mesh.vertices[:, 1])))
+        assert r_max == pytest.approx(d_a / 2, abs=0.01)  # mesh tol 0.005 m_n = 0.01 mm
+        assert abs(r_max - (2 * z + 4 * (1 + x)) / 2) > 0.02  # and not the unshortened tip

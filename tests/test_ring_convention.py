@@ -89,3 +89,16 @@ def test_outputs_say_the_convention(capsys):
     assert main(["check", "--z1", "16", "--z2", "24", "-m", "3", "--x2", "0.5", "--internal",
                  "--cutter-teeth", "16"]) in (0, 1)
     assert "ring shift x2 read as ISO 21771" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("x2, da1", [(1.5, 49.6), (1.5, None), (0.5, None), (1.0, 49.8)])
+def test_min_tooth_difference_agrees_with_exit_jamming_on_the_pair_as_checked(x2, da1):
+    # the 49/50 ring with a given pinion tip: the tooth-difference check must judge the pair's own
+    # difference with the pair's own tips (it used to rebuild them by the tip rule and contradict exit_jamming)
+    from gearkit.checks import check_pair
+    spec = PairSpec(49, 50, 1.0, 0.0, x2, kind="internal", tool2=ShaperCutter(20), tip_diameter1=da1)
+    report = check_pair(spec, geometry="formula").report
+    jam, diff = report["exit_jamming"], report["min_teeth.difference"]
+    assert (jam.status == "ok") == (diff.status == "ok")
+    if jam.status == "ok":
+        assert diff.limit <= 1.0

@@ -347,9 +347,11 @@ def internal_findings(spec: PairSpec, g: PairGeometry) -> list:
                        "the ring's tip circle lies outside its base circle", "min"))
     k_min = min_tooth_difference(spec)
     limit = math.inf if k_min is None else float(k_min)
-    out.append(Finding("min_teeth.difference", "fail" if z2 - z1 < limit else "ok", float(z2 - z1), limit,
+    jams = margin < 0  # the pair as checked: its own difference never contradicts exit_jamming
+    out.append(Finding("min_teeth.difference", "fail" if z2 - z1 < limit or jams else "ok", float(z2 - z1), limit,
                        f"tooth difference z2 - z1 = {z2 - z1}; exit jamming needs at least "
-                       + ("(none found)" if k_min is None else f"{k_min}") + " at these shifts", "min"))
+                       + ("(none found)" if k_min is None else f"{k_min}") + " at these shifts"
+                       + ("; this pair's own tips jam (exit_jamming)" if jams and z2 - z1 >= limit else ""), "min"))
     c_min = min_cutter_difference(spec)
     limit = math.inf if c_min is None else float(c_min)
     out.append(Finding("min_teeth.cutter", "fail" if z2 - z0 < limit else "ok", float(z2 - z0), limit,

@@ -86,12 +86,15 @@ def _jams(spec: PairSpec) -> bool:
 def min_tooth_difference(spec: PairSpec) -> int | None:
     """(z_p)min: the smallest ``z2 - z1`` free of exit jamming, with z2, the shifts and tools of ``spec``.
 
+    The pair's own tooth difference is tried as the pair is (its tips and centre distance: the
+    geometry that is checked and exported); other differences with the tips of the tip rule at the
+    tight mesh. So the pair's own difference passes exactly when its exit-jamming check passes.
     None when no pinion of 3 or more teeth avoids it.
     """
     for k in range(1, spec.teeth2 - 2):
         try:
-            trial = replace(spec, teeth1=spec.teeth2 - k, tip_diameter1=None, tip_diameter2=None,
-                            center_distance=None)
+            trial = spec if k == spec.teeth2 - spec.teeth1 else replace(
+                spec, teeth1=spec.teeth2 - k, tip_diameter1=None, tip_diameter2=None, center_distance=None)
             if not _jams(trial):
                 return k
         except SpecError:  # no mesh exists for this tooth difference: try a larger one

@@ -26,7 +26,6 @@ def run_demo(args) -> int:
     from gearkit.cli.check import format_report
     from gearkit.cli.gear import format_summary
     from gearkit.export import write_profile
-    from gearkit.families.involute import GearSpec, tooth_profile
     from gearkit.pair import PairSpec
     from gearkit.solids import SolidSpec, default_mesh_tol, gear_solid
 
@@ -35,8 +34,9 @@ def run_demo(args) -> int:
     d = DEFAULT
     tol = 1e-3 * d["module"]
     written = []
-    for name, z, x in (("pinion", d["z1"], d["x1"]), ("wheel", d["z2"], d["x2"])):
-        prof = tooth_profile(GearSpec(z, d["module"], x))
+    # the geometry checked is the geometry exported: the pair's own gears (tips shortened as the check has them)
+    result = check_pair(PairSpec(d["z1"], d["z2"], d["module"], d["x1"], d["x2"], face_width=d["width"]))
+    for name, prof in zip(("pinion", "wheel"), result.profiles):
         info = prof.summary(tol)
         print(format_summary(info))
         print()
@@ -44,7 +44,6 @@ def run_demo(args) -> int:
             written.append(write_profile(out / f"{name}.{ext}", [prof.outline(tol)], info))
         solid = gear_solid(prof, SolidSpec(width=d["width"]), default_mesh_tol(d["module"]), name=name)
         written.append(solid.export(out / f"{name}.stl"))
-    result = check_pair(PairSpec(d["z1"], d["z2"], d["module"], d["x1"], d["x2"], face_width=d["width"]))
     print(format_report(result))
     print()
     print("wrote " + ", ".join(str(p) for p in written))
