@@ -49,3 +49,50 @@ def test_demo_exports_the_geometry_it_checks(tmp_path, capsys):
         r_max = float(np.max(np.hypot(mesh.vertices[:, 0], mesh.vertices[:, 1])))
         assert r_max == pytest.approx(d_a / 2, abs=0.01)  # mesh tol 0.005 m_n = 0.01 mm
         assert abs(r_max - (2 * z + 4 * (1 + x)) / 2) > 0.02  # and not the unshortened tip
+
+
+def test_allowance_report_spans_pins_and_backlash():
+    from gearkit.pair.allowances import Allowances, allowance_report
+    from gearkit.pair.gauging import measure_over_pins
+
+    spec = PairSpec(30, 41, 2.0, 0.2, -0.1)
+    allow = Allowances((-0.05, -0.11), (-0.06, -0.13), (0.03, -0.01))
+    r = allowance_report(spec, allow)
+    g1 = r["gears"][0]
+    # ISO 21771: the span falls by |A_sn| cos a_n, the generating shift by |A_sn| / (2 tan a_n)
+    assert g1["upper"]["span"]["W"] - g1["lower"]["span"]["W"] == pytest.approx(0.06 * math.cos(A20), abs=EXACT)
+    assert g1["lower"]["x_E"] == pytest.approx(0.2 - 0.11 / (2 * 2.0 * math.tan(A20)), abs=EXACT)
+    assert g1["lower"]["root_diameter"] == pytest.approx(60 + 2 * 2.0 * (g1["lower"]["x_E"] - 1.25), abs=EXACT)
+    # the over-pins dimension at the lower allowance, measured on the gear generated with it (second method)
+    gear = GearSpec(30, 2.0, 0.2, thinning=0.11)
+    measured, touch = measure_over_pins(tooth_profile(gear), g1["lower"]["over_pins"]["d_p"])
+    assert touch == "flank" and measured.M == pytest.approx(g1["lower"]["over_pins"]["M"], abs=1e-6)
+
+    # backlash on the working circle, from the thicknesses there (textbook 3.83), independently
+    def j_wt(thin1, thin2, a):
+        z1, z2, m = 30, 41, 2.0
+        aw = math.acos((z1 + z2) * m / 2 * math.cos(A20) / a)
+        inv = lambda t: math.tan(t) - t  # noqa: E731
+        s = [d * ((math.pi / 2 * m + 2 * x * m * math.tan(A20) - t) / d + inv(A20) - inv(aw)) * math.cos(A20)
+             / math.cos(aw) for d, x, t in ((z1 * m, 0.2, thin1), (z2 * m, -0.1, thin2))]
+        return math.pi * z1 * m * math.cos(A20) / math.cos(aw) / z1 - s[0] - s[1]
+
+    a = pair_geometry(spec).center_distance
+    assert r["backlash"]["min"] == pytest.approx(j_wt(0.05, 0.06, a - 0.01), abs=EXACT)
+    assert r["backlash"]["max"] == pytest.approx(j_wt(0.11, 0.13, a + 0.03), abs=EXACT)
+
+
+def test_check_command_reports_the_allowances(capsys):
+    import json
+
+    from gearkit.cli import main
+    argv = ["check", "--z1", "30", "--z2", "41", "-m", "2", "--x1", "0.2", "--x2", "-0.1", "--allowance1=-0.05,-0.11",
+            "--allowance2=-0.06,-0.13", "--center-distance-tolerance=0.03,-0.01", "--json"]
+    assert main(argv) == 0
+    data = json.loads(capsys.readouterr().out)
+    gear2 = data["allowances"]["gears"][1]
+    assert gear2["upper"]["span"]["W"] - gear2["lower"]["span"]["W"] == pytest.approx(0.07 * math.cos(A20), abs=EXACT)
+    assert data["allowances"]["backlash"]["min"] < data["allowances"]["backlash"]["max"]
+    assert main(["check", "--z1", "30", "--z2", "41", "-m", "2", "--allowance1=0.05,-0.11"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--allowance1" in err[0]

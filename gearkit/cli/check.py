@@ -15,6 +15,7 @@ import math
 import sys
 
 from gearkit.cli.common import SIGN_NOTE, add_json_flag, add_pair_arguments, pair_spec_from_args, print_json
+from gearkit.errors import SpecError
 
 
 def register(subparsers) -> None:
@@ -27,19 +28,73 @@ def register(subparsers) -> None:
     out.add_argument("--geometry", choices=("generated", "formula"), default="generated",
                      help="read form circles and undercut off the generated gears (default) or the formulas")
     add_json_flag(out)
+    al = p.add_argument_group("allowances (ISO 21771; report the backlash range and the dimensions at them)")
+    for n in (1, 2):
+        al.add_argument(f"--allowance{n}", default=None, metavar="UPPER,LOWER",
+                        help=f"gear {n}'s tooth thickness allowances A_sne,A_sni, mm (<= 0, e.g. -0.05,-0.11)")
+    al.add_argument("--center-distance-tolerance", default=None, metavar="UPPER,LOWER",
+                    help="centre-distance allowances A_ae,A_ai, mm (e.g. 0.03,-0.03)")
     p.set_defaults(run=run)
+
+
+def _pair_of_floats(text, flag):
+    """``"-0.05,-0.11"`` -> (-0.05, -0.11); None -> (0, 0)."""
+    if text is None:
+        return (0.0, 0.0)
+    try:
+        upper, lower = (float(v) for v in text.split(","))
+    except ValueError:
+        raise SpecError(flag, f"{text!r} must be UPPER,LOWER in mm, e.g. -0.05,-0.11") from None
+    return (upper, lower)
+
+
+def allowances_of(args):
+    """The :class:`~gearkit.pair.allowances.Allowances` of the allowance flags; None when none is given."""
+    flags = (args.allowance1, args.allowance2, args.center_distance_tolerance)
+    if all(f is None for f in flags):
+        return None
+    from gearkit.pair.allowances import Allowances
+    try:
+        return Allowances(_pair_of_floats(args.allowance1, "--allowance1"),
+                          _pair_of_floats(args.allowance2, "--allowance2"),
+                          _pair_of_floats(args.center_distance_tolerance, "--center-distance-tolerance"))
+    except SpecError as exc:
+        name = {"gear1": "--allowance1", "gear2": "--allowance2"}.get(exc.field, "--center-distance-tolerance")
+        raise SpecError(name, str(exc).split(": ", 1)[-1]) from None
 
 
 def run(args) -> int:
     from gearkit.checks import check_pair
 
     spec, limits = pair_spec_from_args(args)
+    allowances = allowances_of(args)
     result = check_pair(spec, limits, geometry=args.geometry)
+    report = None
+    if allowances is not None:
+        from gearkit.pair.allowances import allowance_report
+        report = allowance_report(spec, allowances)
     if args.json:
-        print_json(result.to_dict())
+        data = result.to_dict()
+        if report is not None:
+            data["allowances"] = report
+        print_json(data)
     else:
-        print(format_report(result))
+        print(format_report(result) + ("" if report is None else "\n" + format_allowances(report)))
     return 0 if result.ok else 1
+
+
+def format_allowances(report: dict) -> str:
+    """Table rows of the allowance report: backlash range, and per gear x_E, d_f, span and over pins."""
+    b = report["backlash"]
+    lines = [f"allowances: backlash j_wt {b['min']:.5f} .. {b['max']:.5f} mm (normal j_bn {b['normal_min']:.5f} .. "
+             f"{b['normal_max']:.5f} mm)", "  gear  allowance       x_E       d_f    span W      pins M"]
+    for i, gear in enumerate(report["gears"]):
+        for side in ("upper", "lower"):
+            g = gear[side]
+            w = g.get("span", {}).get("W")
+            lines.append(f"  {i + 1:<4}{g['allowance']:>11.4f}{_num(g['x_E'])}{_num(g['root_diameter'])}"
+                         f"{_num(w, 10, 5)}{_num(g['over_pins']['M'], 12, 5)}  ({side})")
+    return "\n".join(lines)
 
 
 def _num(v, width=10, digits=4) -> str:
