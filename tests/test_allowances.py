@@ -96,3 +96,24 @@ def test_check_command_reports_the_allowances(capsys):
     assert main(["check", "--z1", "30", "--z2", "41", "-m", "2", "--allowance1=0.05,-0.11"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "--allowance1" in err[0]
+
+
+def test_single_gear_tip_rule_is_the_pair_checks_tip(capsys):
+    import json
+
+    from gearkit.checks import check_pair
+    from gearkit.cli import main
+    from gearkit.pair import gear_tip_diameter
+    # the textbook's tip shortening: d_a = d + 2 m (h_a* + x - dy), dy = x1 + x2 - y at the tight mesh
+    from gearkit.curves import inv_inverse
+    alpha_w = inv_inverse(math.tan(A20) - A20 + 2 * 0.3 * math.tan(A20) / 53)
+    dy = 0.3 - 53 / 2 * (math.cos(A20) / math.cos(alpha_w) - 1)
+    d_a = 26 + 2 * 2.0 * (1 + 0.3 - dy)
+    assert gear_tip_diameter(GearSpec(13, 2.0, 0.3), "shortened", GearSpec(40, 2.0)) == pytest.approx(d_a, abs=EXACT)
+    assert gear_tip_diameter(GearSpec(13, 2.0, 0.3)) == pytest.approx(26 + 4 * 1.3, abs=EXACT)
+    checked = check_pair(PairSpec(13, 40, 2.0, 0.3, 0.0)).profiles[0].tip_diameter
+    assert main(["gear", "-z", "13", "-m", "2", "-x", "0.3", "--tip-rule", "shortened", "--mate-teeth", "40",
+                 "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["tip_diameter"] == pytest.approx(checked, abs=GEN)
+    assert main(["gear", "-z", "13", "-m", "2", "--tip-rule", "shortened"]) == 2
+    assert "--mate-teeth" in capsys.readouterr().err

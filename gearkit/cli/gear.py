@@ -24,7 +24,12 @@ def register(subparsers) -> None:
                    help="how a ring's -x is read: 'iso' (ISO 21771, by the tooth thickness as if rack-cut; the "
                         "shaper setting is derived; default) or 'cutter' (the shaper's radial setting)")
     add_tool_flags(p)
-    p.add_argument("--tip-diameter", type=float, default=None, help="tip diameter d_a, mm (default d +- 2m(h_a* +- x))")
+    p.add_argument("--tip-diameter", type=float, default=None, help="tip diameter d_a, mm (default by --tip-rule)")
+    p.add_argument("--tip-rule", choices=("standard", "shortened"), default="standard",
+                   help="'standard' d_a = d +- 2m(h_a* +- x) (default), or 'shortened' as in the pair with "
+                        "--mate-teeth/--mate-shift (the tip the pair check uses)")
+    p.add_argument("--mate-teeth", type=int, default=None, help="the mating gear's teeth (for --tip-rule shortened)")
+    p.add_argument("--mate-shift", type=float, default=0.0, help="the mating gear's shift (default 0)")
     p.add_argument("--thinning", type=float, default=0.0, help="tooth thinning for backlash, mm (normal, reference)")
     add_tol_flag(p, "accuracy: max deviation of any output point, chord or facet from the exact profile or tooth "
                  "surface, mm (default 0.001*m for 2D, 0.005*m for meshes)")
@@ -114,6 +119,19 @@ def build(args):
     spec = GearSpec(args.teeth, args.module, args.shift, args.helix_angle_deg, args.internal,
                     tool_from_args(args, args.internal), args.tip_diameter, args.thinning,
                     shift_convention=args.ring_shift)
+    if args.tip_rule == "shortened":
+        from dataclasses import replace
+
+        from gearkit.pair import gear_tip_diameter
+        if args.tip_diameter is not None:
+            raise SpecError("--tip-rule", "give either --tip-diameter or --tip-rule shortened, not both")
+        if args.mate_teeth is None:
+            raise SpecError("--mate-teeth", "the shortened tip rule needs the mating gear's teeth")
+        mate = GearSpec(args.mate_teeth, args.module, args.mate_shift, -args.helix_angle_deg,
+                        tool=tool_from_args(args, False) if not args.internal else None)
+        spec = replace(spec, tip_diameter=gear_tip_diameter(spec, "shortened", mate))
+    elif args.mate_teeth is not None:
+        raise SpecError("--mate-teeth", "applies with --tip-rule shortened")
     return spec, tooth_profile(spec)
 
 

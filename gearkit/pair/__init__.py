@@ -7,8 +7,8 @@ gives the family's :class:`~gearkit.families.involute.GearSpec` of each gear. Th
 own geometry (exit jamming, trimming, tip sweep) is :mod:`gearkit.pair.internal`.
 """
 from gearkit.pair.design import SPLITS, shifts_for_center_distance
-from gearkit.pair.geometry import GearGeometry, PairGeometry, gear_specs, pair_geometry
+from gearkit.pair.geometry import GearGeometry, PairGeometry, gear_specs, gear_tip_diameter, pair_geometry
 from gearkit.pair.spec import KINDS, TIP_RULES, PairSpec
 
 __all__ = ["KINDS", "SPLITS", "TIP_RULES", "GearGeometry", "PairGeometry", "PairSpec", "gear_specs",
-           "pair_geometry", "shifts_for_center_distance"]
+           "gear_tip_diameter", "pair_geometry", "shifts_for_center_distance"]

@@ -21,10 +21,10 @@ import numpy as np
 from gearkit.curves import inv, inv_inverse
 from gearkit.errors import SpecError, require
 from gearkit.families.involute import GearSpec, ShaperCutter
-from gearkit.pair.spec import PairSpec
+from gearkit.pair.spec import TIP_RULES, PairSpec
 from gearkit.pair.tooling import form_roll, nu_radius, root_radius, section, thickness_coeff, tip_thickness
 
-__all__ = ["GearGeometry", "PairGeometry", "gear_specs", "pair_geometry"]
+__all__ = ["GearGeometry", "PairGeometry", "gear_specs", "gear_tip_diameter", "pair_geometry"]
 
 
 @dataclass(frozen=True)
@@ -351,3 +351,39 @@ def gear_specs(spec: PairSpec) -> tuple:
         except SpecError as exc:  # name the gear of the pair the field belongs to
             raise SpecError(f"gear{i + 1}.{exc.field}", str(exc).split(": ", 1)[-1]) from None
     return tuple(out)
+
+
+def gear_tip_diameter(gear, rule: str = "standard", mate=None, center_distance: float | None = None) -> float:
+    """The tip diameter (mm) a single gear gets by a tip rule: the one tip it has in every mesh.
+
+    Parameters
+    ----------
+    gear : GearSpec
+    rule : {"standard", "shortened"}
+        "standard": ``d + 2 m_n (h_a* + x)`` (ring ``d - 2 m_n (h_a* - x)``, ISO shift); "shortened":
+        the pair's rule with ``mate`` (:class:`~gearkit.pair.PairSpec` ``tip_rule="shortened"``), which
+        keeps the standard bottom clearance by ``dy m_n`` at ``center_distance`` (None: the tight mesh).
+    mate : GearSpec or None
+        The mating gear (required by "shortened"; a ring's mate is its pinion).
+
+    Examples
+    --------
+    >>> from gearkit.families.involute import GearSpec
+    >>> round(gear_tip_diameter(GearSpec(13, 2.0, 0.3), "shortened", GearSpec(40, 2.0)), 6)
+    31.154268
+    """
+    require(rule in TIP_RULES, "tip_rule", f"{rule!r} is not one of {', '.join(TIP_RULES)}")
+    h = gear.addendum_coeff
+    standard = gear.reference_diameter + (-2 if gear.internal else 2) * gear.module * (h + (-1 if gear.internal else 1)
+                                                                                     * gear.shift)
+    if rule == "standard":
+        return standard
+    require(mate is not None, "mate", "the shortened tip rule needs the mating gear (its teeth and shift)")
+    require(not (gear.internal and mate.internal), "mate", "two rings do not mesh")
+    pinion, wheel = (mate, gear) if gear.internal else (gear, mate)
+    kind = "internal" if wheel.internal else "external"
+    spec = PairSpec(pinion.teeth, wheel.teeth, gear.module, pinion.shift, wheel.shift, kind,
+                    helix_angle_deg=pinion.helix_angle_deg, tool1=pinion.tool, tool2=wheel.tool, addendum=h,
+                    center_distance=center_distance, thinning1=pinion.thinning, thinning2=wheel.thinning,
+                    shift_convention=wheel.shift_convention if wheel.internal else "iso")
+    return pair_geometry(spec).gears[1 if gear is wheel else 0].tip_diameter
