@@ -37,7 +37,7 @@ from dataclasses import dataclass, replace
 
 
 from gearkit.checks.limits import CheckLimits, min_cutter_difference, min_teeth_undercut, min_tooth_difference
-from gearkit.checks.report import CheckReport, Finding, grade
+from gearkit.checks.report import ROUND_OFF, CheckReport, Finding, grade
 from gearkit.curves import bracketed_root
 from gearkit.errors import SpecError, require
 from gearkit.export import json_number
@@ -299,9 +299,10 @@ def _mesh_findings(spec, g, lim) -> list:
         out.append(Finding(f"min_teeth.{i + 1}", status, gear.teeth, z_min,
                            f"gear {i + 1}: z = {gear.teeth}; its tool cuts without undercut from z = {z_min:.4f} "
                            f"at x = {gear.shift_coeff:.4f}", "min"))
-    j = g.backlash
+    j = 0.0 if abs(g.backlash) < ROUND_OFF * mn else g.backlash  # a tight mesh's round-off is no backlash
+    j_n = 0.0 if abs(g.backlash_normal) < ROUND_OFF * mn else g.backlash_normal
     status = "fail" if margins["backlash"] < 0 else "ok"
-    msg = (f"backlash j_wt = {j:.5f} mm on the working circle (normal j_bn = {g.backlash_normal:.5f} mm)"
+    msg = (f"backlash j_wt = {j:.5f} mm on the working circle (normal j_bn = {j_n:.5f} mm)"
            + ("; negative: the centre distance is below the tight mesh of these teeth" if status == "fail" else ""))
     out.append(Finding("backlash", status, j, 0.0, msg, "min"))
     return out

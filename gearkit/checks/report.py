@@ -125,6 +125,10 @@ class CheckReport:
         return {"ok": self.ok, "status": self.status, "findings": [f.to_dict() for f in self.findings]}
 
 
+#: magnitudes below this (mm, or a plain ratio) are round-off of a zero and print as 0
+ROUND_OFF = 1e-12
+
+
 def _cell(v, width: int) -> str:
     """A table number: 4 decimals, small magnitudes in exponent form, no "-0.0000", blank for None."""
     if v is None:
@@ -132,6 +136,8 @@ def _cell(v, width: int) -> str:
     v = float(v)
     if not math.isfinite(v):
         return f"{v:>{width}}"
+    if abs(v) < ROUND_OFF:  # a zero computed through round-off is a zero
+        v = 0.0
     if 0 < abs(v) < 5e-4:
         return f"{v:{width}.2e}"
     return f"{(0.0 if abs(v) < 5e-5 else v):{width}.4f}"
