@@ -180,6 +180,29 @@ def _edge_window(owner, ws, edge, reach=3):
     return float(ws[lo]), float(ws[hi])
 
 
+def next_crossing(ii, jj, ti, tj, pos_e: int, pos_f: float):
+    """The crossing a walk along a self-crossing polyline meets next, taking the outermost loop.
+
+    ``ii, jj, ti, tj`` are the crossings of :func:`~gearkit.curves.polyline_self_intersections`
+    (first edge, second edge, fractions along them); the walk stands on edge ``pos_e`` at fraction
+    ``pos_f``. Of the crossings on the first edge ahead, the one whose second end lies farthest along
+    the polyline is taken, so the whole loop is cut at once. Returns its index, or None when none is ahead.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> ii, jj = np.array([2, 2, 5]), np.array([4, 7, 6])
+    >>> ti = tj = np.array([0.5, 0.25, 0.5])
+    >>> [next_crossing(ii, jj, ti, tj, e, f) for e, f in ((-1, 0.0), (2, 0.5), (6, 0.0))]
+    [1, 2, None]
+    """
+    mask = (ii > pos_e) | ((ii == pos_e) & (ti > pos_f))
+    if not mask.any():
+        return None
+    cand = np.flatnonzero(mask & (ii == ii[mask].min()))
+    return int(cand[np.lexsort((tj[cand], jj[cand]))[-1]])
+
+
 def _remove_loops(branches, pts, owner, ws, significant):
     """Cut the loops out of the chained envelope; returns sections [(k_a, w_a), (k_b, w_b)]."""
     ii, jj, ti, tj = polyline_self_intersections(pts)
@@ -189,12 +212,9 @@ def _remove_loops(branches, pts, owner, ws, significant):
     start = (int(owner[0]), float(ws[0]))
     pos_e, pos_f = -1, 0.0
     while True:
-        mask = (ii > pos_e) | ((ii == pos_e) & (ti > pos_f))
-        if not mask.any():
+        pick = next_crossing(ii, jj, ti, tj, pos_e, pos_f)
+        if pick is None:
             break
-        i0 = ii[mask].min()
-        cand = np.flatnonzero(mask & (ii == i0))
-        pick = cand[np.lexsort((tj[cand], jj[cand]))[-1]]
         e_a, e_b = int(ii[pick]), int(jj[pick])
         ka, kb = int(owner[e_a]), int(owner[e_b])
         wa = ws[e_a] + ti[pick] * (ws[e_a + 1] - ws[e_a])

@@ -17,7 +17,7 @@ import math
 import numpy as np
 
 from gearkit.accuracy import adaptive_sample
-from gearkit.boundary import Piece
+from gearkit.boundary import Piece, next_crossing
 from gearkit.curves import cross2, polyline_self_intersections
 from gearkit.envelope import Branch, touching
 from gearkit.families.cam.follower import follower_motion, follower_tool, lift_direction, reference_point
@@ -165,12 +165,9 @@ class CamProfile:
         pos_e, pos_f, start = -1, 0.0, 0.0
         step = w[1] - w[0]
         while True:
-            mask = (ii > pos_e) | ((ii == pos_e) & (ti > pos_f))
-            if not mask.any():
+            pick = next_crossing(ii, jj, ti, tj, pos_e, pos_f)
+            if pick is None:
                 break
-            i0 = ii[mask].min()
-            cand = np.flatnonzero(mask & (ii == i0))
-            pick = cand[np.lexsort((tj[cand], jj[cand]))[-1]]
             ea, eb = int(ii[pick]), int(jj[pick])
             wa = w[ea] + ti[pick] * step
             wb = w[eb] + tj[pick] * step
