@@ -27,7 +27,7 @@ TOL_MM = 0.001
 def gearkit_command():
     """The command line that runs the installed ``gearkit`` (its script beside this interpreter)."""
     exe = os.path.join(os.path.dirname(sys.executable), "gearkit")
-    return [exe] if os.path.exists(exe) else [sys.executable, "-m", "gearkit.cli"]
+    return [exe] if os.path.exists(exe) else [sys.executable, "-m", "gearkit"]
 
 
 def mesh_export_available() -> bool:

@@ -6,12 +6,27 @@ The parser is lazy: ``gearkit <cmd> ...`` imports and registers only the module 
 ``<cmd>`` (:data:`COMMANDS` lists the modules, :data:`MODULE_OF` names the module of a
 command whose name differs from it), so a command pays only for what it uses; the
 full parser (every module) is built only for ``gearkit --help`` and unknown commands.
+
+The command runs numpy's BLAS on one thread (:data:`BLAS_THREAD_VARIABLES`, set before numpy
+loads unless the user set them): starting the BLAS thread pool costs about 50 ms of CPU per
+process, more than a small gear takes to build, and gearkit's linear algebra is too small to
+gain from threads. A user's own setting always wins.
 """
 from __future__ import annotations
 
-import argparse
-import importlib
+import os
 import sys
+
+#: environment variables the command sets to "1" (one BLAS thread) when the user has not set them
+BLAS_THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")
+#: the variables this process set itself, not the user (none once numpy is loaded: too late to matter);
+#: a bench measuring the user's import floor drops them from its children's environment
+BLAS_THREADS_SET_HERE = () if "numpy" in sys.modules else tuple(v for v in BLAS_THREAD_VARIABLES
+                                                                if v not in os.environ)
+os.environ.update(dict.fromkeys(BLAS_THREADS_SET_HERE, "1"))
+
+import argparse  # noqa: E402 - after the BLAS setting, which must precede any numpy import
+import importlib  # noqa: E402
 
 
 #: command modules, in the order ``gearkit --help`` lists them
