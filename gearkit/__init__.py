@@ -49,22 +49,44 @@ _PUBLIC = {
 }
 _ALIASES = {"novikov_tooth_profile": ("gearkit.families.novikov", "tooth_profile"),
             "synthesize_planetary": ("gearkit.scene", "synthesize")}
-_WHERE = {name: (module, name) for module, names in _PUBLIC.items() for name in names}
-_WHERE.update(_ALIASES)
-
-__all__ = ["GearkitError", "GeometryError", "SpecError", *sorted(_WHERE)]
+__all__ = ["GearkitError", "GeometryError", "SpecError",
+           *sorted([*(n for names in _PUBLIC.values() for n in names), *_ALIASES])]
 
 
-def __getattr__(name):
-    if name in _WHERE:
-        import importlib
+def lazy_exports(package: str, modules: dict, aliases: dict | None = None):
+    """``(__getattr__, __dir__)`` of a package whose public names load on first use.
 
-        module, attr = _WHERE[name]
-        value = getattr(importlib.import_module(module), attr)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module 'gearkit' has no attribute {name!r}")
+    ``modules`` maps a module to the names it exports (``{"gearkit.pair.spec": ("PairSpec",)}``);
+    ``aliases`` maps a name to ``(module, attribute)``. A loaded value is cached in the package, so
+    the look-up runs once per name; an unknown name raises AttributeError as usual (and ``from
+    package import submodule`` still imports the submodule).
+
+    Examples
+    --------
+    >>> import gearkit.pair
+    >>> gearkit.pair.PairSpec.__module__
+    'gearkit.pair.spec'
+    """
+    import sys
+
+    where = {name: (module, name) for module, names in modules.items() for name in names}
+    where.update(aliases or {})
+    namespace = sys.modules[package].__dict__
+
+    def __getattr__(name):
+        if name in where:
+            import importlib
+
+            module, attr = where[name]
+            value = getattr(importlib.import_module(module), attr)
+            namespace[name] = value
+            return value
+        raise AttributeError(f"module {package!r} has no attribute {name!r}")
+
+    def __dir__():
+        return sorted(set(namespace) | set(where))
+
+    return __getattr__, __dir__
 
 
-def __dir__():
-    return sorted(set(globals()) | set(_WHERE))
+__getattr__, __dir__ = lazy_exports(__name__, _PUBLIC, _ALIASES)

@@ -13,10 +13,8 @@ CSV (x,y per line, mm) and JSON (points and key values). Numbers in every JSON o
 """
 from __future__ import annotations
 
-import json
 import math
 import os
-import tempfile
 from pathlib import Path
 
 import numpy as np
@@ -133,8 +131,7 @@ def atomic_write(path, write) -> Path:
     directory = target.parent if str(target.parent) else Path(".")
     tmp = None
     try:
-        fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".part", dir=directory)
-        os.close(fd)
+        tmp = _private_file(directory, f".{target.name}.", ".part")
         write(tmp)
         umask = os.umask(0)  # temporary files are private; the result gets the usual permissions
         os.umask(umask)
@@ -145,6 +142,22 @@ def atomic_write(path, write) -> Path:
             os.unlink(tmp)
         raise
     return target
+
+
+def _private_file(directory, prefix: str, suffix: str) -> str:
+    """Create a new empty file only this user can read (0600) in ``directory``, named
+    ``prefix + 16 random hex digits + suffix``, and return its path (the standard library's
+    secure temporary file, without importing ``tempfile``: a command writing one file pays
+    for no more)."""
+    for _ in range(100):
+        name = os.path.join(directory, f"{prefix}{os.urandom(8).hex()}{suffix}")
+        try:
+            fd = os.open(name, os.O_RDWR | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0), 0o600)
+        except FileExistsError:
+            continue
+        os.close(fd)
+        return name
+    raise FileExistsError(f"no free temporary name in {str(directory)!r}")
 
 
 def profile_format(path) -> str:
@@ -210,4 +223,6 @@ def write_profile(path, loops, info: dict | None = None) -> Path:
         return atomic_write(path, csv)
     payload = dict(info or {})
     payload["loops"] = [lp.tolist() for lp in loops]
+    import json
+
     return atomic_write(path, lambda tmp: Path(tmp).write_text(json.dumps(payload, allow_nan=False)))

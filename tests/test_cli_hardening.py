@@ -102,12 +102,16 @@ def test_unwritable_directory_end_to_end(capsys, tmp_path, monkeypatch):
 
 def test_os_error_while_writing_is_one_line_exit_2(capsys, tmp_path, monkeypatch):
     """A file problem found only while writing (permission, disk full) is one line, exit 2."""
-    import tempfile
+    import gearkit.export
 
-    def denied(*a, **k):
-        raise PermissionError(13, "Permission denied", str(tmp_path / ".g.svg.x.part"))
+    real = os.open
 
-    monkeypatch.setattr(tempfile, "mkstemp", denied)
+    def denied(path, *a, **k):
+        if str(path).startswith(str(tmp_path)):  # creating the temporary file in the target folder
+            raise PermissionError(13, "Permission denied", str(path))
+        return real(path, *a, **k)
+
+    monkeypatch.setattr(gearkit.export.os, "open", denied)
     code, _, err = run(capsys, "gear", "-z", "20", "-m", "2", "-o", str(tmp_path / "g.svg"))
     assert code == 2 and "Permission denied" in one_error_line(err)
 

@@ -5,6 +5,7 @@ nearest-point search, :mod:`gearkit.roots` and :func:`gearkit.accuracy.nearest`)
 
 Each command runs in a fresh interpreter (an import, once made, stays for the whole process).
 """
+import ast
 import json
 import subprocess
 import sys
@@ -57,3 +58,75 @@ def test_every_command_maps_to_a_registered_module():
         assert module is not None, name
         lazy = cli.build_parser(name)
         assert name in next(a for a in lazy._actions if a.dest == "command").choices
+
+
+#: packages whose public names load on first use: importing one imports none of its modules
+LAZY_PACKAGES = ("gearkit", "gearkit.checks", "gearkit.pair", "gearkit.solids", "gearkit.families.involute",
+                 "gearkit.families.cycloidal")
+
+
+@pytest.mark.parametrize("package", LAZY_PACKAGES)
+def test_lazy_package_exports_every_name_of_its_all_and_imports_nothing_first(package):
+    """Each name of ``__all__`` resolves (to the object of the module that defines it) and
+    ``dir()`` lists it; importing the package alone loads none of its submodules."""
+    probe = (f"import sys, {package} as p\n"
+             f"print(sorted(m for m in sys.modules if m.startswith('{package}.')))")
+    proc = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    loaded = ast.literal_eval(proc.stdout)  # a list of module names
+    assert [m for m in loaded if not m.startswith("gearkit.errors")] == []
+    import importlib
+
+    pkg = importlib.import_module(package)
+    for name in pkg.__all__:
+        value = getattr(pkg, name)
+        assert value is not None and name in dir(pkg)
+    with pytest.raises(AttributeError):
+        getattr(pkg, "no_such_name")
+
+
+#: modules a command must not load: the parts of the package it does not use
+NOT_LOADED = {
+    "gear": ("gearkit.checks", "gearkit.pair", "gearkit.solids.pair", "gearkit.solids.rack", "tempfile", "shutil",
+             "json"),
+    "check": ("gearkit.solids", "tempfile", "shutil"),
+    "cycloidal-drive": ("gearkit.families.involute", "gearkit.pair", "gearkit.checks.involute", "tempfile",
+                        "shutil"),
+}
+UNUSED_PROBE = """
+import contextlib, io, sys
+from gearkit.cli import main
+with contextlib.redirect_stdout(io.StringIO()):
+    code = main(sys.argv[1:])
+print(repr({"code": code, "modules": sorted(sys.modules)}))
+"""
+
+
+@pytest.mark.parametrize("argv", [c[0] for c in CASES[:2] + CASES[3:5]], ids=["gear-stl", "gear-helical", "check",
+                                                                             "cycloidal-drive"])
+def test_command_loads_no_module_it_does_not_use(tmp_path, argv):
+    """The STL path of ``gear`` loads no pair or check code, no temporary-file, shell-utility or
+    JSON module (a file written atomically needs none of them); ``cycloidal-drive`` no involute code."""
+    argv = [a.replace("{tmp}", str(tmp_path)) for a in argv if a != "--json"]
+    proc = subprocess.run([sys.executable, "-c", UNUSED_PROBE, *argv], capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    out = ast.literal_eval(proc.stdout.strip().splitlines()[-1])
+    assert out["code"] in (0, 1)
+    unwanted = [m for m in out["modules"] if any(m == p or m.startswith(p + ".") for p in NOT_LOADED[argv[0]])]
+    assert unwanted == []
+
+
+@pytest.mark.parametrize("user_value, expected", [(None, "1"), ("3", "3")])
+def test_command_runs_blas_on_one_thread_unless_the_user_says_otherwise(user_value, expected):
+    """``import gearkit.cli`` before numpy sets OPENBLAS_NUM_THREADS to 1; a user's value is kept
+    and the bench can tell the two apart (BLAS_THREADS_SET_HERE)."""
+    import os
+
+    env = {k: v for k, v in os.environ.items() if k not in ("OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")}
+    if user_value is not None:
+        env["OPENBLAS_NUM_THREADS"] = user_value
+    probe = ("import os, gearkit.cli as c, numpy\n"
+             "print(os.environ['OPENBLAS_NUM_THREADS'], 'OPENBLAS_NUM_THREADS' in c.BLAS_THREADS_SET_HERE)")
+    proc = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, env=env, timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stdout.split() == [expected, str(user_value is None)]

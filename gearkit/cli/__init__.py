@@ -54,9 +54,41 @@ def command_module(command: str | None) -> str | None:
     return module if module in COMMANDS else None
 
 
+def terminal_columns() -> int:
+    """Columns of the terminal (``COLUMNS`` first, 80 when not a terminal), as the standard library
+    reckons them for help text, without importing ``shutil`` (and its compression modules)."""
+    try:
+        columns = int(os.environ.get("COLUMNS", "0"))
+    except ValueError:
+        columns = 0
+    if columns <= 0:
+        try:
+            columns = os.get_terminal_size(sys.__stdout__.fileno()).columns
+        except (AttributeError, ValueError, OSError):
+            columns = 0
+    return columns if columns > 0 else 80
+
+
+class HelpFormatter(argparse.HelpFormatter):
+    """argparse's help formatter, told the terminal width up front (:func:`terminal_columns`)."""
+
+    def __init__(self, prog, *args, **kwargs):
+        if len(args) < 3 and kwargs.get("width") is None:
+            kwargs["width"] = terminal_columns() - 2  # as argparse trims its own look-up
+        super().__init__(prog, *args, **kwargs)
+
+
+class ArgumentParser(argparse.ArgumentParser):
+    """argparse's parser with :class:`HelpFormatter` by default (every command's parser is one too)."""
+
+    def __init__(self, *args, **kwargs):
+        kwargs.setdefault("formatter_class", HelpFormatter)
+        super().__init__(*args, **kwargs)
+
+
 def build_parser(command: str | None = None) -> argparse.ArgumentParser:
     """The argument parser: with a known ``command``, only its module is imported and registered."""
-    parser = argparse.ArgumentParser(
+    parser = ArgumentParser(
         prog="gearkit",
         description="Gear geometry and tooth-contact kernel: generate, check and export gears (lengths in mm). "
                     "Exit status: 0 ok, 1 a design check fails, 2 bad input or a file problem, 130/143 "

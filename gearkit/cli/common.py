@@ -14,7 +14,6 @@ on one line and exits 2.
 """
 from __future__ import annotations
 
-import json
 import math
 
 from gearkit.errors import SpecError
@@ -108,6 +107,8 @@ def output_kind(path) -> str | None:
 
 def print_json(obj, indent: int | None = 2, **kwargs) -> None:
     """Print ``obj`` as one JSON object (non-finite numbers are an error: use ``gearkit.export.json_number``)."""
+    import json
+
     kwargs.setdefault("allow_nan", False)
     print(json.dumps(obj, indent=indent, **kwargs))
 

@@ -16,12 +16,18 @@ a plate) becomes a solid, with its recipe, through :func:`prism_solid`.
 This package (with :mod:`gearkit.oracles.involute`) is the only place that imports manifold3d and OCP; trimesh
 is imported only where a format or a check needs it.
 """
-from gearkit.solids.export import MESH_FORMATS, mesh_format, write_mesh
-from gearkit.solids.gear import gear_solid
-from gearkit.solids.pair import Assembly, pair_assembly
-from gearkit.solids.prism import prism_solid
-from gearkit.solids.rack import rack_solid
-from gearkit.solids.solid import Recipe, Solid, SolidSpec, default_mesh_tol
+from gearkit import lazy_exports
 
+#: module -> the names it exports (loaded on first use: importing the package costs nothing)
+_EXPORTS = {
+    "gearkit.solids.export": ("MESH_FORMATS", "mesh_format", "write_mesh"),
+    "gearkit.solids.gear": ("gear_solid",),
+    "gearkit.solids.pair": ("Assembly", "pair_assembly"),
+    "gearkit.solids.prism": ("prism_solid",),
+    "gearkit.solids.rack": ("rack_solid",),
+    "gearkit.solids.solid": ("Recipe", "Solid", "SolidSpec", "default_mesh_tol"),
+}
 __all__ = ["Assembly", "MESH_FORMATS", "Recipe", "Solid", "SolidSpec", "default_mesh_tol", "gear_solid", "mesh_format",
            "pair_assembly", "prism_solid", "rack_solid", "write_mesh"]
+
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)

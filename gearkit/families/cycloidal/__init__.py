@@ -6,20 +6,26 @@ disc and for a pin-gear wheel, a cycloidal rack for a cycloid gear — and is a
 The closed forms (curtate cycloid equidistants, epi- and hypocycloids) are here as references
 the tests hold the generated teeth against.
 """
-from gearkit.families.cycloidal.disc import CycloidalDisc, disc_profile
-from gearkit.families.cycloidal.drive import (DriveSpec, contact_ratio, curvature_radius, disc_curve,
-                                              line_of_action_point, min_curvature_radius, psi_max,
-                                              theoretical_curve)
-from gearkit.families.cycloidal.lantern import PinGearSpec, PinGearWheel, first_usable_roll, pin_gear_wheel
-from gearkit.families.cycloidal.mesh import MeshState, MeshStats, backlash, mesh_state, simulate_mesh
-from gearkit.families.cycloidal.pair import (CycloidGear, CycloidPairSpec, CycloidalRack, clock_factors,
-                                             cycloid_gear, epicycloid_flank, hypocycloid_flank)
-from gearkit.families.cycloidal.pair import contact_ratio as pair_contact_ratio
-from gearkit.families.cycloidal.pair_mesh import ConjugateCheck, conjugate_check, generated_contact_ratio
+from gearkit import lazy_exports
 
+#: module -> the names it exports (loaded on first use: importing the package costs nothing)
+_EXPORTS = {
+    "gearkit.families.cycloidal.disc": ("CycloidalDisc", "disc_profile"),
+    "gearkit.families.cycloidal.drive": ("DriveSpec", "contact_ratio", "curvature_radius", "disc_curve",
+                                         "line_of_action_point", "min_curvature_radius", "psi_max",
+                                         "theoretical_curve"),
+    "gearkit.families.cycloidal.lantern": ("PinGearSpec", "PinGearWheel", "first_usable_roll", "pin_gear_wheel"),
+    "gearkit.families.cycloidal.mesh": ("MeshState", "MeshStats", "backlash", "mesh_state", "simulate_mesh"),
+    "gearkit.families.cycloidal.pair": ("CycloidGear", "CycloidPairSpec", "CycloidalRack", "clock_factors",
+                                        "cycloid_gear", "epicycloid_flank", "hypocycloid_flank"),
+    "gearkit.families.cycloidal.pair_mesh": ("ConjugateCheck", "conjugate_check", "generated_contact_ratio"),
+}
 __all__ = ["ConjugateCheck", "CycloidGear", "CycloidPairSpec", "CycloidalDisc", "CycloidalRack", "DriveSpec",
            "MeshState", "MeshStats", "PinGearSpec", "PinGearWheel", "backlash", "clock_factors", "conjugate_check",
            "contact_ratio", "curvature_radius", "cycloid_gear", "disc_curve", "disc_profile", "epicycloid_flank",
            "first_usable_roll", "generated_contact_ratio", "hypocycloid_flank", "line_of_action_point",
            "mesh_state", "min_curvature_radius", "pair_contact_ratio", "pin_gear_wheel", "psi_max",
            "simulate_mesh", "theoretical_curve"]
+
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS, 
+                                      {"pair_contact_ratio": ("gearkit.families.cycloidal.pair", "contact_ratio")})

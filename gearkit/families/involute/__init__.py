@@ -6,11 +6,17 @@
 (:class:`Modification`), :mod:`~gearkit.families.involute.tools` their cutters (:class:`BasicRack`,
 :class:`ShaperCutter`).
 """
-from gearkit.families.involute.tools import BasicRack, ShaperCutter
-from gearkit.families.involute.gear import (SHIFT_CONVENTIONS, GearSpec, InvoluteProfile, ring_cutter_setting,
-                                            tooth_profile)
-from gearkit.families.involute.modification import Modification
-from gearkit.families.involute.rack import RackProfile, RackSpec, rack_profile
+from gearkit import lazy_exports
 
+#: module -> the names it exports (loaded on first use: importing the package costs nothing)
+_EXPORTS = {
+    "gearkit.families.involute.tools": ("BasicRack", "ShaperCutter"),
+    "gearkit.families.involute.gear": ("SHIFT_CONVENTIONS", "GearSpec", "InvoluteProfile", "ring_cutter_setting",
+                                       "tooth_profile"),
+    "gearkit.families.involute.modification": ("Modification",),
+    "gearkit.families.involute.rack": ("RackProfile", "RackSpec", "rack_profile"),
+}
 __all__ = ["SHIFT_CONVENTIONS", "BasicRack", "GearSpec", "InvoluteProfile", "Modification", "RackProfile", "RackSpec",
            "ShaperCutter", "rack_profile", "ring_cutter_setting", "tooth_profile"]
+
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
