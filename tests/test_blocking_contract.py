@@ -97,29 +97,55 @@ def test_a_user_window_cuts_the_region_without_moving_it():
         assert min(_boundary_distance(cut, p), _boundary_distance(whole, p)) <= CONTRACT * TOL
 
 
-def _gap(points, lines) -> float:
-    """Largest distance from ``points`` to the nearest of the polylines ``lines``."""
-    best = np.full(len(points), np.inf)
-    for q in lines:
-        best = np.minimum(best, distances_to_polyline(points, q))
-    return float(best.max(initial=0.0))
+README_PAIRS = {
+    "13/16 with a centre distance line": (PairSpec(13, 16, 1.0), (14.8,)),
+    "20/40 rack B": (PairSpec(20, 40, 1.0, tool1=BasicRack.iso53("B"), tool2=BasicRack.iso53("B")), ()),
+    "46/49 ring": (PairSpec(46, 49, 1.0, kind="internal", tool2=ShaperCutter(20)), ()),
+}
+REFERENCE_TOL = 1e-6  #: the much finer trace: 1000 x finer than the coarsest tolerance tested
 
 
-@pytest.mark.parametrize("tol", [1e-2, 1e-3, 1e-5])
-def test_lines_lie_within_two_tol_of_a_much_finer_trace(tol):
-    """Every line and the region at ``tol`` against a trace at 1e-8: the same components (no gap,
-    no spurious loop, no duplicate), each point of either within 2 tol of the other."""
-    names = ["interference.1", "contact_ratio=1", "pointing.1", "sliding", "tip_thickness.1=0.25"]
+@pytest.fixture(scope="module", params=sorted(README_PAIRS))
+def readme_reference(request):
+    spec, cds = README_PAIRS[request.param]
+    return spec, cds, blocking_contour(spec, tol=REFERENCE_TOL, center_distances=cds)
+
+
+@pytest.mark.parametrize("tol", [1e-2, 1e-3])
+def test_topology_at_coarse_tolerances(readme_reference, tol):
+    """The README's pairs, every line and the region at a coarse ``tol`` against a trace at 1e-6: every
+    traced point within 2 tol of the exact lines (the bench's measure) and every point of the finer
+    trace within 2 tol of the traced lines (no gap), the same closed loops (no spurious loop), no
+    component traced twice; coarser costs less."""
+    from gearkit.bench.blocking import deviation, topology
+
+    spec, cds, fine = readme_reference
+    c = blocking_contour(spec, tol=tol, center_distances=cds)
+    t = topology(c, fine)
+    assert deviation(c) <= CONTRACT * tol
+    assert t["gap"] <= CONTRACT * tol and t["extra"] <= CONTRACT * tol + CONTRACT * REFERENCE_TOL
+    assert t["loops"][0] == t["loops"][1] and t["duplicates"] == 0
+    assert c.evaluations < fine.evaluations
+
+
+def test_topology_sees_a_missing_piece_and_a_duplicate():
+    """The measure itself: a line with a piece removed shows the gap; a component given twice counts."""
+    from dataclasses import replace as dc_replace
+
+    from gearkit.bench.blocking import topology
+
     spec = PairSpec(13, 16, 1.0)
-    fine = blocking_contour(spec, tol=1e-8, lines=names)
-    c = blocking_contour(spec, tol=tol, lines=names)
-    for ref, mine in [(fine.line(n).components, c.line(n).components) for n in names] + [(fine.region, c.region)]:
-        assert len(mine) == len(ref)
-        for a, b in zip(sorted(mine, key=len), sorted(ref, key=len)):
-            assert np.array_equal(a[0], a[-1]) == np.array_equal(b[0], b[-1])  # closed stays closed
-        assert _gap(np.concatenate(ref), mine) <= CONTRACT * tol
-        assert _gap(np.concatenate(mine), ref) <= CONTRACT * tol
-    assert c.evaluations < fine.evaluations  # coarser costs less
+    c = blocking_contour(spec, tol=1e-3, lines=["pointing.1"])
+    ln = c.line("pointing.1")
+    q = ln.components[0]
+    cut = dc_replace(ln, components=(q[: len(q) // 2],))
+    doubled = dc_replace(ln, components=(q, q.copy()))
+    c2 = blocking_contour(spec, tol=1e-3, lines=["pointing.1"])
+    c2.lines = (cut,)
+    gap = float(np.hypot(*(q[-1] - q[len(q) // 2 - 1])))
+    assert topology(c2, c)["gap"] == pytest.approx(gap, rel=0.05)
+    c2.lines = (doubled,)
+    assert topology(c2, c)["duplicates"] == 2
 
 
 def test_vectorised_margins_are_the_pair_formulas():

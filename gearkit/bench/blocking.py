@@ -1,10 +1,12 @@
 """Bench of the blocking contours: the tolerance ladder, the in-process targets, atlas throughput.
 
 * **Ladder** (12/30 pair, every line and the region) at tol 1e-2 ... 1e-9 shift units: the achieved
-  deviation is the largest distance of the traced polylines from the exact lines, measured at
-  every vertex and every chord's middle as the nearest zero of the margin on eight rays (the
-  chord's normal, the chord, the diagonals) solved to 1e-14 (the limit of an ever finer trace); the contract is achieved / tol <= 2 at every row and
-  time falling as tol grows.
+  deviation is the larger of (a) the largest distance of the traced polylines from the exact lines,
+  measured at every vertex and every chord's middle as the nearest zero of the margin on eight rays
+  (the chord's normal, the chord, the diagonals) solved to 1e-14, and (b) the largest distance of a
+  much finer trace (tol 1e-10) from the traced lines (a piece missing: a gap). The contract is
+  achieved / tol <= 2 at every row, the reference's closed loops and no duplicate trace (topology),
+  and time falling as tol grows.
 * **Targets** (issue 15): the 13/16 and 20/40 contours in-process, at the default tolerance, each
   under 0.3 s; shown beside the measurement with pass/fail and the load average.
 * **Atlas throughput** in cells per second for 1 and 2 local workers and the distributed path (a
@@ -21,10 +23,13 @@ __all__ = ["ladder_rows", "target_rows", "atlas_rows", "deviation", "format_sect
 
 LADDER = (1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9)
 QUICK_LADDER = (1e-3, 1e-6)
+REFERENCE_TOL = 1e-10  #: the much finer trace the ladder's rows are measured against (10x the finest row)
+QUICK_REFERENCE_TOL = 1e-8
 CONTOUR_TARGET = 0.3  #: s, in-process contour of 13/16 and 20/40 (issue 15)
 RATIO_TARGET = 2.0  #: achieved / tol (issue 19)
 ROUND_OFF = 1e-12  #: |margin| taken as zero
 MEASURE_TOL = 1e-14  #: accuracy of the exact points the deviation is measured against
+RAY_ROUNDS = 10  #: ray lengths tol / 16 ... tol 4**8: the nearest zero first
 ATLAS_GRID = (10, 20, 30, 40)
 
 
@@ -50,7 +55,7 @@ def deviation(contour) -> float:
     True
     """
     from gearkit.blocking.arrays import evaluator
-    from gearkit.blocking.level import segment_roots
+    from gearkit.blocking.brackets import segment_roots
 
     names = [ln.name for ln in contour.lines] + ["region"]
     F = evaluator(contour.field, names, contour.window)
@@ -72,10 +77,11 @@ def deviation(contour) -> float:
     worst = 0.0
     # |F| at round-off: on the zero set (also where F only touches zero, with no sign change near)
     todo = np.flatnonzero(np.isfinite(f0) & (np.abs(f0) > ROUND_OFF))
-    r = 4 * contour.tol
+    # rays start short (a ray across a strip narrower than itself sees no sign change) and grow
+    r = contour.tol / 16
     T = np.column_stack([N[:, 1], -N[:, 0]])
     rays = [s * D for D in (N, T, (N + T) / np.sqrt(2), (N - T) / np.sqrt(2)) for s in (1.0, -1.0)]
-    for _ in range(6):  # the nearest zero on 8 rays of growing length (the normal, the chord, diagonals)
+    for _ in range(RAY_ROUNDS):  # the nearest zero on 8 rays of growing length (the normal, the chord, diagonals)
         if not todo.size:
             break
         best = np.full(todo.size, np.inf)
@@ -91,27 +97,97 @@ def deviation(contour) -> float:
         if found.any():
             worst = max(worst, float(best[found].max()))
         todo = todo[~found]
-        r *= 8
+        r *= 4
     if todo.size:  # no zero along the normal (F only nears zero there): |F| / |grad F|, first order
         e = 1e-7
         g = np.hypot(F(P[todo] + [e, 0.0], K[todo]) - f0[todo], F(P[todo] + [0.0, e], K[todo]) - f0[todo]) / e
         with np.errstate(divide="ignore", invalid="ignore"):
             est = np.abs(f0[todo]) / g
-        worst = max(worst, float(np.nanmax(np.where(np.isfinite(est), est, r / 8))))
+        worst = max(worst, float(np.nanmax(np.where(np.isfinite(est), est, r / 4))))
     return worst
 
 
+def _far(points, polylines) -> float:
+    """Largest distance from ``points`` (n, 2) to the nearest of ``polylines`` (inf when there are none)."""
+    from gearkit.accuracy import distances_to_polyline
+
+    if not len(points):
+        return 0.0
+    best = np.full(len(points), np.inf)
+    for q in polylines:
+        best = np.minimum(best, distances_to_polyline(points, q))
+    return float(best.max())
+
+
+def _probe_points(polylines):
+    """Vertices and chord middles of ``polylines``."""
+    pts = [p for q in polylines for p in (q, 0.5 * (q[:-1] + q[1:]))]
+    return np.concatenate(pts) if pts else np.zeros((0, 2))
+
+
+def _duplicates(polylines, tol: float) -> int:
+    """Components most of whose vertices lie within ``2 tol`` of another component (traced twice)."""
+    from gearkit.accuracy import distances_to_polyline
+
+    count = 0
+    for i, q in enumerate(polylines):
+        inner = q[1:-1] if len(q) > 2 else q
+        for j, r in enumerate(polylines):
+            if i != j and np.mean(distances_to_polyline(inner, r) <= 2 * tol) > 0.5:
+                count += 1
+                break
+    return count
+
+
+def topology(contour, reference) -> dict:
+    """The traced lines and region of ``contour`` against a much finer trace ``reference`` (the same
+    pair and window): ``gap`` (largest distance of a reference point from the traced lines: a piece
+    missing), ``extra`` (largest distance of a traced vertex or chord middle from the reference: a
+    spurious piece), ``loops`` (closed components: traced, reference), ``duplicates`` (components traced
+    twice). The contract: gap and extra within ``2 tol``, the same number of loops, no duplicate.
+
+    Examples
+    --------
+    >>> from gearkit.blocking import blocking_contour
+    >>> from gearkit.pair import PairSpec
+    >>> ref = blocking_contour(PairSpec(13, 16, 1.0), tol=1e-7, lines=["pointing.1"])
+    >>> t = topology(blocking_contour(PairSpec(13, 16, 1.0), tol=1e-3, lines=["pointing.1"]), ref)
+    >>> t["gap"] <= 2e-3 and t["extra"] <= 2e-3, t["loops"], t["duplicates"]
+    (True, (1, 1), 0)
+    """
+    pairs = [(ln.components, reference.line(ln.name).components) for ln in contour.lines]
+    pairs.append((contour.region, reference.region))
+    gap = extra = 0.0
+    loops, loops_ref, dup = 0, 0, 0
+    for mine, ref in pairs:
+        mine, ref = list(mine), list(ref)
+        gap = max(gap, _far(_probe_points(ref), mine))
+        extra = max(extra, _far(_probe_points(mine), ref))
+        loops += sum(1 for q in mine if len(q) > 2 and np.array_equal(q[0], q[-1]))
+        loops_ref += sum(1 for q in ref if len(q) > 2 and np.array_equal(q[0], q[-1]))
+        dup += _duplicates(mine, contour.tol)
+    return {"gap": gap, "extra": extra, "loops": (loops, loops_ref), "duplicates": dup}
+
+
 def ladder_rows(quick: bool):
-    """The tolerance ladder of the 12/30 contour (rows of the bench's accuracy ladder)."""
+    """The tolerance ladder of the 12/30 contour (rows of the bench's accuracy ladder): at each tol the
+    largest distance of the traced lines from the exact ones (:func:`deviation`) and of a much finer
+    trace (``REFERENCE_TOL``) from the traced lines (:func:`topology`: a missing piece), whichever is
+    larger, with the loops and duplicates of :func:`topology`."""
     from gearkit.blocking.contour import blocking_contour
     from gearkit.pair import PairSpec
 
     pair = PairSpec(12, 30, 1.0)
+    ref_tol = QUICK_REFERENCE_TOL if quick else REFERENCE_TOL
+    reference = blocking_contour(pair, tol=ref_tol)
     rows = []
     for tol in (QUICK_LADDER if quick else LADDER):
         seconds, contour = _median_time(lambda: blocking_contour(pair, tol=tol), 3 if tol >= 1e-6 else 1)
+        exact = deviation(contour)
+        topo = topology(contour, reference)
         rows.append({"family": "involute", "product": "blocking contour", "case": "12/30 m=1, all lines",
-                     "tol": tol, "achieved": deviation(contour),
+                     "tol": tol, "achieved": max(exact, topo["gap"]), "exact": exact, "gap": topo["gap"],
+                     "reference_tol": ref_tol, "loops": list(topo["loops"]), "duplicates": topo["duplicates"],
                      "vertices": int(sum(len(ln.points) for ln in contour.lines)
                                      + sum(len(p) for p in contour.region)),
                      "evaluations": int(contour.evaluations), "seconds": seconds})
@@ -133,6 +209,9 @@ def target_rows(ladder):
         worst = max(r["achieved"] / r["tol"] for r in mine)
         rows.append({"target": "blocking ladder: achieved / tol at every row", "measured": worst,
                      "limit": RATIO_TARGET, "unit": "", "pass": worst <= RATIO_TARGET})
+        bad = [r["tol"] for r in mine if r["loops"][0] != r["loops"][1] or r["duplicates"]]
+        rows.append({"target": "blocking ladder: topology (the reference's loops, no duplicate)",
+                     "measured": float(len(bad)), "limit": None, "unit": "rows off", "pass": not bad})
         times = [r["seconds"] for r in sorted(mine, key=lambda r: -r["tol"])]
         rows.append({"target": "blocking ladder: time grows as tol falls", "measured": None, "limit": None,
                      "unit": "", "pass": all(a <= b for a, b in zip(times, times[1:]))})
@@ -179,6 +258,16 @@ def format_section(res: dict) -> list:
         meas = "" if r["measured"] is None else (f"{r['measured']:.3f} {r['unit']}".strip())
         lim = "" if r["limit"] is None else f"< {r['limit']:g} {r['unit']}".strip()
         lines.append(f"  {r['target']:55} {meas:>10} {lim:>10}  {'pass' if r['pass'] else 'FAIL'}")
+    ladder = [r for r in res.get("ladder", []) if r["product"] == "blocking contour" and "gap" in r]
+    if ladder:
+        lines.append("blocking ladder (12/30, all lines and the region; shift units; reference: a trace at tol "
+                     f"{ladder[0]['reference_tol']:g})")
+        lines.append(f"  {'tol':>8} {'exact':>10} {'gap':>10} {'ach/tol':>8} {'loops':>7} {'dup':>4} {'vertices':>9} "
+                     f"{'evals':>9} {'time':>9}")
+        for r in ladder:
+            lines.append(f"  {r['tol']:8.0e} {r['exact']:10.2e} {r['gap']:10.2e} {r['achieved'] / r['tol']:8.2f} "
+                         f"{'%d/%d' % tuple(r['loops']):>7} {r['duplicates']:4d} {r['vertices']:9d} "
+                         f"{r['evaluations']:9d} {r['seconds']:8.3f}s")
     rows = res.get("atlas", [])
     if rows:
         lines.append("atlas throughput (external pairs, z1, z2 in %s)" % (ATLAS_GRID,))

@@ -28,8 +28,8 @@ def render(res: dict) -> str:
         rows = [r for r in res["ladder"] if r["product"] == product]
         cases = list(dict.fromkeys((r["family"], r["case"]) for r in rows))
         tols = sorted({r.get("tol_m", r["tol"]) for r in rows}, reverse=True)
-        out.append(f"*{product}* (cells: " + ("achieved (largest distance, in x, of a 1e-10 trace from the lines "
-                                                "traced at tol)" if product == "blocking contour"
+        out.append(f"*{product}* (cells: " + ("achieved (the larger of the lines' distance from the exact lines "
+                                                "and a 1e-10 trace's distance from them)" if product == "blocking contour"
                                                 else "achieved / tol") + " · count · time)")
         out.append("")
         out.append("| tol | " + " | ".join(f"{fam}: {case}" for fam, case in cases) + " |")

@@ -8,8 +8,8 @@ where undefined); every step below evaluates all the points it needs, of all the
    closed ones closed (no duplicate traces, no spurious loops: the polylines are the level set
    of one interpolant).
 2. **Vertices on the curve**: each marching-squares vertex lies on a grid edge with a sign change;
-   it is moved to the root of ``F`` on that edge (:func:`segment_roots`: regula falsi with the
-   Illinois modification and bisection safeguards) to ``tol / 4`` in x.
+   it is moved to the root of ``F`` on that edge
+   (:func:`~gearkit.blocking.brackets.segment_roots`: regula falsi with the Illinois modification and bisection safeguards) to ``tol / 4`` in x.
 3. **Chords on the curve** (:func:`densify`): a chord's deviation from its curve is estimated at
    its middle ``m`` from ``|F(m)| / |grad F|`` (the slope known from the roots that made its ends);
    a chord estimated within ``tol / 2`` is kept, any other is measured by a root of ``F`` along
@@ -26,100 +26,32 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["segment_roots", "zero_lines", "densify", "grid_values", "sign_cells", "refine_grid"]
+from gearkit.blocking.brackets import NearestBracket, segment_roots
+from gearkit.blocking.grid import edge_nodes
+
+__all__ = ["zero_lines", "densify"]
 
 VERTEX_FRACTION = 0.25  #: vertices are solved to this fraction of tol
 ESTIMATE_FRACTION = 0.5  #: a chord whose estimated deviation is below this fraction of tol is kept
+SPLIT_FRACTION = 0.75  #: a chord measured farther than this fraction of tol from its curve is split (a
+#: kink of the curve beside the chord's middle lies at most twice as far as the middle: 1.5 tol)
+SLOPE_RATIO = 2.0  #: a chord is estimated only where the slopes at its ends agree within this factor
+SPLIT_MEASURED = 0.5  #: the same for measured curves (a region's corners: its zero may be found on a diagonal)
 MAX_ROUNDS = 60  #: rounds of chord splitting
 MAX_PIECES = 64  #: most pieces one chord is split into in one round
-ROOT_ITERATIONS = 100
 WIDE_REACH = 1.0  #: a chord's second search for its curve reaches this many chord lengths to each side
+RAY_FRACTIONS = (0.125, 0.25, 0.375, 0.5, 0.75, 1.0, 2.0)  #: where the second search samples (x reach)
+PLAIN = (5, 6)  #: the samples a measured curve's search reads: the reach, then twice it (an acute corner)
 WIDE_REGION = True  #: the wider search for measured curves too
 JUMP_FACTOR = 100.0  #: a solved vertex with |F| above this times slope x tol sits on a jump, not a zero
 
 
-def grid_values(F, xs, ys, which: int = 0) -> np.ndarray:
-    """``F`` (function ``which``) at the nodes of the grid ``xs`` x ``ys``: ``values[j, i]``."""
-    gx, gy = np.meshgrid(xs, ys)
-    return F(np.column_stack([gx.ravel(), gy.ravel()]), np.full(gx.size, which)).reshape(gx.shape)
-
-
-def segment_roots(F, a, b, fa, fb, tol: float, which) -> np.ndarray:
-    """Roots of ``F`` (function ``which[k]``) on the segments ``a[k] -> b[k]`` (``(k, 2)``), given end
-    values of opposite signs; each within ``tol`` (in x) of a sign change of ``F``.
-
-    Regula falsi with the Illinois modification; a step that fails to halve the bracket over two
-    iterations is followed by a bisection. Where ``F`` is undefined (NaN) inside a bracket the
-    half towards the end with the larger ``|F|`` is kept.
-    """
-    a = np.asarray(a, dtype=float).reshape(-1, 2)
-    b = np.asarray(b, dtype=float).reshape(-1, 2)
-    which = np.asarray(which)
-    d = b - a
-    span = np.maximum(np.abs(d).max(axis=1), 1e-300)
-    k = len(a)
-    lo, hi = np.zeros(k), np.ones(k)
-    flo, fhi = np.array(fa, dtype=float), np.array(fb, dtype=float)
-    t = np.where(flo == 0, 0.0, np.where(fhi == 0, 1.0, np.nan))
-    done = (flo == 0) | (fhi == 0) | ~((flo > 0) != (fhi > 0)) | (span <= tol)
-    side = np.zeros(k, dtype=int)
-    stall = np.zeros(k, dtype=int)
-    for _ in range(ROOT_ITERATIONS):
-        act = np.flatnonzero(~done)
-        if not act.size:
-            break
-        l, h, fl, fh = lo[act], hi[act], flo[act], fhi[act]
-        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-            c = (l * fh - h * fl) / (fh - fl)
-        bis = ~((c > l) & (c < h)) | (stall[act] >= 3)
-        c = np.where(bis, 0.5 * (l + h), c)
-        fc = F(a[act] + c[:, None] * d[act], which[act])
-        nan = np.isnan(fc)
-        zero = fc == 0
-        same_hi = ~nan & ~zero & ((fc > 0) == (fh > 0))
-        same_lo = ~nan & ~zero & ~same_hi
-        nh = nan & (np.abs(fh) >= np.abs(fl))
-        nl = nan & ~nh
-        s = side[act]
-        # Anderson-Bjorck: when the same end moves twice, scale the value kept at the other end
-        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-            m_hi = 1.0 - fc / fh
-            m_lo = 1.0 - fc / fl
-        m_hi = np.where(m_hi > 0, m_hi, 0.5)
-        m_lo = np.where(m_lo > 0, m_lo, 0.5)
-        fl2 = np.where(same_lo, fc, np.where(same_hi & (s == -1) & ~bis, fl * m_hi, fl))
-        fh2 = np.where(same_hi, fc, np.where(same_lo & (s == 1) & ~bis, fh * m_lo, fh))
-        side[act] = np.where(bis | nan, 0, np.where(same_hi, -1, np.where(same_lo, 1, s)))
-        new_h = np.where(same_hi | nh, c, h)
-        new_l = np.where(same_lo | nl, c, l)
-        shrunk = (new_h - new_l) <= 0.5 * (h - l)
-        stall[act] = np.where(shrunk | bis, 0, stall[act] + 1)
-        lo[act], hi[act], flo[act], fhi[act] = new_l, new_h, fl2, fh2
-        t[act] = np.where(zero, c, t[act])
-        done[act] = zero | ((new_h - new_l) * span[act] <= tol)
-    with np.errstate(invalid="ignore"):
-        best = np.where(np.abs(flo) <= np.abs(fhi), lo, hi)
-    t = np.where(np.isnan(t), best, t)
-    return a + t[:, None] * d
-
-
-def _edge_of(v, xs, ys):
-    """For marching-squares vertices ``v`` (m, 2): the grid nodes (i0, j0), (i1, j1) of their edges."""
-    dx, dy = xs[1] - xs[0], ys[1] - ys[0]
-    fi = (v[:, 0] - xs[0]) / dx
-    fj = (v[:, 1] - ys[0]) / dy
-    on_row = np.abs(fj - np.round(fj)) < 1e-7
-    i0 = np.clip(np.where(on_row, np.floor(fi + 1e-9), np.round(fi)).astype(int), 0, len(xs) - 1)
-    j0 = np.clip(np.where(on_row, np.round(fj), np.floor(fj + 1e-9)).astype(int), 0, len(ys) - 1)
-    i1 = np.clip(np.where(on_row, i0 + 1, i0), 0, len(xs) - 1)
-    j1 = np.clip(np.where(on_row, j0, j0 + 1), 0, len(ys) - 1)
-    return i0, j0, i1, j1
-
-
-def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=()) -> list:
+def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), kinked=()) -> list:
     """Every component of ``F_k = 0`` seen by the grids ``grids[k] = (xs, ys, values)`` (``values[j, i]``
     at ``(xs[i], ys[j])``, NaN where undefined): a list (one entry per ``k``) of ``(n, 2)`` polylines
-    within about ``1.25 tol`` of the zero set; a closed one repeats its first vertex last."""
+    within about ``1.25 tol`` of the zero set; a closed one repeats its first vertex last. A piece of
+    one grid cell that does not cross the grid's inner frame (the window of a grid padded by one ring)
+    is dropped: it ends on both sides beside undefined nodes."""
     import contourpy
 
     raw, owner, edges = [], [], []
@@ -129,11 +61,13 @@ def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=()) 
         gen = contourpy.contour_generator(xs, ys, np.ma.masked_invalid(values), name="serial",
                                           line_type="Separate")
         for p in gen.lines(0.0):
+            if len(p) == 2 and k not in measure and not _on_frame(np.asarray(p, float), xs, ys):
+                continue  # one cell beside undefined ones: a speck the grid barely sees, at any tol alike
             if len(p) >= 2:
                 p = np.array(p, dtype=float)
                 raw.append(p)
                 owner.append(k)
-                i0, j0, i1, j1 = _edge_of(p, xs, ys)
+                i0, j0, i1, j1 = edge_nodes(p, xs, ys)
                 edges.append((np.column_stack([xs[i0], ys[j0]]), np.column_stack([xs[i1], ys[j1]]),
                               values[j0, i0], values[j1, i1]))
     out = [[] for _ in grids]
@@ -165,12 +99,19 @@ def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=()) 
         q, g, jmp = q[keep], g[keep], jmp[keep]
         if closed and not np.array_equal(q[0], q[-1]):
             q, g, jmp = np.vstack([q, q[:1]]), np.append(g, g[0]), np.append(jmp, jmp[0])
-        for lo, hi in _runs(~jmp):
-            if hi - lo >= 2:
+        for lo, hi in _runs(~jmp):  # a run of one chord off the frame: a speck (see above)
+            if hi - lo >= 3 or hi - lo == 2 and (k in measure or _on_frame(q[lo:hi], *grids[k][:2])):
                 lines.append((k, q[lo:hi], g[lo:hi]))
-    for k, q in densify(F, lines, tol, max_step, measure):
+    for k, q in densify(F, lines, tol, max_step, measure, kinked):
         out[k].append(q)
     return out
+
+
+def _on_frame(p, xs, ys) -> bool:
+    """True when both vertices of ``p`` lie on the inner frame of the padded grid (the window's edge)."""
+    ex = np.isclose(p[:, 0], xs[1], rtol=0, atol=1e-12) | np.isclose(p[:, 0], xs[-2], rtol=0, atol=1e-12)
+    ey = np.isclose(p[:, 1], ys[1], rtol=0, atol=1e-12) | np.isclose(p[:, 1], ys[-2], rtol=0, atol=1e-12)
+    return bool(np.all(ex | ey))
 
 
 def _runs(mask):
@@ -179,12 +120,14 @@ def _runs(mask):
     return list(zip(np.flatnonzero(d == 1), np.flatnonzero(d == -1)))
 
 
-def densify(F, lines, tol: float, max_step: float | None = None, measure=()) -> list:
+def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kinked=()) -> list:
     """``lines`` (a list of ``(k, points (n, 2), slope (n,))``: curve index, vertices on the curve, and
     estimates of ``|grad F_k|`` there, NaN if unknown) with vertices added until every chord lies
     within ``tol`` of its curve and is at most ``max_step`` long; returns ``[(k, points)]``. Curves whose
     index is in ``measure`` (e.g. the smallest of several functions, whose slope jumps at the kinks)
-    have every chord measured, never estimated."""
+    have every chord measured, never estimated; so do the curves in ``kinked`` (a kink between two
+    branches of one margin, e.g. the contact ratio where its limiting end changes: an acute wedge's
+    middle value says nothing of its tip), which are otherwise traced as the rest."""
     vtol = VERTEX_FRACTION * tol
     step = np.inf if not max_step else float(max_step)
     state = [(k, np.asarray(p, float), np.asarray(g, float), np.ones(len(p) - 1, bool)) for k, p, g in lines]
@@ -192,8 +135,10 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=()) -> 
     n_curves = 1 + max((k for k, _, _ in lines), default=0)
     trust = np.ones(n_curves, dtype=bool)
     trust[[k for k in measure if k < n_curves]] = False
+    estimate = trust.copy()
+    estimate[[k for k in kinked if k < n_curves]] = False
     for _ in range(MAX_ROUNDS):
-        parts = [(n, np.flatnonzero(todo)) for n, (_, _, _, todo) in enumerate(state) if todo.any()]
+        parts = [(n, np.flatnonzero(st[3])) for n, st in enumerate(state) if st[3].any()]
         if not parts:
             break
         A = np.concatenate([state[n][1][i] for n, i in parts])
@@ -211,48 +156,71 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=()) -> 
             est = np.abs(fm) / slope
         live = L > vtol
         long = L > step
-        keep = ~live | (~long & trust[which] & np.isfinite(est) & (est <= ESTIMATE_FRACTION * tol)) | (fm == 0) & ~long
+        with np.errstate(invalid="ignore", divide="ignore"):
+            even = np.fmax(gA, gB) <= SLOPE_RATIO * slope  # a slope that jumps along the chord: a kink
+        keep = ~live | (~long & estimate[which] & even & np.isfinite(est) & (est <= ESTIMATE_FRACTION * tol)) \
+            | (fm == 0) & ~long
         # measure the others: the root of F along the normal through the middle
         meas = np.flatnonzero(~keep & np.isfinite(fm))
         f0 = fm[meas]
-        span = np.full(meas.size, 0.5)
-        up_end, dn_end = m[meas] + 0.5 * L[meas, None] * nrm[meas], m[meas] - 0.5 * L[meas, None] * nrm[meas]
-        fu = F(up_end, which[meas])
-        fd = F(dn_end, which[meas])
-        up = np.isfinite(fu) & ((fu > 0) != (f0 > 0))
-        dn = np.isfinite(fd) & ((fd > 0) != (f0 > 0))
-        wide = np.flatnonzero(~(up | dn) & (trust[which[meas]] | WIDE_REGION))  # past a sharp corner: wider
+        mm, nm_, Lm, km = m[meas], nrm[meas], L[meas], which[meas]
+        # the nearest zero from the middle: first along the normal (half a chord to each side), then,
+        # for the chords with none there, sampled rays of a chord's length along the normal and the
+        # diagonals (a ray past a saddle or across a strip narrower than itself crosses two zeros
+        # between its ends; at a saddle's corner the normal only touches zero)
+        best = NearestBracket(mm, f0)
+        for sgn in (1.0, -1.0):
+            end = mm + sgn * 0.5 * Lm[:, None] * nm_
+            fe = F(end, km)
+            best.consider(np.arange(meas.size), mm, f0, end, fe)
+        wide = np.flatnonzero(~best.have & (trust[km] | WIDE_REGION))
         if wide.size:
-            r = WIDE_REACH * L[meas][wide, None] * nrm[meas][wide]
-            up_end[wide], dn_end[wide] = m[meas][wide] + r, m[meas][wide] - r
-            fu[wide], fd[wide] = F(up_end[wide], which[meas][wide]), F(dn_end[wide], which[meas][wide])
-            span[wide] = WIDE_REACH
-            up = np.isfinite(fu) & ((fu > 0) != (f0 > 0))
-            dn = np.isfinite(fd) & ((fd > 0) != (f0 > 0))
-            amb = np.zeros(meas.size, dtype=bool)
-            amb[wide] = up[wide] & dn[wide]  # both sides: another part of the curve, not this chord's
-            up &= ~amb
-            dn &= ~amb
-        pick_up = up & ~(dn & (np.abs(fu - f0) > np.abs(fd - f0)))
-        pick_dn = dn & ~pick_up
-        root = m[meas].copy()
-        for sel, end, fe in ((pick_up, up_end, fu), (pick_dn, dn_end, fd)):
-            if sel.any():
-                root[sel] = segment_roots(F, m[meas][sel], end[sel], f0[sel], fe[sel], vtol, which[meas][sel])
-        # a "root" through a pole or a jump of F is none: |F| stays large there
-        solved = np.flatnonzero(pick_up | pick_dn)
-        if solved.size:
-            slope_end = np.abs(np.where(pick_up, fu, fd)[solved] - f0[solved]) / (span[solved] * L[meas][solved])
-            bad = np.abs(F(root[solved], which[meas][solved])) > JUMP_FACTOR * slope_end * tol
-            bad &= trust[which[meas][solved]]
-            pick_up[solved[bad]] = False
-            pick_dn[solved[bad]] = False
+            tg = np.column_stack([nm_[wide, 1], -nm_[wide, 0]])
+            dirs = [sg * dv for dv in (nm_[wide], (nm_[wide] + tg) / np.sqrt(2), (nm_[wide] - tg) / np.sqrt(2))
+                    for sg in (1.0, -1.0)]
+            fr = WIDE_REACH * np.asarray(RAY_FRACTIONS)
+            P = np.stack([mm[wide][:, None, :] + (fr[None, :, None] * Lm[wide][:, None, None]) * dv[:, None, :]
+                          for dv in dirs], axis=1)  # (w, rays, samples, 2)
+            V = F(P.reshape(-1, 2), np.repeat(km[wide], len(dirs) * fr.size)).reshape(P.shape[:3])
+            tw = trust[km[wide]]
+            # a measured curve (the region) keeps the plain search: the normal at full reach (twice it
+            # where there is none), and no zero when both sides change sign (a thin part of the region,
+            # not this chord's edge)
+            sides = np.isfinite(V[:, :2]) & ((V[:, :2] > 0) != (f0[wide] > 0)[:, None, None])  # (w, 2, samples)
+            far = ~np.any(sides[:, :, PLAIN[0]], axis=1)  # no zero at the reach: read twice the reach
+            jp = np.where(far, PLAIN[1], PLAIN[0])
+            rw = np.arange(wide.size)
+            both = sides[rw, 0, jp] & sides[rw, 1, jp]
+            for r in range(len(dirs)):  # rays 0, 1: the normal; the others diagonal
+                vs, ps = V[:, r], P[:, r]
+                change = np.isfinite(vs) & ((vs > 0) != (f0[wide] > 0)[:, None])
+                j = np.argmax(change, axis=1)
+                ok = change[rw, j] & np.all(np.isfinite(vs) | (np.arange(fr.size)[None] >= j[:, None]), axis=1)
+                plain = ~tw & (r < 2)
+                j = np.where(plain, jp, j)
+                ok = np.where(plain, change[rw, j] & ~both, ok & tw)
+                prev = np.maximum(j - 1, 0)
+                start = (j > 0) & ~plain
+                lo = np.where(start[:, None], ps[rw, prev], mm[wide])
+                flo = np.where(start, vs[rw, prev], f0[wide])
+                best.consider(wide[ok], lo[ok], flo[ok], ps[rw, j][ok], vs[rw, j][ok], diagonal=r >= 2)
+        found = best.have.copy()
+        root = mm.copy()
+        if found.any():
+            root[found] = segment_roots(F, best.lo[found], best.end[found], best.flo[found], best.fe[found], vtol,
+                                        km[found])
+            # a "root" through a pole or a jump of F is none: |F| stays large there
+            solved = np.flatnonzero(found)
+            slope_end = np.abs(best.fe[solved] - best.flo[solved]) / np.hypot(*(best.end[solved] - best.lo[solved]).T)
+            bad = np.abs(F(root[solved], km[solved])) > JUMP_FACTOR * slope_end * tol
+            found[solved[bad & trust[km[solved]]]] = False
         off = np.einsum("ij,ij->i", root - m[meas], nrm[meas])
-        dev = np.abs(off)
-        found = pick_up | pick_dn
+        # a zero found on a diagonal ray is as far as it lies from the middle (an acute corner beyond it)
+        dev = np.where(best.diagonal, np.hypot(*(root - mm).T), np.abs(off))
         with np.errstate(invalid="ignore", divide="ignore"):
             g_root = np.where(dev > 0, np.abs(f0) / dev, np.nan)
-        split_m = found & ((dev > tol) | long[meas])
+        limit = np.where(trust[km] & even[meas], SPLIT_FRACTION, SPLIT_MEASURED) * tol
+        split_m = found & ((dev > limit) | long[meas])
         # no zero across a line's chord: two components (a region's loop stays closed)
         cut = set(meas[~found & live[meas] & trust[which[meas]]].tolist())
         # chords measured and within tol are kept; chords with no root found are kept as they are
@@ -265,7 +233,7 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=()) -> 
             pieces = np.minimum(pieces, MAX_PIECES)
             # a measured curve (kinks of a smallest-of) is split at its middle only: the parabola
             # does not predict the points beside a corner
-            pieces = np.where(trust[which[rows]], pieces, 2)
+            pieces = np.where(trust[which[rows]] & ~best.diagonal[split_m], pieces, 2)
             # interior points at t = j / pieces, solved along the normal near the parabola's offset
             r_idx = np.repeat(np.arange(rows.size), pieces - 1)
             j = np.concatenate([np.arange(1, p) for p in pieces])
@@ -345,7 +313,7 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=()) -> 
             if first:
                 state[n] = (k, p[:1], g[:1], np.zeros(0, bool))
         state_before = list(state)
-    return [(k, p) for k, p, _, _ in state if len(p) >= 2]
+    return [(st[0], st[1]) for st in state if len(st[1]) >= 2]
 
 
 def _cut_positions(p, starts):
@@ -358,43 +326,3 @@ def _cut_positions(p, starts):
     return sorted(set(out))
 
 
-def sign_cells(values) -> np.ndarray:
-    """Cells (m - 1, n - 1) of a grid whose corners change sign or are undefined (NaN)."""
-    pos = values > 0
-    bad = ~np.isfinite(values)
-    c = [pos[:-1, :-1], pos[:-1, 1:], pos[1:, :-1], pos[1:, 1:]]
-    n = [bad[:-1, :-1], bad[:-1, 1:], bad[1:, :-1], bad[1:, 1:]]
-    return (c[0] != c[1]) | (c[0] != c[2]) | (c[0] != c[3]) | n[0] | n[1] | n[2] | n[3]
-
-
-def refine_grid(F, which: int, xs, ys, values, cells, factor: int = 4):
-    """A grid ``factor`` times finer: ``F`` (function ``which``) evaluated at the fine nodes of the
-    marked ``cells`` and of their neighbours, bilinear in the coarse values elsewhere (where the
-    coarse grid already has the sign right). Returns ``(fine_xs, fine_ys, fine_values)``."""
-    ny, nx = values.shape
-    fx = np.linspace(xs[0], xs[-1], (nx - 1) * factor + 1)
-    fy = np.linspace(ys[0], ys[-1], (ny - 1) * factor + 1)
-    # bilinear interpolation of the coarse values
-    ti = np.arange(len(fx)) / factor
-    tj = np.arange(len(fy)) / factor
-    i0 = np.minimum(np.floor(ti).astype(int), nx - 2)
-    j0 = np.minimum(np.floor(tj).astype(int), ny - 2)
-    u, v = ti - i0, tj - j0
-    V = values
-    fine = ((1 - v)[:, None] * ((1 - u)[None] * V[j0][:, i0] + u[None] * V[j0][:, i0 + 1])
-            + v[:, None] * ((1 - u)[None] * V[j0 + 1][:, i0] + u[None] * V[j0 + 1][:, i0 + 1]))
-    near = cells.copy()
-    near[1:] |= cells[:-1]
-    near[:-1] |= cells[1:]
-    near[:, 1:] |= near[:, :-1].copy()
-    near[:, :-1] |= near[:, 1:].copy()
-    mask = np.zeros(fine.shape, dtype=bool)
-    cj, ci = np.nonzero(near)
-    for dj in range(factor + 1):
-        for di in range(factor + 1):
-            mask[cj * factor + dj, ci * factor + di] = True
-    jj, ii = np.nonzero(mask)
-    if jj.size:
-        pts = np.column_stack([fx[ii], fy[jj]])
-        fine[jj, ii] = F(pts, np.full(len(pts), which))
-    return fx, fy, fine

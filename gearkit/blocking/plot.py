@@ -155,8 +155,9 @@ SHEET_CELL = 0.62  #: inches per cell of the contact sheet
 
 
 def contact_sheet(records, z1s, z2s, path, template) -> None:
-    """The atlas' contact sheet (PNG, atomically): one square per (z1, z2), its admissible region
-    (each cell scaled to its own window) and the recommended point; a cross where no pair exists."""
+    """The atlas' contact sheet (PNG, atomically): one square per (z1, z2), its admissible region and
+    the recommended point, every cell on one common scale (the union of the cells' windows, stated in
+    the title, with dotted lines at x1 = 0 and x2 = 0 in each cell); a cross where no pair exists."""
     import matplotlib
     matplotlib.use("Agg")
     from matplotlib.figure import Figure
@@ -169,15 +170,19 @@ def contact_sheet(records, z1s, z2s, path, template) -> None:
     row = {z: j for j, z in enumerate(z2s)}
     verts, codes, stars, crosses, empties = [], [], [], [], []
     pad = 0.06
+    wins = np.array([rec["contour"]["window"] for rec in records if "error" not in rec]).reshape(-1, 4)
+    if len(wins):
+        x0, x1, y0, y1 = wins[:, 0].min(), wins[:, 1].max(), wins[:, 2].min(), wins[:, 3].max()
+    else:
+        x0, x1, y0, y1 = -1.0, 1.0, -1.0, 1.0
     for rec in records:
         i, j = col[rec["z1"]], row[rec["z2"]]
         if "error" in rec:
             crosses.append((i + 0.5, j + 0.5))
             continue
         c = rec["contour"]
-        x0, x1, y0, y1 = c["window"]
 
-        def to_cell(p):
+        def to_cell(p, i=i, j=j):
             p = np.asarray(p, dtype=float)
             return np.column_stack([i + pad + (1 - 2 * pad) * (p[:, 0] - x0) / (x1 - x0),
                                     j + pad + (1 - 2 * pad) * (p[:, 1] - y0) / (y1 - y0)])
@@ -192,12 +197,23 @@ def contact_sheet(records, z1s, z2s, path, template) -> None:
         if r.get("x1") is not None and r.get("passes"):
             stars.append(to_cell([[r["x1"], r["x2"]]])[0])
     n1, n2 = len(z1s), len(z2s)
+    axes = []  # x1 = 0 and x2 = 0 in every cell (when inside the common window)
+    for i in range(n1):
+        for j in range(n2):
+            if x0 < 0 < x1:
+                u = i + pad + (1 - 2 * pad) * (0 - x0) / (x1 - x0)
+                axes.append(([u, u], [j + pad, j + 1 - pad]))
+            if y0 < 0 < y1:
+                v = j + pad + (1 - 2 * pad) * (0 - y0) / (y1 - y0)
+                axes.append(([i + pad, i + 1 - pad], [v, v]))
     fig = Figure(figsize=(1.2 + SHEET_CELL * n1, 1.0 + SHEET_CELL * n2), dpi=100, layout="constrained")
     ax = fig.add_subplot(1, 1, 1)
     for i in range(n1 + 1):
         ax.axvline(i, color="#bbbbbb", lw=0.5)
     for j in range(n2 + 1):
         ax.axhline(j, color="#bbbbbb", lw=0.5)
+    for u, v in axes:
+        ax.plot(u, v, ":", color="#999999", lw=0.4)
     if verts:
         ax.add_patch(PathPatch(Path(np.concatenate(verts), np.concatenate(codes)), facecolor="#f4a582",
                                edgecolor="#b2182b", lw=0.4))
@@ -216,6 +232,7 @@ def contact_sheet(records, z1s, z2s, path, template) -> None:
     ax.set_aspect("equal")
     ax.set_xlabel("z1 (pinion teeth)")
     ax.set_ylabel("z2 (%s teeth)" % ("ring" if template.kind == "internal" else "wheel"))
-    ax.set_title(f"Blocking atlas ({template.kind}, alpha_n = {template.alpha_n_deg:g} deg): admissible "
-                 "region of each pair in its own window, star = recommended", fontsize=8)
+    ax.set_title(f"Blocking atlas ({template.kind}, alpha_n = {template.alpha_n_deg:g} deg): admissible region "
+                 f"of each pair, star = recommended\nevery cell on one scale: x1 from {x0:.2f} to {x1:.2f} (right), "
+                 f"x2 from {y0:.2f} to {y1:.2f} (up); dotted: x1 = 0, x2 = 0", fontsize=8)
     atomic_write(path, lambda tmp: fig.savefig(tmp, format="png", metadata=_METADATA[".png"]))

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from gearkit.blocking.level import grid_values
+from gearkit.blocking.grid import grid_values
 
 __all__ = ["padded_grid", "pad", "orient_loops", "inside_polygons", "polygon_area", "best_point"]
 

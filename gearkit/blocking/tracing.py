@@ -22,7 +22,8 @@ import numpy as np
 from gearkit.blocking.arrays import evaluator
 from gearkit.blocking.arrays import margins as array_margins
 from gearkit.blocking.field import PairField
-from gearkit.blocking.level import refine_grid, sign_cells, zero_lines
+from gearkit.blocking.grid import refine_grid, sign_cells
+from gearkit.blocking.level import zero_lines
 from gearkit.blocking.region import best_point, orient_loops, pad, padded_grid
 
 __all__ = ["Traced", "trace", "empty_reason", "GRID", "REGION_REFINE"]
@@ -88,7 +89,8 @@ def trace(field: PairField, window, names, tol: float, max_step: float | None = 
             curves.append(refine_grid(F, len(ids) - 1, px, py, rv, cells, REGION_REFINE))
         else:
             curves.append((px, py, np.full_like(rv, -1.0)))
-    traced = zero_lines(F, curves, tol, max_step, measure=(len(ids) - 1,) if region else ())
+    kinked = [k for k, n in enumerate(names) if n.partition("=")[0] == "contact_ratio"]
+    traced = zero_lines(F, curves, tol, max_step, measure=(len(ids) - 1,) if region else (), kinked=kinked)
     polygons = None
     if region:
         polygons = orient_loops(traced[-1], window, tol)

@@ -1,0 +1,101 @@
+"""Roots of array functions on segments, and the nearest bracket of a zero among several rays.
+
+``F(points (n, 2), which (n,) int) -> (n,)`` evaluates function ``which[i]`` at ``points[i]`` (NaN
+where undefined), as in :mod:`gearkit.blocking.level`.
+
+>>> import numpy as np
+>>> F = lambda p, w: p[:, 0] ** 2 - 2.0
+>>> r = segment_roots(F, [[0.0, 0.0]], [[2.0, 0.0]], [-2.0], [2.0], 1e-12, [0])
+>>> bool(abs(r[0, 0] - 2 ** 0.5) < 1e-12)
+True
+"""
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["segment_roots", "NearestBracket"]
+
+ROOT_ITERATIONS = 100
+
+
+def segment_roots(F, a, b, fa, fb, tol: float, which) -> np.ndarray:
+    """Roots of ``F`` (function ``which[k]``) on the segments ``a[k] -> b[k]`` (``(k, 2)``), given end
+    values of opposite signs; each within ``tol`` (in x) of a sign change of ``F``.
+
+    Regula falsi with the Illinois modification; a step that fails to halve the bracket over two
+    iterations is followed by a bisection. Where ``F`` is undefined (NaN) inside a bracket the
+    half towards the end with the larger ``|F|`` is kept.
+    """
+    a = np.asarray(a, dtype=float).reshape(-1, 2)
+    b = np.asarray(b, dtype=float).reshape(-1, 2)
+    which = np.asarray(which)
+    d = b - a
+    span = np.maximum(np.abs(d).max(axis=1), 1e-300)
+    k = len(a)
+    lo, hi = np.zeros(k), np.ones(k)
+    flo, fhi = np.array(fa, dtype=float), np.array(fb, dtype=float)
+    t = np.where(flo == 0, 0.0, np.where(fhi == 0, 1.0, np.nan))
+    done = (flo == 0) | (fhi == 0) | ~((flo > 0) != (fhi > 0)) | (span <= tol)
+    side = np.zeros(k, dtype=int)
+    stall = np.zeros(k, dtype=int)
+    for _ in range(ROOT_ITERATIONS):
+        act = np.flatnonzero(~done)
+        if not act.size:
+            break
+        l, h, fl, fh = lo[act], hi[act], flo[act], fhi[act]
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            c = (l * fh - h * fl) / (fh - fl)
+        bis = ~((c > l) & (c < h)) | (stall[act] >= 3)
+        c = np.where(bis, 0.5 * (l + h), c)
+        fc = F(a[act] + c[:, None] * d[act], which[act])
+        nan = np.isnan(fc)
+        zero = fc == 0
+        same_hi = ~nan & ~zero & ((fc > 0) == (fh > 0))
+        same_lo = ~nan & ~zero & ~same_hi
+        nh = nan & (np.abs(fh) >= np.abs(fl))
+        nl = nan & ~nh
+        s = side[act]
+        # Anderson-Bjorck: when the same end moves twice, scale the value kept at the other end
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            m_hi = 1.0 - fc / fh
+            m_lo = 1.0 - fc / fl
+        m_hi = np.where(m_hi > 0, m_hi, 0.5)
+        m_lo = np.where(m_lo > 0, m_lo, 0.5)
+        fl2 = np.where(same_lo, fc, np.where(same_hi & (s == -1) & ~bis, fl * m_hi, fl))
+        fh2 = np.where(same_hi, fc, np.where(same_lo & (s == 1) & ~bis, fh * m_lo, fh))
+        side[act] = np.where(bis | nan, 0, np.where(same_hi, -1, np.where(same_lo, 1, s)))
+        new_h = np.where(same_hi | nh, c, h)
+        new_l = np.where(same_lo | nl, c, l)
+        shrunk = (new_h - new_l) <= 0.5 * (h - l)
+        stall[act] = np.where(shrunk | bis, 0, stall[act] + 1)
+        lo[act], hi[act], flo[act], fhi[act] = new_l, new_h, fl2, fh2
+        t[act] = np.where(zero, c, t[act])
+        done[act] = zero | ((new_h - new_l) * span[act] <= tol)
+    with np.errstate(invalid="ignore"):
+        best = np.where(np.abs(flo) <= np.abs(fhi), lo, hi)
+    t = np.where(np.isnan(t), best, t)
+    return a + t[:, None] * d
+
+
+class NearestBracket:
+    """The nearest bracket of a zero found so far for each chord middle (``lo``/``flo`` to ``end``/``fe``)."""
+
+    def __init__(self, m, f0):
+        self.m = m
+        self.lo, self.end = m.copy(), m.copy()
+        self.flo, self.fe = f0.copy(), f0.copy()
+        self.dist = np.full(len(m), np.inf)
+        self.have = np.zeros(len(m), bool)
+        self.diagonal = np.zeros(len(m), bool)
+
+    def consider(self, idx, lo, flo, end, fe, diagonal: bool = False):
+        """Offer brackets for the chords ``idx``: kept where they change sign and predict a nearer zero."""
+        with np.errstate(invalid="ignore", divide="ignore"):
+            ok = np.isfinite(fe) & ((fe > 0) != (flo > 0))
+            d = np.hypot(*(lo - self.m[idx]).T) + np.abs(flo / (flo - fe)) * np.hypot(*(end - lo).T)
+        take = ok & (d < self.dist[idx])
+        i = idx[take]
+        self.lo[i], self.flo[i], self.end[i], self.fe[i] = lo[take], flo[take], end[take], fe[take]
+        self.dist[i] = d[take]
+        self.have[i] = True
+        self.diagonal[i] = diagonal

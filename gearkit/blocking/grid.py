@@ -1,0 +1,74 @@
+"""Grids for the level sets of :mod:`gearkit.blocking.level`: values at the nodes, the cells a zero
+set crosses, a locally refined grid, and the grid edges marching-squares vertices lie on.
+
+>>> import numpy as np
+>>> v = np.array([[-1.0, 1.0], [-1.0, 1.0]])
+>>> sign_cells(v).tolist()
+[[True]]
+"""
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["grid_values", "sign_cells", "refine_grid", "edge_nodes"]
+
+
+def grid_values(F, xs, ys, which: int = 0) -> np.ndarray:
+    """``F`` (function ``which``) at the nodes of the grid ``xs`` x ``ys``: ``values[j, i]``."""
+    gx, gy = np.meshgrid(xs, ys)
+    return F(np.column_stack([gx.ravel(), gy.ravel()]), np.full(gx.size, which)).reshape(gx.shape)
+
+
+def edge_nodes(v, xs, ys):
+    """For marching-squares vertices ``v`` (m, 2): the grid nodes (i0, j0), (i1, j1) of their edges."""
+    dx, dy = xs[1] - xs[0], ys[1] - ys[0]
+    fi = (v[:, 0] - xs[0]) / dx
+    fj = (v[:, 1] - ys[0]) / dy
+    on_row = np.abs(fj - np.round(fj)) < 1e-7
+    i0 = np.clip(np.where(on_row, np.floor(fi + 1e-9), np.round(fi)).astype(int), 0, len(xs) - 1)
+    j0 = np.clip(np.where(on_row, np.round(fj), np.floor(fj + 1e-9)).astype(int), 0, len(ys) - 1)
+    i1 = np.clip(np.where(on_row, i0 + 1, i0), 0, len(xs) - 1)
+    j1 = np.clip(np.where(on_row, j0, j0 + 1), 0, len(ys) - 1)
+    return i0, j0, i1, j1
+
+
+def sign_cells(values) -> np.ndarray:
+    """Cells (m - 1, n - 1) of a grid whose corners change sign or are undefined (NaN)."""
+    pos = values > 0
+    bad = ~np.isfinite(values)
+    c = [pos[:-1, :-1], pos[:-1, 1:], pos[1:, :-1], pos[1:, 1:]]
+    n = [bad[:-1, :-1], bad[:-1, 1:], bad[1:, :-1], bad[1:, 1:]]
+    return (c[0] != c[1]) | (c[0] != c[2]) | (c[0] != c[3]) | n[0] | n[1] | n[2] | n[3]
+
+
+def refine_grid(F, which: int, xs, ys, values, cells, factor: int = 4):
+    """A grid ``factor`` times finer: ``F`` (function ``which``) evaluated at the fine nodes of the
+    marked ``cells`` and of their neighbours, bilinear in the coarse values elsewhere (where the
+    coarse grid already has the sign right). Returns ``(fine_xs, fine_ys, fine_values)``."""
+    ny, nx = values.shape
+    fx = np.linspace(xs[0], xs[-1], (nx - 1) * factor + 1)
+    fy = np.linspace(ys[0], ys[-1], (ny - 1) * factor + 1)
+    # bilinear interpolation of the coarse values
+    ti = np.arange(len(fx)) / factor
+    tj = np.arange(len(fy)) / factor
+    i0 = np.minimum(np.floor(ti).astype(int), nx - 2)
+    j0 = np.minimum(np.floor(tj).astype(int), ny - 2)
+    u, v = ti - i0, tj - j0
+    V = values
+    fine = ((1 - v)[:, None] * ((1 - u)[None] * V[j0][:, i0] + u[None] * V[j0][:, i0 + 1])
+            + v[:, None] * ((1 - u)[None] * V[j0 + 1][:, i0] + u[None] * V[j0 + 1][:, i0 + 1]))
+    near = cells.copy()
+    near[1:] |= cells[:-1]
+    near[:-1] |= cells[1:]
+    near[:, 1:] |= near[:, :-1].copy()
+    near[:, :-1] |= near[:, 1:].copy()
+    mask = np.zeros(fine.shape, dtype=bool)
+    cj, ci = np.nonzero(near)
+    for dj in range(factor + 1):
+        for di in range(factor + 1):
+            mask[cj * factor + dj, ci * factor + di] = True
+    jj, ii = np.nonzero(mask)
+    if jj.size:
+        pts = np.column_stack([fx[ii], fy[jj]])
+        fine[jj, ii] = F(pts, np.full(len(pts), which))
+    return fx, fy, fine
