@@ -27,6 +27,7 @@ from functools import lru_cache
 import numpy as np
 
 from gearkit.boundary import trim_half_tooth
+from gearkit.curves import rotate
 from gearkit.profile import ToothProfile
 from gearkit.envelope import chain_branches
 from gearkit.errors import GeometryError, SpecError
@@ -98,9 +99,10 @@ class CycloidalDisc(ToothProfile):
         meets its circle. Smooth through the point where the two roots of the branches meet.
         """
         s = np.atleast_1d(np.asarray(s, dtype=float))
-        d = self.motion.tool_pole(s) - self.pin_centre
-        n = self.spec.sign * d / np.linalg.norm(d, axis=-1, keepdims=True)
-        return self.motion.to_blank(self.pin_centre + self.pin_radius * n, s)
+        pole, angle, offset = self.motion.pose(s)  # the pole in the tool frame is the pose's shift
+        d = pole - self.pin_centre
+        n = self.spec.sign * d / np.hypot(d[..., 0], d[..., 1])[..., None]
+        return rotate(self.pin_centre + self.pin_radius * n - pole, angle) + offset
 
     def flank_rolls(self):
         """Roll intervals ``[(s0, s1), ...]`` of the envelope pieces kept in the half tooth (merged
