@@ -40,17 +40,26 @@ def _refine(piece, lo: float, hi: float, score, fallback: float):
     return float(score(point[None])[0]), point, piece.label
 
 
-def _extreme(pieces, score):
-    """Largest ``score(points)`` over the pieces: (value, point, label), refined to ~1e-14 of the parameter."""
+def _extreme(pieces, score, samples=None):
+    """Largest ``score(points)`` over the pieces: (value, point, label), refined to ~1e-14 of the parameter.
+
+    ``samples``: the pieces' points at the grid (:func:`_grid_points`), when the caller scores the
+    same pieces many times."""
     t = np.linspace(0.0, 1.0, _GRID)
     best = (-math.inf, None, 0)
-    for piece in pieces:
-        values = score(piece(t))
+    for k, piece in enumerate(pieces):
+        values = score(piece(t) if samples is None else samples[k])
         i = int(np.argmax(values))
         if values[i] > best[0]:
             best = (float(values[i]), piece, i)
     _, piece, i = best
     return _refine(piece, t[max(i - 1, 0)], t[min(i + 1, _GRID - 1)], score, float(t[i]))
+
+
+def _grid_points(pieces) -> list:
+    """Each piece's points at the search grid of :func:`_extreme`."""
+    t = np.linspace(0.0, 1.0, _GRID)
+    return [piece(t) for piece in pieces]
 
 
 def _first_peak(pieces, score):
@@ -99,8 +108,21 @@ def measure_span(profile, k: int, beta_b: float = 0.0) -> tuple[Span, str]:
     return Span(k, w, w_t, 2 * float(np.hypot(*point)), w * math.sin(beta_b)), label
 
 
-def measure_over_pins(profile, d_p: float, beta_b: float = 0.0) -> tuple[OverPins, str]:
+def _path_clear(grid, e, r0: float, r1: float, rho: float) -> bool:
+    """True when a pin of radius ``rho`` moving along ``e`` from radius ``r1`` to ``r0`` meets no grid
+    point of the tooth (none nearer the path than ``rho``, to 1e-9 of it): ``r0`` is its first contact."""
+    pts = np.concatenate(grid)
+    t = np.clip(pts @ e, min(r0, r1), max(r0, r1))
+    return float(np.hypot(*(pts - t[:, None] * e).T).min()) >= rho * (1.0 - 1e-9)
+
+
+def measure_over_pins(profile, d_p: float, beta_b: float = 0.0, near: float | None = None) -> tuple[OverPins, str]:
     """Dimension over (between, for a ring) two pins/balls of diameter ``d_p`` on the generated gear.
+
+    ``near`` (mm, optional): the pin centre's expected radius (the formula's ``d_M / 2``). The
+    contact is first sought within 1e-6 ``d_p`` of it and kept when the pin's path in from outside
+    is clear of the tooth up to there (it is the first contact); otherwise, and without ``near``,
+    the pin is lowered from outside the tip in quarter-radius steps until it touches.
 
     Returns
     -------
@@ -114,28 +136,40 @@ def measure_over_pins(profile, d_p: float, beta_b: float = 0.0) -> tuple[OverPin
     rho = d_p / (2 * math.cos(beta_b))
     e = np.array([math.sin(math.pi / z), math.cos(math.pi / z)])  # centre line of the space
     pieces = profile.half.pieces
+    grid = _grid_points(pieces)  # every gap() searches the same grid first
+
+    known = {}
 
     def gap(radius):
-        centre = radius * e
-        return math.sqrt(-_extreme(pieces, lambda p: -np.sum((p - centre) ** 2, axis=-1))[0]) - rho
+        if radius not in known:  # brentq re-evaluates its bracket's ends
+            centre = radius * e
+            known[radius] = math.sqrt(-_extreme(pieces, lambda p: -np.sum((p - centre) ** 2, axis=-1), grid)[0]) - rho
+        return known[radius]
 
     r_tip = profile.tip_diameter / 2
     step = -rho / 4 if not profile.internal else rho / 4
     start = r_tip + 1.01 * rho if not profile.internal else r_tip - 1.01 * rho
     require(start > 0, "pin_diameter", f"d_p = {d_p:g} mm does not fit inside the ring's tip circle")
-    a, fa = start, gap(start)
-    for _ in range(400):
-        b = a + step
-        require(b > 0, "pin_diameter", f"a pin of d_p = {d_p:g} mm falls through the tooth space")
-        fb = gap(b)
-        if fb <= 0:
-            break
-        a, fa = b, fb
-    else:  # pragma: no cover - 400 quarter-radius steps cross any tooth
-        raise AssertionError("the pin never touched the tooth")
-    r_m = brentq(gap, min(a, b), max(a, b), xtol=1e-13, rtol=4 * np.finfo(float).eps)
+    r_m = None
+    if near is not None and math.isfinite(near) and near > 1e-6 * d_p:
+        lo, hi = near - 1e-6 * d_p, near + 1e-6 * d_p
+        if (gap(lo) > 0) != (gap(hi) > 0):
+            r_m = brentq(gap, lo, hi, xtol=1e-13, rtol=4 * np.finfo(float).eps)
+            r_m = r_m if _path_clear(grid, e, r_m, start, rho) else None
+    if r_m is None:
+        a, fa = start, gap(start)
+        for _ in range(400):
+            b = a + step
+            require(b > 0, "pin_diameter", f"a pin of d_p = {d_p:g} mm falls through the tooth space")
+            fb = gap(b)
+            if fb <= 0:
+                break
+            a, fa = b, fb
+        else:  # pragma: no cover - 400 quarter-radius steps cross any tooth
+            raise AssertionError("the pin never touched the tooth")
+        r_m = brentq(gap, min(a, b), max(a, b), xtol=1e-13, rtol=4 * np.finfo(float).eps)
     centre = r_m * e
-    _, point, label = _extreme(pieces, lambda p: -np.sum((p - centre) ** 2, axis=-1))
+    _, point, label = _extreme(pieces, lambda p: -np.sum((p - centre) ** 2, axis=-1), grid)
     label = _corner(profile, point, label)
     centres = 2 * r_m * (math.cos(math.pi / (2 * z)) if z % 2 else 1.0)
     m = centres - d_p if profile.internal else centres + d_p

@@ -144,7 +144,7 @@ def inspect_gear(spec, span_teeth: int | None = None, pin_diameter: float | None
         d_c = 2 * (z * sec.mt / 2 + x * sec.mn)
         pin_diameter = suggested_pin(sec, z, delta, spec.internal, max(d_c, z * sec.mt * math.cos(sec.alpha_t) * 1.001))
     pins = over_pins(sec, z, delta, pin_diameter, spec.internal)
-    pins_m, pin_touch = measure_over_pins(profile, pins.d_p, sec.beta_b)
+    pins_m, pin_touch = measure_over_pins(profile, pins.d_p, sec.beta_b, near=pins.d_M / 2)
     d_a = spec.blank_tip_diameter
     if chordal_diameter is None and not _on_tooth(profile, profile.reference_diameter):
         chordal_diameter = 2 * (z * sec.mt / 2 + x * sec.mn)  # the reference circle misses the tooth
