@@ -27,7 +27,6 @@ from functools import lru_cache
 import numpy as np
 
 from gearkit.boundary import trim_half_tooth
-from gearkit.curves import rotate
 from gearkit.profile import ToothProfile
 from gearkit.envelope import chain_branches
 from gearkit.errors import GeometryError, SpecError
@@ -99,10 +98,19 @@ class CycloidalDisc(ToothProfile):
         meets its circle. Smooth through the point where the two roots of the branches meet.
         """
         s = np.atleast_1d(np.asarray(s, dtype=float))
-        pole, angle, offset = self.motion.pose(s)  # the pole in the tool frame is the pose's shift
-        d = pole - self.pin_centre
-        n = self.spec.sign * d / np.hypot(d[..., 0], d[..., 1])[..., None]
-        return rotate(self.pin_centre + self.pin_radius * n - pole, angle) + offset
+        # both centrodes are circles (RollingMotion's frames): the pole C_t(s) on the pin ring's, the
+        # disc turned by s/c_b - s/c_t, its cosine and sine from the centrodes' by the addition rule
+        c_t, c_b = self.motion.tool_centre, self.motion.blank_centre
+        ct, st, cb, sb = np.cos(s / c_t), np.sin(s / c_t), np.cos(s / c_b), np.sin(s / c_b)
+        pole_x, pole_y = c_t * st, c_t * (1.0 - ct)
+        dx, dy = pole_x - self.pin_centre[0], pole_y - self.pin_centre[1]
+        k = self.spec.sign * self.pin_radius / np.hypot(dx, dy)
+        qx, qy = self.pin_centre[0] + k * dx - pole_x, self.pin_centre[1] + k * dy - pole_y
+        cos_turn, sin_turn = cb * ct + sb * st, sb * ct - cb * st
+        out = np.empty(s.shape + (2,))
+        out[..., 0] = cos_turn * qx - sin_turn * qy + c_b * sb
+        out[..., 1] = sin_turn * qx + cos_turn * qy + c_b * (1.0 - cb) - c_b  # the blank frame's origin
+        return out
 
     def flank_rolls(self):
         """Roll intervals ``[(s0, s1), ...]`` of the envelope pieces kept in the half tooth (merged

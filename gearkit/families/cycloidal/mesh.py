@@ -69,6 +69,10 @@ class _Outline:
         pts = disc.at_roll(self.rolls)
         self.points = pts
         self.spacing = float(np.linalg.norm(np.diff(pts, axis=0), axis=1).max())
+        # unit normal of the space centre line (polar angle pi/z), towards the tooth; the samples' least
+        # signed distances from it and from the tooth centre line bound the mirrored candidates' distances
+        self.space_normal = np.array([-math.cos(self.half), math.sin(self.half)])
+        self.least_side = (float((pts @ self.space_normal).min()), float(pts[:, 0].min()))
         first = disc.half.pieces[0]
         self.tip = first.curve if not hasattr(first.curve, "solve") else None
 
@@ -122,14 +126,23 @@ class _Outline:
         def mirror_s(p):  # mirror image in the space centre line (polar pi/z)
             return turn_polar(turn_polar(p, -self.half) * flip_x, self.half)
         cands = (local, mirror_s(local), local * flip_x)
-        starts = [self._start(p) for p in cands]
-        coarse = np.stack([st[0] for st in starts])
+        coarse = np.full((3, len(q)), np.inf)
+        idx = np.zeros((3, len(q)), dtype=np.intp)
+        coarse[0], idx[0] = self._start(local)
+        # a mirrored candidate lies at least as far from every sample as the query from the mirror
+        # line (plus the samples' least distance from it): past coarse[0] + 2 spacing it cannot be
+        # kept, so its nearest sample is not searched (the same candidates are kept as with a search)
+        bound = coarse[0] + 2.0 * self.spacing
+        sides = (local @ self.space_normal + self.least_side[0], local[:, 0] + self.least_side[1])
+        for c, side in zip((1, 2), sides):
+            sel = np.flatnonzero(side <= bound)
+            coarse[c, sel], idx[c, sel] = self._start(cands[c][sel])
         keep = coarse <= coarse.min(axis=0) + 2.0 * self.spacing
         dist = np.full(coarse.shape, np.inf)
         feet = np.zeros(coarse.shape + (2,))
-        for c, (p, (_, idx)) in enumerate(zip(cands, starts)):
+        for c, p in enumerate(cands):
             sel = np.flatnonzero(keep[c])
-            dist[c, sel], feet[c, sel] = self._refine(p[sel], idx[sel])
+            dist[c, sel], feet[c, sel] = self._refine(p[sel], idx[c, sel])
         feet[1] = mirror_s(feet[1])
         feet[2] = feet[2] * flip_x
         which = np.argmin(dist, axis=0)
