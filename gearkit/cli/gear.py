@@ -247,7 +247,7 @@ def _run_solid(args, spec, prof) -> int:
     solid_spec = solid_spec_from_args(args)
     bound("--tol", estimate_faces(prof, solid_spec, tol), MAX_FACES, "facets")
     solid = gear_solid(prof, solid_spec, tol, name="gear")
-    info = prof.summary(tol)
+    info = prof.summary(tol, sample=False)  # the accuracy reported is the solid's
     if mesh_format(args.output) in ("step", "stp"):
         from gearkit.solids.step import write_step
 
