@@ -70,7 +70,7 @@ def render(res: dict) -> str:
                    f"| {_ms(r['envelope_seconds'])} | {r['speedup']:.0f}x |")
     out.append("")
     out.append(f"**Kernel overhead**: the z = 40 outline at tol 1e-6 m ({ov['points']} points) takes "
-               f"{_ms(ov['kernel_seconds'])} from its spec ({_ms(ov['sampling_seconds'])} to sample an already "
+               f"{_ms(ov['kernel_seconds'])} of CPU from its spec ({_ms(ov['sampling_seconds'])} to sample an already "
                f"generated tooth); numpy needs {_ms(ov['baseline_seconds'])} just to evaluate as many points of "
                f"the closed-form involute: overhead ratio **{ov['overhead_ratio']:.1f}x** "
                f"({ov['overhead_ratio_sampling']:.1f}x for the sampling alone; target 3x).")

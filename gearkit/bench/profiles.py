@@ -13,7 +13,7 @@ import math
 import numpy as np
 
 from gearkit.accuracy import distances_to_polyline
-from gearkit.bench.timing import baseline_seconds, median_time
+from gearkit.bench.timing import median_time
 
 #: kernel overhead target: the z = 40 outline at tol 1e-6 m over numpy's closed form for as many points
 OVERHEAD_TARGET = 3.0
@@ -173,29 +173,44 @@ def rack_scaling(quick: bool, repeats: int):
 
 def overhead(repeats: int = 21):
     """Kernel time for the z = 40 involute outline at tol 1e-6 m over numpy's time for the same
-    number of closed-form involute points.
+    number of closed-form involute points, both in CPU time (medians; the calls interleaved so a
+    change of the machine's load hits both alike).
 
     Returns a dict with ``overhead_ratio`` (whole path: spec -> outline, uncached),
     ``overhead_ratio_sampling`` (outline of an already generated profile), the two times, the
     baseline time and the point count.
     """
+    import time
+
+    from gearkit.bench.timing import closed_form_involute
     from gearkit.families.involute import GearSpec, tooth_profile
 
     spec = GearSpec(40, 1.0)
     tol = 1e-6 * spec.module
-    kernel, (prof, outline) = median_time(lambda: _generate_and_sample(spec, tol), repeats, budget=3.0)
     gen = tooth_profile.__wrapped__(spec)
+    n = len(gen.outline(tol))
+    r_b, r_a = spec.base_diameter / 2.0, spec.blank_tip_diameter / 2.0
+    roll_max = math.sqrt(max((r_a / r_b) ** 2 - 1.0, 1e-12))
 
     def sample_only():
         gen._cache.clear()
         return gen.outline(tol)
 
-    sampling, _ = median_time(sample_only, repeats, budget=3.0)
-    n = len(outline)
-    base = baseline_seconds(n, spec.base_diameter / 2.0, spec.blank_tip_diameter / 2.0, repeats)
+    runs = {"kernel": lambda: _generate_and_sample(spec, tol), "sampling": sample_only,
+            "baseline": lambda: closed_form_involute(n, r_b, roll_max)}
+    times = {k: [] for k in runs}
+    start = time.perf_counter()
+    for i in range(max(3, repeats)):
+        for key, fn in runs.items():
+            t0 = time.process_time()
+            fn()
+            times[key].append(time.process_time() - t0)
+        if i >= 2 and time.perf_counter() - start > 6.0:
+            break
+    kernel, sampling, base = (float(np.median(times[k])) for k in ("kernel", "sampling", "baseline"))
     return {"overhead_ratio": kernel / base, "overhead_ratio_sampling": sampling / base, "kernel_seconds": kernel,
             "sampling_seconds": sampling, "baseline_seconds": base, "points": int(n), "teeth": 40,
-            "tol": tol, "target": OVERHEAD_TARGET}
+            "tol": tol, "target": OVERHEAD_TARGET, "clock": "CPU"}
 
 
 def cam_ladder(quick: bool, repeats: int):

@@ -1,11 +1,11 @@
-"""Wall-clock timing for the bench: the median of repeats, and the closed-form baseline.
+"""Wall-clock timing for the bench: the median of repeats, and the closed-form baseline
+(the kernel-overhead ratio times both in CPU time: :func:`gearkit.bench.profiles.overhead`).
 
 The median (not the mean, not the minimum) of several repeats is what a user sees on a
 warm interpreter; the spread is reported beside it so a noisy machine shows as noise.
 """
 from __future__ import annotations
 
-import math
 import time
 
 import numpy as np
@@ -39,10 +39,3 @@ def closed_form_involute(n: int, base_radius: float, roll_max: float):
     t = np.linspace(0.0, roll_max, n)
     c, s = np.cos(t), np.sin(t)
     return np.stack([base_radius * (c + t * s), base_radius * (s - t * c)], -1)
-
-
-def baseline_seconds(n: int, base_radius: float = 1.0, tip_radius: float = 1.1, repeats: int = 21) -> float:
-    """Median time (s) numpy needs to evaluate ``n`` points of the closed-form involute."""
-    roll_max = math.sqrt(max((tip_radius / base_radius) ** 2 - 1.0, 1e-12))
-    seconds, _ = median_time(lambda: closed_form_involute(n, base_radius, roll_max), repeats, budget=1.0)
-    return seconds
