@@ -99,3 +99,57 @@ def test_normal_clearance_and_radial_clearance():
     d = disc_profile(spec)
     assert d.tip_diameter / 2 == pytest.approx(87.0 - (d_r - d_big_r), abs=1e-9)
     assert d.root_diameter / 2 == pytest.approx(79.0 - (d_r - d_big_r), abs=1e-9)
+
+
+#: central differences of step h = 1e-4 of the roll interval: truncation ~h^2 |p'''| / 6, well
+#: under 1e-6 of the derivative for these discs, and round-off ~eps |p| / h^2 far below it
+DERIVATIVE_REL = 1e-6
+
+
+@pytest.mark.parametrize("case", ["+1", "+2", "-1"])
+def test_disc_point_derivatives_match_central_differences(case):
+    """``at_roll(s, derivatives=True)``: the closed-form first and second derivatives in the roll
+    against central differences of the point itself (an independent second method)."""
+    disc = disc_profile(DriveSpec(*CASES[case]))
+    lo, hi = disc.flank_rolls()[0]
+    s = np.linspace(lo, hi, 9)[1:-1]
+    h = 1e-4 * (hi - lo)
+    p, d1, d2 = disc.at_roll(s, derivatives=True)
+    assert np.array_equal(p, disc.at_roll(s))
+    ahead, behind = disc.at_roll(s + h), disc.at_roll(s - h)
+    assert np.abs(d1 - (ahead - behind) / (2 * h)).max() <= DERIVATIVE_REL * np.abs(d1).max()
+    assert np.abs(d2 - (ahead - 2 * p + behind) / h ** 2).max() <= 1e3 * DERIVATIVE_REL * np.abs(d2).max()
+
+
+def test_nearest_disc_point_is_the_foot_of_the_perpendicular():
+    """The mesh's nearest point on the disc is exact: ``q - foot`` is normal to the disc there (its
+    tangential part within 1e-12 of the pin circle radius) for every pin over a mesh period. The
+    foot's roll is found anew (the foot projected back onto the disc by Gauss-Newton from the
+    nearest of 4001 sampled rolls: a zero-residual projection, exact in a few steps)."""
+    spec = DriveSpec(*CASES["+1"])
+    state = mesh_state(spec, np.linspace(0.0, 2 * math.pi / (spec.pins * spec.lobes), 50))
+    disc = disc_profile(spec)
+    q, foot = state.centres.reshape(-1, 2), state.contact.reshape(-1, 2)
+    # the polar angle from +y grows clockwise: turning counter-clockwise by it brings a foot to tooth 0
+    turn = np.round(np.arctan2(foot[:, 0], foot[:, 1]) / (2 * math.pi / disc.teeth)) * 2 * math.pi / disc.teeth
+    c, s_ = np.cos(turn), np.sin(turn)
+
+    def fold(v):  # into tooth 0's right half (the disc's symmetry), as the mesh does
+        out = np.stack([c * v[:, 0] - s_ * v[:, 1], s_ * v[:, 0] + c * v[:, 1]], -1)
+        out[flip, 0] *= -1
+        return out
+
+    flip = (c * foot[:, 0] - s_ * foot[:, 1]) < 0
+    lf, lq = fold(foot), fold(q)
+    (lo, hi), = disc.flank_rolls()
+    rolls = np.linspace(lo, hi, 4001)
+    roll = rolls[np.argmin(np.linalg.norm(disc.at_roll(rolls)[None] - lf[:, None], axis=-1), axis=1)]
+    for _ in range(6):
+        p, d1, _ = disc.at_roll(roll, derivatives=True)
+        roll = np.clip(roll - np.einsum("ij,ij->i", p - lf, d1) / np.einsum("ij,ij->i", d1, d1), lo, hi)
+    p, d1, _ = disc.at_roll(roll, derivatives=True)
+    assert np.abs(p - lf).max() <= 1e-12 * spec.pin_circle_radius  # the foot is on the disc
+    inner = (roll > lo + 1e-9 * (hi - lo)) & (roll < hi - 1e-9 * (hi - lo))  # not an end of the flank
+    assert inner.sum() > len(q) // 2
+    offset = np.einsum("ij,ij->i", (lq - lf)[inner], d1[inner]) / np.linalg.norm(d1[inner], axis=1)
+    assert np.abs(offset).max() <= 1e-12 * spec.pin_circle_radius

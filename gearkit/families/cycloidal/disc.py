@@ -90,27 +90,55 @@ class CycloidalDisc(ToothProfile):
         self.pin_centre = np.array(seg.data[:2])
         self.pin_radius = float(seg.data[2])
 
-    def at_roll(self, s):
-        """The pin's envelope point at roll ``s`` (mm), disc frame, ``(n, 2)``.
+    def at_roll(self, s, derivatives: bool = False):
+        """The pin's envelope point at roll ``s`` (mm), disc frame, ``(n, 2)``; with ``derivatives``
+        also its first and second derivatives in the roll, ``(p, dp/ds, d2p/ds2)``.
 
         The same envelope as the branches, parametrised by the roll instead of the pin point: at
         roll ``s`` the pin touches where its radius towards the pole (for dz < 0: away from it)
         meets its circle. Smooth through the point where the two roots of the branches meet.
+
+        Both centrodes are circles (:class:`~gearkit.motion.RollingMotion`'s frames): the pole is
+        ``C(s)`` on the pin ring's centrode (radius ``c_t``), the pin's contact ``q = P + sign r_Z n``
+        (``n`` the unit vector from the pin centre ``P`` towards the pole) less the pole, turned by
+        ``phi = s/c_b - s/c_t`` (its cosine and sine from the centrodes' by the addition rule) and
+        carried by the disc's centrode point ``B(s)``: ``p = R(phi) q + B``. Differentiating,
+        ``p' = R(phi)(q' + w J q) + B'`` and ``p'' = R(phi)(q'' + 2 w J q' - w^2 q) + B''`` with
+        ``w = phi'`` and ``J`` the quarter turn.
         """
         s = np.atleast_1d(np.asarray(s, dtype=float))
-        # both centrodes are circles (RollingMotion's frames): the pole C_t(s) on the pin ring's, the
-        # disc turned by s/c_b - s/c_t, its cosine and sine from the centrodes' by the addition rule
         c_t, c_b = self.motion.tool_centre, self.motion.blank_centre
         ct, st, cb, sb = np.cos(s / c_t), np.sin(s / c_t), np.cos(s / c_b), np.sin(s / c_b)
         pole_x, pole_y = c_t * st, c_t * (1.0 - ct)
         dx, dy = pole_x - self.pin_centre[0], pole_y - self.pin_centre[1]
-        k = self.spec.sign * self.pin_radius / np.hypot(dx, dy)
+        sr = self.spec.sign * self.pin_radius
+        dist = np.hypot(dx, dy)
+        k = sr / dist
         qx, qy = self.pin_centre[0] + k * dx - pole_x, self.pin_centre[1] + k * dy - pole_y
         cos_turn, sin_turn = cb * ct + sb * st, sb * ct - cb * st
-        out = np.empty(s.shape + (2,))
-        out[..., 0] = cos_turn * qx - sin_turn * qy + c_b * sb
-        out[..., 1] = sin_turn * qx + cos_turn * qy + c_b * (1.0 - cb) - c_b  # the blank frame's origin
-        return out
+
+        def turned(vx, vy, bx, by):
+            out = np.empty(s.shape + (2,))
+            out[..., 0] = cos_turn * vx - sin_turn * vy + bx
+            out[..., 1] = sin_turn * vx + cos_turn * vy + by
+            return out
+
+        p = turned(qx, qy, c_b * sb, c_b * (1.0 - cb) - c_b)  # the blank frame's origin is the disc centre
+        if not derivatives:
+            return p
+        nx, ny = dx / dist, dy / dist  # unit vector pin centre -> pole; the pole moves along (ct, st)
+        a = nx * ct + ny * st
+        mx, my = (ct - nx * a) / dist, (st - ny * a) / dist  # n'
+        c2x, c2y = -st / c_t, ct / c_t  # the pole's second derivative
+        b = mx * ct + my * st + nx * c2x + ny * c2y
+        m2x = (c2x - nx * b) / dist - 2.0 * mx * a / dist  # n''
+        m2y = (c2y - ny * b) / dist - 2.0 * my * a / dist
+        q1x, q1y = sr * mx - ct, sr * my - st
+        q2x, q2y = sr * m2x - c2x, sr * m2y - c2y
+        w = 1.0 / c_b - 1.0 / c_t
+        p1 = turned(q1x - w * qy, q1y + w * qx, cb, sb)
+        p2 = turned(q2x - 2.0 * w * q1y - w * w * qx, q2y + 2.0 * w * q1x - w * w * qy, -sb / c_b, cb / c_b)
+        return p, p1, p2
 
     def flank_rolls(self):
         """Roll intervals ``[(s0, s1), ...]`` of the envelope pieces kept in the half tooth (merged

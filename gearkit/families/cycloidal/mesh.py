@@ -85,16 +85,11 @@ class _Outline:
         x = self.rolls[idx].copy()
         lo, hi = self.bounds[idx, 0], self.bounds[idx, 1]
         span = hi - lo
-        # central differences on one step: the tangent to ~1e-10 (it fixes the foot), the second
-        # derivative to ~1e-4 (it only speeds Newton's step)
-        h = 1e-5 * span
         act = np.arange(len(q))
         for _ in range(40):
-            xa, qa, ha = x[act], q[act], h[act]
-            p = self.disc.at_roll(np.concatenate([xa - ha, xa, xa + ha])).reshape(3, len(xa), 2)
-            d1 = (p[2] - p[0]) / (2 * ha[:, None])
-            dd = (p[2] - 2 * p[1] + p[0]) / (ha * ha)[:, None]
-            r = p[1] - qa
+            xa, qa = x[act], q[act]
+            p, d1, dd = self.disc.at_roll(xa, derivatives=True)  # exact derivatives in the roll
+            r = p - qa
             f = np.einsum("ij,ij->i", r, d1)
             gn = np.einsum("ij,ij->i", d1, d1)
             x_new = np.clip(xa - f / np.maximum(gn + np.einsum("ij,ij->i", r, dd), 0.1 * gn), lo[act], hi[act])
