@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -73,10 +74,12 @@ class RollingMotion:
                 "a rack cannot generate a rack")
         require(self.blank_centre != self.tool_centre, "tool_centre", "the centrodes must differ")
 
-    @property
+    @cached_property
     def blank_offset(self) -> np.ndarray:
-        """Vector from the blank-frame origin to the pole at s = 0."""
-        return np.array([0.0, 0.0 if self.blank_centre is None else -self.blank_centre])
+        """Vector from the blank-frame origin to the pole at s = 0 (read-only; built once)."""
+        out = np.array([0.0, 0.0 if self.blank_centre is None else -self.blank_centre])
+        out.flags.writeable = False
+        return out
 
     def pose(self, s):
         """Tool-to-blank map at roll ``s``: ``q = rotate(p - shift, angle) + offset``.

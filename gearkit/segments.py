@@ -48,26 +48,25 @@ class Segment:
     reverse: bool = False
 
     def _primitive(self, u):
+        """Points and (unnormalised) tangents of the primitive at ``u``: ``(x, y)`` pairs of arrays
+        (a line's tangent is the same at every ``u``: scalars)."""
         d = self.data
         if self.kind == "line":
             x0, y0, x1, y1 = d
-            p = np.stack([x0 + u * (x1 - x0), y0 + u * (y1 - y0)], -1)
-            t = np.broadcast_to(np.array([x1 - x0, y1 - y0]), p.shape)
-        elif self.kind == "arc":
+            return (x0 + u * (x1 - x0), y0 + u * (y1 - y0)), (x1 - x0, y1 - y0)
+        if self.kind == "arc":
             cx, cy, r, a0, a1 = d
             a = a0 + u * (a1 - a0)
             c, s = np.cos(a), np.sin(a)
-            p = np.stack([cx + r * c, cy + r * s], -1)
             sign = 1.0 if a1 >= a0 else -1.0
-            t = sign * np.stack([-s, c], -1)
-        elif self.kind == "involute":
+            return (cx + r * c, cy + r * s), (sign * -s, sign * c)
+        if self.kind == "involute":
             cx, cy, rb, gamma, hand, t0, t1 = d
             tt = t0 + u * (t1 - t0)
             ang = gamma + hand * tt
             c, s = np.cos(ang), np.sin(ang)
-            p = np.stack([cx + rb * (c + hand * tt * s), cy + rb * (s - hand * tt * c)], -1)
             sign = 1.0 if t1 >= t0 else -1.0
-            t = sign * np.stack([c, s], -1)
+            return (cx + rb * (c + hand * tt * s), cy + rb * (s - hand * tt * c)), (sign * c, sign * s)
         elif self.kind == "roulette":
             from gearkit.curves import roulette
 
@@ -75,9 +74,8 @@ class Segment:
             p, t = roulette(s0 + u * (s1 - s0), kb, a, ratio, side=1.0 if s0 + s1 >= 0 else -1.0)
             if s1 < s0:
                 t = -t
-        else:  # pragma: no cover - constructor guards this
-            raise ValueError(f"unknown segment kind {self.kind!r}")
-        return p, t
+            return (p[..., 0], p[..., 1]), (t[..., 0], t[..., 1])
+        raise ValueError(f"unknown segment kind {self.kind!r}")  # pragma: no cover - constructor guards this
 
     def evaluate(self, u):
         """Points, unit tangents (walking direction) and unit outward normals at ``u``.
@@ -93,20 +91,21 @@ class Segment:
         u = np.asarray(u, dtype=float)
         if self.reverse:
             u = 1.0 - u
-        p0, t0 = self._primitive(u)
+        (px, py), (t0x, t0y) = self._primitive(u)
         a11, a12, a21, a22, b1, b2 = self.affine
-        p = np.empty(p0.shape)
-        p[..., 0] = a11 * p0[..., 0] + a12 * p0[..., 1] + b1
-        p[..., 1] = a21 * p0[..., 0] + a22 * p0[..., 1] + b2
-        tx = a11 * t0[..., 0] + a12 * t0[..., 1]
-        ty = a21 * t0[..., 0] + a22 * t0[..., 1]
+        shape = u.shape + (2,)
+        p = np.empty(shape)
+        p[..., 0] = a11 * px + a12 * py + b1
+        p[..., 1] = a21 * px + a22 * py + b2
+        tx = a11 * t0x + a12 * t0y
+        ty = a21 * t0x + a22 * t0y
         norm = np.hypot(tx, ty)
         if self.reverse:
             norm = -norm
-        t = np.empty(p0.shape)
+        t = np.empty(shape)
         t[..., 0] = tx / norm
         t[..., 1] = ty / norm
-        n = np.empty(p0.shape)
+        n = np.empty(shape)
         n[..., 0] = -t[..., 1]
         n[..., 1] = t[..., 0]
         return p, t, n
