@@ -131,7 +131,18 @@ def atomic_write(path, write) -> Path:
     directory = target.parent if str(target.parent) else Path(".")
     tmp = None
     try:
-        tmp = _private_file(directory, f".{target.name}.", ".part")
+        # a new private file (0600, 16 random hex digits), as the standard library's secure temporary
+        # file is made but without importing tempfile; its name is held before it exists, so an
+        # interrupt at any point leaves nothing behind
+        for _ in range(100):
+            tmp = os.path.join(directory, f".{target.name}.{os.urandom(8).hex()}.part")
+            try:
+                os.close(os.open(tmp, os.O_RDWR | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0), 0o600))
+                break
+            except FileExistsError:  # another file has that name: not ours to remove
+                tmp = None
+        else:
+            raise FileExistsError(f"no free temporary name in {str(directory)!r}")
         write(tmp)
         umask = os.umask(0)  # temporary files are private; the result gets the usual permissions
         os.umask(umask)
@@ -142,22 +153,6 @@ def atomic_write(path, write) -> Path:
             os.unlink(tmp)
         raise
     return target
-
-
-def _private_file(directory, prefix: str, suffix: str) -> str:
-    """Create a new empty file only this user can read (0600) in ``directory``, named
-    ``prefix + 16 random hex digits + suffix``, and return its path (the standard library's
-    secure temporary file, without importing ``tempfile``: a command writing one file pays
-    for no more)."""
-    for _ in range(100):
-        name = os.path.join(directory, f"{prefix}{os.urandom(8).hex()}{suffix}")
-        try:
-            fd = os.open(name, os.O_RDWR | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0), 0o600)
-        except FileExistsError:
-            continue
-        os.close(fd)
-        return name
-    raise FileExistsError(f"no free temporary name in {str(directory)!r}")
 
 
 def profile_format(path) -> str:
