@@ -130,7 +130,10 @@ def contact_ratio(mesh, phi, ev, shifts, contact_tol):
             out1, gout1 = np.where(hit, out1, x), np.where(hit, gout1, g)
         with np.errstate(invalid="ignore", divide="ignore"):
             cut = out1 - gout1 * (out1 - out2) / (gout1 - gout2)
-        cut = np.where(np.isfinite(cut) & ((cut - inside) * (cut - out1) <= 0), cut, 0.5 * (inside + out1))
+        # the last bracket holds the instant: an extrapolation a last bit beyond its inside end (the
+        # margin bends where the clearance meets round-off) stops there
+        cut = np.where(np.isfinite(cut), np.clip(cut, np.minimum(inside, out1), np.maximum(inside, out1)),
+                       0.5 * (inside + out1))
         total += float(np.sum(np.where(start_in, cut - phi[j], phi[j + 1] - cut)))
     return total / period
 

@@ -71,8 +71,8 @@ class Bounds:
         return -self.value[..., 1].min(axis=(1, 2))
 
 
-def _driver_fixed(mesh, k, t, sigma, theta):
-    p = mesh.driver.evaluate(k, t)
+def _driver_fixed(mesh, k, t, sigma, theta, exact=False):
+    p = mesh.driver.evaluate(k, t, exact)
     x, y = sigma * p[..., 0], p[..., 1]
     c, s = np.cos(theta), np.sin(theta)
     return np.stack([c * x - s * y, s * x + c * y], -1)
@@ -86,39 +86,51 @@ class _Task:
         self.k2 = np.full(len(phi), -1)  # the mate's last solution per row: the secant's first point
         self.t2 = np.zeros(len(phi))
         self.r2 = np.zeros(len(phi))
+        self.exact = False  # True: on the exact pieces even where the mesh has tables
 
     def rho(self, t, rows=slice(None)):
-        q = _driver_fixed(self.mesh, self.piece[rows], t, self.sigma[rows], self.theta[rows])
+        q = _driver_fixed(self.mesh, self.piece[rows], t, self.sigma[rows], self.theta[rows], self.exact)
         return self.mesh.to_mate(q, self.phi[rows])[0]
 
-    def value(self, t, rows=slice(None), tangent=False):
-        q = _driver_fixed(self.mesh, self.piece[rows], t, self.sigma[rows], self.theta[rows])
+    def value(self, t, rows=slice(None), tangent=False, exact=False):
+        exact = exact or self.exact
+        q = _driver_fixed(self.mesh, self.piece[rows], t, self.sigma[rows], self.theta[rows], exact)
         rho, u = self.mesh.to_mate(q, self.phi[rows])
-        w, k2, t2, tan2 = self.mesh.mate.exact(rho, (self.k2[rows], self.t2[rows], self.r2[rows]), tangent)
-        self.k2[rows], self.t2[rows], self.r2[rows] = k2, t2, rho
+        w, k2, t2, tan2 = self.mesh.mate.width(rho, (self.k2[rows], self.t2[rows], self.r2[rows]), tangent, exact)
+        if t2 is not None:
+            self.k2[rows], self.t2[rows], self.r2[rows] = k2, t2, rho
         return w - self.sb[rows] * u, q, rho, k2, tan2
 
 
 def _crossing(task, a, b):
-    """Parameter where the interval meets the mate's tip circle, on its finite side (Illinois)."""
+    """Parameter where the interval meets the mate's tip circle, on its finite side (Illinois).
+
+    Returns the bracket end on the finite side (``g <= 0``), converged to round-off: the iteration
+    stops once that end is within the mate's radial round-off of the tip circle or the bracket has
+    closed. (An exact zero at the new point ends the bracket there: it is on the finite side.)
+    """
     mate = task.mesh.mate
     ga = mate.outward * (task.rho(a) - mate.rho_tip)
     gb = mate.outward * (task.rho(b) - mate.rho_tip)
+    wa, wb = np.ones_like(ga), np.ones_like(gb)  # Illinois weights of the retained ends
     side = 0
     for _ in range(_CROSS_ITER):
         with np.errstate(divide="ignore", invalid="ignore"):
-            c = np.where(gb != ga, b - gb * (b - a) / (gb - ga), 0.5 * (a + b))
+            c = np.where(gb != ga, b - wb * gb * (b - a) / (wb * gb - wa * ga), 0.5 * (a + b))
         c = np.where(np.isfinite(c) & ((c - a) * (c - b) <= 0), c, 0.5 * (a + b))
         gc = mate.outward * (task.rho(c) - mate.rho_tip)
-        left = np.sign(gc) == np.sign(ga)
+        left = (np.sign(gc) == np.sign(ga)) & (gc != 0)
         a, ga, b, gb = (np.where(left, c, a), np.where(left, gc, ga),
                         np.where(left, b, c), np.where(left, gb, gc))
-        ga = np.where(~left & (side == -1), ga / 2, ga)
-        gb = np.where(left & (side == 1), gb / 2, gb)
+        wa = np.where(left, 1.0, np.where(side == -1, wa / 2, wa))
+        wb = np.where(~left, 1.0, np.where(side == 1, wb / 2, wb))
         side = np.where(left, 1, -1)
-        if np.all(np.abs(b - a) <= 1e-15 * np.maximum(1.0, np.abs(a))):
+        fin_a, fin_b = ga <= 0, gb <= 0
+        near = (fin_a & (-ga <= mate.noise)) | (fin_b & (-gb <= mate.noise))
+        if np.all(near | (np.abs(b - a) <= 1e-15 * np.maximum(1.0, np.abs(a)))):
             break
-    return np.where(ga <= 0, a, b)  # the end on the finite side (g <= 0)
+    # the end on the finite side (g <= 0); both (a zero): the nearer the tip circle
+    return np.where(gb <= 0, np.where((ga <= 0) & (ga > gb), a, b), a)
 
 
 def _minimise(task, a, b):
@@ -206,8 +218,9 @@ def _minimise(task, a, b):
     return best_v, best_t
 
 
-def _refine(mesh, phi, theta, sigma, sb, m, fa, fb):
-    """Exact minima of the bound function over polyline intervals ``m`` (one row each)."""
+def _refine(mesh, phi, theta, sigma, sb, m, fa, fb, half):
+    """Minima of the bound function over polyline intervals ``m`` (one row each), the smallest kept
+    per ``half`` (row indices ``sel``): on the tables, then the winners evaluated on the exact pieces."""
     drv = mesh.driver
     piece, a, b = drv.piece[m], drv.ta[m].copy(), drv.tb[m].copy()
     task = _Task(mesh, phi, theta, sigma, sb, piece)
@@ -217,31 +230,45 @@ def _refine(mesh, phi, theta, sigma, sb, m, fa, fb):
         rows = np.flatnonzero(cross)
         sub = _Task(mesh, phi[rows], theta[rows], sigma[rows], sb[rows], piece[rows])
         tc = _crossing(sub, a[rows], b[rows])
+        if mesh.tables:  # the crossing on the exact pieces, in a narrow bracket about the tables' one
+            sub.exact = True
+            span = 1e-6 * (b[rows] - a[rows])
+            tx = _crossing(sub, np.maximum(tc - span, a[rows]), np.minimum(tc + span, b[rows]))
+            tc = np.where(mesh.mate.outward * (sub.rho(tx) - mesh.mate.rho_tip) <= 0, tx, tc)
         a[rows] = np.where(fa[rows], a[rows], tc)
         b[rows] = np.where(fa[rows], tc, b[rows])
         at_tip[rows] = True
     value, t = _minimise(task, a, b)
+    order = np.lexsort((value, half))
+    first = np.ones(order.size, bool)
+    first[1:] = half[order][1:] != half[order][:-1]
+    sel = order[first]
+    phi, theta, sigma, sb, m, fa, fb = phi[sel], theta[sel], sigma[sel], sb[sel], m[sel], fa[sel], fb[sel]
+    piece, a, b, t, at_tip = piece[sel], a[sel], b[sel], t[sel], at_tip[sel]
+    task = _Task(mesh, phi, theta, sigma, sb, piece)
     corner2 = at_tip & (((t == b) & fa) | ((t == a) & fb))
-    # contact point, normal and arm
-    _, q, rho, k2, tan2 = task.value(t, tangent=True)
+    # contact value (exact), point, normal and arm
+    exact, q, rho, k2, tan2 = task.value(t, tangent=True, exact=True)
+    value = np.where(np.isfinite(exact), exact, value[sel])  # a tip crossing a last bit beyond the tip
     h = 1e-7
     ts = np.clip(t, h, 1 - h)
-    d = _driver_fixed(mesh, piece, ts + h, sigma, theta) - _driver_fixed(mesh, piece, ts - h, sigma, theta)
+    d = _driver_fixed(mesh, piece, ts + h, sigma, theta, True) - _driver_fixed(mesh, piece, ts - h, sigma, theta, True)
     normal = np.stack([-d[:, 1], d[:, 0]], -1)
     at_end = ((t <= drv.ta[m]) | (t >= drv.tb[m])) & ~corner2
     piece_end = at_end & ((t <= 0.0) | (t >= 1.0))
     corner1 = at_end & np.where(t <= drv.ta[m], drv.corner_end[m], drv.corner_end[m + 1])
     use_mate = piece_end & (k2 >= 0) & (np.linalg.norm(tan2, axis=-1) > 0)
     if use_mate.any():
-        delta = sb * value  # the mate's position at this contact (upper bound w - u; lower -(w + u))
-        n2 = _mate_direction(mesh, tan2, phi, delta)
-        normal = np.where(use_mate[:, None], np.stack([-n2[:, 1], n2[:, 0]], -1), normal)
+        at = np.flatnonzero(use_mate)
+        delta = sb[at] * value[at]  # the mate's position at this contact (upper bound w - u; lower -(w + u))
+        n2 = _mate_direction(mesh, tan2[at], phi[at], delta)
+        normal[at] = np.stack([-n2[:, 1], n2[:, 0]], -1)
     norm = np.linalg.norm(normal, axis=-1, keepdims=True)
     normal = np.divide(normal, norm, out=np.zeros_like(normal), where=norm > 0)
     vel = mesh.mate_velocity(q)
     dot = np.einsum("ij,ij->i", normal, vel)
     normal = np.where((sb * dot > 0)[:, None], -normal, normal)
-    return value, q, normal, np.abs(dot), piece, k2, rho, corner1, corner2
+    return sel, (value, q, normal, np.abs(dot), piece, k2, rho, corner1, corner2)
 
 
 def _mate_direction(mesh, tangent, phi, delta):
@@ -263,7 +290,7 @@ def solve(mesh, phi, contact_tol: float) -> Bounds:
         Every half that may come within this of the extreme bound is refined.
     """
     phi = np.atleast_1d(np.asarray(phi, dtype=float))
-    per_angle = len(mesh.offsets) * 4 * len(mesh.driver.points)
+    per_angle = len(mesh.offsets) * 4 * len(mesh.driver.points) // 2  # about half the halves are near
     step = max(1, _CHUNK // per_angle)
     parts = [_solve_chunk(mesh, phi[i:i + step], contact_tol) for i in range(0, len(phi), step)]
     if len(parts) == 1:
@@ -276,67 +303,63 @@ def _solve_chunk(mesh, phi, contact_tol) -> Bounds:
     arm_scale = mesh.arm_scale
     teeth, theta = mesh.teeth(phi)
     n, kk = teeth.shape
-    loc = np.stack([drv.points, drv.points * np.array([-1.0, 1.0])])  # (2, M1, 2)
-    c, s = np.cos(theta)[:, :, None, None], np.sin(theta)[:, :, None, None]
-    x, y = loc[None, None, :, :, 0], loc[None, None, :, :, 1]
-    q = np.stack([c * x - s * y, s * x + c * y], -1)  # (n, K, 2, M1, 2)
-    rho, u = mesh.to_mate(q, phi[:, None, None, None])
+    # only the driver halves with a sample inside the mate's tip circle are searched: the others
+    # are free at every sample (their bounds infinite, as the search would find them)
+    mid, reach = mesh.half_reach
+    near = np.abs(np.mod(theta[..., None] - mid + np.pi, 2 * np.pi) - np.pi) <= reach  # (n, K, 2)
+    rows = np.flatnonzero(near)
+    r_n, r_k, r_h = np.unravel_index(rows, near.shape)
+    sig = np.where(r_h == 0, 1.0, -1.0)[:, None]
+    th = theta[r_n, r_k][:, None]
+    c, s = np.cos(th), np.sin(th)
+    x, y = sig * drv.points[None, :, 0], drv.points[None, :, 1]
+    q = np.stack([c * x - s * y, s * x + c * y], -1)  # (A, M1, 2)
+    rho, u = mesh.to_mate(q, phi[r_n][:, None])
     w = mate.coarse(rho)
     sb = np.array([1.0, -1.0])
-    big_u = w[:, :, :, None, :] - sb[None, None, None, :, None] * u[:, :, :, None, :]  # (n, K, 2, 2, M1)
+    big_u = w[:, None, :] - sb[None, :, None] * u[:, None, :]  # (A, 2, M1)
     finite = np.isfinite(w)
-    cross = finite[..., :-1] != finite[..., 1:]  # (n, K, 2, M)
+    cross = finite[..., :-1] != finite[..., 1:]  # (A, M)
     with np.errstate(divide="ignore", invalid="ignore"):
         frac = np.clip((mate.rho_tip - rho[..., :-1]) / (rho[..., 1:] - rho[..., :-1]), 0.0, 1.0)
     du = np.mod(u[..., 1:] - u[..., :-1] + mesh.pitch2 / 2, mesh.pitch2) - mesh.pitch2 / 2  # across a wrap
     u_c = np.mod(u[..., :-1] + frac * du + mesh.pitch2 / 2, mesh.pitch2) - mesh.pitch2 / 2
-    big_c = np.where(cross[:, :, :, None, :], mate.w_tip - sb[None, None, None, :, None] * u_c[:, :, :, None, :],
-                     np.inf)
-    best = np.minimum(big_u.min(-1), big_c.min(-1))  # (n, K, 2, 2)
+    big_c = np.where(cross[:, None, :], mate.w_tip - sb[None, :, None] * u_c[:, None, :], np.inf)
+    best = np.minimum(big_u.min(-1), big_c.min(-1))  # (A, 2)
     # how far the exact function can dip below an interval's ends: the driver's chord deviation
     # plus the mate's bending over the chord, as a normal distance over the arm scale
     rho_mid = 0.5 * (rho[..., :-1] + rho[..., 1:])
     bend = mate.curvature(rho_mid)
     arm = mate.arm(rho)
     arm = np.minimum(np.minimum(arm[..., :-1], arm[..., 1:]), mate.arm(rho_mid))
-    dip = (mesh.tol + bend * drv.chord ** 2 / 8.0) / np.maximum(arm, 1e-12 * arm_scale)  # (n, K, 2, M)
+    dip = (mesh.tol + bend * drv.chord ** 2 / 8.0) / np.maximum(arm, 1e-12 * arm_scale)  # (A, M)
     if mate.crest:  # next to a rounded crest the bound falls like a square root: always look
         dip = np.where(cross, np.inf, dip)
-    glob = best.min(axis=(1, 2))  # (n, 2)
-    active = best - dip.max(-1)[..., None] <= glob[:, None, None, :] + contact_tol / arm_scale
+    glob = np.full((n, 2), np.inf)
+    np.minimum.at(glob, r_n, best)
+    active = best - dip.max(-1)[:, None] <= glob[r_n] + contact_tol / arm_scale
     ends = np.minimum(big_u[..., :-1], big_u[..., 1:])
-    reach = (best[..., None] + dip[:, :, :, None, :])
+    reach = best[..., None] + dip[:, None, :]
     pick = ((ends <= reach) | (big_c <= reach)) & active[..., None]
-    i_n, i_k, i_h, i_b, i_m = np.nonzero(pick)
-    value = best.copy()
-    exact = np.zeros(best.shape, bool)
-    point = np.full(best.shape + (2,), np.nan)
-    normal = np.full(best.shape + (2,), np.nan)
-    arm = np.full(best.shape, np.nan)
-    piece1 = np.full(best.shape, -1)
-    piece2 = np.full(best.shape, -1)
-    rho2 = np.full(best.shape, np.nan)
-    corner1 = np.zeros(best.shape, bool)
-    corner2 = np.zeros(best.shape, bool)
+    i_a, i_b, i_m = np.nonzero(pick)
+    i_n, i_k, i_h = r_n[i_a], r_k[i_a], r_h[i_a]
+    shape = (n, kk, 2, 2)
+    value = np.full(shape, np.inf)
+    value[r_n, r_k, r_h] = best
+    exact = np.zeros(shape, bool)
+    point = np.full(shape + (2,), np.nan)
+    normal = np.full(shape + (2,), np.nan)
+    arm = np.full(shape, np.nan)
+    piece1 = np.full(shape, -1)
+    piece2 = np.full(shape, -1)
+    rho2 = np.full(shape, np.nan)
+    corner1 = np.zeros(shape, bool)
+    corner2 = np.zeros(shape, bool)
     if i_n.size:
         sigma = np.where(i_h == 0, 1.0, -1.0)
-        res = _refine(mesh, phi[i_n], theta[i_n, i_k], sigma, sb[i_b], i_m,
-                      finite[i_n, i_k, i_h, i_m], finite[i_n, i_k, i_h, i_m + 1])
-        v = res[0]
-        half = ((i_n * kk + i_k) * 2 + i_h) * 2 + i_b
-        order = np.lexsort((v, half))
-        first = np.ones(order.size, bool)
-        first[1:] = half[order][1:] != half[order][:-1]
-        sel = order[first]
+        sel, res = _refine(mesh, phi[i_n], theta[i_n, i_k], sigma, sb[i_b], i_m, finite[i_a, i_m],
+                           finite[i_a, i_m + 1], i_a * 2 + i_b)
         at = (i_n[sel], i_k[sel], i_h[sel], i_b[sel])
-        value[at] = v[sel]
         exact[at] = True
-        point[at] = res[1][sel]
-        normal[at] = res[2][sel]
-        arm[at] = res[3][sel]
-        piece1[at] = res[4][sel]
-        piece2[at] = res[5][sel]
-        rho2[at] = res[6][sel]
-        corner1[at] = res[7][sel]
-        corner2[at] = res[8][sel]
+        value[at], point[at], normal[at], arm[at], piece1[at], piece2[at], rho2[at], corner1[at], corner2[at] = res
     return Bounds(phi, teeth, value, exact, point, normal, arm, piece1, piece2, rho2, corner1, corner2)

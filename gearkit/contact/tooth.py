@@ -86,6 +86,7 @@ class Boundary:
 
     def __init__(self, profile, tol: float):
         self.pieces = _pieces_of(profile)
+        self.table = None
         self.labels = tuple(pc.label for pc in self.pieces)
         joins = tuple(profile.half.joins) if len(profile.half.joins) == len(profile.half.pieces) - 1 else ()
         pts, kk, ta, tb, corner = [], [], [], [], [bool(getattr(profile.half, "pointed", False))]
@@ -106,8 +107,11 @@ class Boundary:
         #: chord length of every interval, mm
         self.chord = np.linalg.norm(np.diff(self.points, axis=0), axis=1)
 
-    def evaluate(self, k, t):
-        """Exact points (own frame, right half) of pieces ``k`` at parameters ``t``."""
+    def evaluate(self, k, t, exact: bool = False):
+        """Points (own frame, right half) of pieces ``k`` at parameters ``t``: exact, or from the
+        table (:class:`~gearkit.contact.table.CurveTable`) once the mesh has set one."""
+        if self.table is not None and not exact:
+            return self.table.evaluate(k, t)
         return evaluate_pieces(self.pieces, k, t)
 
 
@@ -124,6 +128,8 @@ class HalfWidth:
 
     def __init__(self, profile, pitch: float, coords, tol: float):
         self.pieces = _pieces_of(profile)
+        #: a :class:`~gearkit.contact.table.WidthTable` once the mesh has set one (see :meth:`width`)
+        self.table = None
         self.labels = tuple(pc.label for pc in self.pieces)
         self.pitch = float(pitch)
         self.coords = coords
@@ -145,6 +151,8 @@ class HalfWidth:
                                 "simulation needs a mate whose flank radius is monotone from tip to root; "
                                 "swap the gears")
         self.rho_tip, self.rho_root = float(rho_all[0]), float(rho_all[-1])
+        #: round-off of a radial coordinate (mm): where a crossing of the tip circle has converged
+        self.noise = 4e-16 * max(abs(self.rho_tip), abs(self.rho_root), 1.0)
         self.outward = 1.0 if self.rho_tip > self.rho_root else -1.0
         self.w_tip = self.pitch / 2 - float(rows[0][3][0])
         self.w_root = self.pitch / 2 - float(rows[-1][3][-1])
@@ -312,6 +320,13 @@ class HalfWidth:
                 tan[inside] = np.divide(d, norm, out=np.zeros_like(d), where=norm > 0)
         return (w.reshape(shape), piece.reshape(shape), t_out.reshape(shape),
                 None if tan is None else tan.reshape(shape + (2,)))
+
+    def width(self, rho, guess=None, tangent=False, exact=False):
+        """:meth:`exact`, or the table's ``w`` once the mesh has set one (``t`` then None)."""
+        if self.table is None or exact:
+            return self.exact(rho, guess, tangent)
+        w, piece, tan = self.table.width(rho, tangent)
+        return w, piece, None, tan
 
     def arm(self, rho):
         """Estimated arm (mm; for a rack the normal's x component) of the flank's normal about the mate's

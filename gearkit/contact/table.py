@@ -1,0 +1,256 @@
+"""Tables of the exact tooth pieces: every flank evaluated once, then cheap anywhere.
+
+The meshing simulation evaluates both teeth at every driver angle, but the teeth never change:
+every tooth is a turned copy of one half tooth. So each piece is evaluated once, densely, and
+represented by piecewise polynomials, and every step of the simulation evaluates those
+(a handful of multiply-adds per point, all pieces in one vectorised call) instead of the exact
+pieces (an envelope solve, one call per piece).
+
+* :class:`CurveTable` — a profile's pieces ``t -> (x, y)``: on each sub-interval the polynomial
+  interpolating the exact piece at ``DEGREE + 1`` Chebyshev nodes.
+* :class:`WidthTable` — the mate's half space width ``w(rho)`` (:class:`~gearkit.contact.tooth.HalfWidth`)
+  on the same kind of sub-intervals, in ``rho`` or, next to a stationary end where ``w`` has a
+  square-root behaviour, in ``sqrt(|rho - end|)``, where it is smooth.
+
+**Accuracy.** A sub-interval is accepted when its polynomial agrees with the exact piece (the
+exact inversion for ``w``) within ``tol`` at ``DEGREE + 2`` check points between its nodes and at
+both ends; otherwise it is halved. ``tol`` defaults to :data:`TABLE_TOL` of the outer radius
+(1e-12: a few hundred units in the last place, three orders below the simulation's ``EXACT``
+accuracy); the deviation achieved is measured and kept (``achieved``, mm). An interval that cannot
+reach ``tol`` (halving no longer halves the error: the exact piece's own round-off, or a singular
+end such as a square-root one; or ``MAX_HALVINGS`` are spent) is left to the exact piece: points
+there are evaluated exactly. The simulation evaluates its final contacts on the exact pieces
+(``exact=True``), so what it reports does not depend on the tables.
+
+Examples
+--------
+>>> from gearkit.families.involute import GearSpec, tooth_profile
+>>> prof = tooth_profile(GearSpec(20, 1.0))
+>>> table = CurveTable(prof.half.pieces, 1e-12 * 11.0)
+>>> k, t = np.array([1, 1]), np.array([0.25, 0.75])
+>>> bool(np.abs(table.evaluate(k, t) - prof.half.pieces[1](t)).max() <= table.achieved <= 1.1e-11)
+True
+"""
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["CurveTable", "DEGREE", "TABLE_TOL", "WidthTable"]
+
+#: degree of the interpolating polynomials
+DEGREE = 9
+#: default accuracy of a table, relative to the outer radius (mm per mm)
+TABLE_TOL = 1e-12
+#: most halvings of a starting sub-interval before a table accepts what it measured
+MAX_HALVINGS = 16
+
+_NODES = np.cos(np.pi * (np.arange(DEGREE + 1) + 0.5) / (DEGREE + 1))[::-1]  # Chebyshev nodes in [-1, 1]
+_CHECK = np.cos(np.pi * np.arange(DEGREE + 2) / (DEGREE + 1))[::-1]  # extrema of T_{D+1}: ends included
+_VANDER_INV = np.linalg.inv(np.vander(_NODES, DEGREE + 1, increasing=True))
+
+
+def _fit(values):
+    """Monomial coefficients in ``s in [-1, 1]`` of the interpolants of ``values`` ``(n, D+1, c)``."""
+    return np.einsum("ij,njc->nic", _VANDER_INV, values)
+
+
+def _horner(coef, s):
+    """``sum_i coef[:, i] s^i`` for rows of ``coef`` ``(n, D+1, c)`` at ``s`` ``(n,)``: ``(n, c)``."""
+    acc = coef[:, -1].copy()
+    s = s[:, None]
+    for i in range(coef.shape[1] - 2, -1, -1):
+        acc *= s
+        acc += coef[:, i]
+    return acc
+
+
+def _gathered(coef, j, s):
+    """:func:`_horner` of sub-intervals ``j`` from coefficients stored ``(c, D+1, J)``: a list of ``c``
+    flat arrays (one component each: flat arrays are the fastest for numpy)."""
+    out = []
+    for comp in coef:
+        acc = comp[-1][j]
+        for i in range(len(comp) - 2, -1, -1):
+            acc *= s
+            acc += comp[i][j]
+        out.append(acc)
+    return out
+
+
+def _build(evaluate, rows, a, b, tol, scale=None):
+    """Fit ``evaluate(rows, x) -> (n, c)`` on intervals ``[a, b]`` (``rows``: the caller's index of each).
+
+    The intervals are halved until every one's polynomial agrees with ``evaluate`` within ``tol``
+    (``scale``: per-check-point weights turning the difference into a length). Returns the accepted
+    ``(rows, a, b, coef, error)``, sorted by row and start.
+    """
+    done = []
+    parent = np.full(rows.size, np.inf)
+    for depth in range(MAX_HALVINGS + 1):
+        if rows.size == 0:
+            break
+        mid, half = 0.5 * (a + b), 0.5 * (b - a)
+        x_nodes = mid[:, None] + half[:, None] * _NODES[None, :]
+        x_check = mid[:, None] + half[:, None] * _CHECK[None, :]
+        x_check[:, 0], x_check[:, -1] = a, b
+        nn, nc = x_nodes.shape[1], x_check.shape[1]
+        r_all = np.concatenate([np.repeat(rows, nn), np.repeat(rows, nc)])
+        vals = evaluate(r_all, np.concatenate([x_nodes.ravel(), x_check.ravel()]))
+        c = vals.shape[-1]
+        coef = _fit(vals[:rows.size * nn].reshape(rows.size, nn, c))
+        exact = vals[rows.size * nn:].reshape(rows.size, nc, c)
+        approx = np.stack([_horner(coef, np.full(rows.size, s)) for s in _CHECK], 1)
+        diff = np.abs(approx - exact)
+        if scale is not None:
+            diff = diff * scale(r_all[rows.size * nn:], x_check.ravel()).reshape(rows.size, nc, 1)
+        err = np.nan_to_num(diff.max(axis=(1, 2)), nan=np.inf)
+        # accepted: within tol; or halving no longer pays (the exact piece's round-off, a singular
+        # end): then the sub-interval is left to the exact piece (error inf)
+        stall = (err > 0.5 * parent) | (depth == MAX_HALVINGS)
+        ok = (err <= tol) | stall
+        kept = np.where(err <= tol, err, np.inf)
+        done.append((rows[ok], a[ok], b[ok], coef[ok], kept[ok]))
+        rows, a, b = np.repeat(rows[~ok], 2), np.ravel(np.column_stack([a[~ok], mid[~ok]])), \
+            np.ravel(np.column_stack([mid[~ok], b[~ok]]))
+        parent = np.repeat(err[~ok], 2)
+    r, a, b, coef, err = (np.concatenate([d[i] for d in done]) for i in range(5))
+    order = np.lexsort((a, r))
+    return r[order], a[order], b[order], coef[order], err[order]
+
+
+class CurveTable:
+    """Piecewise polynomial copies of ``pieces`` (callables ``t in [0, 1] -> (n, 2)``) within ``tol`` (mm).
+
+    Attributes
+    ----------
+    achieved : float, mm, the largest deviation measured at the check points
+    intervals : int, sub-intervals over all pieces
+    """
+
+    def __init__(self, pieces, tol: float, start: int = 4):
+        self.pieces = tuple(pieces)
+        n = len(self.pieces)
+
+        def exact(rows, t):
+            out = np.empty(t.shape + (2,))
+            for k in range(n):
+                sel = rows == k
+                if sel.any():
+                    out[sel] = self.pieces[k](t[sel])
+            return out
+
+        k0 = np.repeat(np.arange(n), start)
+        frac = np.tile(np.arange(start + 1) / start, n).reshape(n, start + 1)
+        lo, hi = frac[:, :-1].ravel(), frac[:, 1:].ravel()
+        k, a, b, self._coef, err = _build(exact, k0, lo, hi, tol)
+        self._exact_piece = exact
+        self._fallback = ~np.isfinite(err)
+        self.achieved = float(err[~self._fallback].max(initial=0.0))
+        self.intervals = len(k)
+        self._key = 2.0 * k + a  # pieces two apart: t in [0, 1] never reaches the next piece's key
+        self._a, self._inv = a, 2.0 / (b - a)
+        self._dcoef = np.ascontiguousarray((self._coef[:, 1:] * np.arange(1, DEGREE + 1)[None, :, None]).transpose(2, 1, 0))
+        self._coef = np.ascontiguousarray(self._coef.transpose(2, 1, 0))
+
+    def _locate(self, k, t):
+        j = np.searchsorted(self._key, 2.0 * k + t, side="right") - 1
+        j = np.clip(j, 0, len(self._key) - 1)
+        return j, (t - self._a[j]) * self._inv[j] - 1.0
+
+    def evaluate(self, k, t, derivative: bool = False, exact: bool = False):
+        """Points ``(..., 2)`` of pieces ``k`` at ``t`` (and ``dp/dt`` with ``derivative``); ``exact``: on
+        the exact pieces (so are points in a sub-interval left to them)."""
+        k = np.asarray(k)
+        t = np.asarray(t, dtype=float)
+        shape = t.shape
+        kf, tf = np.broadcast_to(k, shape).ravel(), t.ravel()
+        if exact:
+            return self._exact_piece(kf, tf).reshape(shape + (2,))
+        j, s = self._locate(kf, tf)
+        p = np.stack(_gathered(self._coef, j, s), -1)
+        slow = np.flatnonzero(self._fallback[j])
+        if slow.size:
+            p[slow] = self._exact_piece(kf[slow], tf[slow])
+        p = p.reshape(shape + (2,))
+        if not derivative:
+            return p
+        inv = self._inv[j]
+        d = np.stack([c * inv for c in _gathered(self._dcoef, j, s)], -1).reshape(shape + (2,))
+        return p, d
+
+
+class WidthTable:
+    """``w(rho)`` of a :class:`~gearkit.contact.tooth.HalfWidth` as piecewise polynomials within ``tol``.
+
+    The sub-intervals start from the half width's own table (one piece each, ordered by ``rho``);
+    next to a stationary end they are in ``x = sign(rho - end) sqrt(|rho - end|)``. The deviation
+    is measured as a length: ``w`` times the radial scale (``|rho|`` for a gear, 1 for a rack).
+    """
+
+    def __init__(self, half, tol: float):
+        self.half = half
+        anchor = half._anchor
+        self._grazing = np.isfinite(anchor)
+        self._anchor = np.where(self._grazing, anchor, 0.0)
+        polar = half.root_scale != 1.0
+        x0, x1 = self._x(np.arange(len(anchor)), half._r0), self._x(np.arange(len(anchor)), half._r1)
+
+        def rho_of(rows, x):
+            return np.where(self._grazing[rows], self._anchor[rows] + np.sign(x) * x * x, x)
+
+        def exact(rows, x):
+            w, piece, _, _ = half.exact(rho_of(rows, x))
+            return w[:, None]
+
+        def scale(rows, x):
+            return np.abs(rho_of(rows, x)) if polar else np.ones(len(rows))
+
+        rows, a, b, coef, err = _build(exact, np.arange(len(anchor)), x0, x1, tol, scale)
+        self._fallback = ~np.isfinite(err)
+        self.achieved = float(err[~self._fallback].max(initial=0.0))
+        self.intervals = len(rows)
+        self._row, self._a, self._b, self._inv = rows, a, b, 2.0 / (b - a)
+        self._coef = np.ascontiguousarray(coef.transpose(2, 1, 0))
+        self._dcoef = np.ascontiguousarray((coef[:, 1:] * np.arange(1, DEGREE + 1)[None, :, None]).transpose(2, 1, 0))
+        self._piece = half._k[rows]
+        # sub-interval starts in rho, for the lookup (increasing, like the half width's table)
+        self._r_start = np.where(self._grazing[rows], self._anchor[rows] + np.sign(a) * a * a, a)
+        self._polar = polar
+
+    def _x(self, rows, rho):
+        d = rho - self._anchor[rows]
+        return np.where(self._grazing[rows], np.sign(d) * np.sqrt(np.abs(d)), rho)
+
+    def width(self, rho, tangent: bool = False):
+        """``w``, the piece (-1 beyond the tip, -2 inside the root circle) and, with ``tangent``, the
+        flank's unit tangent in the mate frame (zero off the flank), at ``rho`` (float64 array)."""
+        half = self.half
+        rho = np.asarray(rho, dtype=float)
+        shape = rho.shape
+        rho = rho.ravel()
+        j = np.clip(np.searchsorted(self._r_start, rho, side="right") - 1, 0, len(self._r_start) - 1)
+        row = self._row[j]
+        x = self._x(row, rho)
+        s = np.clip((x - self._a[j]) * self._inv[j] - 1.0, -1.0, 1.0)
+        w = _gathered(self._coef, j, s)[0]
+        slow = np.flatnonzero(self._fallback[j])
+        if slow.size:
+            w[slow] = half.exact(rho[slow])[0]
+        body, free = half._body(rho), half.free(rho)
+        w = np.where(body, half._body_width(rho), np.where(free, np.inf, w))
+        piece = np.where(body, -2, np.where(free, -1, self._piece[j]))
+        if not tangent:
+            return w.reshape(shape), piece.reshape(shape), None
+        dw = _gathered(self._dcoef, j, s)[0] * self._inv[j]  # dw/dx
+        drho = np.where(self._grazing[row], 2.0 * np.abs(x), 1.0)  # drho/dx
+        if self._polar:  # point = rho (sin psi, cos psi), psi = P/2 - w
+            psi = half.pitch / 2 - np.where(np.isfinite(w), w, 0.0)
+            e_r = np.stack([np.sin(psi), np.cos(psi)], -1)
+            e_p = np.stack([np.cos(psi), -np.sin(psi)], -1)
+            tan = drho[:, None] * e_r - (rho * dw)[:, None] * e_p
+        else:  # point = (psi, rho)
+            tan = np.stack([-dw, drho], -1)
+        tan = np.where((body | free)[:, None], 0.0, tan)
+        norm = np.linalg.norm(tan, axis=-1, keepdims=True)
+        tan = np.divide(tan, norm, out=np.zeros_like(tan), where=norm > 0)
+        return w.reshape(shape), piece.reshape(shape), tan.reshape(shape + (2,))

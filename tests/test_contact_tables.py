@@ -1,0 +1,101 @@
+"""The contact simulation on tables of the teeth agrees with the simulation on the exact pieces.
+
+``Mesh(..., tables=True)`` (the default) searches and minimises on piecewise polynomial copies of
+both teeth (:mod:`gearkit.contact.table`) and evaluates each final contact on the exact pieces;
+``tables=False`` evaluates the exact pieces throughout (the path before the tables). Oracle: that
+exact path, and the formula contact ratio.
+
+Named tolerances (derived, not measured):
+
+* ``mesh.noise / mesh.arm_scale`` (rad; mm for a rack): the mesh's own statement of how well a
+  contact's position is known (round-off along the normal over the smallest arm). Both paths
+  evaluate the final contact on the same exact pieces at minimisers that agree to Brent's tolerance
+  (1e-8 of a parameter, a value change of its square), so their TE and backlash agree within it.
+* ``RATIO = 1e-6``: the simulated contact ratio's own resolution (its step-count independence test).
+* ``LOCATE = 1e-6 m``: where along the flanks a contact lies (the argument of a minimum: known to
+  about the square root of round-off), as in the contact tests.
+* ``TABLE_TOL`` of the outer radius: the tables' stated accuracy, checked against the exact pieces
+  at random points.
+"""
+import math
+
+import numpy as np
+import pytest
+
+from gearkit.contact import Mesh, pair_mesh, simulate
+from gearkit.contact.loaded import loaded_cycle
+from gearkit.contact.table import TABLE_TOL
+from gearkit.families.involute import Modification, ShaperCutter
+from gearkit.pair import PairSpec, pair_geometry
+
+RATIO = 1e-6
+LOCATE = 1e-6
+#: a medium-worn shaper (x_c = 0.3), as the internal contact tests (digest 3.2)
+SHAPER = ShaperCutter(20, addendum=1.3)
+
+PAIRS = {
+    "standard 20/40 m=2": (PairSpec(20, 40, 2.0), {}),
+    "shifted 18/41": (PairSpec(18, 41, 1.0, 0.3, -0.1), {}),
+    "undercut 12/24": (PairSpec(12, 24, 1.0), {}),
+    "backlash 20/40": (PairSpec(20, 40, 1.0, center_distance=30.05), {}),
+    "rack, x = 0.2": (PairSpec(20, None, 1.0, 0.2, kind="rack"), {}),
+    "internal 46/49 x2 = 0.52": (PairSpec(46, 49, 1.0, 0.0, 0.52, kind="internal", shift_convention="cutter",
+                                          tool1=SHAPER, tool2=SHAPER), {}),
+    "helical 20/40, 6 slices": (PairSpec(20, 40, 2.0, helix_angle_deg=15.0, face_width=20.0),
+                                {"face_width": 20.0, "helix_angle_deg": 15.0, "slices": 6}),
+}
+
+#: pairs whose simulated contact ratio is the formula's (the contact tests' oracle)
+FORMULA = ("standard 20/40 m=2", "shifted 18/41", "internal 46/49 x2 = 0.52", "helical 20/40, 6 slices")
+
+
+def _exact(mesh):
+    return Mesh(mesh.gear1, mesh.gear2, mesh.a, tables=False)
+
+
+@pytest.mark.parametrize("name", sorted(PAIRS))
+def test_tables_agree_with_the_exact_pieces(name):
+    spec, kw = PAIRS[name]
+    mesh = pair_mesh(spec)
+    fast, exact = simulate(mesh, 64, **kw), simulate(_exact(mesh), 64, **kw)
+    position = mesh.noise / mesh.arm_scale
+    assert np.abs(fast.transmission_error - exact.transmission_error).max() <= position
+    r_w2 = 1.0 if mesh.kind == "rack" else mesh.pitch_radii[1]
+    assert abs(fast.backlash - exact.backlash) <= position * r_w2
+    assert fast.contact_ratio == pytest.approx(exact.contact_ratio, abs=RATIO)
+    assert fast.total_contact_ratio == pytest.approx(exact.total_contact_ratio, abs=RATIO)
+    assert np.array_equal(fast.pairs_in_contact, exact.pairs_in_contact)
+    assert fast.interference.found == exact.interference.found
+    assert np.abs(fast.contacts["point"] - exact.contacts["point"]).max() <= LOCATE * spec.module
+    if name in FORMULA:  # the formula, on the fast path (undercut shortens the 12/24 pair's)
+        assert fast.contact_ratio == pytest.approx(pair_geometry(spec).contact_ratio, abs=1e-3)
+
+
+def test_tables_are_within_their_stated_accuracy():
+    mesh = pair_mesh(PairSpec(20, 40, 2.0))
+    outer = max(abs(mesh.mate.rho_tip), abs(mesh.mate.rho_root), mesh.driver.radius_range[1])
+    assert 0 < mesh.table_deviation <= TABLE_TOL * outer
+    rng = np.random.default_rng(7)
+    k = rng.integers(0, len(mesh.driver.pieces), 20000)
+    t = rng.random(20000)
+    drv = mesh.driver
+    assert np.abs(drv.evaluate(k, t) - drv.evaluate(k, t, exact=True)).max() <= 2 * TABLE_TOL * outer
+    rho = rng.uniform(mesh.mate.rho_root, mesh.mate.rho_tip, 20000)
+    w_fast = mesh.mate.width(rho)[0]
+    w_exact = mesh.mate.width(rho, exact=True)[0]
+    assert (np.abs(w_fast - w_exact) * rho).max() <= 2 * TABLE_TOL * outer
+
+
+def test_loaded_analysis_agrees_with_the_exact_pieces():
+    """The loaded cycle reads the rigid kernel's gaps: a tip-relieved pinion under 100 N/mm."""
+    spec = PairSpec(20, 40, 2.0, face_width=20.0)
+    mods = (Modification(tip_relief=0.01, tip_relief_diameter=42.0), None)
+    mesh = pair_mesh(spec, modifications=mods)
+    args = dict(face_width=20.0, zeta=np.array([10.0]), shifts=np.zeros(1), lead=np.zeros(1), steps=64)
+    fast, exact = loaded_cycle(mesh, 40.0, **args), loaded_cycle(_exact(mesh), 40.0, **args)
+    position = mesh.noise / mesh.arm_scale
+    assert np.abs(fast.rigid_transmission_error - exact.rigid_transmission_error).max() <= position
+    # the loads solve a linear system on those gaps: agreement scaled by the mesh stiffness
+    assert np.abs(fast.transmission_error - exact.transmission_error).max() <= 10 * position
+    assert fast.contact_ratio_loaded == pytest.approx(exact.contact_ratio_loaded, abs=RATIO)
+    assert math.isclose(fast.mesh_stiffness_mean, exact.mesh_stiffness_mean, rel_tol=1e-9)
