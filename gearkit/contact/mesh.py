@@ -187,14 +187,7 @@ class Mesh:
     def _window(self):
         """Driver teeth that can reach the mate's teeth, as offsets from the tooth nearest +y."""
         r_lo, r_hi = self.driver.radius_range
-        r = np.linspace(r_lo, r_hi, 257)
-        rt = self.mate.rho_tip
-        if self.kind == "rack":
-            c = (self.a - rt) / r
-        elif self.kind == "internal":
-            c = (rt ** 2 - r ** 2 - self.a ** 2) / (2 * self.a * r)
-        else:
-            c = (r ** 2 + self.a ** 2 - rt ** 2) / (2 * self.a * r)
+        c = self._reach_cosine(np.linspace(r_lo, r_hi, 257))
         if not (c <= 1.0).any():
             raise SpecError("center_distance", f"a = {self.a:g} mm: the teeth of the two gears do not reach "
                             "each other")
@@ -203,6 +196,16 @@ class Mesh:
         if 2 * half + 1 >= self.z1:
             return np.arange(self.z1) - self.z1 // 2
         return np.arange(-half, half + 1)
+
+    def _reach_cosine(self, r):
+        """A driver point at radius ``r`` lies inside the mate's tip circle where the cosine of its polar
+        angle (from +y) is at least this (the cosine rule; > 1: never)."""
+        rt = self.mate.rho_tip
+        if self.kind == "rack":
+            return (self.a - rt) / r
+        if self.kind == "internal":
+            return (rt ** 2 - r ** 2 - self.a ** 2) / (2 * self.a * r)
+        return (r ** 2 + self.a ** 2 - rt ** 2) / (2 * self.a * r)
 
     def _half_reach(self):
         """Frame angles ``theta`` (centre ``(2,)`` and half width ``(2,)``, right and left half, rad)
@@ -214,15 +217,8 @@ class Mesh:
         ``alpha``. The hull of these intervals over the samples, widened by a round-off margin.
         """
         p = self.driver.points
-        r = np.hypot(p[:, 0], p[:, 1])
-        rt = self.mate.rho_tip
         with np.errstate(divide="ignore", invalid="ignore"):
-            if self.kind == "rack":
-                c = (self.a - rt) / r
-            elif self.kind == "internal":
-                c = (rt ** 2 - r ** 2 - self.a ** 2) / (2 * self.a * r)
-            else:
-                c = (r ** 2 + self.a ** 2 - rt ** 2) / (2 * self.a * r)
+            c = self._reach_cosine(np.hypot(p[:, 0], p[:, 1]))
         mids, halves = [], []
         for sign in (1.0, -1.0):
             alpha = np.arctan2(sign * p[:, 0], p[:, 1])

@@ -2,8 +2,8 @@
 
 Both come straight from a profile's exact half tooth (``profile.half.pieces``: labelled curves
 ``t in [0, 1] -> points``, from the tip at the tooth centre line to the space centre, tooth 0
-centred on +y). Nothing is re-fitted: every value the simulation reports is evaluated on
-those pieces.
+centred on +y). Every value the simulation reports is evaluated on those pieces; the search
+for it may run on their tables (``table``, set by the mesh: :mod:`gearkit.contact.table`).
 
 * :class:`Boundary` (the driver, gear 1): the pieces and a search polyline through them
   (every chord within ``tol``), as intervals ``[ta, tb]`` of one piece between consecutive
