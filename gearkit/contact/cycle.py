@@ -19,12 +19,15 @@ _EXTRAPOLATE = 8
 
 
 class Cycle:
-    """Bounds at driver angles ``phi`` (n,) over the slice shifts (S,), reduced per angle."""
+    """Bounds at driver angles ``phi`` (n,) over the slice shifts (S,), reduced per angle (the working
+    bound only with ``working_only``: the reverse one then keeps its search values)."""
 
-    def __init__(self, mesh, phi, shifts, contact_tol):
+    def __init__(self, mesh, phi, shifts, contact_tol, working_only=False):
         self.phi = np.asarray(phi, dtype=float)
         n, s = len(self.phi), len(shifts)
-        b = solve(mesh, (self.phi[:, None] + shifts[None, :]).ravel(), contact_tol)
+        # ``working_only``: the reverse bound keeps its search values (enough for :meth:`margin`)
+        bounds = ((0,) if mesh.working == 1 else (1,)) if working_only else (0, 1)
+        b = solve(mesh, (self.phi[:, None] + shifts[None, :]).ravel(), contact_tol, bounds)
         kk = b.teeth.shape[1]
 
         def grid(a):
@@ -123,7 +126,7 @@ def contact_ratio(mesh, phi, ev, shifts, contact_tol):
                 x = out1 - gout1 * (out1 - out2) / (gout1 - gout2)
             ok = np.isfinite(x) & ((x - inside) * (x - out1) < 0)
             x = np.where(ok, x, 0.5 * (inside + out1))
-            g = Cycle(mesh, x, shifts, contact_tol).margin(pid)
+            g = Cycle(mesh, x, shifts, contact_tol, working_only=True).margin(pid)
             hit = g <= 0
             inside = np.where(hit, x, inside)
             out2, gout2 = np.where(hit, out2, out1), np.where(hit, gout2, gout1)

@@ -153,16 +153,20 @@ class Mesh:
         radial coordinate ``rho`` and the offset ``u`` from the nearest space centre (mate units,
         at ``delta = 0``)."""
         p = np.asarray(points, dtype=float)
+        return self.to_mate_xy(p[..., 0], p[..., 1], phi)
+
+    def to_mate_xy(self, x, y, phi):
+        """:meth:`to_mate` of points given by their coordinates ``x``, ``y`` (arrays of one shape)."""
         phi = np.asarray(phi, dtype=float)
         if self.kind == "rack":
-            rho = self.a - p[..., 1]
-            psi = self.beta0 + self.ratio * phi - p[..., 0]
+            rho = self.a - y
+            psi = self.beta0 + self.ratio * phi - x
         else:
             beta = self.beta0 + self.ratio * phi
             c, s = np.cos(beta), np.sin(beta)
-            x, y = p[..., 0] - self.centre2[0], p[..., 1] - self.centre2[1]
-            q = np.stack([c * x + s * y, -s * x + c * y], -1)
-            rho, psi = polar_from_y(q)
+            x, y = x - self.centre2[0], y - self.centre2[1]
+            qx, qy = c * x + s * y, c * y - s * x
+            rho, psi = np.hypot(qx, qy), np.arctan2(qx, qy)
         return rho, np.mod(psi, self.pitch2) - self.pitch2 / 2.0
 
     def mate_velocity(self, points):
@@ -214,7 +218,10 @@ class Mesh:
         A sample at radius ``r`` and own polar angle ``alpha`` (from +y towards +x) lies at polar angle
         ``alpha - theta`` once turned, and inside the tip circle where the cosine of that angle is at
         least ``c(r)`` (the cosine rule, as in :meth:`_window`): ``theta`` within ``arccos c`` of
-        ``alpha``. The hull of these intervals over the samples, widened by a round-off margin.
+        ``alpha``. The hull of these intervals over the samples, widened by a round-off margin. Also
+        the number of leading samples (tip first) the search needs: up to the last one that can lie
+        inside the tip circle, and its neighbour (the samples beyond are free at every angle, and so
+        are the intervals between them).
         """
         p = self.driver.points
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -222,7 +229,7 @@ class Mesh:
         mids, halves = [], []
         for sign in (1.0, -1.0):
             alpha = np.arctan2(sign * p[:, 0], p[:, 1])
-            ok = ~(c > 1.0)  # nan (r = 0) counts as reaching
+            ok = ~(c > 1.0 + 1e-9)  # nan (r = 0) counts as reaching
             if not ok.any():
                 mids.append(0.0)
                 halves.append(-1.0)
@@ -231,7 +238,9 @@ class Mesh:
             lo, hi = float(np.min(alpha[ok] - span)), float(np.max(alpha[ok] + span))
             mids.append(0.5 * (lo + hi))
             halves.append(np.pi + 1.0 if hi - lo >= 2 * np.pi - 1e-6 else 0.5 * (hi - lo) + 1e-9)
-        return np.array(mids), np.array(halves)
+        reach = np.flatnonzero(~(c > 1.0 + 1e-9))
+        samples = min(len(p), int(reach[-1]) + 2) if reach.size else 2
+        return np.array(mids), np.array(halves), samples
 
     def root_clearances(self):
         """Radial clearances (mm) of the driver's tip circle to the mate's root circle and of the mate's

@@ -71,11 +71,12 @@ class Bounds:
         return -self.value[..., 1].min(axis=(1, 2))
 
 
-def _driver_fixed(mesh, k, t, sigma, theta, exact=False):
+def _driver_xy(mesh, k, t, sigma, theta, exact=False):
+    """Fixed-frame coordinates ``x``, ``y`` of driver pieces ``k`` at ``t`` (half ``sigma``, turned by ``theta``)."""
     p = mesh.driver.evaluate(k, t, exact)
     x, y = sigma * p[..., 0], p[..., 1]
     c, s = np.cos(theta), np.sin(theta)
-    return np.stack([c * x - s * y, s * x + c * y], -1)
+    return c * x - s * y, s * x + c * y
 
 
 class _Task:
@@ -89,13 +90,14 @@ class _Task:
         self.exact = False  # True: on the exact pieces even where the mesh has tables
 
     def rho(self, t, rows=slice(None)):
-        q = _driver_fixed(self.mesh, self.piece[rows], t, self.sigma[rows], self.theta[rows], self.exact)
-        return self.mesh.to_mate(q, self.phi[rows])[0]
+        x, y = _driver_xy(self.mesh, self.piece[rows], t, self.sigma[rows], self.theta[rows], self.exact)
+        return self.mesh.to_mate_xy(x, y, self.phi[rows])[0]
 
     def value(self, t, rows=slice(None), tangent=False, exact=False):
         exact = exact or self.exact
-        q = _driver_fixed(self.mesh, self.piece[rows], t, self.sigma[rows], self.theta[rows], exact)
-        rho, u = self.mesh.to_mate(q, self.phi[rows])
+        x, y = _driver_xy(self.mesh, self.piece[rows], t, self.sigma[rows], self.theta[rows], exact)
+        rho, u = self.mesh.to_mate_xy(x, y, self.phi[rows])
+        q = np.stack([x, y], -1) if tangent else None
         w, k2, t2, tan2 = self.mesh.mate.width(rho, (self.k2[rows], self.t2[rows], self.r2[rows]), tangent, exact)
         if t2 is not None:
             self.k2[rows], self.t2[rows], self.r2[rows] = k2, t2, rho
@@ -250,10 +252,15 @@ def _refine(mesh, phi, theta, sigma, sb, m, fa, fb, half):
     # contact value (exact), point, normal and arm
     exact, q, rho, k2, tan2 = task.value(t, tangent=True, exact=True)
     value = np.where(np.isfinite(exact), exact, value[sel])  # a tip crossing a last bit beyond the tip
-    h = 1e-7
-    ts = np.clip(t, h, 1 - h)
-    d = _driver_fixed(mesh, piece, ts + h, sigma, theta, True) - _driver_fixed(mesh, piece, ts - h, sigma, theta, True)
-    normal = np.stack([-d[:, 1], d[:, 0]], -1)
+    if drv.table is not None:  # the tangent from the table's derivative (closer than differences)
+        d = drv.table.evaluate(piece, t, derivative=True)[1]
+        x, y, c, s = sigma * d[:, 0], d[:, 1], np.cos(theta), np.sin(theta)
+        normal = np.stack([-(s * x + c * y), c * x - s * y], -1)
+    else:
+        h = 1e-7
+        ts = np.clip(t, h, 1 - h)
+        (x1, y1), (x0, y0) = _driver_xy(mesh, piece, ts + h, sigma, theta), _driver_xy(mesh, piece, ts - h, sigma, theta)
+        normal = np.stack([y0 - y1, x1 - x0], -1)
     at_end = ((t <= drv.ta[m]) | (t >= drv.tb[m])) & ~corner2
     piece_end = at_end & ((t <= 0.0) | (t >= 1.0))
     corner1 = at_end & np.where(t <= drv.ta[m], drv.corner_end[m], drv.corner_end[m + 1])
@@ -279,7 +286,7 @@ def _mate_direction(mesh, tangent, phi, delta):
     return np.stack([c * tangent[:, 0] - s * tangent[:, 1], s * tangent[:, 0] + c * tangent[:, 1]], -1)
 
 
-def solve(mesh, phi, contact_tol: float) -> Bounds:
+def solve(mesh, phi, contact_tol: float, bounds=(0, 1)) -> Bounds:
     """Bounds on the mate's position from every driver half at driver angles ``phi`` ``(n,)``.
 
     Parameters
@@ -288,34 +295,37 @@ def solve(mesh, phi, contact_tol: float) -> Bounds:
     phi : (n,) float64, rad
     contact_tol : float, mm
         Every half that may come within this of the extreme bound is refined.
+    bounds : tuple of int
+        The bounds refined (0 upper, 1 lower); the others keep their search values.
     """
     phi = np.atleast_1d(np.asarray(phi, dtype=float))
     per_angle = len(mesh.offsets) * 4 * len(mesh.driver.points) // 2  # about half the halves are near
     step = max(1, _CHUNK // per_angle)
-    parts = [_solve_chunk(mesh, phi[i:i + step], contact_tol) for i in range(0, len(phi), step)]
+    parts = [_solve_chunk(mesh, phi[i:i + step], contact_tol, bounds) for i in range(0, len(phi), step)]
     if len(parts) == 1:
         return parts[0]
     return Bounds(*(np.concatenate([getattr(p, f) for p in parts]) for f in Bounds.__dataclass_fields__))
 
 
-def _solve_chunk(mesh, phi, contact_tol) -> Bounds:
+def _solve_chunk(mesh, phi, contact_tol, bounds) -> Bounds:
     drv, mate = mesh.driver, mesh.mate
     arm_scale = mesh.arm_scale
     teeth, theta = mesh.teeth(phi)
     n, kk = teeth.shape
     # only the driver halves with a sample inside the mate's tip circle are searched: the others
     # are free at every sample (their bounds infinite, as the search would find them)
-    mid, reach = mesh.half_reach
+    mid, reach, size = mesh.half_reach
+    pts, chord = drv.points[:size], drv.chord[:size - 1]
     near = np.abs(np.mod(theta[..., None] - mid + np.pi, 2 * np.pi) - np.pi) <= reach  # (n, K, 2)
     rows = np.flatnonzero(near)
     r_n, r_k, r_h = np.unravel_index(rows, near.shape)
     sig = np.where(r_h == 0, 1.0, -1.0)[:, None]
     th = theta[r_n, r_k][:, None]
     c, s = np.cos(th), np.sin(th)
-    x, y = sig * drv.points[None, :, 0], drv.points[None, :, 1]
-    q = np.stack([c * x - s * y, s * x + c * y], -1)  # (A, M1, 2)
-    rho, u = mesh.to_mate(q, phi[r_n][:, None])
-    w = mate.coarse(rho)
+    x, y = sig * pts[None, :, 0], pts[None, :, 1]
+    rho, u = mesh.to_mate_xy(c * x - s * y, s * x + c * y, phi[r_n][:, None])  # (A, M1)
+    at = mate.lookup(rho)
+    w = mate.coarse(rho, at)
     sb = np.array([1.0, -1.0])
     big_u = w[:, None, :] - sb[None, :, None] * u[:, None, :]  # (A, 2, M1)
     finite = np.isfinite(w)
@@ -329,10 +339,11 @@ def _solve_chunk(mesh, phi, contact_tol) -> Bounds:
     # how far the exact function can dip below an interval's ends: the driver's chord deviation
     # plus the mate's bending over the chord, as a normal distance over the arm scale
     rho_mid = 0.5 * (rho[..., :-1] + rho[..., 1:])
-    bend = mate.curvature(rho_mid)
-    arm = mate.arm(rho)
-    arm = np.minimum(np.minimum(arm[..., :-1], arm[..., 1:]), mate.arm(rho_mid))
-    dip = (mesh.tol + bend * drv.chord ** 2 / 8.0) / np.maximum(arm, 1e-12 * arm_scale)  # (A, M)
+    at_mid = mate.lookup(rho_mid)
+    bend = mate.curvature(rho_mid, at_mid)
+    arm = mate.arm(rho, at)
+    arm = np.minimum(np.minimum(arm[..., :-1], arm[..., 1:]), mate.arm(rho_mid, at_mid))
+    dip = (mesh.tol + bend * chord ** 2 / 8.0) / np.maximum(arm, 1e-12 * arm_scale)  # (A, M)
     if mate.crest:  # next to a rounded crest the bound falls like a square root: always look
         dip = np.where(cross, np.inf, dip)
     glob = np.full((n, 2), np.inf)
@@ -341,6 +352,7 @@ def _solve_chunk(mesh, phi, contact_tol) -> Bounds:
     ends = np.minimum(big_u[..., :-1], big_u[..., 1:])
     reach = best[..., None] + dip[:, None, :]
     pick = ((ends <= reach) | (big_c <= reach)) & active[..., None]
+    pick &= np.isin(np.arange(2), bounds)[None, :, None]
     i_a, i_b, i_m = np.nonzero(pick)
     i_n, i_k, i_h = r_n[i_a], r_k[i_a], r_h[i_a]
     shape = (n, kk, 2, 2)

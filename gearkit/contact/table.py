@@ -175,8 +175,12 @@ class CurveTable:
         if not derivative:
             return p
         inv = self._inv[j]
-        d = np.stack([c * inv for c in _gathered(self._dcoef, j, s)], -1).reshape(shape + (2,))
-        return p, d
+        d = np.stack([c * inv for c in _gathered(self._dcoef, j, s)], -1)
+        if slow.size:  # central differences on the exact piece (a step of 1e-7, inside the piece)
+            h = 1e-7
+            ts = np.clip(tf[slow], h, 1 - h)
+            d[slow] = (self._exact_piece(kf[slow], ts + h) - self._exact_piece(kf[slow], ts - h)) / (2 * h)
+        return p, d.reshape(shape + (2,))
 
 
 class WidthTable:

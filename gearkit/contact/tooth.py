@@ -189,6 +189,11 @@ class HalfWidth:
                 near = np.argsort(np.minimum(abs(self._r0 - end), abs(self._r1 - end)))[:3]
                 self._anchor[near] = end
                 self.crest = self.crest or first is rows[0]
+        # the largest curvature of each table interval and its neighbours
+        last = len(self._kappa) - 1
+        idx = np.arange(len(self._kappa))
+        self._kappa3 = np.maximum(np.maximum(self._kappa[np.maximum(idx - 1, 0)], self._kappa),
+                                  self._kappa[np.minimum(idx + 1, last)])
         #: radial scale turning a depth below the root into an angle-like space width
         self.root_scale = abs(self.rho_root) if coords is polar_from_y else 1.0
         # the arm of the flank's normal at the nodes, from the neighbouring chords' slopes dw/drho
@@ -212,22 +217,32 @@ class HalfWidth:
         # inside the root circle everything is material: no space (w < 0; it jumps from w_root)
         return self.outward * (rho - self.rho_root) / self.root_scale
 
-    def coarse(self, rho):
+    def coarse(self, rho, at=None):
         """``w(rho)`` interpolated in the table (linearly in ``sqrt(|rho - end|)`` next to a stationary
-        end, where ``w`` has a square-root behaviour); inf beyond the tip."""
+        end, where ``w`` has a square-root behaviour); inf beyond the tip. ``at``: :meth:`lookup` of
+        ``rho``, when the caller has it."""
         rho = np.asarray(rho, dtype=float)
-        j = np.clip(np.searchsorted(self._r0, rho, side="right") - 1, 0, len(self._r0) - 1)
+        j, off = self.lookup(rho) if at is None else at
         r0, r1 = self._r0[j], self._r1[j]
-        a = self._anchor[j]
-        grazing = np.isfinite(a)
-        a = np.where(grazing, a, 0.0)
         with np.errstate(invalid="ignore", divide="ignore"):
-            sq = np.sqrt(np.abs(rho - a)), np.sqrt(np.abs(r0 - a)), np.sqrt(np.abs(r1 - a))
-            frac = np.where(grazing, (sq[0] - sq[1]) / (sq[2] - sq[1]), (rho - r0) / (r1 - r0))
+            frac = (rho - r0) / (r1 - r0)
+            g = np.nonzero(np.isfinite(self._anchor[j]))
+            if g[0].size:
+                a = self._anchor[j[g]]
+                sq = np.sqrt(np.abs(rho[g] - a)), np.sqrt(np.abs(r0[g] - a)), np.sqrt(np.abs(r1[g] - a))
+                frac[g] = (sq[0] - sq[1]) / (sq[2] - sq[1])
         frac = np.clip(np.nan_to_num(frac), 0.0, 1.0)
         w = self._w0[j] + frac * (self._w1[j] - self._w0[j])
-        w = np.where(self._body(rho), self._body_width(rho), w)
-        return np.where(self.free(rho), np.inf, w)
+        if off.any():
+            w = np.where(self._body(rho), self._body_width(rho), w)
+            w = np.where(self.free(rho), np.inf, w)
+        return w
+
+    def lookup(self, rho):
+        """The table interval of each ``rho`` and whether it is off the flank (beyond the tip or inside
+        the root circle): shared by :meth:`coarse`, :meth:`arm` and :meth:`curvature`."""
+        j = np.clip(np.searchsorted(self._r0, rho, side="right") - 1, 0, len(self._r0) - 1)
+        return j, self.free(rho) | self._body(rho)
 
     def exact(self, rho, guess=None, tangent=False):
         """``w(rho)`` on the exact pieces.
@@ -328,22 +343,24 @@ class HalfWidth:
         w, piece, tan = self.table.width(rho, tangent)
         return w, piece, None, tan
 
-    def arm(self, rho):
+    def arm(self, rho, at=None):
         """Estimated arm (mm; for a rack the normal's x component) of the flank's normal about the mate's
         centre at ``rho``: small where the normal runs through the centre (a crest, the root).
         Interpolated between the table's nodes (linearly: below the square-root rise off a crest)."""
         rho = np.asarray(rho, dtype=float)
-        out = np.interp(rho, self._grid_r, self._arm_node)
-        s = np.abs(rho) if self.root_scale != 1.0 else np.ones_like(rho)
-        return np.where(self.free(rho) | self._body(rho), s, out)
+        j, off = self.lookup(rho) if at is None else at
+        r0, r1 = self._grid_r[j], self._grid_r[j + 1]
+        with np.errstate(invalid="ignore", divide="ignore"):
+            frac = np.clip(np.nan_to_num((rho - r0) / (r1 - r0)), 0.0, 1.0)
+        out = self._arm_node[j] + frac * (self._arm_node[j + 1] - self._arm_node[j])
+        s = np.abs(rho) if self.root_scale != 1.0 else 1.0
+        return np.where(off, s, out)
 
-    def curvature(self, rho):
+    def curvature(self, rho, at=None):
         """Largest curvature (1/mm) of the mate's flank near ``rho`` (0 off the flank)."""
         rho = np.asarray(rho, dtype=float)
-        j = np.clip(np.searchsorted(self._r0, rho, side="right") - 1, 0, len(self._r0) - 1)
-        lo, hi = np.maximum(j - 1, 0), np.minimum(j + 1, len(self._r0) - 1)
-        k = np.maximum(np.maximum(self._kappa[lo], self._kappa[j]), self._kappa[hi])
-        return np.where(self.free(rho) | self._body(rho), 0.0, k)
+        j, off = self.lookup(rho) if at is None else at
+        return np.where(off, 0.0, self._kappa3[j])
 
     def label(self, piece):
         """Label of each piece index (``"tip"`` beyond the tip, ``"root"`` inside the root circle)."""
