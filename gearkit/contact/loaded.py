@@ -30,7 +30,7 @@ import numpy as np
 
 from gearkit.contact.cycle import Cycle
 from gearkit.contact.stiffness import Material, ToothCompliance, hertz_approach, hertz_pressure
-from gearkit.errors import is_real, require
+from gearkit.errors import check_fields, is_real, require
 
 __all__ = ["Deviations", "LoadedAnalysis", "loaded_cycle"]
 
@@ -72,13 +72,16 @@ class Deviations:
     pitch_deviations2: tuple = ()
 
     def __post_init__(self):
+        check_fields(self)
         for name in ("center_distance", "misalignment_in_plane", "misalignment_out_of_plane", "runout1", "runout2"):
             v = getattr(self, name)
             require(is_real(v) and abs(v) <= 10.0, name, f"{v!r} must be a length in [-10, 10] mm")
         for name in ("runout_phase1_deg", "runout_phase2_deg"):
             require(is_real(getattr(self, name)), name, f"{getattr(self, name)!r} must be an angle in degrees")
         for name in ("pitch_deviations1", "pitch_deviations2"):
-            v = tuple(getattr(self, name))
+            v = getattr(self, name)
+            require(isinstance(v, (tuple, list, np.ndarray)), name, f"{v!r} must be a list of lengths in mm")
+            v = tuple(v)
             require(all(is_real(f) and abs(f) <= 1.0 for f in v), name, "must be lengths in [-1, 1] mm, one per tooth")
             object.__setattr__(self, name, v)
 

@@ -40,7 +40,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from gearkit.errors import is_real, require
+from gearkit.errors import check_fields, is_real, require
 
 __all__ = ["IsoStiffness", "Material", "ToothCompliance", "hertz_approach", "hertz_pressure", "iso_mesh_stiffness"]
 
@@ -56,6 +56,7 @@ class Material:
     poisson: float = 0.3
 
     def __post_init__(self):
+        check_fields(self)
         require(is_real(self.young) and 1e3 <= self.young <= 1e7, "young", f"{self.young!r} must be in [1e3, 1e7] MPa")
         require(is_real(self.poisson) and 0 <= self.poisson < 0.5, "poisson", f"{self.poisson!r} must be in [0, 0.5)")
 

@@ -17,10 +17,9 @@ Examples
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, replace
 
-from gearkit.errors import SpecError, require
+from gearkit.errors import SpecError, check_fields, is_real, require
 from gearkit.families.involute import BasicRack
 from gearkit.pair.dimensions import over_pins, span
 from gearkit.pair.geometry import gear_specs, pair_geometry
@@ -40,10 +39,13 @@ class Allowances:
     center_distance: tuple = (0.0, 0.0)
 
     def __post_init__(self):
+        check_fields(self)
         for name in ("gear1", "gear2", "center_distance"):
             value = getattr(self, name)
-            require(isinstance(value, tuple) and len(value) == 2 and all(math.isfinite(v) for v in value), name,
+            require(isinstance(value, tuple) and len(value) == 2 and all(is_real(v) for v in value), name,
                     f"{value!r} must be (upper, lower) in mm")
+            object.__setattr__(self, name, (float(value[0]), float(value[1])))
+            value = getattr(self, name)
             require(value[0] >= value[1], name, f"upper {value[0]!r} must be >= lower {value[1]!r}")
         for name in ("gear1", "gear2"):
             require(getattr(self, name)[0] <= 0.0, name, "a tooth thickness allowance is <= 0 (the tooth "

@@ -25,7 +25,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from gearkit.errors import SpecError, is_int, is_real, require
+from gearkit.errors import SpecError, check_fields, is_int, is_real, require
 from gearkit.scene.hands import helix_angles
 
 __all__ = ["Gear", "Mesh", "Motion", "Scene", "MESH_KINDS"]
@@ -37,6 +37,12 @@ def _name(value, field_name: str) -> str:
     require(isinstance(value, str) and value.strip() != "" and value == value.strip(), field_name,
             f"{value!r} must be a non-empty name without surrounding spaces")
     return value
+
+
+def _names(values, field_name: str) -> None:
+    require(isinstance(values, (tuple, list)), field_name, f"{values!r} must be a list of names")
+    for v in values:
+        _name(v, field_name)
 
 
 @dataclass(frozen=True)
@@ -91,6 +97,7 @@ class Gear:
 
     def __post_init__(self):
         n = _name(self.name, "gears")
+        check_fields(self, f"{n}.")
         require(is_int(self.teeth) and 3 <= self.teeth <= 100000, f"{n}.teeth",
                 f"z = {self.teeth!r} must be an integer in [3, 100000]")
         require(is_real(self.shift) and -3.0 <= self.shift <= 3.0, f"{n}.shift", f"x = {self.shift!r} must be in [-3, 3]")
@@ -150,6 +157,7 @@ class Mesh:
     def __post_init__(self):
         _name(self.first, "meshes")
         _name(self.second, "meshes")
+        check_fields(self, f"{self.label}.")
         require(self.first != self.second, "meshes", f"{self.first} cannot mesh with itself")
         require(is_real(self.angle_deg), f"{self.label}.angle_deg", f"{self.angle_deg!r} must be a number of degrees")
         if self.center_distance is not None:
@@ -174,14 +182,22 @@ class Motion:
     output: str | None = None
 
     def __post_init__(self):
+        check_fields(self)
+        _names(self.fixed, "fixed")
+        require(isinstance(self.locked, (tuple, list)), "locked", f"{self.locked!r} must be a list of member lists")
+        for group in self.locked:
+            _names(group, "locked")
+        require(isinstance(self.inputs, (dict, tuple, list)), "inputs", f"{self.inputs!r} must map members to speeds")
         object.__setattr__(self, "fixed", tuple(self.fixed))
         object.__setattr__(self, "locked", tuple(tuple(p) for p in self.locked))
         inputs = self.inputs.items() if isinstance(self.inputs, dict) else self.inputs
+        inputs = tuple(tuple(kv) for kv in inputs)
+        for kv in inputs:
+            require(len(kv) == 2 and isinstance(kv[0], str), "inputs", f"{kv!r} must be a (member, speed) pair")
+            require(is_real(kv[1]), f"input.{kv[0]}", f"{kv[1]!r} must be a finite speed")
         object.__setattr__(self, "inputs", tuple((k, float(v)) for k, v in inputs))
         for pair in self.locked:
             require(len(pair) >= 2, "locked", f"{list(pair)!r}: a lock joins two or more members")
-        for name, speed in self.inputs:
-            require(math.isfinite(speed), f"input.{name}", f"{speed!r} must be a finite speed")
 
 
 @dataclass(frozen=True)
@@ -221,6 +237,15 @@ class Scene:
     coaxial: tuple = ()
 
     def __post_init__(self):
+        check_fields(self)
+        for key in ("gears", "meshes", "states", "coaxial"):
+            require(isinstance(getattr(self, key), (tuple, list)), key, f"{getattr(self, key)!r} must be a list")
+        require(isinstance(self.motion, Motion), "motion", f"{self.motion!r} must be a Motion")
+        for state in self.states:
+            require(isinstance(state, (tuple, list)) and len(state) == 2 and isinstance(state[1], Motion), "states",
+                    f"{state!r} must be a (name, Motion) pair")
+        for group in self.coaxial:
+            _names(group, "coaxial")
         object.__setattr__(self, "gears", tuple(self.gears))
         object.__setattr__(self, "meshes", tuple(self.meshes))
         object.__setattr__(self, "states", tuple((str(k), v) for k, v in self.states))

@@ -32,7 +32,7 @@ import math
 from dataclasses import dataclass
 from fractions import Fraction
 
-from gearkit.errors import SpecError, is_int, is_real, require
+from gearkit.errors import SpecError, check_fields, is_int, is_real, require
 
 __all__ = ["SCHEMES", "SynthesisLimits", "TEXTBOOK_LIMITS", "PlanetarySet", "synthesize", "candidate_sets",
            "set_ratio", "planetary_scene", "factorised_teeth"]
@@ -62,6 +62,7 @@ class SynthesisLimits:
     equal_spacing: bool = False
 
     def __post_init__(self):
+        check_fields(self)
         for name in ("min_teeth", "min_planet_ring", "min_ring", "min_difference", "max_teeth",
                      "max_sum_difference"):
             v = getattr(self, name)

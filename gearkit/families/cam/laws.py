@@ -35,7 +35,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from gearkit.errors import SpecError, is_real, require
+from gearkit.errors import SpecError, check_fields, is_real, require
 
 __all__ = ["LAWS", "MotionSegment", "MotionProgram", "law_shape"]
 
@@ -166,6 +166,7 @@ class MotionSegment:
     table: tuple | None = None
 
     def __post_init__(self):
+        check_fields(self)
         require(self.kind in ("rise", "dwell", "return"), "kind", f"{self.kind!r} is not rise, dwell or return")
         require(is_real(self.span_deg) and 0.0 < self.span_deg <= 360.0, f"{self.kind}_deg",
                 f"{self.span_deg!r} must be in (0, 360] degrees")
@@ -202,6 +203,7 @@ class MotionProgram:
     segments: tuple
 
     def __post_init__(self):
+        require(isinstance(self.segments, (tuple, list)), "motion", f"{self.segments!r} must be a list of MotionSegment")
         segs = tuple(self.segments)
         object.__setattr__(self, "segments", segs)
         require(len(segs) > 0 and all(isinstance(g, MotionSegment) for g in segs), "motion",

@@ -20,7 +20,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from gearkit.errors import is_real, require
+from gearkit.errors import check_fields, is_real, require
 from gearkit.families.cam.laws import MotionProgram
 
 __all__ = ["CamSpec", "FOLLOWERS", "CONTACTS", "DEFAULT_LIMIT_DEG"]
@@ -86,6 +86,7 @@ class CamSpec:
     name: str = field(default="cam", compare=False)
 
     def __post_init__(self):
+        check_fields(self)
         _length(self.prime_radius, "prime_radius")
         require(isinstance(self.motion, MotionProgram), "motion", "must be a MotionProgram")
         require(self.follower in FOLLOWERS, "follower", f"{self.follower!r} is not one of {', '.join(FOLLOWERS)}")

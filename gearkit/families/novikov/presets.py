@@ -28,7 +28,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
 
-from gearkit.errors import SpecError, require
+from gearkit.errors import SpecError, check_fields, require
 from gearkit.families.novikov.racks import HEIGHT_TOL, ArcRack, ArcSpec
 
 __all__ = ["RackSystem", "Zone", "rack_presets", "rack_system", "load_rack_system", "rack_system_from_dict"]
@@ -70,6 +70,7 @@ class RackSystem:
     verified: bool = False
 
     def __post_init__(self):
+        check_fields(self)
         for k in (1, 2):
             require(isinstance(getattr(self, f"rack{k}"), ArcRack), f"rack{k}", "must be an ArcRack")
         kinds = (self.rack1.kind, self.rack2.kind)
