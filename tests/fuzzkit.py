@@ -1,0 +1,127 @@
+"""The fuzzing harness shared by tests/test_fuzz.py (families) and tests/test_fuzz_products.py.
+
+Every drawn spec is one *case* with one of three outcomes, counted per property:
+
+- ``valid``: it built and passed every check of its property;
+- ``spec_error``: it was refused with a :class:`~gearkit.errors.SpecError` that names a field and says why;
+- ``defect``: anything else (another exception, a failed check, a terse SpecError).
+
+In the fast CI run a defect fails the test at once (hypothesis then shrinks it). In the long run
+(``GEARKIT_FUZZ_EXAMPLES=N``, N specs per property) a defect is recorded with its reproducer (the
+drawn spec) and the run goes on, so one run counts every defect; each property's test then fails
+if it recorded any. ``GEARKIT_FUZZ_REPORT=FILE`` appends, per property, one JSON line
+``{"property", "tried", "valid", "spec_error", "defect", "defects": [{"spec", "error"}, ...]}``
+(the counts are what happened, defects included); while it runs, every 500 cases one line of
+counts to ``FILE.progress`` and every defect at once to ``FILE.defects``.
+"""
+import json
+import math
+import os
+import time
+import traceback
+from collections import Counter
+
+import numpy as np
+from hypothesis import HealthCheck, settings
+from hypothesis import strategies as st
+
+from gearkit.errors import SpecError
+
+#: specs per property (the long run: GEARKIT_FUZZ_EXAMPLES=10000)
+EXAMPLES = int(os.environ.get("GEARKIT_FUZZ_EXAMPLES", "0")) or None
+LONG = EXAMPLES is not None
+REPORT = os.environ.get("GEARKIT_FUZZ_REPORT")
+#: defects listed in full per property in the report (the count is always exact)
+LISTED = 50
+
+COUNTS: dict = {}
+DEFECTS: dict = {}
+
+
+def fuzz_settings(fast: int):
+    """``fast`` specs per property in CI; ``GEARKIT_FUZZ_EXAMPLES`` of them in the long run."""
+    n = fast if not LONG else max(fast, EXAMPLES)
+    return settings(max_examples=n, deadline=None, derandomize=not LONG, database=None,
+                    suppress_health_check=list(HealthCheck))
+
+
+def _progress(name, c):
+    if REPORT and c["tried"] % 500 == 0:
+        with open(REPORT + ".progress", "a") as fh:
+            fh.write(json.dumps({"property": name, "time": time.strftime("%H:%M:%S"), **c}) + "\n")
+
+
+def run(name, spec, build, check):
+    """One case: ``build()`` under raised numpy errors, then ``check(result)``; count the outcome.
+
+    ``spec`` is the reproducer (the drawn values, as a repr-able object) recorded with a defect.
+    """
+    c = COUNTS.setdefault(name, Counter(tried=0, valid=0, spec_error=0, defect=0))
+    c["tried"] += 1
+    _progress(name, c)
+    old = np.seterr(all="raise")
+    try:
+        try:
+            obj = build()
+        except SpecError as exc:
+            assert exc.field and len(str(exc)) > len(exc.field) + 8, f"terse SpecError: {exc}"
+            c["spec_error"] += 1
+            return
+        check(obj)
+        c["valid"] += 1
+    except Exception as exc:  # noqa: BLE001 - every other outcome is a defect: counted, and raised in CI
+        c["defect"] += 1
+        if not LONG:
+            raise
+        line = traceback.format_exception_only(type(exc), exc)[-1].strip()
+        found = {"spec": repr(spec), "error": line[:500]}
+        DEFECTS.setdefault(name, []).append(found)
+        if REPORT:  # at once, so a long run's defects can be studied while it goes on
+            with open(REPORT + ".defects", "a") as fh:
+                fh.write(json.dumps({"property": name, **found}) + "\n")
+    finally:
+        np.seterr(**old)
+
+
+def write_report():
+    """Append one JSON line per property to ``GEARKIT_FUZZ_REPORT`` (if set); then forget them."""
+    if REPORT:
+        with open(REPORT, "a") as fh:
+            for name, c in sorted(COUNTS.items()):
+                found = DEFECTS.get(name, [])
+                fh.write(json.dumps({"property": name, **c, "defects": found[:LISTED]}) + "\n")
+    COUNTS.clear()
+    DEFECTS.clear()
+
+
+def assert_clean(name):
+    """The long run's verdict for one property: no defect recorded (the first few shown)."""
+    found = DEFECTS.get(name, [])
+    assert not found, f"{len(found)} defects in {name}: " + "; ".join(f"{d['spec']} -> {d['error']}"
+                                                                     for d in found[:3])
+
+
+def strict_json(obj):
+    """``obj`` through strict JSON: no NaN or Infinity (``json.loads`` would accept them)."""
+    text = json.dumps(obj, allow_nan=False)
+
+    def refuse(token):
+        raise AssertionError(f"non-standard JSON number {token}")
+    return json.loads(text, parse_constant=refuse)
+
+
+HOSTILE = st.sampled_from([math.inf, -math.inf, math.nan, 1e300, -1e300, 1e-300, 0.0, -1.0, 1e-12, "1", None,
+                           True, np.float64(2.5), np.int64(7), np.float32(0.3)])
+
+
+@st.composite
+def maybe_hostile(draw, kwargs):
+    """``kwargs`` with, for ~15 % of draws, one value replaced by a hostile one."""
+    kwargs = dict(kwargs)
+    if draw(st.integers(0, 99)) < 15:
+        key = draw(st.sampled_from(sorted(kwargs)))
+        kwargs[key] = draw(HOSTILE)
+    return kwargs
+
+
+modules = st.floats(0.01, 100.0).map(lambda m: float(f"{m:.5g}"))

@@ -1,0 +1,155 @@
+"""Fuzzing the products (hypothesis): pair check, Novikov pair check, cycloid drive check, solids.
+
+Every spec must give a valid result (strict JSON; a pair check never grades a tip larger than the
+generated, cut tip; a solid is a watertight manifold whose volume is its section times its width)
+or a ``SpecError`` naming a field; anything else is a defect (tests/fuzzkit.py counts the outcomes
+and, in the long run, lists every defect with its reproducer)::
+
+    GEARKIT_FUZZ_EXAMPLES=10000 GEARKIT_FUZZ_REPORT=fuzz.jsonl nice python -m pytest tests/test_fuzz_products.py -p no:randomly
+"""
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+from fuzzkit import assert_clean, fuzz_settings, maybe_hostile, modules, run, strict_json, write_report
+from hypothesis import given
+from hypothesis import strategies as st
+
+import gearkit as gk
+
+
+@pytest.fixture(autouse=True, scope="module")
+def _report():
+    yield
+    write_report()
+
+
+def _tool(desc):
+    """A tool from its description ("shaper", args...) / ("rack", args...), built inside the property."""
+    if not isinstance(desc, tuple):
+        return desc
+    kind, *args = desc
+    return gk.ShaperCutter(*args) if kind == "shaper" else gk.BasicRack(*args)
+
+
+@fuzz_settings(12)
+@given(data=st.data())
+def _pair_check(data):
+    kind = data.draw(st.sampled_from(["external", "external", "internal", "rack"]))
+    z1 = data.draw(st.integers(6, 80))
+    z2 = None if kind == "rack" else z1 + data.draw(st.integers(8 if kind == "internal" else 0, 200))
+    m = data.draw(modules)
+    kw = dict(teeth1=z1, teeth2=z2, module=m, kind=kind, shift1=data.draw(st.floats(-0.5, 1.0)),
+              shift2=0.0 if kind == "rack" else data.draw(st.floats(-0.5, 1.0)),
+              helix_angle_deg=data.draw(st.sampled_from([0.0, 15.0])))
+    if kind == "internal":
+        kw["tool2"] = ("shaper", data.draw(st.integers(8, min(40, z2 - 4))))
+    if data.draw(st.booleans()):
+        kw["center_distance"] = "tight"
+    kw = data.draw(maybe_hostile(kw))
+    extra = data.draw(st.floats(-0.2, 0.8))
+
+    def build():
+        spec = {**kw, "tool2": _tool(kw.get("tool2"))}
+        if spec.get("center_distance") == "tight":
+            base = gk.pair_geometry(gk.PairSpec(**{**spec, "center_distance": None}))
+            spec = {**spec, "center_distance": base.tight_center_distance + extra * m}
+        return gk.check_pair(gk.PairSpec(**spec))
+
+    def check(res):
+        strict_json(res.to_dict())
+        for gear, prof in zip(res.geometry.gears, res.profiles):
+            if not prof.internal:
+                assert gear.tip_diameter <= prof.tip_diameter * (1 + 1e-12), "checked tip beyond the cut tip"
+    run("pair_check", (kw, extra), build, check)
+
+
+@fuzz_settings(6)
+@given(data=st.data())
+def _novikov_pair_check(data):
+    z1 = data.draw(st.integers(8, 60))
+    m = data.draw(modules)
+    kw = data.draw(maybe_hostile(dict(teeth1=z1, teeth2=z1 + data.draw(st.integers(0, 100)), module=m,
+                                       helix_angle_deg=data.draw(st.floats(8.0, 30.0)),
+                                       face_width=data.draw(st.floats(5.0, 40.0)) * m)))
+    off = data.draw(st.floats(-0.6, 0.6))
+
+    def build():
+        spec = gk.NovikovPairSpec(**kw)
+        a = gk.novikov_pair_geometry(spec).reference_center_distance
+        return gk.check_novikov(replace(spec, center_distance=a + off * spec.module))
+
+    run("novikov_pair_check", (kw, off), build, lambda res: strict_json(res.report.to_dict()))
+
+
+@fuzz_settings(8)
+@given(data=st.data())
+def _drive_check(data):
+    pins = data.draw(st.integers(4, 40))
+    dz = data.draw(st.sampled_from([-2, -1, 1, 2]))
+    big_r = data.draw(st.floats(5.0, 200.0))
+    kw = data.draw(maybe_hostile(dict(pins=pins, lobes=pins - dz, pin_circle_radius=big_r,
+                                       pin_radius=data.draw(st.floats(0.05, 0.6)) * math.pi * big_r / pins,
+                                       eccentricity=data.draw(st.floats(0.1, 0.9)) * big_r * abs(dz) / pins)))
+    run("drive_check", kw, lambda: gk.check_drive(gk.DriveSpec(**kw), samples=200),
+         lambda res: strict_json(res.to_dict()))
+
+
+@fuzz_settings(8)
+@given(data=st.data())
+def _solids(data):
+    z = data.draw(st.one_of(st.integers(6, 60), st.integers(60, 2000)))
+    m = data.draw(modules)
+    internal = data.draw(st.booleans()) and z > 30
+    beta = 0.0 if internal else data.draw(st.sampled_from([0.0, 0.0, 15.0]))
+    gear = dict(teeth=z, module=m, helix_angle_deg=beta, internal=internal,
+                tool=gk.ShaperCutter(20) if internal else None)
+    solid = data.draw(maybe_hostile(dict(width=data.draw(st.floats(0.5, 20.0)) * m)))
+    tol = data.draw(st.sampled_from([2e-3, 5e-3, 2e-2])) * m
+
+    def build():
+        prof = gk.tooth_profile(gk.GearSpec(**gear))
+        return prof, gk.gear_solid(prof, gk.SolidSpec(**solid), tol=tol)
+
+    def check(built):
+        prof, sol = built
+        import trimesh
+
+        v, f = sol.manifold.to_mesh().vert_properties, sol.manifold.to_mesh().tri_verts
+        mesh = trimesh.Trimesh(np.asarray(v)[:, :3], np.asarray(f), process=True)
+        assert mesh.is_watertight
+        if beta == 0.0:
+            out = prof.outline(tol / 4)
+            x, y = out[:, 0], out[:, 1]
+            area = abs(0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y)))
+            perimeter = float(np.sum(np.hypot(np.diff(x, append=x[0]), np.diff(y, append=y[0]))))
+            if internal:  # the rim: two modules beyond the root circle
+                r_out = float(np.hypot(x, y).max()) + 2 * m
+                area = math.pi * r_out ** 2 - area
+                perimeter += 2 * math.pi * r_out
+            # every boundary is a polyline within tol of the exact one: the area moves by <= tol x length
+            assert sol.volume == pytest.approx(area * solid["width"], abs=tol * perimeter * solid["width"])
+    run("solids", (gear, solid, tol), build, check)
+
+
+
+
+def test_pair_check():
+    _pair_check()
+    assert_clean("pair_check")
+
+
+def test_novikov_pair_check():
+    _novikov_pair_check()
+    assert_clean("novikov_pair_check")
+
+
+def test_drive_check():
+    _drive_check()
+    assert_clean("drive_check")
+
+
+def test_solids():
+    _solids()
+    assert_clean("solids")
