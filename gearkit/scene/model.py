@@ -39,10 +39,13 @@ def _name(value, field_name: str) -> str:
     return value
 
 
-def _names(values, field_name: str) -> None:
+def _names(values, field_name: str, depth: int = 1) -> None:
     require(isinstance(values, (tuple, list)), field_name, f"{values!r} must be a list of names")
     for v in values:
-        _name(v, field_name)
+        if depth == 2:  # a list of lists of names
+            _names(v, field_name)
+        else:
+            _name(v, field_name)
 
 
 @dataclass(frozen=True)
@@ -101,10 +104,7 @@ class Gear:
         require(is_int(self.teeth) and 3 <= self.teeth <= 100000, f"{n}.teeth",
                 f"z = {self.teeth!r} must be an integer in [3, 100000]")
         require(is_real(self.shift) and -3.0 <= self.shift <= 3.0, f"{n}.shift", f"x = {self.shift!r} must be in [-3, 3]")
-        if self.module is not None:
-            require(is_real(self.module) and self.module > 0, f"{n}.module", f"m = {self.module!r} must be > 0 mm")
-        for key in ("internal", "rack"):
-            require(isinstance(getattr(self, key), bool), f"{n}.{key}", "must be true or false")
+        require(self.module is None or self.module > 0, f"{n}.module", f"m = {self.module!r} must be > 0 mm")
         require(not (self.internal and self.rack), f"{n}.internal", "a gear cannot be both a ring and a rack")
         for key in ("shaft", "carrier"):
             if getattr(self, key) is not None:
@@ -113,15 +113,15 @@ class Gear:
         require(self.count == 1 or self.carrier is not None, f"{n}.count", "only planets (gears with a carrier) "
                 "come in several copies")
         if self.angles_deg is not None:
-            object.__setattr__(self, "angles_deg", tuple(self.angles_deg))
             require(self.carrier is not None, f"{n}.angles_deg", "only planets have angles on a carrier")
-            require(len(self.angles_deg) == self.count and all(is_real(a) for a in self.angles_deg),
+            a = self.angles_deg
+            require(isinstance(a, (tuple, list)) and len(a) == self.count and all(is_real(v) for v in a),
                     f"{n}.angles_deg", f"give {self.count} angles in degrees, one per planet")
+            object.__setattr__(self, "angles_deg", tuple(float(v) for v in a))
         require(self.carrier is None or not (self.internal or self.rack), f"{n}.carrier",
                 "a planet is an external gear")
-        if self.helix_angle_deg is not None:
-            require(is_real(self.helix_angle_deg) and abs(self.helix_angle_deg) < 60, f"{n}.helix_angle_deg",
-                    f"{self.helix_angle_deg!r} must be in (-60, 60) degrees")
+        require(self.helix_angle_deg is None or abs(self.helix_angle_deg) < 60, f"{n}.helix_angle_deg",
+                f"{self.helix_angle_deg!r} must be in (-60, 60) degrees")
         require(is_real(self.thinning) and self.thinning >= 0, f"{n}.thinning", f"{self.thinning!r} must be >= 0 mm")
         if self.cutter_teeth is not None:
             require(self.internal, f"{n}.cutter_teeth", "only a ring is cut by a shaper here")
@@ -184,16 +184,14 @@ class Motion:
     def __post_init__(self):
         check_fields(self)
         _names(self.fixed, "fixed")
-        require(isinstance(self.locked, (tuple, list)), "locked", f"{self.locked!r} must be a list of member lists")
-        for group in self.locked:
-            _names(group, "locked")
-        require(isinstance(self.inputs, (dict, tuple, list)), "inputs", f"{self.inputs!r} must map members to speeds")
+        _names(self.locked, "locked", 2)
         object.__setattr__(self, "fixed", tuple(self.fixed))
         object.__setattr__(self, "locked", tuple(tuple(p) for p in self.locked))
-        inputs = self.inputs.items() if isinstance(self.inputs, dict) else self.inputs
-        inputs = tuple(tuple(kv) for kv in inputs)
+        inputs = self.inputs if isinstance(self.inputs, (tuple, list)) else (
+            tuple(self.inputs.items()) if isinstance(self.inputs, dict) else (self.inputs,))
         for kv in inputs:
-            require(len(kv) == 2 and isinstance(kv[0], str), "inputs", f"{kv!r} must be a (member, speed) pair")
+            require(isinstance(kv, (tuple, list)) and len(kv) == 2 and isinstance(kv[0], str), "inputs",
+                    f"{kv!r} must be a (member, speed) pair")
             require(is_real(kv[1]), f"input.{kv[0]}", f"{kv[1]!r} must be a finite speed")
         object.__setattr__(self, "inputs", tuple((k, float(v)) for k, v in inputs))
         for pair in self.locked:
@@ -238,14 +236,12 @@ class Scene:
 
     def __post_init__(self):
         check_fields(self)
-        for key in ("gears", "meshes", "states", "coaxial"):
+        for key in ("gears", "meshes", "states"):
             require(isinstance(getattr(self, key), (tuple, list)), key, f"{getattr(self, key)!r} must be a list")
         require(isinstance(self.motion, Motion), "motion", f"{self.motion!r} must be a Motion")
-        for state in self.states:
-            require(isinstance(state, (tuple, list)) and len(state) == 2 and isinstance(state[1], Motion), "states",
-                    f"{state!r} must be a (name, Motion) pair")
-        for group in self.coaxial:
-            _names(group, "coaxial")
+        require(all(isinstance(s, (tuple, list)) and len(s) == 2 and isinstance(s[1], Motion) for s in self.states),
+                "states", f"{self.states!r} must be (name, Motion) pairs")
+        _names(self.coaxial, "coaxial", 2)
         object.__setattr__(self, "gears", tuple(self.gears))
         object.__setattr__(self, "meshes", tuple(self.meshes))
         object.__setattr__(self, "states", tuple((str(k), v) for k, v in self.states))
