@@ -41,11 +41,8 @@ def _name(value, field_name: str) -> str:
 
 def _names(values, field_name: str, depth: int = 1) -> None:
     require(isinstance(values, (tuple, list)), field_name, f"{values!r} must be a list of names")
-    for v in values:
-        if depth == 2:  # a list of lists of names
-            _names(v, field_name)
-        else:
-            _name(v, field_name)
+    for v in values:  # depth 2: a list of lists of names
+        _names(v, field_name) if depth == 2 else _name(v, field_name)
 
 
 @dataclass(frozen=True)
@@ -187,9 +184,8 @@ class Motion:
         _names(self.locked, "locked", 2)
         object.__setattr__(self, "fixed", tuple(self.fixed))
         object.__setattr__(self, "locked", tuple(tuple(p) for p in self.locked))
-        inputs = self.inputs if isinstance(self.inputs, (tuple, list)) else (
-            tuple(self.inputs.items()) if isinstance(self.inputs, dict) else (self.inputs,))
-        for kv in inputs:
+        inputs = tuple(self.inputs.items()) if isinstance(self.inputs, dict) else self.inputs
+        for kv in inputs if isinstance(inputs, (tuple, list)) else (inputs,):
             require(isinstance(kv, (tuple, list)) and len(kv) == 2 and isinstance(kv[0], str), "inputs",
                     f"{kv!r} must be a (member, speed) pair")
             require(is_real(kv[1]), f"input.{kv[0]}", f"{kv[1]!r} must be a finite speed")

@@ -170,7 +170,8 @@ class MotionSegment:
         require(self.kind in ("rise", "dwell", "return"), "kind", f"{self.kind!r} is not rise, dwell or return")
         require(is_real(self.span_deg) and 0.0 < self.span_deg <= 360.0, f"{self.kind}_deg",
                 f"{self.span_deg!r} must be in (0, 360] degrees")
-        require(self.table is None or (self.law == "table" and self.kind != "dwell"), "table", f"a {self.law} law or a dwell takes no table (law='table' does)")
+        require(self.table is None or (self.law == "table" and self.kind != "dwell"), "table",
+                f"a {self.law} law or a dwell takes no table (law='table' does)")
         if self.kind == "dwell":
             require(self.lift == 0.0, "lift", "a dwell has no lift")
             return
