@@ -57,10 +57,13 @@ def test_a_failed_export_leaves_no_file_and_keeps_the_old_one(tmp_path, gear, mo
     target = tmp_path / "g.stl"
     target.write_bytes(b"old")
 
-    def broken(parts):
+    real = mesh_export._triangle_chunks
+
+    def broken(parts, chunk=64):  # fails after the first chunk is written: a partial file exists then
+        yield next(real(parts, chunk))
         raise RuntimeError("disk full")
 
-    monkeypatch.setattr(mesh_export, "_triangles", broken)
+    monkeypatch.setattr(mesh_export, "_triangle_chunks", broken)
     with pytest.raises(RuntimeError):
         write_mesh(target, [gear])
     with pytest.raises(RuntimeError):

@@ -27,31 +27,33 @@ def mesh_format(path) -> str | None:
     return ext if ext in MESH_FORMATS else None
 
 
-def _triangles(parts):
-    """(m, 3, 3) float32 triangles of all parts and their (m, 3) float32 unit normals."""
-    tris = []
+def _triangle_chunks(parts, chunk: int = 1 << 15):
+    """(k, 3, 3) float32 triangles of all parts, a chunk at a time, and their (k, 3) float32 unit
+    normals (computed from the single-precision vertices the file stores)."""
     for part in parts:
         v, f = part.arrays()
-        tris.append(v[f])
-    tri = np.concatenate(tris).astype(np.float32)
-    t64 = tri.astype(np.float64)
-    n = np.cross(t64[:, 1] - t64[:, 0], t64[:, 2] - t64[:, 0])
-    length = np.linalg.norm(n, axis=1, keepdims=True)
-    n = np.divide(n, length, out=np.zeros_like(n), where=length > 0)
-    return tri, n.astype(np.float32)
+        v32 = v.astype(np.float32)
+        for s in range(0, len(f), chunk):
+            tri = v32[f[s:s + chunk]]
+            p0 = tri[:, 0].astype(np.float64)
+            n = np.cross(tri[:, 1] - p0, tri[:, 2] - p0)
+            length = np.sqrt(np.einsum("ij,ij->i", n, n))[:, None]
+            n = np.divide(n, length, out=np.zeros_like(n), where=length > 0)
+            yield tri, n.astype(np.float32)
 
 
 def _stl_binary(parts, tmp):
-    tri, normals = _triangles(parts)
-    rec = np.zeros(len(tri), dtype=_STL_RECORD)
-    rec["normal"] = normals
-    rec["vertices"] = tri
     names = ", ".join(p.name for p in parts)
     header = f"gearkit binary STL: {names}; mm".encode("ascii", "replace")[:80].ljust(80, b" ")
+    count = sum(len(p.arrays()[1]) for p in parts)
     with open(tmp, "wb") as fh:
         fh.write(header)
-        fh.write(np.uint32(len(rec)).tobytes())
-        fh.write(rec.tobytes())
+        fh.write(np.uint32(count).tobytes())
+        for tri, normals in _triangle_chunks(parts):
+            rec = np.zeros(len(tri), dtype=_STL_RECORD)
+            rec["normal"] = normals
+            rec["vertices"] = tri
+            fh.write(memoryview(rec).cast("B"))
 
 
 _FACET = ("facet normal %.9g %.9g %.9g\n outer loop\n  vertex %.9g %.9g %.9g\n  vertex %.9g %.9g %.9g\n"
@@ -61,11 +63,11 @@ _FACET = ("facet normal %.9g %.9g %.9g\n outer loop\n  vertex %.9g %.9g %.9g\n  
 def _stl_ascii(parts, tmp):
     with open(tmp, "w") as fh:
         for part in parts:
-            tri, normals = _triangles([part])
-            data = np.concatenate([normals, tri.reshape(-1, 9)], axis=1).astype(np.float64)
             name = "".join(ch if ch.isalnum() or ch in "-_" else "_" for ch in part.name) or "gear"
             fh.write(f"solid {name}\n")
-            fh.write((_FACET * len(data)) % tuple(data.ravel()))
+            for tri, normals in _triangle_chunks([part]):
+                data = np.concatenate([normals, tri.reshape(-1, 9)], axis=1).astype(np.float64)
+                fh.write((_FACET * len(data)) % tuple(data.ravel()))
             fh.write(f"endsolid {name}\n")
 
 

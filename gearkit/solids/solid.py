@@ -116,9 +116,14 @@ class Recipe:
 class Solid:
     """A checked watertight solid and the record of how it was made.
 
+    A solid built from a triangle mesh (:meth:`from_arrays`) is checked with numpy (closed and
+    consistently oriented, no facet of zero area in single precision, positive volume) and keeps its
+    arrays: the manifold3d ``Manifold`` is built only when something asks for it (a boolean, a
+    placement of a solid that has one), so writing a mesh never pays for it.
+
     Attributes
     ----------
-    manifold : manifold3d.Manifold
+    manifold : manifold3d.Manifold (built on first use for a solid made from arrays)
     name : str
     info : dict
         ``kind``, ``tol`` (requested, mm), ``achieved`` (largest measured deviation of any vertex
@@ -128,35 +133,70 @@ class Solid:
     """
 
     def __init__(self, manifold, name: str, info: dict, recipe: Recipe | None = None):
-        self.manifold = manifold
+        self._manifold = manifold
         self.name = name
         self.info = dict(info)
         self.recipe = recipe
         self._arrays = None
+        self._measures = None
 
     @classmethod
     def from_arrays(cls, vertices, faces, name: str, info: dict, recipe: Recipe | None = None) -> "Solid":
-        """Build from a triangle mesh; raise :class:`GeometryError` unless it is a valid solid."""
-        return cls(checked(manifold_from_arrays(vertices, faces), name), name, info, recipe)
+        """A solid of a triangle mesh (vertices (n, 3) mm, faces (m, 3), counter-clockwise seen from
+        outside); raise :class:`GeometryError` unless it is a valid solid (:func:`mesh_measures`).
+
+        Examples
+        --------
+        >>> v = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]])
+        >>> f = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
+        >>> round(Solid.from_arrays(v, f, "tetrahedron", {}).volume, 12)
+        0.166666666667
+        >>> Solid.from_arrays(v, f[:3], "open", {})
+        Traceback (most recent call last):
+        ...
+        gearkit.errors.GeometryError: open: the mesh is not a valid solid (an edge without exactly one opposite edge)
+        """
+        v = np.ascontiguousarray(vertices, dtype=np.float64)
+        f = np.ascontiguousarray(faces, dtype=np.int64)
+        solid = cls(None, name, info, recipe)
+        solid._measures = mesh_measures(v, f, name)
+        solid._arrays = (v, f)
+        return solid
+
+    @property
+    def manifold(self):
+        """The manifold3d ``Manifold`` (built from the arrays, and checked, on first use)."""
+        if self._manifold is None:
+            self._manifold = checked(manifold_from_arrays(*self._arrays), self.name)
+        return self._manifold
 
     # -- invariants ---------------------------------------------------------------------
     @property
     def volume(self) -> float:
         """mm^3"""
+        if self._measures is not None:
+            return self._measures["volume"]
         return float(self.manifold.volume())
 
     @property
     def area(self) -> float:
         """Surface area, mm^2."""
+        if self._measures is not None:
+            return self._measures["area"]
         return float(self.manifold.surface_area())
 
     @property
     def faces(self) -> int:
+        if self._arrays is not None:
+            return len(self._arrays[1])
         return int(self.manifold.num_tri())
 
     @property
     def bounds(self):
         """((x, y, z) min, (x, y, z) max), mm."""
+        if self._arrays is not None:
+            v = self._arrays[0]
+            return tuple(float(c) for c in v.min(axis=0)), tuple(float(c) for c in v.max(axis=0))
         b = self.manifold.bounding_box()
         return tuple(float(c) for c in b[:3]), tuple(float(c) for c in b[3:])
 
@@ -188,12 +228,17 @@ class Solid:
     # -- placement ----------------------------------------------------------------------
     def placed(self, angle: float = 0.0, offset=(0.0, 0.0, 0.0), name: str | None = None) -> "Solid":
         """A copy turned by ``angle`` (rad, about the z axis) and then moved by ``offset`` (mm)."""
+        recipe = None if self.recipe is None else self.recipe.placed(angle, offset)
+        if self._manifold is None:  # a mesh not yet handed to manifold3d: move its vertices
+            v, f = self._arrays
+            c, s = math.cos(angle), math.sin(angle)
+            moved = v @ np.array([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]]) + np.asarray(offset, dtype=float)
+            return Solid.from_arrays(moved, f, name or self.name, self.info, recipe)
         man = self.manifold
         if angle:
             man = man.rotate((0.0, 0.0, math.degrees(angle)))
         if any(offset):
             man = man.translate(tuple(float(c) for c in offset))
-        recipe = None if self.recipe is None else self.recipe.placed(angle, offset)
         return Solid(man, name or self.name, self.info, recipe)
 
     def to_trimesh(self):
@@ -211,6 +256,53 @@ class Solid:
 
     def __repr__(self):
         return f"Solid({self.name!r}, faces={self.faces}, volume={self.volume:.6g} mm^3, achieved={self.achieved:.3g} mm)"
+
+
+#: facets handled at once by the chunked mesh passes (bounds their temporary arrays)
+CHUNK = 1 << 15
+
+
+def mesh_measures(vertices, faces, what: str = "mesh") -> dict:
+    """Check a triangle mesh is a valid solid and measure it: ``{volume, area}`` (mm^3, mm^2).
+
+    Valid: finite vertices, faces indexing them, every edge met by exactly one edge running the
+    other way (closed and consistently oriented: a sort of the edges proves it), no facet of zero
+    area once the vertices are rounded to single precision (as STL stores them), positive volume.
+    Otherwise :class:`GeometryError` naming ``what``. The facet passes run in chunks of
+    :data:`CHUNK` facets, so their temporaries stay small.
+    """
+    v = np.asarray(vertices, dtype=np.float64)
+    f = np.asarray(faces)
+    if v.ndim != 2 or v.shape[1] != 3 or f.ndim != 2 or f.shape[1] != 3:
+        raise GeometryError("a mesh needs (n, 3) vertices and (m, 3) faces")
+    if not len(f) or f.min() < 0 or f.max() >= len(v):
+        raise GeometryError(f"{what}: the mesh is not a valid solid (no faces, or faces naming missing vertices)")
+    if not np.isfinite(v).all():
+        raise GeometryError(f"{what}: the mesh is not a valid solid (non-finite vertices)")
+    a = f.astype(np.int64, copy=False).ravel()
+    b = f[:, (1, 2, 0)].astype(np.int64, copy=False).ravel()
+    key = np.minimum(a, b) * (2 * len(v)) + np.maximum(a, b) * 2 + (a > b)  # each edge: its two ends, its way
+    del a, b
+    key.sort()
+    if not ((key[0::2] & 1 == 0).all() and (key[1::2] == key[0::2] + 1).all()):
+        raise GeometryError(f"{what}: the mesh is not a valid solid (an edge without exactly one opposite edge)")
+    del key
+    v32 = v.astype(np.float32)
+    volume = area = 0.0
+    for s in range(0, len(f), CHUNK):
+        fc = f[s:s + CHUNK]
+        for pts, single in ((v, False), (v32, True)):
+            p0 = pts[fc[:, 0]].astype(np.float64)
+            n = np.cross(pts[fc[:, 1]] - p0, pts[fc[:, 2]] - p0)
+            if single:
+                if not (np.einsum("ij,ij->i", n, n) > 0.0).all():
+                    raise GeometryError(f"{what}: the mesh has degenerate facets (zero area in single precision)")
+            else:
+                volume += float(np.einsum("ij,ij->", p0, n)) / 6.0
+                area += 0.5 * float(np.sqrt(np.einsum("ij,ij->i", n, n)).sum())
+    if not volume > 0.0:
+        raise GeometryError(f"{what}: the solid is empty or inside out (volume {volume:.6g} mm^3)")
+    return {"volume": volume, "area": area}
 
 
 def manifold_from_arrays(vertices, faces):
