@@ -1,0 +1,165 @@
+"""Vertex placement: near the fewest vertices, never less accurate; and the mesh check behind every solid.
+
+The sampler places vertices by curvature (:func:`gearkit.accuracy.place_by_curvature`) and then
+probes every chord (:func:`gearkit.accuracy.refine_sample`). Its deviation is measured here
+independently -- the exact pieces evaluated densely and uniformly in their parameters
+(:func:`gearkit.bench.targets.dense_exact`), their distance to the sampled polyline -- for every
+family at several tolerances; its vertex count is held against the fewest a chord-at-tol polyline
+needs on that dense evaluation (:func:`gearkit.bench.targets.fewest_vertices`), which is itself
+held against an exhaustive shortest-path count.
+"""
+import math
+
+import numpy as np
+import pytest
+
+from gearkit.accuracy import PROBE_MARGIN, adaptive_sample, distances_to_polyline, place_by_curvature
+from gearkit.bench.targets import VERTEX_TARGET, dense_exact, fewest_vertices
+from gearkit.errors import GeometryError
+
+#: tolerances, in modules (or eccentricities), the families are sampled at
+TOLS = (1e-2, 1e-3, 1e-4)
+
+
+def _families():
+    import gearkit as gk
+    from gearkit.families import cycloidal as cyc
+    from gearkit.families import novikov
+    from gearkit.families.involute import GearSpec, ShaperCutter, tooth_profile
+    from gearkit.families.novikov.presets import rack_system
+
+    return {
+        "involute z40": (lambda: tooth_profile(GearSpec(40, 1.0)), 1.0, True),
+        "involute undercut z8": (lambda: tooth_profile(GearSpec(8, 1.0)), 1.0, True),
+        "involute internal z60": (lambda: tooth_profile(GearSpec(60, 1.0, internal=True, tool=ShaperCutter(20))),
+                                  1.0, True),
+        "involute helical z20 x0.5": (lambda: tooth_profile(GearSpec(20, 2.0, 0.5, 20.0)), 2.0, True),
+        "novikov z20": (lambda: novikov.tooth_profile(novikov.NovikovGearSpec(20, 4.0, rack_system("dca24").rack1,
+                                                                              15.0)), 4.0, True),
+        "pin gear wheel": (lambda: gk.pin_gear_wheel(gk.PinGearSpec(1.0, 50, 60, 0.04)), 1.0, True),
+        "cycloid gear": (lambda: gk.cycloid_gear(gk.CycloidPairSpec(1.0, 10, 20), 1), 1.0, True),
+        # the disc's pin walks end in a square root (the parameter races there): its refinement splits
+        # those ends however straight they are, so its count is not held to the target (accuracy is)
+        "cycloid disc": (lambda: cyc.disc_profile(cyc.DriveSpec(12, 11, 40.0, 3.0, 1.5)), 1.5, False),
+    }
+
+
+FAMILIES = _families()
+
+
+@pytest.fixture(scope="module")
+def profiles():
+    return {name: make() for name, (make, _, _) in FAMILIES.items()}
+
+
+#: the dense evaluation measuring the deviation: its own steps sag by this fraction of tol
+MEASURE = 1e-2
+#: the dense evaluation the fewest count is found on: steps ~1/30 of a chord (the count ~3 % high at most)
+COUNT = 1e-3
+
+
+@pytest.mark.parametrize("name", sorted(FAMILIES))
+def test_every_family_is_sampled_within_tol_measured_densely_with_near_the_fewest_vertices(profiles, name):
+    prof = profiles[name]
+    _, scale, held = FAMILIES[name]
+    for tol_m in TOLS:
+        tol = tol_m * scale
+        half, achieved = prof.half_points(tol)
+        exact = dense_exact(prof.half.pieces, tol, fraction=MEASURE)
+        assert distances_to_polyline(exact, half).max() <= tol, (name, tol)
+        assert achieved <= tol
+    if held:  # the sampler keeps the joins of the pieces (flank, fillet, ...): so does the count it is held to
+        tol = 1e-3 * scale
+        least = sum(fewest_vertices(dense_exact([p], tol, fraction=COUNT), tol) for p in prof.half.pieces)
+        least -= len(prof.half.pieces) - 1
+        assert len(prof.half_points(tol)[0]) <= VERTEX_TARGET * least, (name, least)
+
+
+def test_placement_on_a_circle_is_even_and_the_fewest_the_probe_margin_allows():
+    # radius 5: a chord of angle h sags 5 (1 - cos(h / 2)); the whole circle needs ceil(2 pi / h) chords.
+    # Chords are accepted up to PROBE_MARGIN tol (the probes' margin), so that is what they are placed at
+    tol, r = 1e-4, 5.0
+    circle = lambda w: r * np.stack([np.cos(2 * np.pi * w), np.sin(2 * np.pi * w)], -1)
+    w, p, achieved = adaptive_sample(circle, tol)
+    least = math.ceil(2 * math.pi / (2 * math.acos(1 - PROBE_MARGIN * tol / r)))
+    assert least <= len(p) - 1 <= least + 1
+    assert np.diff(w).max() / np.diff(w).min() < 1 + 1e-4  # equal steps where the curvature is even
+    dense = circle(np.linspace(0, 1, 200001))
+    assert distances_to_polyline(dense, p).max() <= tol and achieved <= tol
+
+
+def test_placement_follows_the_curvature_of_an_ellipse():
+    # an ellipse a = 4, b = 1: curvature a / b^2 = 4 at the ends of the major axis, b / a^2 = 1/16 at
+    # the ends of the minor one, so chords there are sqrt(64) = 8x longer (spacing ~ k^-1/2)
+    ell = lambda w: np.stack([4 * np.cos(np.pi * w), np.sin(np.pi * w)], -1)
+    t = np.linspace(0, 1, 4001)
+    placed = ell(place_by_curvature(t, ell(t), 1e-4))
+    step = np.linalg.norm(np.diff(placed, axis=0), axis=1)
+    assert 6.0 < step[len(step) // 2] / step[0] < 10.0
+
+
+def test_fewest_vertices_matches_an_exhaustive_shortest_path():
+    # every chord i -> j that stays within tol of the points it skips is an edge; the fewest vertices
+    # is a shortest path from the first point to the last (breadth first over all chords)
+    from gearkit.families.involute import GearSpec, tooth_profile
+
+    prof = tooth_profile(GearSpec(12, 1.0))
+    pts = np.concatenate([p(np.linspace(0, 1, 61))[(k > 0):] for k, p in enumerate(prof.half.pieces)])
+    for tol in (1e-2, 2e-3):
+        n = len(pts)
+        ok = np.zeros((n, n), dtype=bool)
+        for i in range(n):
+            for j in range(i + 1, n):
+                d = pts[j] - pts[i]
+                q = pts[i + 1:j] - pts[i]
+                dev = np.abs(q[:, 0] * d[1] - q[:, 1] * d[0]).max(initial=0.0) / np.hypot(*d)
+                ok[i, j] = dev <= tol
+        hops = np.full(n, n + 1)
+        hops[0] = 0
+        for i in range(n):
+            reach = np.flatnonzero(ok[i])
+            hops[reach] = np.minimum(hops[reach], hops[i] + 1)
+        assert fewest_vertices(pts, tol) == hops[-1] + 1
+
+
+def test_dense_exact_resolves_each_piece_to_a_fraction_of_tol():
+    bend = [lambda w: np.stack([w, 0.1 * np.sin(40 * w)], -1)]  # short waves: the start grid is too coarse
+    pts = dense_exact(bend, 1e-5, start=65)
+    mid = bend[0](0.5 * (np.linspace(0, 1, len(pts))[1:] + np.linspace(0, 1, len(pts))[:-1]))
+    assert distances_to_polyline(mid, pts).max() <= 1e-4 * 1e-5
+
+
+# -- the mesh check every solid made from arrays passes -----------------------------------------
+_TETRA_V = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]])
+_TETRA_F = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
+
+
+@pytest.mark.parametrize("faces,vertices,message", [
+    (_TETRA_F[:3], _TETRA_V, "opposite edge"),                                   # open
+    (np.concatenate([_TETRA_F[:3], _TETRA_F[3:, ::-1]]), _TETRA_V, "opposite edge"),  # one face flipped
+    (_TETRA_F[:, ::-1], _TETRA_V, "inside out"),                                 # all flipped
+    (_TETRA_F, _TETRA_V * np.array([1e-5, 1.0, 1.0]) + [1e3, 0, 0], "single precision"),  # two corners one in float32
+    (np.concatenate([_TETRA_F, [[0, 1, 4]]]), _TETRA_V, "missing vertices"),
+    (_TETRA_F, _TETRA_V * np.array([1.0, np.nan, 1.0]), "non-finite"),
+])
+def test_invalid_meshes_are_refused_as_manifold3d_would(faces, vertices, message):
+    from gearkit.solids import Solid
+
+    with pytest.raises(GeometryError, match=message):
+        Solid.from_arrays(vertices, faces, "bad", {})
+
+
+def test_a_gear_checked_with_numpy_measures_as_manifold3d_does():
+    from gearkit.families.involute import GearSpec, tooth_profile
+    from gearkit.solids import SolidSpec, gear_solid
+
+    solid = gear_solid(tooth_profile(GearSpec(17, 2.0, helix_angle_deg=15.0)), SolidSpec(8.0, bore=10.0), 1e-2)
+    volume, area, bounds = solid.volume, solid.area, solid.bounds
+    man = solid.manifold  # built on request from the same arrays
+    assert volume == pytest.approx(man.volume(), rel=1e-12)
+    assert area == pytest.approx(man.surface_area(), rel=1e-12)
+    assert np.allclose(np.ravel(bounds), np.asarray(man.bounding_box()), rtol=0, atol=1e-12)
+    assert solid.faces == man.num_tri()
+    moved = solid.placed(0.3, (1.0, 2.0, 3.0))
+    assert moved.volume == pytest.approx(volume, rel=1e-12)
+    assert moved.manifold.volume() == pytest.approx(volume, rel=1e-12)
