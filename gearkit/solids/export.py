@@ -29,17 +29,13 @@ def mesh_format(path) -> str | None:
 
 def _triangle_chunks(parts, chunk: int = 1 << 15):
     """(k, 3, 3) float32 triangles of all parts, a chunk at a time, and their (k, 3) float32 unit
-    normals (computed from the single-precision vertices the file stores)."""
+    normals (:meth:`~gearkit.solids.Solid.normals`: from the single-precision vertices the file stores)."""
     for part in parts:
         v, f = part.arrays()
         v32 = v.astype(np.float32)
+        normals = part.normals()
         for s in range(0, len(f), chunk):
-            tri = v32[f[s:s + chunk]]
-            p0 = tri[:, 0].astype(np.float64)
-            n = np.cross(tri[:, 1] - p0, tri[:, 2] - p0)
-            length = np.sqrt(np.einsum("ij,ij->i", n, n))[:, None]
-            n = np.divide(n, length, out=np.zeros_like(n), where=length > 0)
-            yield tri, n.astype(np.float32)
+            yield v32[f[s:s + chunk]], normals[s:s + chunk]
 
 
 def _stl_binary(parts, tmp):

@@ -212,6 +212,13 @@ class Solid:
             self._arrays = (v, np.asarray(mesh.tri_verts, dtype=np.int64))
         return self._arrays
 
+    def normals(self):
+        """(m, 3) float32 unit normals of the facets, from the vertices rounded to single precision
+        (as STL stores them)."""
+        if self._measures is None:
+            self._measures = mesh_measures(*self.arrays(), self.name)
+        return self._measures["normals"]
+
     def invariants(self) -> dict:
         """JSON-ready invariants: volume, area, bounding box, face count, requested and achieved tol."""
         lo, hi = self.bounds
@@ -263,7 +270,8 @@ CHUNK = 1 << 15
 
 
 def mesh_measures(vertices, faces, what: str = "mesh") -> dict:
-    """Check a triangle mesh is a valid solid and measure it: ``{volume, area}`` (mm^3, mm^2).
+    """Check a triangle mesh is a valid solid and measure it: ``{volume, area, normals}`` (mm^3,
+    mm^2, the facets' (m, 3) float32 unit normals as the single-precision vertices give them).
 
     Valid: finite vertices, faces indexing them, every edge met by exactly one edge running the
     other way (closed and consistently oriented: a sort of the edges proves it), no facet of zero
@@ -288,21 +296,28 @@ def mesh_measures(vertices, faces, what: str = "mesh") -> dict:
         raise GeometryError(f"{what}: the mesh is not a valid solid (an edge without exactly one opposite edge)")
     del key
     v32 = v.astype(np.float32)
+    normals = np.empty((len(f), 3), dtype=np.float32)
     volume = area = 0.0
     for s in range(0, len(f), CHUNK):
         fc = f[s:s + CHUNK]
-        for pts, single in ((v, False), (v32, True)):
-            p0 = pts[fc[:, 0]].astype(np.float64)
-            n = np.cross(pts[fc[:, 1]] - p0, pts[fc[:, 2]] - p0)
-            if single:
-                if not (np.einsum("ij,ij->i", n, n) > 0.0).all():
-                    raise GeometryError(f"{what}: the mesh has degenerate facets (zero area in single precision)")
-            else:
-                volume += float(np.einsum("ij,ij->", p0, n)) / 6.0
-                area += 0.5 * float(np.sqrt(np.einsum("ij,ij->i", n, n)).sum())
+        p0, n = _cross(v, fc)
+        volume += float(np.einsum("ij,ij->", p0, n)) / 6.0
+        area += 0.5 * float(np.sqrt(np.einsum("ij,ij->i", n, n)).sum())
+        n = _cross(v32, fc)[1]
+        length = np.sqrt(np.einsum("ij,ij->i", n, n))
+        if not (length > 0.0).all():
+            raise GeometryError(f"{what}: the mesh has degenerate facets (zero area in single precision)")
+        normals[s:s + CHUNK] = n / length[:, None]
     if not volume > 0.0:
         raise GeometryError(f"{what}: the solid is empty or inside out (volume {volume:.6g} mm^3)")
-    return {"volume": volume, "area": area}
+    return {"volume": volume, "area": area, "normals": normals}
+
+
+def _cross(points, faces):
+    """The first corners (float64) of ``faces`` and the cross products of their edges (twice the
+    area along the normal), from ``points`` of either precision."""
+    p0 = points[faces[:, 0]].astype(np.float64)
+    return p0, np.cross(points[faces[:, 1]] - p0, points[faces[:, 2]] - p0)
 
 
 def manifold_from_arrays(vertices, faces):
