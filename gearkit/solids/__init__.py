@@ -3,8 +3,9 @@
 Any generated profile (every family, through :class:`~gearkit.profile.ToothProfile`) becomes
 a solid: spur, helical, herringbone / double-helical, ring gears (:func:`gear_solid`), rack bars
 (:func:`rack_solid`); bores with keyways. Pairs are placed at their centre distance, phased,
-and tested for 3D interference (:func:`pair_assembly`). manifold3d builds and checks every
-solid; STL is written with numpy, OBJ (named parts) and GLB through trimesh
+and tested for 3D interference (:func:`pair_assembly`). A solid built from a triangle mesh is
+checked with numpy (closed, oriented, no facet of zero area in single precision, positive volume)
+and handed to manifold3d only when a boolean asks for it; STL is written with numpy, OBJ (named parts) and GLB through trimesh
 (:func:`write_mesh`, atomic). The same ``tol`` (mm) bounds the deviation of every vertex and
 facet from the exact tooth surface, twist included, and every solid reports the deviation it
 achieved (``Solid.achieved``). 3MF (unit mm, named objects) is written with the standard
