@@ -117,7 +117,7 @@ class HalfTooth:
         """Points from tip to space centre with every chord within ``tol``; and the achieved deviation."""
         chunks, worst = [], 0.0
         for k, piece in enumerate(self.pieces):
-            _, pts, dev = adaptive_sample(piece, tol)
+            _, pts, dev = adaptive_sample(piece, tol, fewest=True)
             chunks.append(pts if k == 0 else pts[1:])
             worst = max(worst, dev)
         return _drop_coincident(np.concatenate(chunks)), worst

@@ -75,12 +75,23 @@ def test_every_family_is_sampled_within_tol_measured_densely_with_near_the_fewes
         assert len(prof.half_points(tol)[0]) <= VERTEX_TARGET * least, (name, least)
 
 
+def test_a_cam_outline_is_placed_within_tol_measured_densely():
+    from gearkit.families.cam import CamSpec, MotionProgram, cam_profile
+
+    prof = cam_profile(CamSpec(56.7702, MotionProgram.rise_dwell_return(20.0, 60.0, 60.0, 60.0), roller_radius=10.0))
+    for tol in (1e-2, 1e-3, 1e-4):
+        out = prof.outline(tol)
+        exact = dense_exact(prof.pieces, tol, fraction=MEASURE)
+        assert distances_to_polyline(exact, out, closed=True).max() <= tol
+        assert prof.achieved(tol) <= tol
+
+
 def test_placement_on_a_circle_is_even_and_the_fewest_the_probe_margin_allows():
     # radius 5: a chord of angle h sags 5 (1 - cos(h / 2)); the whole circle needs ceil(2 pi / h) chords.
     # Chords are accepted up to PROBE_MARGIN tol (the probes' margin), so that is what they are placed at
     tol, r = 1e-4, 5.0
     circle = lambda w: r * np.stack([np.cos(2 * np.pi * w), np.sin(2 * np.pi * w)], -1)
-    w, p, achieved = adaptive_sample(circle, tol)
+    w, p, achieved = adaptive_sample(circle, tol, fewest=True)
     least = math.ceil(2 * math.pi / (2 * math.acos(1 - PROBE_MARGIN * tol / r)))
     assert least <= len(p) - 1 <= least + 1
     assert np.diff(w).max() / np.diff(w).min() < 1 + 1e-4  # equal steps where the curvature is even

@@ -51,6 +51,10 @@ def run(args) -> int:
         from gearkit.cli.gear import MAX_FACES
         from gearkit.cli.shell import bound
 
+        most = int(1e4 * spec.module // prof.pitch)  # a bar is at most 1e4 modules long (rack_solid's length)
+        if args.count > most:
+            raise SpecError("--count", f"{args.count} teeth make a bar of {args.count * prof.pitch:.6g} mm; a solid "
+                            f"bar holds at most {most} teeth (10000 modules)")
         one = rack_solid(prof, length=prof.pitch, height=height, width=width, tol=tol, start=-prof.pitch / 2)
         bound("--count", one.faces * args.count, MAX_FACES, "facets")
         bar = rack_solid(prof, length=args.count * prof.pitch, height=height, width=width, tol=tol,

@@ -52,7 +52,7 @@ def prism_solid(curves, spec: SolidSpec, tol: float, name: str = "part") -> Soli
         raise SpecError("curves", "a prism needs a closed loop of at least one curve")
     pieces, achieved = [], 0.0
     for c in curves:
-        _, pts, dev = adaptive_sample(c, tol)
+        _, pts, dev = adaptive_sample(c, tol, fewest=True)
         pieces.append(pts[:-1])
         achieved = max(achieved, float(dev))
     loop = np.concatenate(pieces)

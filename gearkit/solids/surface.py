@@ -61,7 +61,7 @@ def _half(half, tol: float):
     pts, fine = [], []
     sub = np.linspace(0.0, 1.0, FINE + 1)
     for k, piece in enumerate(half.pieces):
-        w, p, _ = adaptive_sample(piece, tol)
+        w, p, _ = adaptive_sample(piece, tol, fewest=True)
         ws = w[:-1, None] + (w[1:] - w[:-1])[:, None] * sub[None, :]
         fine.append(piece(ws.ravel()).reshape(len(w) - 1, FINE + 1, 2))
         pts.append(p if k == 0 else p[1:])

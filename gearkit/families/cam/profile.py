@@ -268,7 +268,7 @@ class CamProfile:
         if key not in self._cache:
             chunks, worst = [], 0.0
             for pc in self.pieces:
-                _, pts, dev = adaptive_sample(pc, tol, n_init=33)
+                _, pts, dev = adaptive_sample(pc, tol, n_init=33, fewest=True)
                 chunks.append(pts if not chunks else pts[1:])
                 worst = max(worst, dev)
             pts = np.concatenate(chunks)[:-1][::-1]  # closed: drop the repeated start; counter-clockwise
