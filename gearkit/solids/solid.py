@@ -139,11 +139,16 @@ class Solid:
         self.recipe = recipe
         self._arrays = None
         self._measures = None
+        self._normals = None
 
     @classmethod
     def from_arrays(cls, vertices, faces, name: str, info: dict, recipe: Recipe | None = None) -> "Solid":
         """A solid of a triangle mesh (vertices (n, 3) mm, faces (m, 3), counter-clockwise seen from
-        outside); raise :class:`GeometryError` unless it is a valid solid (:func:`mesh_measures`).
+        outside); raise :class:`GeometryError` unless it is a valid solid.
+
+        A mesh that passes :func:`mesh_measures` is kept as arrays; one that does not (an open edge,
+        a facet of zero area: coincident vertices, say) is handed to manifold3d as before, which
+        merges what it can, and kept only if the result passes :func:`checked`.
 
         Examples
         --------
@@ -154,12 +159,16 @@ class Solid:
         >>> Solid.from_arrays(v, f[:3], "open", {})
         Traceback (most recent call last):
         ...
-        gearkit.errors.GeometryError: open: the mesh is not a valid solid (an edge without exactly one opposite edge)
+        gearkit.errors.GeometryError: open: the mesh is not a valid solid (NotManifold)
         """
         v = np.ascontiguousarray(vertices, dtype=np.float64)
         f = np.ascontiguousarray(faces, dtype=np.int64)
+        try:
+            measures = mesh_measures(v, f, name)
+        except RepairableMesh:  # e.g. coincident vertices: manifold3d merges them, then it is checked
+            return cls(checked(manifold_from_arrays(v, f), name), name, info, recipe)
         solid = cls(None, name, info, recipe)
-        solid._measures = mesh_measures(v, f, name)
+        solid._measures = measures
         solid._arrays = (v, f)
         return solid
 
@@ -215,9 +224,17 @@ class Solid:
     def normals(self):
         """(m, 3) float32 unit normals of the facets, from the vertices rounded to single precision
         (as STL stores them)."""
-        if self._measures is None:
-            self._measures = mesh_measures(*self.arrays(), self.name)
-        return self._measures["normals"]
+        if self._measures is not None:
+            return self._measures["normals"]
+        if self._normals is None:  # a solid made by manifold3d: zero for a facet of no area, as written
+            v, f = self.arrays()
+            v32 = v.astype(np.float32)
+            self._normals = np.zeros((len(f), 3), dtype=np.float32)
+            for s in range(0, len(f), CHUNK):
+                n = _cross(v32, f[s:s + CHUNK])[1]
+                length = np.sqrt(np.einsum("ij,ij->i", n, n))[:, None]
+                self._normals[s:s + CHUNK] = np.divide(n, length, out=np.zeros_like(n), where=length > 0)
+        return self._normals
 
     def invariants(self) -> dict:
         """JSON-ready invariants: volume, area, bounding box, face count, requested and achieved tol."""
@@ -265,6 +282,10 @@ class Solid:
         return f"Solid({self.name!r}, faces={self.faces}, volume={self.volume:.6g} mm^3, achieved={self.achieved:.3g} mm)"
 
 
+class RepairableMesh(GeometryError):
+    """A mesh :func:`mesh_measures` refuses that manifold3d may still merge into a valid solid."""
+
+
 #: facets handled at once by the chunked mesh passes (bounds their temporary arrays)
 CHUNK = 1 << 15
 
@@ -293,7 +314,7 @@ def mesh_measures(vertices, faces, what: str = "mesh") -> dict:
     del a, b
     key.sort()
     if not ((key[0::2] & 1 == 0).all() and (key[1::2] == key[0::2] + 1).all()):
-        raise GeometryError(f"{what}: the mesh is not a valid solid (an edge without exactly one opposite edge)")
+        raise RepairableMesh(f"{what}: the mesh is not a valid solid (an edge without exactly one opposite edge)")
     del key
     v32 = v.astype(np.float32)
     normals = np.empty((len(f), 3), dtype=np.float32)
@@ -306,10 +327,10 @@ def mesh_measures(vertices, faces, what: str = "mesh") -> dict:
         n = _cross(v32, fc)[1]
         length = np.sqrt(np.einsum("ij,ij->i", n, n))
         if not (length > 0.0).all():
-            raise GeometryError(f"{what}: the mesh has degenerate facets (zero area in single precision)")
+            raise RepairableMesh(f"{what}: the mesh has degenerate facets (zero area in single precision)")
         normals[s:s + CHUNK] = n / length[:, None]
     if not volume > 0.0:
-        raise GeometryError(f"{what}: the solid is empty or inside out (volume {volume:.6g} mm^3)")
+        raise RepairableMesh(f"{what}: the solid is empty or inside out (volume {volume:.6g} mm^3)")
     return {"volume": volume, "area": area, "normals": normals}
 
 
