@@ -104,6 +104,9 @@ def _probe(evaluate, w, pts, tol):
 #: the pilot sampling that the vertices are placed from runs at this multiple of tol (its points
 #: and probes only have to show where the curve bends)
 PILOT = 16.0
+#: chords are placed to deviate by about this fraction of tol: inside the acceptance test's margin,
+#: so that few of them fail it and are split
+PLACE_AT = 0.9
 
 
 def adaptive_sample(evaluate, tol: float, n_init: int = 5, max_rounds: int = 60, max_split: int = 16,
@@ -114,7 +117,7 @@ def adaptive_sample(evaluate, tol: float, n_init: int = 5, max_rounds: int = 60,
     where the curve bends: a chord of length L where the curvature is k deviates by about
     k L^2 / 8, so the fewest vertices for a chord deviation t are spaced sqrt(8 t / k) apart. The
     vertices are placed at equal steps of ``N(s) = integral sqrt(k / (8 t)) ds`` (``t =
-    PROBE_MARGIN tol``, the curvature estimated from the turning of the pilot polyline),
+    PLACE_AT tol``, the curvature estimated from the turning of the pilot polyline),
     ``ceil(N)`` chords in all: within a few percent of the fewest a chord-at-tol polyline needs.
 
     **Acceptance.** The placed vertices then go through :func:`refine_sample` at ``tol``, which
@@ -176,7 +179,7 @@ def adaptive_sample(evaluate, tol: float, n_init: int = 5, max_rounds: int = 60,
         return refine_sample(evaluate, w, evaluate(w), tol, max_rounds, max_split)[:3]
     w, pts, _, probes, q = refine_sample(evaluate, w, evaluate(w), PILOT * tol, max_rounds, max_split)
     w = place_by_curvature(np.concatenate([w, probes.ravel()]), np.concatenate([pts, q.reshape(-1, 2)]),
-                           PROBE_MARGIN * tol)
+                           PLACE_AT * tol)
     return refine_sample(evaluate, w, evaluate(w), tol, max_rounds, max_split)[:3]
 
 

@@ -13,7 +13,7 @@ import math
 import numpy as np
 import pytest
 
-from gearkit.accuracy import PROBE_MARGIN, adaptive_sample, distances_to_polyline, place_by_curvature
+from gearkit.accuracy import PLACE_AT, adaptive_sample, distances_to_polyline, place_by_curvature
 from gearkit.bench.targets import VERTEX_TARGET, dense_exact, fewest_vertices
 from gearkit.errors import GeometryError
 
@@ -86,13 +86,13 @@ def test_a_cam_outline_is_placed_within_tol_measured_densely():
         assert prof.achieved(tol) <= tol
 
 
-def test_placement_on_a_circle_is_even_and_the_fewest_the_probe_margin_allows():
+def test_placement_on_a_circle_is_even_and_the_fewest_at_its_chord_deviation():
     # radius 5: a chord of angle h sags 5 (1 - cos(h / 2)); the whole circle needs ceil(2 pi / h) chords.
-    # Chords are accepted up to PROBE_MARGIN tol (the probes' margin), so that is what they are placed at
+    # Chords are placed to sag by PLACE_AT tol (inside the acceptance test's margin)
     tol, r = 1e-4, 5.0
     circle = lambda w: r * np.stack([np.cos(2 * np.pi * w), np.sin(2 * np.pi * w)], -1)
     w, p, achieved = adaptive_sample(circle, tol, fewest=True)
-    least = math.ceil(2 * math.pi / (2 * math.acos(1 - PROBE_MARGIN * tol / r)))
+    least = math.ceil(2 * math.pi / (2 * math.acos(1 - PLACE_AT * tol / r)))
     assert least <= len(p) - 1 <= least + 1
     assert np.diff(w).max() / np.diff(w).min() < 1 + 1e-4  # equal steps where the curvature is even
     dense = circle(np.linspace(0, 1, 200001))
