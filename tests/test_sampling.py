@@ -3,9 +3,9 @@
 The sampler places vertices by curvature (:func:`gearkit.accuracy.place_by_curvature`) and then
 probes every chord (:func:`gearkit.accuracy.refine_sample`). Its deviation is measured here
 independently -- the exact pieces evaluated densely and uniformly in their parameters
-(:func:`gearkit.bench.targets.dense_exact`), their distance to the sampled polyline -- for every
+(:func:`gearkit.bench.vertices.dense_exact`), their distance to the sampled polyline -- for every
 family at several tolerances; its vertex count is held against the fewest a chord-at-tol polyline
-needs on that dense evaluation (:func:`gearkit.bench.targets.fewest_vertices`), which is itself
+needs on that dense evaluation (:func:`gearkit.bench.vertices.fewest_vertices`), which is itself
 held against an exhaustive shortest-path count.
 """
 import math
@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from gearkit.accuracy import PLACE_AT, adaptive_sample, distances_to_polyline, place_by_curvature
-from gearkit.bench.targets import VERTEX_TARGET, dense_exact, fewest_vertices
+from gearkit.bench.vertices import VERTEX_TARGET, dense_exact, fewest_vertices
 from gearkit.errors import GeometryError
 
 #: tolerances, in modules (or eccentricities), the families are sampled at

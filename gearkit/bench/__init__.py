@@ -40,7 +40,7 @@ def run_bench(quick: bool = False, process: bool = True, progress=None) -> dict:
     ``overhead``, ``overhead_ratio``, ``targets`` (list of {name, measured, target, unit, pass}),
     ``floor`` (the import floor, when ``process``) and ``meta`` (lengths in mm, times in s).
     """
-    from gearkit.bench import blocking, meshes, oracle, process as proc, products, profiles, targets
+    from gearkit.bench import blocking, meshes, oracle, process as proc, products, profiles, targets, vertices
 
     def say(msg):
         if progress is not None:
@@ -63,7 +63,7 @@ def run_bench(quick: bool = False, process: bool = True, progress=None) -> dict:
     if products.available("gearkit.solids"):
         say("accuracy ladder: meshes")
         out["ladder"] += meshes.mesh_ladder(quick, repeats)
-    out["targets"] += targets.vertex_target_rows()
+    out["targets"] += vertices.vertex_target_rows()
     if products.available("gearkit.solids"):
         say("large mesh: z = 1000 to STL, CPU and memory per face")
         out["targets"] += targets.mesh_target_rows(1 if quick else 3)
