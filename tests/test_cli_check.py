@@ -63,7 +63,7 @@ def test_exit_status_one_when_a_finding_fails(capsys):
     (["--z1", "12", "--z2", "40", "-m", "1", "--internal"], "--cutter-teeth"),
     (["--z1", "12", "--z2", "24", "-m", "1", "--split", "equal"], "split"),
     (["--z1", "12", "--z2", "24", "-m", "1", "--center-distance", "19", "--x2", "0.1"], "x2"),
-    (["--z1", "12", "--z2", "24", "-m", "1", "--rack", "iso53a", "--pressure-angle-deg", "25"], "pressure_angle"),
+    (["--z1", "12", "--z2", "24", "-m", "1", "--rack", "iso53a", "--pressure-angle-deg", "25"], "--pressure-angle-deg"),
     (["--z1", "twelve", "--z2", "24", "-m", "1"], "invalid int"),
     (["missing.toml"], "cannot read"),
 ])
@@ -165,7 +165,7 @@ def test_help_documents_the_ring_shift_sign(capsys):
 
 
 def test_limits_flags_change_the_verdict(capsys):
-    argv = ["--z1", "13", "--z2", "60", "-m", "1", "--x1", "0.5", "--tip", "standard", "--json"]
+    argv = ["--z1", "13", "--z2", "60", "-m", "1", "--x1", "0.5", "--tip-rule", "standard", "--json"]
     _, out, _ = run(argv, capsys)
     base = {f["id"]: f for f in json.loads(out)["findings"]}
     _, out, _ = run(argv + ["--min-tip-thickness", "0.5"], capsys)

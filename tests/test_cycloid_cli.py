@@ -91,7 +91,7 @@ def test_cycloid_pair_and_pin_gearing(tmp_path, capsys):
                                     "--rolling-radius", "5.625", "--json"]).out)
     assert info["contact_ratio"] == pytest.approx(1.8723, abs=1e-4)  # digest "other gears" §1.5
     out = tmp_path / "pair.obj"
-    pins = _run(capsys, ["cycloid", "-m", "1", "--pinion-teeth", "8", "--wheel-teeth", "40", "--pins", "0.8",
+    pins = _run(capsys, ["cycloid", "-m", "1", "--pinion-teeth", "8", "--wheel-teeth", "40", "--pin-radius", "0.8",
                          "--addendum", "2.0", "--json", "-o", str(out)]).out
     info = json.loads(pins)
     assert info["output"]["parts"] == ["wheel", "pins"] and out.stat().st_size > 1000

@@ -260,3 +260,19 @@ def test_rack_files_report_bad_content(tmp_path):
                                         "convex": {"radius": -1.0}}})
     assert exc.value.field == "rack.convex.radius"
     assert Path(PRESETS_FILE).is_file()
+
+
+def test_a_rack_file_is_written_as_a_preset_is(tmp_path):
+    """A preset's block copied from the presets file, renamed, loads as that preset (issue 13); a file of
+    several systems is refused naming the form; ``standard`` names the default preset."""
+    text = PRESETS_FILE.read_text()
+    block = text[text.index("[dca24]"):text.index("[single-arc]")].replace("[dca24", "[mine")
+    f = tmp_path / "copy.toml"
+    f.write_text(block)
+    system = rack_system(str(f))
+    assert system.name == "mine" and not system.verified
+    assert [r.geometry for r in system.racks] == [r.geometry for r in rack_system("dca24").racks]
+    f.write_text(text)  # the whole presets file: two systems
+    with pytest.raises(SpecError, match="must hold one rack system"):
+        load_rack_system(f)
+    assert rack_system("standard") is rack_system("dca24")

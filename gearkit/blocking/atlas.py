@@ -295,6 +295,12 @@ def write_atlas(z1s, z2s, out_dir, template: PairSpec | None = None, *, workers:
 
 
 def _template_dict(t: PairSpec) -> dict:
-    tools = [repr(tool) for tool in t.tools]
+    from dataclasses import asdict
+
+    from gearkit.families.involute import tool_label
+
+    # the tools as every output spells them, and every parameter (the template's identity on resume)
+    params = [{k: v for k, v in asdict(tool).items() if k != "name"} for tool in t.tools]
     return {"kind": t.kind, "module": t.module, "pressure_angle_deg": t.alpha_n_deg,
-            "helix_angle_deg": t.helix_angle_deg, "addendum": t.addendum, "tip_rule": t.tip_rule, "tools": tools}
+            "helix_angle_deg": t.helix_angle_deg, "addendum": t.addendum, "tip_rule": t.tip_rule,
+            "tools": [tool_label(tool) for tool in t.tools], "tool_parameters": params}

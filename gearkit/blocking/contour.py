@@ -26,6 +26,7 @@ from gearkit.blocking.tracing import trace
 from gearkit.checks.limits import CheckLimits
 from gearkit.curves import bracketed_root
 from gearkit.errors import SpecError, require
+from gearkit.families.involute import tool_label
 from gearkit.pair.spec import PairSpec
 from gearkit.pair.tooling import half_angle, section, thickness_coeff
 
@@ -176,7 +177,7 @@ class BlockingContour:
         """JSON-ready: pair, window, lines (name, points), region, recommendation, marked (and the
         wall time unless ``timing=False``: the rest is the same on every run)."""
         t = self.field.template
-        tools = [getattr(tt, "name", None) or type(tt).__name__ for tt in t.tools]
+        tools = [tool_label(tt) for tt in t.tools]
         out = {
             "pair": {"z1": t.teeth1, "z2": t.teeth2, "kind": t.kind, "pressure_angle_deg": t.alpha_n_deg,
                      "helix_angle_deg": t.helix_angle_deg, "addendum": t.addendum, "tip_rule": t.tip_rule,

@@ -18,7 +18,7 @@ Format (every key optional unless marked; lengths in mm, angles in degrees)::
     shift = 0.3
     tip_diameter = 41.2
     thinning = 0.05
-    tool = "iso53a"              # iso53a..iso53d | rack | a table:
+    tool = "iso53a"              # standard | iso53a..iso53d (as --rack; "rack" = standard) | a table:
     # tool = { type = "shaper", teeth = 20, addendum = 1.3 }
     # tool = { type = "rack", dedendum = 1.25, fillet_radius = 0.3 }
 
@@ -37,7 +37,7 @@ from dataclasses import replace
 from gearkit.checks.limits import CheckLimits
 from gearkit.errors import SpecError
 from gearkit.pair import PairSpec, shifts_for_center_distance
-from gearkit.families.involute import BasicRack, ShaperCutter
+from gearkit.families.involute import BasicRack, ShaperCutter, named_rack
 
 __all__ = ["load_design", "design_from_dict"]
 
@@ -59,12 +59,7 @@ def _tool(value, where: str, alpha):
     if value is None:
         return None
     if isinstance(value, str):
-        key = value.lower()
-        if key == "rack":
-            return BasicRack(20.0 if alpha is None else alpha)
-        if key in ("iso53a", "iso53b", "iso53c", "iso53d"):
-            return BasicRack.iso53(key[5:])
-        raise SpecError(where, f"{value!r} is not rack, iso53a, iso53b, iso53c or iso53d")
+        return named_rack(value, alpha, field=where)
     if not isinstance(value, dict):
         raise SpecError(where, "must be a string or a table")
     kind = value.get("type")

@@ -11,7 +11,8 @@ from __future__ import annotations
 
 import sys
 
-from gearkit.cli.common import add_json_flag, add_module_flag, add_output_flag, add_tol_flag, print_json
+from gearkit.cli.common import (add_json_flag, add_module_flag, add_output_flag, add_rack_flag, add_tol_flag, print_json,
+                                rack_from_args)
 from gearkit.errors import SpecError
 
 
@@ -56,7 +57,7 @@ def add_template_arguments(p, g) -> None:
     g.add_argument("--internal", action="store_true", help="pinion inside a ring (needs --cutter-teeth)")
     g.add_argument("--addendum", type=float, default=1.0, help="addendum coefficient h_a* (default 1)")
     t = p.add_argument_group("tools")
-    t.add_argument("--rack", choices=("iso53a", "iso53b", "iso53c", "iso53d"), help="ISO 53 basic rack")
+    add_rack_flag(t)
     t.add_argument("--cutter-teeth", type=int, help="teeth z0 of the shaper cutter that cuts the ring")
     t.add_argument("--cutter-addendum", type=float, default=1.25, help="the shaper's addendum h_a0* (default 1.25)")
     t.add_argument("--pinion-cutter-teeth", type=int, help="cut the pinion with a shaper of this many teeth")
@@ -87,10 +88,10 @@ def _floats(text, n, flag):
 def template_spec(args, z1: int, z2: int):
     """The PairSpec of the template options with tooth numbers z1, z2."""
     from gearkit.pair import PairSpec
-    from gearkit.families.involute import BasicRack, ShaperCutter
+    from gearkit.families.involute import ShaperCutter
 
     alpha = args.pressure_angle_deg
-    rack = BasicRack.iso53(args.rack[-1]) if args.rack else BasicRack(20.0 if alpha is None else alpha)
+    rack = rack_from_args(args)
     tool1 = rack
     if args.pinion_cutter_teeth is not None:
         tool1 = ShaperCutter(args.pinion_cutter_teeth, rack.pressure_angle_deg, 0.0, args.cutter_addendum)

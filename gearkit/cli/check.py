@@ -121,14 +121,15 @@ def format_report(result) -> str:
         f"  eps_alpha {g.contact_ratio:.4f} (tip-to-tip {g.contact_ratio_nominal:.4f})   eps_beta "
         f"{g.overlap_ratio:.4f}   eps_gamma {g.total_contact_ratio:.4f}   backlash {_num(g.backlash, 0)} mm",
         "",
-        "  gear      z         x       d_a       d_f       d_F      s_an  undercut",
+        "  gear      z         x       d_a       d_f       d_F      s_an  undercut  tool",
     ]
     for i, gear in enumerate(g.gears):
         prof = result.profiles[i] if result.profiles else None
         under = prof.undercut if prof else gear.undercut
         d_f = prof.root_diameter if prof else gear.root_diameter
         lines.append(f"  {i + 1:<4}{gear.teeth:>5}{_num(gear.shift_coeff)}{_num(gear.tip_diameter)}{_num(d_f)}"
-                     f"{_num(gear.form_diameter)}{_num(gear.tip_thickness_normal)}  {'yes' if under else 'no'}")
+                     f"{_num(gear.form_diameter)}{_num(gear.tip_thickness_normal)}  {'yes' if under else 'no ':<8}  "
+                     f"{gear.tool}")
     if g.kind == "internal":
         ring = g.gears[1]
         lines.append(f"  ring shift x2 read as {'ISO 21771 (by the tooth thickness)' if ring.shift_convention == 'iso' else 'the shaper setting'}"

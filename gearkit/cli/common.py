@@ -14,26 +14,64 @@ on one line and exits 2.
 """
 from __future__ import annotations
 
+import argparse
 import math
+import sys
 
 from gearkit.errors import SpecError
 
-__all__ = ["RACKS", "SIGN_NOTE", "add_gear_flags", "add_json_flag", "add_keyway_flag", "add_module_flag",
-           "add_output_flag", "add_pair_arguments",
-           "add_tol_flag", "add_tool_flags", "keyway_from_arg", "output_kind", "pair_spec_from_args", "print_json",
-           "tol_from",
-           "tool_from_args"]
+__all__ = ["RACKS", "RACK_HELP", "SIGN_NOTE", "TIP_RULES", "RenamedFlag", "add_renamed_flag", "add_gear_flags", "add_json_flag", "add_keyway_flag",
+           "add_module_flag", "add_output_flag", "add_pair_arguments", "add_rack_flag", "add_tol_flag",
+           "add_tool_flags", "keyway_from_arg", "output_kind", "pair_spec_from_args", "print_json", "rack_from_args",
+           "tol_from", "tool_from_args"]
 
+#: how a pair's (or a gear's) tip diameters follow (``--tip-rule``)
+TIP_RULES = ("shortened", "standard")
+#: the basic racks a ``--rack`` flag names, the same in every command and design file
 RACKS = ("standard", "iso53a", "iso53b", "iso53c", "iso53d")
+RACK_HELP = ("generating basic rack: 'standard' (h_aP* 1, h_fP* 1.25, the largest tip rounding 0.38 m; the default) "
+             "or an ISO 53 profile iso53a..iso53d (20 degrees)")
+
+
+def add_rack_flag(p, help: str = RACK_HELP) -> None:
+    """``--rack NAME``: the involute basic rack, one of :data:`RACKS` (default ``standard``)."""
+    p.add_argument("--rack", choices=RACKS, default="standard", help=help)
+
+
+def rack_from_args(args):
+    """The :class:`~gearkit.families.involute.BasicRack` of ``--rack`` and ``--pressure-angle-deg``."""
+    from gearkit.families.involute import named_rack
+
+    return named_rack(getattr(args, "rack", None) or "standard", args.pressure_angle_deg, "--rack",
+                      "--pressure-angle-deg")
+
+
+class RenamedFlag(argparse.Action):
+    """The earlier spelling of a flag, kept working: it stores into the new flag's destination and
+    prints one deprecation line on stderr (``add_renamed_flag``)."""
+
+    def __init__(self, option_strings, dest, new_flag: str = "", **kwargs):
+        self.new_flag = new_flag
+        super().__init__(option_strings, dest, **kwargs)
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        print(f"{parser.prog}: {option_string} is deprecated, use {self.new_flag} (the same value)", file=sys.stderr)
+        setattr(namespace, self.dest, values)
+
+
+def add_renamed_flag(p, old: str, new: str, dest: str, **kwargs) -> None:
+    """Declare ``old`` as the deprecated spelling of ``new`` (destination ``dest``; same type).
+
+    Put both in one mutually exclusive group to refuse them together."""
+    p.add_argument(old, dest=dest, action=RenamedFlag, new_flag=new, default=argparse.SUPPRESS,
+                   help=f"deprecated: the old name of {new}", **kwargs)
 
 
 def add_tool_flags(p) -> None:
     """Tool flags shared by commands that build one involute gear."""
     p.add_argument("--pressure-angle-deg", type=float, default=None,
                    help="normal pressure angle of the rack/cutter, degrees (default 20)")
-    p.add_argument("--rack", choices=RACKS, default="standard",
-                   help="generating rack: 'standard' (h_a*=1, c*=0.25, largest tip rounding 0.38 m) or an ISO 53 "
-                        "profile (default standard)")
+    add_rack_flag(p)
     p.add_argument("--cutter-teeth", type=int, default=None,
                    help="cut with a shaper cutter of this many teeth (required with --internal; default 20 then)")
     p.add_argument("--cutter-shift", type=float, default=0.0, help="shaper cutter's own shift coefficient x0")
@@ -125,22 +163,18 @@ def keyway_from_arg(text):
 
 
 def tool_from_args(args, internal: bool):
-    from gearkit.families.involute import BasicRack, ShaperCutter
+    from gearkit.families.involute import ShaperCutter
 
     alpha = 20.0 if args.pressure_angle_deg is None else args.pressure_angle_deg
     if args.cutter_teeth is not None or internal:
         return ShaperCutter(20 if args.cutter_teeth is None else args.cutter_teeth, alpha, args.cutter_shift, args.cutter_addendum)
-    if args.rack == "standard":
-        return BasicRack(alpha, name="standard")
-    if args.pressure_angle_deg not in (None, 20.0):
-        raise SpecError("--pressure-angle-deg", f"ISO 53 profiles have 20 degrees; use --rack standard for {alpha}")
-    return BasicRack.iso53(args.rack[-1])
+    return rack_from_args(args)
 
 
 #: flags that describe the pair (not allowed together with a design file)
 _MODEL_FLAGS = ("z1", "z2", "module", "x1", "x2", "center_distance", "split", "pressure_angle_deg",
                 "helix_angle_deg", "width", "internal", "rack_pair", "cutter_teeth", "cutter_shift",
-                "cutter_addendum", "pinion_cutter_teeth", "rack", "addendum", "tip", "da1", "da2",
+                "cutter_addendum", "pinion_cutter_teeth", "rack", "addendum", "tip_rule", "da1", "da2",
                 "thinning1", "thinning2", "min_tip_thickness", "min_contact_ratio", "min_tip_clearance",
                 "ring_shift")
 
@@ -171,15 +205,19 @@ def add_pair_arguments(p, limits: bool = True) -> None:
     kind.add_argument("--internal", action="store_true", help="pinion inside a ring (needs --cutter-teeth)")
     kind.add_argument("--rack-pair", action="store_true", help="pinion and rack (no --z2)")
     g.add_argument("--addendum", type=float, default=1.0, help="addendum coefficient h_a* (default 1)")
-    g.add_argument("--tip", choices=("shortened", "standard"), default="shortened",
-                   help="tip diameters: keep the standard clearance (default) or d_a = d + 2 m_n (h_a* + x)")
-    g.add_argument("--da1", type=float, help="given pinion tip diameter, mm")
-    g.add_argument("--da2", type=float, help="given wheel/ring tip diameter, mm")
+    tip = g.add_mutually_exclusive_group()
+    tip.add_argument("--tip-rule", choices=TIP_RULES, default="shortened",
+                     help="tip diameters: 'shortened' keeps the standard clearance (default), 'standard' is "
+                          "d_a = d + 2 m_n (h_a* + x)")
+    add_renamed_flag(tip, "--tip", "--tip-rule", "tip_rule", choices=TIP_RULES)
+    for n, whose in ((1, "pinion"), (2, "wheel/ring")):
+        tip_n = g.add_mutually_exclusive_group()
+        tip_n.add_argument(f"--tip-diameter{n}", dest=f"da{n}", type=float, help=f"given {whose} tip diameter d_a{n}, mm")
+        add_renamed_flag(tip_n, f"--da{n}", f"--tip-diameter{n}", f"da{n}", type=float)
     g.add_argument("--thinning1", type=float, default=0.0, help="pinion normal tooth thinning for backlash, mm")
     g.add_argument("--thinning2", type=float, default=0.0, help="wheel normal tooth thinning for backlash, mm")
     t = p.add_argument_group("tools")
-    t.add_argument("--rack", choices=("iso53a", "iso53b", "iso53c", "iso53d"),
-                   help="ISO 53 basic rack of the rack-cut gears (default: h_aP* 1, h_fP* 1.25, largest fillet)")
+    add_rack_flag(t, RACK_HELP.replace("generating basic rack", "basic rack of the rack-cut gears"))
     t.add_argument("--cutter-teeth", type=int, help="teeth z0 of the shaper cutter that cuts the ring")
     t.add_argument("--ring-shift", choices=("iso", "cutter"), default="iso",
                    help="how the ring's --x2 is read: 'iso' (ISO 21771, by the tooth thickness; default) or "
@@ -212,8 +250,8 @@ def pair_spec_from_args(args, allowed_with_design=()):
 
 def _given(args, name) -> bool:
     value = getattr(args, name)
-    default = {"helix_angle_deg": 0.0, "addendum": 1.0, "tip": "shortened", "thinning1": 0.0, "thinning2": 0.0,
-               "cutter_shift": 0.0, "cutter_addendum": 1.25, "internal": False, "rack_pair": False,
+    default = {"helix_angle_deg": 0.0, "addendum": 1.0, "tip_rule": "shortened", "thinning1": 0.0, "thinning2": 0.0,
+               "cutter_shift": 0.0, "cutter_addendum": 1.25, "internal": False, "rack": "standard", "rack_pair": False,
                "ring_shift": "iso"}.get(name)
     return value is not None and value != default
 
@@ -221,7 +259,7 @@ def _given(args, name) -> bool:
 def _spec_from_flags(args):
     from gearkit.checks import CheckLimits
     from gearkit.pair import PairSpec
-    from gearkit.families.involute import BasicRack, ShaperCutter
+    from gearkit.families.involute import ShaperCutter
 
     kind = "internal" if args.internal else "rack" if args.rack_pair else "external"
     for name, flag in (("z1", "--z1"), ("module", "-m/--module")):
@@ -233,7 +271,7 @@ def _spec_from_flags(args):
     elif args.z2 is None:
         raise SpecError("--z2", "is required")
     alpha = args.pressure_angle_deg
-    rack = BasicRack.iso53(args.rack[-1]) if args.rack else BasicRack(20.0 if alpha is None else alpha)
+    rack = rack_from_args(args)
     tool1 = rack
     if args.pinion_cutter_teeth is not None:
         tool1 = ShaperCutter(args.pinion_cutter_teeth, rack.pressure_angle_deg, args.cutter_shift, args.cutter_addendum)
@@ -245,7 +283,7 @@ def _spec_from_flags(args):
     elif args.cutter_teeth is not None:
         raise SpecError("--cutter-teeth", "applies to internal pairs (use --pinion-cutter-teeth, or a design file)")
     spec = PairSpec(args.z1, args.z2, args.module, args.x1 or 0.0, args.x2 or 0.0, kind, alpha,
-                    args.helix_angle_deg, args.width, tool1, tool2, args.addendum, args.tip, args.da1, args.da2,
+                    args.helix_angle_deg, args.width, tool1, tool2, args.addendum, args.tip_rule, args.da1, args.da2,
                     None, args.thinning1, args.thinning2, args.ring_shift)
     spec = _apply_center_distance(spec, args.center_distance, args.x1, args.x2, args.split)
     limits = CheckLimits(**{k: getattr(args, k) for k in ("min_tip_thickness", "min_contact_ratio",

@@ -6,7 +6,7 @@ Usage::
                             [--equidistant-mod 0.02] [--shift-mod 0] [--tip-radius R] [--json]
                             [-o disc.stl|disc.dxf|disc.svg|drive.obj]
     gearkit cycloid -m 1 --pinion-teeth 8 --wheel-teeth 64 [--clock | --rolling-radius A1 [A2]]
-                    [--pins RHO] [--json] [-o pair.svg|pair.obj|wheel.stl]
+                    [--pin-radius RHO] [--json] [-o pair.svg|pair.obj|wheel.stl]
 
 Exit status: 0 when no finding fails, 1 when one fails, 2 for bad input. One module registers
 both commands.
@@ -16,8 +16,8 @@ from __future__ import annotations
 import math
 import sys
 
-from gearkit.cli.common import (add_json_flag, add_module_flag, add_output_flag, add_tol_flag, output_kind, print_json,
-                                tol_from)
+from gearkit.cli.common import (add_json_flag, add_module_flag, add_output_flag, add_renamed_flag, add_tol_flag,
+                                output_kind, print_json, tol_from)
 from gearkit.errors import SpecError
 
 _SCALARS = (int, float, str, bool, type(None))
@@ -49,18 +49,19 @@ def register(subparsers) -> None:
         "cycloid", help="cycloid gear pair, clock gearing or pin (lantern) gearing",
         description="Generate a cycloid gear pair with its cycloidal racks (epicycloidal addenda, "
                     "hypocycloidal dedenda), clock gearing (--clock: radial pinion flanks), or pin gearing "
-                    "(--pins RHO: the pinion is a pin wheel and the wheel is cut by its pins); check it.",
+                    "(--pin-radius RHO: the pinion is a pin wheel and the wheel is cut by its pins); check it.",
         epilog="Exit status: 0 no finding fails, 1 a finding fails, 2 bad input.")
     add_module_flag(c, "module, mm", required=True)
-    c.add_argument("--pinion-teeth", type=int, required=True, help="z1 (pins of the pin wheel with --pins)")
+    c.add_argument("--pinion-teeth", type=int, required=True, help="z1 (pins of the pin wheel with --pin-radius)")
     c.add_argument("--wheel-teeth", type=int, required=True, help="z2")
     kind = c.add_mutually_exclusive_group()
     kind.add_argument("--clock", action="store_true", help="clock gearing (BS 978-2 style): generating circles "
                       "r1/2 and r2/2, wheel addendum 0.95 A")
     kind.add_argument("--rolling-radius", type=float, nargs="+", metavar="A",
                       help="generating circle radii a1 [a2], mm (default 0.375 of each pitch radius)")
-    kind.add_argument("--pins", type=float, metavar="RHO", help="pin gearing: the pinion is a pin wheel of pins of "
-                      "radius RHO mm on its pitch circle")
+    kind.add_argument("--pin-radius", type=float, metavar="RHO", help="pin gearing: the pinion is a pin wheel of "
+                      "pins of radius RHO mm on its pitch circle (as r_Z of cycloidal-drive)")
+    add_renamed_flag(kind, "--pins", "--pin-radius", "pin_radius", type=float, metavar="RHO")
     c.add_argument("--addendum", type=float, nargs="+", metavar="HA",
                    help="addendum coefficients h_a1* [h_a2*] (module units; pin gearing: the wheel's)")
     c.add_argument("--dedendum", type=float, default=None, help="dedendum coefficient h_f* (default 1.25)")
@@ -169,7 +170,7 @@ def _pair_spec(args):
 
 def run_cycloid(args) -> int:
     fmt = output_kind(args.output)
-    if args.pins is not None:
+    if args.pin_radius is not None:
         from gearkit.checks.cycloidal import check_pin_gearing
         from gearkit.families.cycloidal import PinGearSpec
 
@@ -178,7 +179,7 @@ def run_cycloid(args) -> int:
         ha = args.addendum or [1.0]
         if len(ha) != 1:
             raise SpecError("--addendum", "pin gearing takes one value (the wheel's)")
-        spec = PinGearSpec(args.module, args.pinion_teeth, args.wheel_teeth, args.pins, ha[0])
+        spec = PinGearSpec(args.module, args.pinion_teeth, args.wheel_teeth, args.pin_radius, ha[0])
         result = check_pin_gearing(spec)
         title = (f"gearkit cycloid: pin gearing, {spec.pins} pins of radius {spec.pin_radius:g} mm, wheel "
                  f"z2 = {spec.wheel_teeth}, m = {spec.module:g} mm")

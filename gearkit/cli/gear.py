@@ -7,7 +7,7 @@ extension (.stl .obj .glb .3mf .step) it writes the solid (``--width`` required)
 """
 from __future__ import annotations
 
-from gearkit.cli.common import (add_gear_flags, add_json_flag, add_keyway_flag, add_output_flag, add_tol_flag,
+from gearkit.cli.common import (TIP_RULES, add_gear_flags, add_json_flag, add_keyway_flag, add_output_flag, add_tol_flag,
                                 add_tool_flags, keyway_from_arg, print_json, tol_from, tool_from_args)
 from gearkit.errors import SpecError
 
@@ -25,7 +25,7 @@ def register(subparsers) -> None:
                         "shaper setting is derived; default) or 'cutter' (the shaper's radial setting)")
     add_tool_flags(p)
     p.add_argument("--tip-diameter", type=float, default=None, help="tip diameter d_a, mm (default by --tip-rule)")
-    p.add_argument("--tip-rule", choices=("standard", "shortened"), default="standard",
+    p.add_argument("--tip-rule", choices=TIP_RULES, default="standard",
                    help="'standard' d_a = d +- 2m(h_a* +- x) (default), or 'shortened' as in the pair with "
                         "--mate-teeth/--mate-shift (the tip the pair check uses)")
     p.add_argument("--mate-teeth", type=int, default=None, help="the mating gear's teeth (for --tip-rule shortened)")

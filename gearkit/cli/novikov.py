@@ -32,8 +32,9 @@ def register(subparsers) -> None:
     g.add_argument("--helix-angle-deg", type=float, help="helix angle beta, degrees (required; 0 fails the "
                    "overlap check)")
     g.add_argument("--width", type=float, help="face width b, mm (required)")
-    g.add_argument("--rack", default="dca24", help="rack system: dca24 (double arc, 24 deg), single-arc, or a "
-                   "TOML rack file (default dca24)")
+    g.add_argument("--rack", default="standard", help="rack system: dca24 (double arc, 24 deg; the default, also "
+                   "named 'standard' as every command's default rack), single-arc, or a TOML rack file written as "
+                   "a preset is: one [NAME] table with [NAME.rack] (or [NAME.pinion] and [NAME.wheel])")
     g.add_argument("--center-distance", type=float, help="operating centre distance a_w, mm (default: the "
                    "reference a = m_n (z1 + z2) / (2 cos beta))")
     lim = p.add_argument_group("limits")

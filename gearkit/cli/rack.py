@@ -1,7 +1,7 @@
 """``gearkit rack``: the rack itself (a gear of infinitely many teeth), its values and profile."""
 from __future__ import annotations
 
-from gearkit.cli.common import (RACKS, add_json_flag, add_module_flag, add_output_flag, add_tol_flag, print_json,
+from gearkit.cli.common import (RACK_HELP, add_json_flag, add_rack_flag, add_module_flag, add_output_flag, add_tol_flag, print_json,
                                 tol_from, tool_from_args)
 from gearkit.errors import SpecError
 
@@ -15,7 +15,7 @@ def register(subparsers) -> None:
     p.add_argument("-n", "--count", type=int, default=1, help="number of teeth to lay out (default 1)")
     p.add_argument("--helix-angle-deg", type=float, default=0.0, help="tooth inclination, degrees")
     p.add_argument("--pressure-angle-deg", type=float, default=None, help="pressure angle, degrees (default 20)")
-    p.add_argument("--rack", choices=RACKS, default="standard", help="rack profile (default standard)")
+    add_rack_flag(p, RACK_HELP.replace("generating basic rack", "the rack's profile"))
     p.add_argument("--cutter-teeth", type=int, default=None, help="generate with a shaper cutter of z0 teeth")
     p.add_argument("--thinning", type=float, default=0.0, help="tooth thinning for backlash, mm")
     add_tol_flag(p, "max deviation of output points/chords, mm (default 0.001*m)")

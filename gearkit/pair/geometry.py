@@ -20,7 +20,7 @@ import numpy as np
 
 from gearkit.curves import inv, inv_inverse
 from gearkit.errors import SpecError, require
-from gearkit.families.involute import GearSpec, ShaperCutter
+from gearkit.families.involute import GearSpec, ShaperCutter, tool_label
 from gearkit.pair.spec import TIP_RULES, PairSpec
 from gearkit.pair.tooling import form_roll, nu_radius, root_radius, section, thickness_coeff, tip_thickness
 
@@ -326,7 +326,7 @@ def _gear(sec, z, x, r, rb, rw, ra, rf, rho_l, d_form, t_actual, internal, tool,
         tip_diameter=2 * ra, root_diameter=2 * rf, form_diameter=d_form, form_roll=math.sqrt(max((d_form / 2) ** 2 - rb ** 2, 0.0)),
         thickness_coeff=t_actual, tip_thickness=s_at, tip_thickness_normal=s_at * math.cos(beta_a),
         undercut=bool(rho_l < 0 and not internal),
-        tool=("shaper z0=%d" % tool.teeth) if isinstance(tool, ShaperCutter) else "rack",
+        tool=tool_label(tool),
         shift_convention=convention or ("cutter" if isinstance(tool, ShaperCutter) else "iso"),
         cutter_setting=(x if setting is None else setting) if isinstance(tool, ShaperCutter) else None)
 

@@ -4,19 +4,21 @@
 :mod:`~gearkit.families.involute.rack` the rack itself (z = infinity: :class:`RackSpec`,
 :func:`rack_profile`), :mod:`~gearkit.families.involute.modification` the flank micro-geometry
 (:class:`Modification`), :mod:`~gearkit.families.involute.tools` their cutters (:class:`BasicRack`,
-:class:`ShaperCutter`).
+:class:`ShaperCutter`), :mod:`~gearkit.families.involute.names` their names (:data:`RACK_NAMES`,
+:func:`tool_label`).
 """
 from gearkit import lazy_exports
 
 #: module -> the names it exports (loaded on first use: importing the package costs nothing)
 _EXPORTS = {
     "gearkit.families.involute.tools": ("BasicRack", "ShaperCutter"),
+    "gearkit.families.involute.names": ("RACK_NAMES", "named_rack", "tool_label"),
     "gearkit.families.involute.gear": ("SHIFT_CONVENTIONS", "GearSpec", "InvoluteProfile", "ring_cutter_setting",
                                        "tooth_profile"),
     "gearkit.families.involute.modification": ("Modification",),
     "gearkit.families.involute.rack": ("RackProfile", "RackSpec", "rack_profile"),
 }
-__all__ = ["SHIFT_CONVENTIONS", "BasicRack", "GearSpec", "InvoluteProfile", "Modification", "RackProfile", "RackSpec",
-           "ShaperCutter", "rack_profile", "ring_cutter_setting", "tooth_profile"]
+__all__ = ["RACK_NAMES", "SHIFT_CONVENTIONS", "BasicRack", "GearSpec", "InvoluteProfile", "Modification", "RackProfile",
+           "RackSpec", "ShaperCutter", "named_rack", "rack_profile", "ring_cutter_setting", "tool_label", "tooth_profile"]
 
 __getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)

@@ -36,6 +36,7 @@ from gearkit.envelope import chain_branches
 from gearkit.families.involute.modification import Modification, modify_half
 from gearkit.errors import GeometryError, SpecError, check_fields, require, require_cut_inputs
 from gearkit.motion import RollingMotion
+from gearkit.families.involute.names import tool_label
 from gearkit.families.involute.tools import BasicRack, ShaperCutter
 from gearkit.segments import rotation_matrix, transform_chain
 
@@ -337,7 +338,7 @@ class InvoluteProfile(ToothProfile):
             "cutter_setting": spec.cutter_setting if isinstance(spec.tool, ShaperCutter) else None,
             "helix_angle_deg": spec.helix_angle_deg,
             "pressure_angle_deg": spec.tool.pressure_angle_deg,
-            "tool": getattr(spec.tool, "name", type(spec.tool).__name__),
+            "tool": tool_label(spec.tool),
             "reference_diameter": self.reference_diameter,
             "base_diameter": self.base_diameter,
             "tip_diameter": self.tip_diameter,

@@ -18,6 +18,8 @@ from gearkit.segments import Segment, arc, corner, line
 # ----------------------------------------------------------------------------- basic rack
 
 _ISO53 = {"A": (1.25, 0.38), "B": (1.25, 0.30), "C": (1.25, 0.25), "D": (1.40, 0.39)}
+#: the ISO 53 basic rack profiles (letters)
+ISO53_PROFILES = tuple(_ISO53)
 
 
 #: smallest pressure angle of a cutter, degrees: below it a flank is nearly radial and the undercut
@@ -345,3 +347,4 @@ class ShaperCutter:
         segs.append(corner(p1, t_in, t_out, "tip"))
         segs.append(arc((0.0, 0.0), rf, a_root, math.pi / 2 - math.pi / z0 - d_ext, "tip"))
         return tuple(segs)
+

@@ -6,12 +6,15 @@ gear and a concave rack for the other (single-arc, one line of action). Each *co
 a convex arc of one rack with the concave arc of the other; the zones must share the contact angle
 and height, the concave arc must be the larger (rho_f > rho_a) and the pair must have backlash.
 
-Presets live in ``gearkit/data/novikov_racks.toml`` (one table per preset); a user's file has the
-same keys at its top level::
+Presets live in ``gearkit/data/novikov_racks.toml`` (one table per preset). A user's rack file is
+written the same way: one named table (copy a preset's block and edit it), the table's name being the
+rack system's name; the older form, the same keys at the file's top level, is read too::
+
+    [my-rack]
 
     title = "my rack"
     verified = false
-    [rack]                       # or [pinion] + [wheel]
+    [my-rack.rack]               # or [my-rack.pinion] + [my-rack.wheel]
     contact_angle_deg = 24.0
     addendum = 0.9
     dedendum = 1.1
@@ -33,6 +36,8 @@ from gearkit.families.novikov.racks import HEIGHT_TOL, ArcRack, ArcSpec
 
 __all__ = ["RackSystem", "Zone", "rack_presets", "rack_system", "load_rack_system", "rack_system_from_dict"]
 
+#: the rack system of a Novikov pair unless another is named (``--rack standard`` names it too)
+DEFAULT_RACK = "dca24"
 PRESETS_FILE = Path(__file__).resolve().parents[2] / "data" / "novikov_racks.toml"
 _RACK_KEYS = {"contact_angle_deg", "addendum", "dedendum", "convex", "concave", "transition", "transition_radius",
               "transition_angle_deg", "root_radius"}
@@ -182,22 +187,33 @@ def rack_presets() -> dict:
 
 
 def load_rack_system(path) -> RackSystem:
-    """Read a rack system from a TOML file (format in the module docstring)."""
+    """Read a rack system from a TOML file (format in the module docstring): one named table, as a
+    preset is written in ``gearkit/data/novikov_racks.toml``, or the same keys at the top level."""
     p = Path(path)
     if not p.is_file():
         raise SpecError("rack", f"no rack file {str(p)!r}")
     from gearkit.export import read_toml
 
     data = read_toml(p, "rack")
-    return rack_system_from_dict(data, p.stem)
+    if set(data) & _SYSTEM_KEYS:  # the keys at the top level: the file is the system, named by its stem
+        return rack_system_from_dict(data, p.stem)
+    tables = [k for k, v in data.items() if isinstance(v, dict)]
+    if len(data) != 1 or len(tables) != 1:
+        raise SpecError("rack", f"{str(p)!r} must hold one rack system: one table [NAME] with [NAME.rack] (or "
+                                f"[NAME.pinion] and [NAME.wheel]), as a preset is written; found "
+                                f"{', '.join(map(repr, data)) or 'nothing'}")
+    return rack_system_from_dict(data[tables[0]], tables[0])
 
 
-def rack_system(name_or_path="dca24") -> RackSystem:
-    """A preset by name (``"dca24"``, ``"single-arc"``) or a rack system read from a ``.toml`` file."""
+def rack_system(name_or_path=DEFAULT_RACK) -> RackSystem:
+    """A preset by name (``"dca24"``, ``"single-arc"``; ``"standard"`` is the default, dca24, as in every
+    command's ``--rack standard``) or a rack system read from a ``.toml`` file."""
     if isinstance(name_or_path, RackSystem):
         return name_or_path
     key = str(name_or_path)
     presets = rack_presets()
+    if key == "standard":  # every command's --rack standard: its default rack
+        key = DEFAULT_RACK
     if key in presets:
         return presets[key]
     if key.endswith(".toml"):

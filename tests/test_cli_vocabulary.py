@@ -1,0 +1,211 @@
+"""Issue 13, one vocabulary: each rule walks every registered command, so a new command that breaks
+a rule fails here. The commands' small valid command lines are in ``tests/cli_examples.py``.
+"""
+import argparse
+import json
+import re
+
+import pytest
+
+from cli_examples import EXAMPLES
+from gearkit.cli import build_parser, main
+from gearkit.cli.common import RACKS, TIP_RULES, RenamedFlag
+
+PARSER = build_parser()
+COMMANDS = next(a for a in PARSER._actions if a.dest == "command").choices
+
+
+def parsers():
+    """``(name, parser)`` of every command and sub-command (``view pair``, ``view drive``)."""
+    out = []
+    for name, p in sorted(COMMANDS.items()):
+        subs = [a for a in p._actions if isinstance(a, argparse._SubParsersAction)]
+        if subs:
+            out += [(f"{name} {n}", sp) for n, sp in sorted(subs[0].choices.items())]
+        else:
+            out.append((name, p))
+    return out
+
+
+def flag_actions(parser):
+    """``{flag: action}`` of a parser's optional arguments (help excluded)."""
+    return {s: a for a in parser._actions if a.option_strings and a.dest != "help" for s in a.option_strings}
+
+
+def run(capsys, argv, tmp_path):
+    code = main([a.replace("{t}", str(tmp_path)) for a in argv])
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def test_every_command_has_an_example():
+    missing = sorted(set(COMMANDS) - set(EXAMPLES))
+    assert missing == []
+
+
+# ----------------------------------------------------------------------------- rack names
+
+def test_rack_names_are_one_list():
+    from gearkit.families.involute import RACK_NAMES
+    from gearkit.pair.spec import TIP_RULES as SPEC_TIP_RULES
+
+    assert RACKS == RACK_NAMES and set(TIP_RULES) == set(SPEC_TIP_RULES)
+
+
+@pytest.mark.parametrize("name, parser", parsers(), ids=[n for n, _ in parsers()])
+def test_standard_names_the_default_rack_wherever_a_rack_is_named(name, parser):
+    """``--rack standard`` is accepted by every command with a ``--rack``, and is its default."""
+    action = flag_actions(parser).get("--rack")
+    if action is None:
+        return
+    assert action.choices is None or "standard" in action.choices, name
+    assert action.default == "standard", name
+
+
+@pytest.mark.parametrize("argv", [argv for argvs in EXAMPLES.values() for argv in argvs
+                                  if "--rack" in flag_actions(
+                                      dict(parsers()).get(" ".join(argv[:2]), COMMANDS[argv[0]]))],
+                         ids=lambda a: a[0])
+def test_rack_standard_runs_as_the_default(capsys, tmp_path, argv):
+    """End to end: the example with ``--rack standard`` gives the same result as without it."""
+    json_argv = argv + (["--json"] if "--json" in flag_actions(COMMANDS[argv[0]]) else [])
+    code, out, _ = run(capsys, json_argv, tmp_path)
+    code_std, out_std, _ = run(capsys, json_argv + ["--rack", "standard"], tmp_path)
+    assert code_std == code and code in (0, 1)
+    if "--json" in json_argv:
+        a, b = json.loads(out), json.loads(out_std)
+        for d in (a, b):
+            d.get("pair", {}).pop("seconds", None)
+            d.pop("seconds", None)
+        assert a == b
+
+
+def test_design_files_name_the_racks_as_the_flags_do(tmp_path):
+    from gearkit.checks import load_design
+    from gearkit.families.involute import BasicRack
+
+    f = tmp_path / "d.toml"
+    for name, rack in (("standard", BasicRack()), ("rack", BasicRack()), ("iso53c", BasicRack.iso53("C"))):
+        f.write_text(f'module = 2.0\n[gear1]\nteeth = 18\ntool = "{name}"\n[gear2]\nteeth = 41\n')
+        assert load_design(f)[0].tools[0] == rack
+
+
+# ----------------------------------------------------------------------------- the tool's one spelling
+
+TOOL = re.compile(r"^(rack \((standard basic rack|ISO 53 [ABCD]|h_aP\* .*)(, \d+(\.\d+)? deg)?\)"
+                  r"|shaper cutter z0=\d+(, .*)?)$")
+
+
+def _tools_in(obj):
+    if isinstance(obj, dict):
+        for k, v in obj.items():
+            if k in ("tool", "tools"):
+                yield from (v if isinstance(v, list) else [v])
+            else:
+                yield from _tools_in(v)
+    elif isinstance(obj, list):
+        for v in obj:
+            yield from _tools_in(v)
+
+
+def test_every_json_output_spells_the_tool_by_tool_label(capsys, tmp_path):
+    """Every ``tool``/``tools`` value in any command's JSON is a :func:`tool_label` spelling."""
+    seen = []
+    for argvs in EXAMPLES.values():
+        for argv in argvs:
+            if "--json" not in flag_actions(dict(parsers()).get(" ".join(argv[:2]), COMMANDS[argv[0]])):
+                continue
+            code, out, _ = run(capsys, argv + ["--json"], tmp_path)
+            assert code in (0, 1), argv
+            seen += list(_tools_in(json.loads(out)))
+    assert seen and all(isinstance(t, str) and TOOL.match(t) for t in seen), sorted(set(map(str, seen)))
+    assert {"rack (standard basic rack)", "shaper cutter z0=20", "shaper cutter z0=25"} <= set(seen)
+
+
+@pytest.mark.parametrize("argv, label", [
+    (["gear", "-z", "20", "-m", "2"], "rack (standard basic rack)"),
+    (["gear", "-z", "20", "-m", "2", "--rack", "iso53d"], "rack (ISO 53 D)"),
+    (["gear", "-z", "20", "-m", "2", "--pressure-angle-deg", "25"], "rack (standard basic rack, 25 deg)"),
+    (["gear", "-z", "20", "-m", "2", "--cutter-teeth", "18"], "shaper cutter z0=18"),
+    (["check", "--z1", "18", "--z2", "61", "-m", "2", "--internal", "--cutter-teeth", "25", "--cutter-addendum",
+      "1.3"], "shaper cutter z0=25, h_a0*=1.3"),
+    (["check", "--z1", "18", "--z2", "41", "-m", "2", "--rack", "iso53b"], "rack (ISO 53 B)"),
+])
+def test_text_and_json_spell_the_tool_alike(capsys, tmp_path, argv, label):
+    code, out, _ = run(capsys, argv, tmp_path)
+    assert code in (0, 1) and label in out
+    code, out, _ = run(capsys, argv + ["--json"], tmp_path)
+    assert label in list(_tools_in(json.loads(out)))
+
+
+# ----------------------------------------------------------------------------- one meaning per flag
+
+#: flags whose destination differs in meaning between commands on purpose, with the reason
+SAME_NAME_EXCEPTIONS = {
+    "--rack": "novikov's names a circular-arc rack system (preset or file); the involute commands' a basic rack",
+    "--count": "rack's -n/--count lays out teeth; planetary's lists sets: both a count of what the command makes",
+}
+#: (command, flag) taking more values of the same quantity than elsewhere, with the reason
+ARITY_EXCEPTIONS = {
+    ("atlas", "--z1"): "a grid of pinion tooth numbers (START:STOP:STEP or a,b,c)",
+    ("atlas", "--z2"): "a grid of wheel tooth numbers",
+    ("atlas", "--criterion"): "the criteria of blocking that need no centre distance (a subset of its choices)",
+    ("cycloid", "--addendum"): "one coefficient, or one per gear",
+    ("contact", "-o"): "repeatable: one plot per file",
+    ("contact", "--output"): "repeatable: one plot per file",
+}
+
+
+def _signature(action):
+    kind = type(action).__name__
+    return (kind, getattr(action.type, "__name__", action.type), tuple(sorted(action.choices or ())), action.nargs)
+
+
+def test_one_flag_one_meaning():
+    """A flag has one type, one set of choices and one arity in every command (``--pins`` is a count of
+    pins everywhere; the pin radius is ``--pin-radius``)."""
+    seen, clashes = {}, []
+    for name, parser in parsers():
+        for flag, action in flag_actions(parser).items():
+            if isinstance(action, RenamedFlag) or flag in SAME_NAME_EXCEPTIONS or (name, flag) in ARITY_EXCEPTIONS:
+                continue
+            sig = _signature(action)
+            first = seen.setdefault(flag, (name, sig))
+            if first[1] != sig:
+                clashes.append(f"{flag}: {first[0]} {first[1]} vs {name} {sig}")
+    assert clashes == []
+
+
+#: a pair command's per-gear flag --NAME1/--NAME2 is the single-gear flag --NAME of 'gearkit gear';
+#: these stems have no single-gear flag (the pair's own quantities)
+PAIR_ONLY_STEMS = {"--z": "the teeth, -z/--teeth of one gear", "--x": "the shift, -x/--shift of one gear",
+                   "--allowance": "tooth thickness allowances (a pair's backlash)", "--runout": "mounting deviation"}
+
+
+def test_per_gear_flags_are_the_single_gear_flags_numbered():
+    """Tip diameter, thinning, bore, keyway: ``--tip-diameter`` / ``--tip-diameter1``, never ``--da1``."""
+    gear = flag_actions(COMMANDS["gear"])
+    odd = []
+    for name, parser in parsers():
+        for flag, action in flag_actions(parser).items():
+            m = re.fullmatch(r"(--[a-z-]+?)([12])", flag)
+            if m and not isinstance(action, RenamedFlag) and m[1] not in gear and m[1] not in PAIR_ONLY_STEMS:
+                odd.append(f"{name}: {flag}")
+    assert odd == []
+    assert "--tip-rule" in flag_actions(COMMANDS["check"]) and "--tip-rule" in gear
+
+
+@pytest.mark.parametrize("old, new", [
+    (["cycloid", "-m", "1", "--pinion-teeth", "8", "--wheel-teeth", "64", "--pins", "0.4", "--json"],
+     ["cycloid", "-m", "1", "--pinion-teeth", "8", "--wheel-teeth", "64", "--pin-radius", "0.4", "--json"]),
+    (["check", "--z1", "18", "--z2", "41", "-m", "2", "--da1", "39.5", "--tip", "standard", "--json"],
+     ["check", "--z1", "18", "--z2", "41", "-m", "2", "--tip-diameter1", "39.5", "--tip-rule", "standard", "--json"]),
+])
+def test_a_renamed_flag_keeps_working_with_a_deprecation_line(capsys, tmp_path, old, new):
+    code_old, out_old, err_old = run(capsys, old, tmp_path)
+    code_new, out_new, err_new = run(capsys, new, tmp_path)
+    assert code_old == code_new and json.loads(out_old) == json.loads(out_new)
+    assert "is deprecated, use --" in err_old and "deprecated" not in err_new
+    # the old and the new spelling together are refused
+    both = new + [old[old.index(f)] for f in old if f in ("--pins", "--da1")] + ["1"]
+    assert run(capsys, both, tmp_path)[0] == 2
