@@ -24,6 +24,33 @@ from gearkit.errors import SpecError
 PROFILE_FORMATS = ("svg", "dxf", "csv", "json")
 
 
+def text_number(v, spec: str = "g", infinite: str = "unbounded") -> str:
+    """``v`` formatted by ``spec`` for a text report, the twin of :func:`json_number`: a zero prints
+    without a sign (no ``-0.0000``, no ``-0``), an infinite value as the word ``infinite`` (say what it
+    means: ``"none"`` for an absent pitch, ``"unbounded"`` by default), NaN as ``"undefined"`` and None
+    as ``"-"``; words are right-aligned to the width of ``spec``.
+
+    Examples
+    --------
+    >>> text_number(-1e-17, ".4f"), text_number(-0.0), text_number(-2.5, "8.3f"), text_number(1e-17, ".4f")
+    ('0.0000', '0', '  -2.500', '0.0000')
+    >>> text_number(float("inf"), "10.3f", "none"), text_number(float("nan")), text_number(None, "4g")
+    ('      none', 'undefined', '   -')
+    """
+    import re
+
+    if v is None or isinstance(v, float) and not math.isfinite(v):
+        word = "-" if v is None else "undefined" if v != v else infinite if v > 0 else f"-{infinite}"
+        width = re.match(r"[<>^]?\+?(\d*)", spec.lstrip("0") or "").group(1)
+        return word.rjust(int(width)) if width else word
+    text = format(v, spec)
+    mantissa = text.split("e")[0].split("E")[0]
+    if "-" in mantissa and not any(c in "123456789" for c in mantissa):  # a zero (or round-off of one)
+        text = text.replace("-", " " if spec[:1].isdigit() else "", 1)
+        text = text if spec[:1].isdigit() else text.lstrip()
+    return text
+
+
 def json_number(v):
     """``v`` as a JSON-safe number: non-finite values (unbounded quantities) become ``None``.
 

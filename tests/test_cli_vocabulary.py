@@ -209,3 +209,28 @@ def test_a_renamed_flag_keeps_working_with_a_deprecation_line(capsys, tmp_path, 
     # the old and the new spelling together are refused
     both = new + [old[old.index(f)] for f in old if f in ("--pins", "--da1")] + ["1"]
     assert run(capsys, both, tmp_path)[0] == 2
+
+
+# ----------------------------------------------------------------------------- printing
+
+#: what a text report never shows: nan, inf, a negative zero (-0, -0.0000, -0.00e+00)
+NOT_PRINTED = re.compile(r"\b(nan|inf|infinity)\b|(?<![\w.])-0(?:\.0*)?(?:e[+-]?\d+)?(?![\w.])", re.IGNORECASE)
+#: designs that reach the printing edge cases: zero shifts summing to zero, spur pairs (a wheel's helix -0,
+#: no axial pitch, no lead), a tight mesh (backlash round-off), a cycloid inflection
+EDGE_CASES = [
+    ["check", "--z1", "18", "--z2", "41", "-m", "2", "--x1", "0.3", "--x2", "-0.3"],
+    ["check", "--z1", "30", "--z2", "30", "-m", "1", "--helix-angle-deg", "0", "--width", "10"],
+    ["contact", "--z1", "18", "--z2", "41", "-m", "2", "--x1", "0.3", "--x2", "-0.3", "--steps", "60"],
+    ["gear", "-z", "20", "-m", "2", "-x", "-0.0"],
+    ["cycloidal-drive", "--pins", "12", "--lobes", "11", "--pin-circle-radius", "90", "--pin-radius", "7",
+     "--eccentricity", "6", "--samples", "200"],
+]
+
+
+@pytest.mark.parametrize("argv", [argv for argvs in EXAMPLES.values() for argv in argvs] + EDGE_CASES,
+                         ids=lambda a: " ".join(a[:3]))
+def test_text_output_has_no_nan_inf_or_negative_zero(capsys, tmp_path, argv):
+    code, out, err = run(capsys, argv, tmp_path)
+    assert code in (0, 1), err
+    bad = [ln for ln in out.splitlines() if NOT_PRINTED.search(ln)]
+    assert bad == []

@@ -15,7 +15,7 @@ import math
 from dataclasses import dataclass
 
 from gearkit.errors import require
-from gearkit.export import json_number
+from gearkit.export import json_number, text_number
 
 __all__ = ["STATUSES", "Finding", "CheckReport", "grade"]
 
@@ -135,7 +135,7 @@ def _cell(v, width: int) -> str:
         return " " * width
     v = float(v)
     if not math.isfinite(v):
-        return f"{v:>{width}}"
+        return text_number(v, f"{width}")
     if abs(v) < ROUND_OFF:  # a zero computed through round-off is a zero
         v = 0.0
     if 0 < abs(v) < 5e-4:

@@ -79,11 +79,16 @@ class HelpFormatter(argparse.HelpFormatter):
 
 
 class ArgumentParser(argparse.ArgumentParser):
-    """argparse's parser with :class:`HelpFormatter` by default (every command's parser is one too)."""
+    """argparse's parser with :class:`HelpFormatter` by default (every command's parser is one too), whose
+    errors are one line naming the flag, the value and the range, as every other error of the command line
+    (``--help`` still prints the usage)."""
 
     def __init__(self, *args, **kwargs):
         kwargs.setdefault("formatter_class", HelpFormatter)
         super().__init__(*args, **kwargs)
+
+    def error(self, message):
+        self.exit(2, f"{self.prog}: error: {message} (see '{self.prog} --help')\n")
 
 
 def build_parser(command: str | None = None) -> argparse.ArgumentParser:

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import sys
 
-from gearkit.cli.common import (add_json_flag, add_module_flag, add_output_flag, add_rack_flag, add_tol_flag, print_json,
+from gearkit.cli.common import (QUANTITIES, add_json_flag, add_module_flag, add_output_flag, add_rack_flag, add_tol_flag, print_json,
                                 rack_from_args)
 from gearkit.errors import SpecError
 
@@ -27,8 +27,8 @@ def register(subparsers) -> None:
                     "diameter); the shift of a shaper-cut gear (every ring) is the cutter's radial setting.",
         epilog="Exit status: 0 ok, 1 the --mark point is outside the region, 2 bad input.")
     g = p.add_argument_group("pair")
-    g.add_argument("--z1", type=int, required=True, help="pinion teeth")
-    g.add_argument("--z2", type=int, required=True, help="wheel (or ring) teeth")
+    g.add_argument("--z1", type=QUANTITIES["teeth"], required=True, help="pinion teeth")
+    g.add_argument("--z2", type=QUANTITIES["teeth"], required=True, help="wheel (or ring) teeth")
     add_template_arguments(p, g)
     c = p.add_argument_group("contour")
     c.add_argument("--window", help="x1_lo,x1_hi,x2_lo,x2_hi (default: from the undercut and pointing limits)")
@@ -52,8 +52,10 @@ def register(subparsers) -> None:
 def add_template_arguments(p, g) -> None:
     """The pair options but the tooth numbers (``gearkit blocking`` and ``gearkit atlas``)."""
     add_module_flag(g, "normal module m_n, mm (default 1)", default=1.0)
-    g.add_argument("--pressure-angle-deg", type=float, help="normal pressure angle, degrees (default 20)")
-    g.add_argument("--helix-angle-deg", type=float, default=0.0, help="helix angle beta, degrees")
+    g.add_argument("--pressure-angle-deg", type=QUANTITIES["pressure_angle_deg"],
+                   help="normal pressure angle, degrees (default 20)")
+    g.add_argument("--helix-angle-deg", type=QUANTITIES["helix_angle_deg"], default=0.0,
+                   help="helix angle beta, degrees")
     g.add_argument("--internal", action="store_true", help="pinion inside a ring (needs --cutter-teeth)")
     g.add_argument("--addendum", type=float, default=1.0, help="addendum coefficient h_a* (default 1)")
     t = p.add_argument_group("tools")

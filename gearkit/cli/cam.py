@@ -16,7 +16,7 @@ from __future__ import annotations
 import math
 import sys
 
-from gearkit.cli.common import (add_json_flag, add_keyway_flag, add_output_flag, add_tol_flag, keyway_from_arg,
+from gearkit.cli.common import (QUANTITIES, add_json_flag, add_keyway_flag, add_output_flag, add_tol_flag, keyway_from_arg,
                                 output_kind, print_json, tol_from)
 from gearkit.errors import SpecError
 
@@ -77,7 +77,7 @@ def register(subparsers) -> None:
     p.add_argument("--plot", default=None, metavar="FILE", help="picture: s-v-a-j, pressure angle with and "
                    "without friction, the cam (.png or .svg)")
     g = p.add_argument_group("solid (mesh output)")
-    g.add_argument("--width", type=float, default=None, help="cam width, mm")
+    g.add_argument("--width", type=QUANTITIES["width"], default=None, help="cam width, mm")
     g.add_argument("--bore", type=float, default=None, help="bore diameter, mm")
     add_keyway_flag(g)
     g.add_argument("--ascii", action="store_true", help="ASCII STL instead of binary")

@@ -98,12 +98,9 @@ def format_allowances(report: dict) -> str:
 
 
 def _num(v, width=10, digits=4) -> str:
-    if v is None:
-        return "-".rjust(width)
-    if isinstance(v, float) and math.isinf(v):
-        return ("inf" if v > 0 else "-inf").rjust(width)
-    v = 0.0 if abs(v) < 0.5 * 10.0 ** -digits else v  # no "-0.0000"
-    return f"{v:{width}.{digits}f}"
+    from gearkit.export import text_number
+
+    return text_number(v, f"{width}.{digits}f" if width else f".{digits}f")
 
 
 def format_report(result) -> str:

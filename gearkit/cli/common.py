@@ -14,16 +14,17 @@ on one line and exits 2.
 """
 from __future__ import annotations
 
-import argparse
 import math
-import sys
 
+from gearkit.cli.vocabulary import QUANTITIES, RenamedFlag, add_renamed_flag
 from gearkit.errors import SpecError
 
-__all__ = ["RACKS", "RACK_HELP", "SIGN_NOTE", "TIP_RULES", "RenamedFlag", "add_renamed_flag", "add_gear_flags", "add_json_flag", "add_keyway_flag",
-           "add_module_flag", "add_output_flag", "add_pair_arguments", "add_rack_flag", "add_tol_flag",
-           "add_tool_flags", "keyway_from_arg", "output_kind", "pair_spec_from_args", "print_json", "rack_from_args",
-           "tol_from", "tool_from_args"]
+Q = QUANTITIES
+
+__all__ = ["QUANTITIES", "RACKS", "RACK_HELP", "SIGN_NOTE", "TIP_RULES", "RenamedFlag", "add_gear_flags",
+           "add_json_flag", "add_keyway_flag", "add_module_flag", "add_output_flag", "add_pair_arguments",
+           "add_rack_flag", "add_renamed_flag", "add_tol_flag", "add_tool_flags", "keyway_from_arg", "output_kind",
+           "pair_spec_from_args", "print_json", "rack_from_args", "tol_from", "tool_from_args"]
 
 #: how a pair's (or a gear's) tip diameters follow (``--tip-rule``)
 TIP_RULES = ("shortened", "standard")
@@ -46,30 +47,9 @@ def rack_from_args(args):
                       "--pressure-angle-deg")
 
 
-class RenamedFlag(argparse.Action):
-    """The earlier spelling of a flag, kept working: it stores into the new flag's destination and
-    prints one deprecation line on stderr (``add_renamed_flag``)."""
-
-    def __init__(self, option_strings, dest, new_flag: str = "", **kwargs):
-        self.new_flag = new_flag
-        super().__init__(option_strings, dest, **kwargs)
-
-    def __call__(self, parser, namespace, values, option_string=None):
-        print(f"{parser.prog}: {option_string} is deprecated, use {self.new_flag} (the same value)", file=sys.stderr)
-        setattr(namespace, self.dest, values)
-
-
-def add_renamed_flag(p, old: str, new: str, dest: str, **kwargs) -> None:
-    """Declare ``old`` as the deprecated spelling of ``new`` (destination ``dest``; same type).
-
-    Put both in one mutually exclusive group to refuse them together."""
-    p.add_argument(old, dest=dest, action=RenamedFlag, new_flag=new, default=argparse.SUPPRESS,
-                   help=f"deprecated: the old name of {new}", **kwargs)
-
-
 def add_tool_flags(p) -> None:
     """Tool flags shared by commands that build one involute gear."""
-    p.add_argument("--pressure-angle-deg", type=float, default=None,
+    p.add_argument("--pressure-angle-deg", type=Q["pressure_angle_deg"], default=None,
                    help="normal pressure angle of the rack/cutter, degrees (default 20)")
     add_rack_flag(p)
     p.add_argument("--cutter-teeth", type=int, default=None,
@@ -80,14 +60,14 @@ def add_tool_flags(p) -> None:
 
 def add_gear_flags(p, required: bool = True) -> None:
     """``-z/--teeth``, ``-m/--module`` and ``-x/--shift`` of one involute gear."""
-    p.add_argument("-z", "--teeth", type=int, required=required, help="number of teeth")
+    p.add_argument("-z", "--teeth", type=Q["teeth"], required=required, help="number of teeth")
     add_module_flag(p, "normal module, mm", required=required)
-    p.add_argument("-x", "--shift", type=float, default=0.0, help="normal profile shift coefficient x_n")
+    p.add_argument("-x", "--shift", type=Q["shift"], default=0.0, help="normal profile shift coefficient x_n")
 
 
 def add_module_flag(p, help: str, **kwargs) -> None:
     """``-m/--module``: the (normal) module in mm."""
-    p.add_argument("-m", "--module", type=float, help=help, **kwargs)
+    p.add_argument("-m", "--module", type=Q["module"], help=help, **kwargs)
 
 
 def add_keyway_flag(p, flag: str = "--keyway", help: str = "keyway width x depth in the bore, mm") -> None:
@@ -188,19 +168,20 @@ def add_pair_arguments(p, limits: bool = True) -> None:
     """The design-file argument and the pair, tool (and limit) flags every pair command shares."""
     p.add_argument("design", nargs="?", help="TOML design file (instead of the pair flags)")
     g = p.add_argument_group("pair")
-    g.add_argument("--z1", type=int, help="pinion teeth")
-    g.add_argument("--z2", type=int, help="wheel (or ring) teeth")
+    g.add_argument("--z1", type=Q["teeth"], help="pinion teeth")
+    g.add_argument("--z2", type=Q["teeth"], help="wheel (or ring) teeth")
     add_module_flag(g, "normal module m_n, mm")
-    g.add_argument("--x1", type=float, help="pinion normal shift coefficient x_n1 (default 0)")
-    g.add_argument("--x2", type=float, help="wheel/ring normal shift coefficient x_n2 (default 0; ring: see above)")
+    g.add_argument("--x1", type=Q["shift"], help="pinion normal shift coefficient x_n1 (default 0)")
+    g.add_argument("--x2", type=Q["shift"], help="wheel/ring normal shift coefficient x_n2 (default 0; ring: see above)")
     g.add_argument("--center-distance", type=float, help="operating centre distance a_w, mm (rack pair: pinion "
                    "axis to rack datum). Alone: the shifts are solved and split by --split; with --x1: x2 "
                    "follows; with --x1 and --x2: the pair runs at a_w (backlash)")
     g.add_argument("--split", choices=("x1", "equal", "balanced"), help="shift split for --center-distance "
                    "(default balanced: equal specific sliding at the roots)")
-    g.add_argument("--pressure-angle-deg", type=float, help="normal pressure angle alpha_n, degrees (default 20)")
-    g.add_argument("--helix-angle-deg", type=float, default=0.0, help="helix angle beta, degrees")
-    g.add_argument("--width", type=float, help="face width b, mm (for the overlap ratio)")
+    g.add_argument("--pressure-angle-deg", type=Q["pressure_angle_deg"],
+                   help="normal pressure angle alpha_n, degrees (default 20)")
+    g.add_argument("--helix-angle-deg", type=Q["helix_angle_deg"], default=0.0, help="helix angle beta, degrees")
+    g.add_argument("--width", type=Q["width"], help="face width b, mm (for the overlap ratio)")
     kind = g.add_mutually_exclusive_group()
     kind.add_argument("--internal", action="store_true", help="pinion inside a ring (needs --cutter-teeth)")
     kind.add_argument("--rack-pair", action="store_true", help="pinion and rack (no --z2)")

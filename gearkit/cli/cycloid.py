@@ -16,7 +16,7 @@ from __future__ import annotations
 import math
 import sys
 
-from gearkit.cli.common import (add_json_flag, add_module_flag, add_output_flag, add_renamed_flag, add_tol_flag,
+from gearkit.cli.common import (QUANTITIES, add_json_flag, add_module_flag, add_output_flag, add_renamed_flag, add_tol_flag,
                                 output_kind, print_json, tol_from)
 from gearkit.errors import SpecError
 
@@ -52,8 +52,8 @@ def register(subparsers) -> None:
                     "(--pin-radius RHO: the pinion is a pin wheel and the wheel is cut by its pins); check it.",
         epilog="Exit status: 0 no finding fails, 1 a finding fails, 2 bad input.")
     add_module_flag(c, "module, mm", required=True)
-    c.add_argument("--pinion-teeth", type=int, required=True, help="z1 (pins of the pin wheel with --pin-radius)")
-    c.add_argument("--wheel-teeth", type=int, required=True, help="z2")
+    c.add_argument("--pinion-teeth", type=QUANTITIES["teeth"], required=True, help="z1 (pins of the pin wheel with --pin-radius)")
+    c.add_argument("--wheel-teeth", type=QUANTITIES["teeth"], required=True, help="z2")
     kind = c.add_mutually_exclusive_group()
     kind.add_argument("--clock", action="store_true", help="clock gearing (BS 978-2 style): generating circles "
                       "r1/2 and r2/2, wheel addendum 0.95 A")
@@ -71,16 +71,16 @@ def register(subparsers) -> None:
 
 def _output_flags(p) -> None:
     add_tol_flag(p, "accuracy of exported points/facets, mm")
-    p.add_argument("--width", type=float, default=None, help="face width of solids, mm")
+    p.add_argument("--width", type=QUANTITIES["width"], default=None, help="face width of solids, mm")
     add_output_flag(p, "write: .svg .dxf .csv .json (2D outlines) or .stl .obj .glb .3mf .step (solids)")
     add_json_flag(p)
 
 
 def _num(v, digits=6):
-    if v is None:
-        return "-"
-    if isinstance(v, float):
-        return "inf" if math.isinf(v) else f"{v:.{digits}g}"
+    from gearkit.export import text_number
+
+    if isinstance(v, float) or v is None:
+        return text_number(v, f".{digits}g")
     return str(v)
 
 

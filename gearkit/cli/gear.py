@@ -7,7 +7,7 @@ extension (.stl .obj .glb .3mf .step) it writes the solid (``--width`` required)
 """
 from __future__ import annotations
 
-from gearkit.cli.common import (TIP_RULES, add_gear_flags, add_json_flag, add_keyway_flag, add_output_flag, add_tol_flag,
+from gearkit.cli.common import (QUANTITIES, TIP_RULES, add_gear_flags, add_json_flag, add_keyway_flag, add_output_flag, add_tol_flag,
                                 add_tool_flags, keyway_from_arg, print_json, tol_from, tool_from_args)
 from gearkit.errors import SpecError
 
@@ -18,7 +18,7 @@ def register(subparsers) -> None:
                     "cutter; print key values (mm, transverse section) and export the profile. For an internal "
                     "gear positive -x moves the ring's teeth outward (thinner teeth, larger tip diameter).")
     add_gear_flags(p)
-    p.add_argument("--helix-angle-deg", type=float, default=0.0, help="helix angle, degrees (+ right hand)")
+    p.add_argument("--helix-angle-deg", type=QUANTITIES["helix_angle_deg"], default=0.0, help="helix angle, degrees (+ right hand)")
     p.add_argument("--internal", action="store_true", help="internal (ring) gear, cut by a shaper cutter")
     p.add_argument("--ring-shift", choices=("iso", "cutter"), default="iso",
                    help="how a ring's -x is read: 'iso' (ISO 21771, by the tooth thickness as if rack-cut; the "
@@ -28,8 +28,8 @@ def register(subparsers) -> None:
     p.add_argument("--tip-rule", choices=TIP_RULES, default="standard",
                    help="'standard' d_a = d +- 2m(h_a* +- x) (default), or 'shortened' as in the pair with "
                         "--mate-teeth/--mate-shift (the tip the pair check uses)")
-    p.add_argument("--mate-teeth", type=int, default=None, help="the mating gear's teeth (for --tip-rule shortened)")
-    p.add_argument("--mate-shift", type=float, default=0.0, help="the mating gear's shift (default 0)")
+    p.add_argument("--mate-teeth", type=QUANTITIES["teeth"], default=None, help="the mating gear's teeth (for --tip-rule shortened)")
+    p.add_argument("--mate-shift", type=QUANTITIES["shift"], default=0.0, help="the mating gear's shift (default 0)")
     p.add_argument("--thinning", type=float, default=0.0, help="tooth thinning for backlash, mm (normal, reference)")
     add_tol_flag(p, "accuracy: max deviation of any output point, chord or facet from the exact profile or tooth "
                  "surface, mm (default 0.001*m for 2D, 0.005*m for meshes)")
@@ -82,7 +82,7 @@ def format_inspection(info: dict) -> str:
 def add_solid_flags(p) -> None:
     """Flags of the solid a mesh output builds (face width, herringbone, bore, ring rim)."""
     g = p.add_argument_group("solid (mesh output)")
-    g.add_argument("--width", type=float, default=None, help="face width b, mm (a herringbone's total, gap included)")
+    g.add_argument("--width", type=QUANTITIES["width"], default=None, help="face width b, mm (a herringbone's total, gap included)")
     g.add_argument("--herringbone", action="store_true", help="two helical halves of opposite hand")
     g.add_argument("--gap", type=float, default=0.0, help="central gap of a double-helical gear, mm (with "
                    "--herringbone; grooved a module below the root)")
@@ -145,10 +145,12 @@ def _convention(info: dict) -> str:
 
 
 def format_summary(info: dict) -> str:
+    from gearkit.export import text_number
+
     kind = "internal" if info["internal"] else "external"
     rows = [
         f"gearkit gear: {kind} involute gear, z = {info['teeth']}, m_n = {info['module']:g} mm, "
-        f"x = {info['shift_coeff']:g} ({_convention(info)}), beta = {info['helix_angle_deg']:g} deg, "
+        f"x = {text_number(info['shift_coeff'])} ({_convention(info)}), beta = {text_number(info['helix_angle_deg'])} deg, "
         f"tool {info['tool']}",
         f"  reference diameter d     {info['reference_diameter']:12.6f} mm",
         f"  base diameter d_b        {info['base_diameter']:12.6f} mm",

@@ -14,7 +14,7 @@ import math
 import sys
 from pathlib import Path
 
-from gearkit.cli.common import add_json_flag, add_module_flag, add_output_flag, add_tol_flag, print_json, tol_from
+from gearkit.cli.common import QUANTITIES, add_json_flag, add_module_flag, add_output_flag, add_tol_flag, print_json, tol_from
 from gearkit.errors import SpecError
 
 
@@ -26,12 +26,12 @@ def register(subparsers) -> None:
                     "standards: verify against the standard before production.",
         epilog="Exit status: 0 no finding fails, 1 a finding fails, 2 bad input.")
     g = p.add_argument_group("pair")
-    g.add_argument("--z1", type=int, help="pinion teeth (required)")
-    g.add_argument("--z2", type=int, help="wheel teeth (required)")
+    g.add_argument("--z1", type=QUANTITIES["teeth"], help="pinion teeth (required)")
+    g.add_argument("--z2", type=QUANTITIES["teeth"], help="wheel teeth (required)")
     add_module_flag(g, "normal module m_n, mm (required)")
-    g.add_argument("--helix-angle-deg", type=float, help="helix angle beta, degrees (required; 0 fails the "
+    g.add_argument("--helix-angle-deg", type=QUANTITIES["helix_angle_deg"], help="helix angle beta, degrees (required; 0 fails the "
                    "overlap check)")
-    g.add_argument("--width", type=float, help="face width b, mm (required)")
+    g.add_argument("--width", type=QUANTITIES["width"], help="face width b, mm (required)")
     g.add_argument("--rack", default="standard", help="rack system: dca24 (double arc, 24 deg; the default, also "
                    "named 'standard' as every command's default rack), single-arc, or a TOML rack file written as "
                    "a preset is: one [NAME] table with [NAME.rack] (or [NAME.pinion] and [NAME.wheel])")
@@ -123,22 +123,26 @@ def run(args) -> int:
 
 def format_report(result) -> str:
     """The compact human report of ``gearkit novikov``."""
+    from gearkit.export import text_number
+
     g = result.geometry
     s = g.spec
     deg = math.degrees
     lines = [
         f"gearkit novikov: {g.kind} pair, z1 = {s.teeth1}, z2 = {s.teeth2}, m_n = {g.module:g} mm, "
-        f"beta = {deg(g.helix_angle):g} deg, b = {s.face_width:g} mm, racks {s.racks.name}"
+        f"beta = {text_number(deg(g.helix_angle))} deg, b = {s.face_width:g} mm, racks {s.racks.name}"
         + ("" if s.racks.verified else " (UNVERIFIED)"),
         f"  a {g.reference_center_distance:.4f} mm   a_w {g.center_distance:.4f} mm   m_t {g.transverse_module:.5f}"
-        f"   p_x {g.axial_pitch:.4f} mm   eps_beta {g.overlap_ratio:.5f}   eps_alpha 0 (by design)",
+        + (f"   p_x {g.axial_pitch:.4f} mm" if math.isfinite(g.axial_pitch) else
+           "   p_x: none (spur, no axial pitch)")
+        + f"   eps_beta {text_number(g.overlap_ratio, '.5f')}   eps_alpha 0 (by design)",
         f"  alpha_k {deg(g.contact_angle):.4f} deg   alpha_t {deg(g.contact_angle_transverse):.4f} deg   "
         f"+0.01 m_n -> {deg(g.sensitivity):+.3f} deg   backlash {g.backlash:.4f} mm",
         "",
         "  zone  convex   height     R_K1       R_K2       lead1       lead2",
     ]
     for c in g.contacts:
-        lead = ["%11.3f" % v if math.isfinite(v) else "        inf" for v in c.leads]
+        lead = [text_number(v, "11.3f", "none") for v in c.leads]  # a spur gear's teeth have no lead
         lines.append(f"  {c.zone:<6}gear {c.convex_gear}{c.height:9.4f}{c.radii[0]:11.4f}{c.radii[1]:11.4f}"
                      f"{lead[0]} {lead[1]}")
     lines += ["", "  gear   z      d_a        d_f       s_a", ]

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from gearkit.cli.common import add_json_flag, add_output_flag, add_tol_flag, print_json
+from gearkit.cli.common import QUANTITIES, add_json_flag, add_output_flag, add_tol_flag, print_json
 
 
 def register(subparsers) -> None:
@@ -36,7 +36,7 @@ def register(subparsers) -> None:
                    help="input angle for the export and the 3D interference, degrees (default 0)")
     add_tol_flag(p, "max deviation of outlines and solids from the exact teeth, mm (default 0.005 m for solids, "
                  "0.001 m for outlines)")
-    p.add_argument("--width", type=float, default=None, help="face width of the solids, mm (default: the scene's "
+    p.add_argument("--width", type=QUANTITIES["width"], default=None, help="face width of the solids, mm (default: the scene's "
                    "face_width, else 8 m)")
     add_output_flag(p, "write the placed scene: .glb, .obj, .stl, .3mf, .step (solids, named parts), .png, .svg "
                     "(outlines) or .html (a page: the scene turning, its solids and checks)")

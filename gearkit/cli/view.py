@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import sys
 
-from gearkit.cli.common import add_output_flag, add_pair_arguments, pair_spec_from_args
+from gearkit.cli.common import QUANTITIES, add_output_flag, add_pair_arguments, pair_spec_from_args
 from gearkit.errors import SpecError
 
 
@@ -41,7 +41,7 @@ def register(subparsers) -> None:
     drive.add_argument("--eccentricity", type=float, required=True, help="e, mm")
     drive.add_argument("--equidistant-mod", type=float, default=0.0, help="dr, mm")
     drive.add_argument("--shift-mod", type=float, default=0.0, help="dR, mm")
-    drive.add_argument("--width", type=float, default=None, help="disc width of the solids, mm")
+    drive.add_argument("--width", type=QUANTITIES["width"], default=None, help="disc width of the solids, mm")
     _common(drive)
     drive.set_defaults(run=run_drive)
 

@@ -1,0 +1,94 @@
+"""The command line's quantities: one type and one allowed range per quantity, for every command.
+
+A flag that sets a quantity (teeth, module, shift, helix angle, pressure angle, face width) takes
+its ``type=`` from :data:`QUANTITIES`, so ``--helix-angle-deg 70`` is refused alike by ``gear``,
+``check``, ``novikov`` and ``blocking``, before any work and naming the flag and the range; a spec
+may narrow a range further where its family needs it (and says why). A renamed flag keeps its old
+spelling working with one deprecation line (:func:`add_renamed_flag`).
+
+Examples
+--------
+>>> QUANTITIES["teeth"]("20"), QUANTITIES["helix_angle_deg"]("15.5")
+(20, 15.5)
+>>> QUANTITIES["helix_angle_deg"]("60")
+Traceback (most recent call last):
+...
+argparse.ArgumentTypeError: 60.0 is outside (-60, 60) degrees (helix angle)
+"""
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+
+__all__ = ["QUANTITIES", "Quantity", "RenamedFlag", "add_renamed_flag"]
+
+
+
+class Quantity:
+    """The argparse ``type=`` of one quantity: parses the text and checks the allowed range.
+
+    Parameters
+    ----------
+    name : str, what the quantity is (in the error line)
+    kind : int or float
+    lo, hi : the bounds; ``open_lo``/``open_hi`` exclude them
+    unit : str, e.g. ``"mm"``, ``"degrees"``
+    """
+
+    def __init__(self, name: str, kind, lo: float, hi: float, unit: str = "", open_lo: bool = False,
+                 open_hi: bool = False):
+        self.name, self.kind, self.lo, self.hi, self.unit = name, kind, lo, hi, unit
+        self.open_lo, self.open_hi = open_lo, open_hi
+        self.__name__ = "integer" if kind is int else "number"  # argparse's "invalid <name> value"
+
+    @property
+    def range_text(self) -> str:
+        """``[3, 100000]``, ``(-60, 60) degrees``: the allowed range as every error line says it."""
+        text = f"{'(' if self.open_lo else '['}{self.lo:g}, {self.hi:g}{')' if self.open_hi else ']'}"
+        return f"{text} {self.unit}".rstrip()
+
+    def __call__(self, text):
+        value = self.kind(text)  # ValueError: argparse says "invalid integer/number value"
+        if self.kind is float and not math.isfinite(value):
+            raise argparse.ArgumentTypeError(f"{text!r} is not a finite number ({self.name})")
+        below = value <= self.lo if self.open_lo else value < self.lo
+        above = value >= self.hi if self.open_hi else value > self.hi
+        if below or above:
+            raise argparse.ArgumentTypeError(f"{value!r} is outside {self.range_text} ({self.name})")
+        return value
+
+    def __repr__(self) -> str:
+        return f"Quantity({self.name!r}, {self.range_text})"
+
+
+#: one definition per quantity; every command's flag of that quantity uses it (a test walks them all)
+QUANTITIES = {
+    "teeth": Quantity("tooth number", int, 3, 100_000),
+    "module": Quantity("module", float, 1e-4, 1e4, "mm"),
+    "shift": Quantity("profile shift coefficient", float, -3.0, 3.0),
+    "helix_angle_deg": Quantity("helix angle", float, -60.0, 60.0, "degrees", open_lo=True, open_hi=True),
+    "pressure_angle_deg": Quantity("pressure angle", float, 1.0, 45.0, "degrees", open_hi=True),
+    "width": Quantity("face width", float, 0.0, 1e5, "mm", open_lo=True),
+}
+
+
+class RenamedFlag(argparse.Action):
+    """The earlier spelling of a flag, kept working: it stores into the new flag's destination and
+    prints one deprecation line on stderr (:func:`add_renamed_flag`)."""
+
+    def __init__(self, option_strings, dest, new_flag: str = "", **kwargs):
+        self.new_flag = new_flag
+        super().__init__(option_strings, dest, **kwargs)
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        print(f"{parser.prog}: {option_string} is deprecated, use {self.new_flag} (the same value)", file=sys.stderr)
+        setattr(namespace, self.dest, values)
+
+
+def add_renamed_flag(p, old: str, new: str, dest: str, **kwargs) -> None:
+    """Declare ``old`` as the deprecated spelling of ``new`` (destination ``dest``; same type).
+
+    Put both in one mutually exclusive group to refuse them together."""
+    p.add_argument(old, dest=dest, action=RenamedFlag, new_flag=new, default=argparse.SUPPRESS,
+                   help=f"deprecated: the old name of {new}", **kwargs)
