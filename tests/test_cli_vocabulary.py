@@ -234,3 +234,61 @@ def test_text_output_has_no_nan_inf_or_negative_zero(capsys, tmp_path, argv):
     assert code in (0, 1), err
     bad = [ln for ln in out.splitlines() if NOT_PRINTED.search(ln)]
     assert bad == []
+
+
+# ----------------------------------------------------------------------------- one range per quantity
+
+#: every flag that sets a quantity of gearkit.cli.vocabulary.QUANTITIES
+QUANTITY_FLAGS = {
+    "teeth": ("-z", "--teeth", "--z1", "--z2", "--mate-teeth", "--pinion-teeth", "--wheel-teeth"),
+    "module": ("-m", "--module"),
+    "shift": ("-x", "--shift", "--x1", "--x2", "--mate-shift"),
+    "helix_angle_deg": ("--helix-angle-deg",),
+    "pressure_angle_deg": ("--pressure-angle-deg",),
+    "width": ("--width",),
+}
+#: numeric flags whose name looks like one of those quantities but is another, with the reason
+NOT_THE_QUANTITY = {
+    "--cutter-teeth": "a tool's teeth z0, [6, 1000]: checked by the cutter spec (cutter.teeth)",
+    "--pinion-cutter-teeth": "a tool's teeth z0, as --cutter-teeth",
+    "--span-teeth": "teeth spanned by the anvils",
+    "--min-teeth": "a search limit", "--max-teeth": "a search limit",
+    "--cutter-shift": "the cutter's own shift x0, [-1, 1.5]: checked by the cutter spec",
+}
+LOOKS_LIKE = re.compile(r"(^|_)(teeth|module|shift|helix_angle_deg|pressure_angle_deg|width)$")
+
+
+def test_one_range_per_quantity_in_every_command():
+    from gearkit.cli.vocabulary import QUANTITIES
+
+    flag_quantity = {f: q for q, flags in QUANTITY_FLAGS.items() for f in flags}
+    wrong = []
+    for name, parser in parsers():
+        for flag, action in flag_actions(parser).items():
+            if isinstance(action, RenamedFlag) or (name, flag) in ARITY_EXCEPTIONS or flag in NOT_THE_QUANTITY:
+                continue
+            q = flag_quantity.get(flag)
+            if q is None and LOOKS_LIKE.search(action.dest) and action.type in (int, float):
+                wrong.append(f"{name} {flag}: a quantity flag without its QUANTITIES type")
+            elif q is not None and action.type is not QUANTITIES[q]:
+                wrong.append(f"{name} {flag}: {action.type!r} instead of {QUANTITIES[q]!r}")
+    assert wrong == []
+
+
+@pytest.mark.parametrize("flag, value, range_text", [
+    ("--helix-angle-deg", "70", "(-60, 60) degrees"), ("--pressure-angle-deg", "50", "[1, 45) degrees"),
+    ("-m", "0", "[0.0001, 10000] mm"), ("--width", "-5", "(0, 100000] mm"), ("--z1", "2", "[3, 100000]"),
+    ("-x", "3.5", "[-3, 3]"), ("--x1", "-4", "[-3, 3]"),
+])
+def test_an_out_of_range_value_is_refused_alike_by_every_command(capsys, tmp_path, flag, value, range_text):
+    """Every command with the flag refuses the value in one line naming the flag and the same range."""
+    tried = 0
+    for name, parser in parsers():
+        if flag not in flag_actions(parser) or (name.split()[0], flag) in ARITY_EXCEPTIONS:
+            continue
+        base = next(a for a in EXAMPLES[name.split()[0]] if " ".join(a[:len(name.split())]) == name)
+        code, out, err = run(capsys, base + [flag, value], tmp_path)
+        lines = err.strip().splitlines()
+        assert code == 2 and len(lines) == 1 and flag in lines[0] and range_text in lines[0], (name, err)
+        tried += 1
+    assert tried >= 1
