@@ -222,7 +222,7 @@ def place_by_curvature(w, points, tol: float) -> np.ndarray:
     chords = max(1, math.ceil(n_of_s[-1] - 1e-9))
     placed = np.interp(np.linspace(0.0, n_of_s[-1], chords + 1), n_of_s, w)
     placed[0], placed[-1] = 0.0, 1.0
-    return np.unique(placed)
+    return placed[np.concatenate([[True], np.diff(placed) > 0.0])]  # sorted already (np.unique imports numpy.ma)
 
 
 def refine_sample(evaluate, w, pts, tol: float, max_rounds: int = 60, max_split: int = 16):
