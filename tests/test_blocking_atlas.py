@@ -34,7 +34,7 @@ def test_dataset_is_queryable(local):
     assert row["passes"] and check_pair(PairSpec(12, 40, 1.0, row["x1"], row["x2"])).ok
 
 
-def test_deterministic_and_resumable(local, tmp_path, capsys):
+def test_deterministic_and_resumable(local, tmp_path, capsys, monkeypatch):
     """One worker writes the same bytes as two; a run that lost a cell (interrupted) computes only it."""
     again = tmp_path / "b"
     assert main(ARGS + ["-o", str(again), "--workers", "1", "--no-progress"]) == 0
@@ -42,7 +42,10 @@ def test_deterministic_and_resumable(local, tmp_path, capsys):
     (again / "cells" / "z1-020_z2-030.json").unlink()
     (again / "index.json").unlink()
     capsys.readouterr()
-    assert main(ARGS + ["-o", str(again)]) == 0
+    from gearkit.progress import Progress
+
+    monkeypatch.setattr(Progress, "delay", 0.0)  # draw at once (a bar waits half a second of work)
+    assert main(["--progress"] + ARGS + ["-o", str(again)]) == 0
     assert "1/1 cells" in capsys.readouterr().err  # the progress bar: one cell left to compute
     assert _files(again) == _files(local)
 

@@ -14,6 +14,11 @@ a timer that interrupts a long run as Ctrl-C would. Asserted for every run:
 
 About 2000 examples in all (tens of seconds). ``GEARKIT_FUZZ_EXAMPLES=N`` runs N per command
 (e.g. 5000 for a long run) and ``GEARKIT_FUZZ_SECONDS`` sets the per-run timer (default 0.4 s).
+``GEARKIT_FUZZ_REPORT=FILE`` appends one JSON line per command -- ``{"command", "tried", "exit_0",
+"exit_1", "exit_2", "exit_130", "defects": [...]}`` -- and lets a command's run go on past a defect
+(each is listed; the test still fails at the end of that command), with fresh random examples::
+
+    GEARKIT_FUZZ_EXAMPLES=1250 GEARKIT_FUZZ_REPORT=cli-fuzz.jsonl nice python -m pytest tests/test_cli_fuzz.py
 """
 import contextlib
 import io
@@ -21,6 +26,7 @@ import json
 import os
 import signal
 import tempfile
+from collections import Counter
 from pathlib import Path
 
 import pytest
@@ -32,6 +38,7 @@ from gearkit.cli import COMMANDS, build_parser, main
 EXAMPLES = int(os.environ.get("GEARKIT_FUZZ_EXAMPLES", "125"))
 SECONDS = float(os.environ.get("GEARKIT_FUZZ_SECONDS", "0.4"))
 ALLOWED = {0, 1, 2, 130}
+REPORT = os.environ.get("GEARKIT_FUZZ_REPORT")
 
 def _import_everything() -> None:
     """Import gearkit's modules and the libraries they load lazily, once, before any timer runs.
@@ -174,25 +181,46 @@ def run_one(argv, scratch: Path):
 def test_cli_fuzz(name):
     scratch = _scratch()
 
-    @settings(max_examples=EXAMPLES, deadline=None, derandomize=True, database=None,
+    counts, defects = Counter(), []
+
+    @settings(max_examples=EXAMPLES, deadline=None, derandomize=not REPORT, database=None,
               suppress_health_check=list(HealthCheck))
     @given(argv=argv_for(name, scratch))
     def check(argv):
         code, out, err = run_one(argv, scratch)
-        where = f"gearkit {' '.join(map(repr, argv))}\nstderr: {err[-800:]}"
-        assert code in ALLOWED, where
-        assert "Traceback" not in err and "Traceback" not in out, where
-        if code == 2:
-            assert err.strip(), where
-        if code in (0, 1) and "--json" in argv and out.strip():
-            try:
-                _strict_json(out)
-            except ValueError as exc:
-                raise AssertionError(f"{where}\nstdout is not strict JSON: {exc}") from None
-        parts = [p.name for p in scratch.rglob("*") if p.name.endswith(".part")]
-        assert parts == [], where
+        counts["tried"] += 1
+        counts[f"exit_{code}"] += 1
+        try:
+            _judge(argv, code, out, err, scratch)
+        except AssertionError as exc:
+            if not REPORT:
+                raise
+            defects.append(str(exc)[:2000])
+            for part in scratch.rglob("*.part"):  # the next example starts clean
+                part.unlink()
 
     check()
+    if REPORT:
+        with open(REPORT, "a") as fh:
+            fh.write(json.dumps({"command": name, **{k: counts[k] for k in sorted(counts)},
+                                 "defects": defects}) + "\n")
+    assert defects == [], defects[0] if defects else ""
+
+
+def _judge(argv, code, out, err, scratch):
+    """The promises every run keeps (AssertionError naming the command line otherwise)."""
+    where = f"gearkit {' '.join(map(repr, argv))}\nstderr: {err[-800:]}"
+    assert code in ALLOWED, where
+    assert "Traceback" not in err and "Traceback" not in out, where
+    if code == 2:
+        assert err.strip(), where
+    if code in (0, 1) and "--json" in argv and out.strip():
+        try:
+            _strict_json(out)
+        except ValueError as exc:
+            raise AssertionError(f"{where}\nstdout is not strict JSON: {exc}") from None
+    parts = [p.name for p in scratch.rglob("*") if p.name.endswith(".part")]
+    assert parts == [], where
 
 
 def test_every_registered_command_is_fuzzed():

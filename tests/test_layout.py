@@ -50,7 +50,7 @@ PACKAGE = Path(__file__).resolve().parent.parent / "gearkit"
 #: the layers, bottom first: a module may import only from its own layer or a lower one
 LAYERS = (
     ("base", ("gearkit", "gearkit.errors", "gearkit.accuracy", "gearkit.curves", "gearkit.export",
-              "gearkit.roots")),
+              "gearkit.roots", "gearkit.progress")),
     ("kernel", ("gearkit.segments", "gearkit.motion", "gearkit.envelope", "gearkit.boundary", "gearkit.profile")),
     ("families", ("gearkit.families", "gearkit.oracles")),  # every family package, and their oracles
     ("pair", ("gearkit.pair",)),
@@ -201,7 +201,8 @@ def test_no_module_is_over_400_lines():
 # ----------------------------------------------------------------------------- one CLI vocabulary
 
 #: flags every command spells the same way: declared only through gearkit/cli/common.py
-SHARED_FLAGS = ("-o", "--output", "--tol", "--json", "-m", "--module", "-z", "--teeth", "-x", "--shift", "--keyway")
+SHARED_FLAGS = ("-o", "--output", "--tol", "--json", "-m", "--module", "-z", "--teeth", "-x", "--shift", "--keyway",
+                "--progress")
 #: known exceptions (module, flag), each with its reason; none today
 CLI_EXCEPTIONS = set()
 
@@ -219,4 +220,4 @@ def test_the_shared_cli_flags_are_declared_only_in_cli_common():
                 offenders.append(f"{path.name}: {flag}")
     assert offenders == []
     common = (PACKAGE / "cli" / "common.py").read_text()
-    assert all(f'"{flag}"' in common for flag in ("-o", "--tol", "--json", "-m", "-z", "-x"))
+    assert all(f'"{flag}"' in common for flag in ("-o", "--tol", "--json", "-m", "-z", "-x", "--progress"))

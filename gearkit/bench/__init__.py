@@ -27,11 +27,19 @@ import time
 
 import numpy as np
 
+from gearkit.progress import Progress
+
 __all__ = ["run_bench", "format_table", "markdown_table"]
 
 
+#: the bench's parts, for its progress bar
+SECTIONS = 11
+
+
 def run_bench(quick: bool = False, process: bool = True, progress=None) -> dict:
-    """Run the bench; ``quick`` keeps it under a minute on two cores.
+    """Run the bench; ``quick`` keeps it under a minute on two cores. ``progress``, if given, is
+    called with the name of each part as it starts; the command line draws a progress bar
+    (:class:`gearkit.progress.Progress`) instead.
 
     Returns
     -------
@@ -42,65 +50,73 @@ def run_bench(quick: bool = False, process: bool = True, progress=None) -> dict:
     """
     from gearkit.bench import blocking, meshes, oracle, process as proc, products, profiles, targets, vertices
 
-    def say(msg):
-        if progress is not None:
-            progress(msg)
+    with Progress("bench", SECTIONS, unit="parts") as bar:
+        started = [0]
 
-    repeats = 3 if quick else 7
-    t0 = time.perf_counter()
-    out = {"meta": {"quick": quick, "repeats": repeats, "python": platform.python_version(),
-                    "numpy": np.__version__, "machine": platform.machine(), "cpus": os.cpu_count(),
-                    "load_before": _load()}}
-    say("overhead against the closed-form involute")
-    out["overhead"] = profiles.overhead(11 if quick else 31)
-    out["overhead_ratio"] = out["overhead"]["overhead_ratio"]
-    out["targets"] = [targets.target_row("kernel overhead: z=40 outline, tol 1e-6 m",
-                                         out["overhead_ratio"], profiles.OVERHEAD_TARGET, "x closed form",
-                                         f"CPU time; sampling alone {out['overhead']['overhead_ratio_sampling']:.1f}x")]
-    say("accuracy ladder: 2D profiles")
-    out["ladder"] = (profiles.involute_ladder(quick, repeats) + profiles.novikov_ladder(quick, repeats)
-                     + profiles.cycloidal_ladder(quick, repeats) + profiles.cam_ladder(quick, repeats))
-    if products.available("gearkit.solids"):
-        say("accuracy ladder: meshes")
-        out["ladder"] += meshes.mesh_ladder(quick, repeats)
-    out["targets"] += vertices.vertex_target_rows()
-    if products.available("gearkit.solids"):
-        say("large mesh: z = 1000 to STL, CPU and memory per face")
-        out["targets"] += targets.mesh_target_rows(1 if quick else 3)
-    if products.available("gearkit.blocking.contour"):
-        say("blocking contour: ladder, targets, atlas throughput")
-        out["ladder"] += blocking.ladder_rows(quick)
-        out["blocking_targets"] = blocking.target_rows(out["ladder"])
-        out["targets"] += targets.blocking_targets(out["blocking_targets"])
-        out["atlas"] = blocking.atlas_rows(quick)
-    say("scaling in z")
-    out["scaling"] = profiles.involute_scaling(quick, repeats)
-    say("swept-tool oracle convergence")
-    out["oracle"], out["oracle_order"] = oracle.oracle_convergence(quick, repeats)
-    say("pair check, simulated meshes")
-    out["products"] = (products.pair_check_rows(quick, repeats) + products.involute_contact_rows(quick, repeats)
-                       + products.cycloidal_mesh_rows(quick, repeats) + products.novikov_contact_rows(quick, repeats))
-    if products.available("gearkit.contact.loaded"):
-        from gearkit.bench.contact import contact_target_rows
+        def say(msg):  # a part starts: the bar counts those finished and names this one
+            if progress is not None:
+                progress(msg)
+            bar.note = msg
+            bar.update(started[0])
+            started[0] += 1
 
-        say("contact analysis against its targets")
-        out["contact_targets"] = contact_target_rows(quick)
-        out["targets"] += targets.contact_targets(out["contact_targets"])
-    if products.available("gearkit.scene"):
-        from gearkit.bench import scenes
+        repeats = 3 if quick else 7
+        t0 = time.perf_counter()
+        out = {"meta": {"quick": quick, "repeats": repeats, "python": platform.python_version(),
+                        "numpy": np.__version__, "machine": platform.machine(), "cpus": os.cpu_count(),
+                        "load_before": _load()}}
+        say("overhead against the closed-form involute")
+        out["overhead"] = profiles.overhead(11 if quick else 31)
+        out["overhead_ratio"] = out["overhead"]["overhead_ratio"]
+        out["targets"] = [targets.target_row("kernel overhead: z=40 outline, tol 1e-6 m",
+                                             out["overhead_ratio"], profiles.OVERHEAD_TARGET, "x closed form",
+                                             f"CPU time; sampling alone {out['overhead']['overhead_ratio_sampling']:.1f}x")]
+        say("accuracy ladder: 2D profiles")
+        out["ladder"] = (profiles.involute_ladder(quick, repeats) + profiles.novikov_ladder(quick, repeats)
+                         + profiles.cycloidal_ladder(quick, repeats) + profiles.cam_ladder(quick, repeats))
+        if products.available("gearkit.solids"):
+            say("accuracy ladder: meshes")
+            out["ladder"] += meshes.mesh_ladder(quick, repeats)
+        out["targets"] += vertices.vertex_target_rows()
+        if products.available("gearkit.solids"):
+            say("large mesh: z = 1000 to STL, CPU and memory per face")
+            out["targets"] += targets.mesh_target_rows(1 if quick else 3)
+        if products.available("gearkit.blocking.contour"):
+            say("blocking contour: ladder, targets, atlas throughput")
+            out["ladder"] += blocking.ladder_rows(quick)
+            out["blocking_targets"] = blocking.target_rows(out["ladder"])
+            out["targets"] += targets.blocking_targets(out["blocking_targets"])
+            out["atlas"] = blocking.atlas_rows(quick)
+        say("scaling in z")
+        out["scaling"] = profiles.involute_scaling(quick, repeats)
+        say("swept-tool oracle convergence")
+        out["oracle"], out["oracle_order"] = oracle.oracle_convergence(quick, repeats)
+        say("pair check, simulated meshes")
+        out["products"] = (products.pair_check_rows(quick, repeats) + products.involute_contact_rows(quick, repeats)
+                           + products.cycloidal_mesh_rows(quick, repeats) + products.novikov_contact_rows(quick, repeats))
+        if products.available("gearkit.contact.loaded"):
+            from gearkit.bench.contact import contact_target_rows
 
-        say("scenes: queries at each fidelity, planetary synthesis")
-        out["scenes"] = scenes.scene_rows(quick, repeats)
-        out["synthesis"] = scenes.synthesis_rows(quick, repeats)
-    measured = {(r["family"], r["product"]) for r in out["ladder"] + out["products"]}
-    out["unmeasured"] = products.unmeasured_products(measured)
-    if process:
-        say("whole-process times against the import floor")
-        out["floor"], rows = targets.process_target_rows(3 if quick else 5)
-        out["targets"] = rows + out["targets"]
-        out["process"] = proc.process_times(5)
-    else:
-        out["process"] = []
+            say("contact analysis against its targets")
+            out["contact_targets"] = contact_target_rows(quick)
+            out["targets"] += targets.contact_targets(out["contact_targets"])
+        if products.available("gearkit.scene"):
+            from gearkit.bench import scenes
+
+            say("scenes: queries at each fidelity, planetary synthesis")
+            out["scenes"] = scenes.scene_rows(quick, repeats)
+            out["synthesis"] = scenes.synthesis_rows(quick, repeats)
+        measured = {(r["family"], r["product"]) for r in out["ladder"] + out["products"]}
+        out["unmeasured"] = products.unmeasured_products(measured)
+        if process:
+            say("whole-process times against the import floor")
+            out["floor"], rows = targets.process_target_rows(3 if quick else 5)
+            out["targets"] = rows + out["targets"]
+            out["process"] = proc.process_times(5)
+        else:
+            out["process"] = []
+        bar.note = ""
+        bar.update(SECTIONS)
     out["meta"]["seconds"] = time.perf_counter() - t0
     out["meta"]["load_after"] = _load()
     return out

@@ -21,7 +21,6 @@ from __future__ import annotations
 
 import json
 import os
-import sys
 import time
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass, replace
@@ -29,6 +28,7 @@ from pathlib import Path
 
 from gearkit.errors import GearkitError, SpecError, require
 from gearkit.pair.spec import PairSpec
+from gearkit.progress import Progress
 
 __all__ = ["BlockingAtlas", "blocking_atlas", "atlas_cell", "write_atlas", "cell_name"]
 
@@ -110,12 +110,17 @@ def blocking_atlas(z1s, z2s, template: PairSpec | None = None, *, workers: int |
     require(isinstance(n, int) and n >= 1, "workers", f"{workers!r} must be a positive integer or None")
     jobs = [(z1, z2) for z1 in z1s for z2 in z2s]
     results = []
-    if n == 1 or len(jobs) == 1:
-        results = [_cell(template, z1, z2, options) for z1, z2 in jobs]
-    else:
-        with ProcessPoolExecutor(max_workers=min(n, len(jobs))) as pool:
-            futures = [pool.submit(_cell, template, z1, z2, options) for z1, z2 in jobs]
-            results = [f.result() for f in futures]
+    with Progress("atlas", len(jobs), unit="cells") as bar:
+        if n == 1 or len(jobs) == 1:
+            for z1, z2 in jobs:
+                results.append(_cell(template, z1, z2, options))
+                bar.step()
+        else:
+            with ProcessPoolExecutor(max_workers=min(n, len(jobs))) as pool:
+                futures = [pool.submit(_cell, template, z1, z2, options) for z1, z2 in jobs]
+                for _ in as_completed(futures):
+                    bar.step()
+                results = [f.result() for f in futures]
     cells, errors = {}, {}
     for z1, z2, contour, err in results:
         if contour is None:
@@ -164,25 +169,6 @@ def _dump(obj) -> str:
     return json.dumps(obj, sort_keys=True, allow_nan=False, separators=(",", ":"))
 
 
-class _Progress:
-    """A progress bar on stderr: ``atlas [#####     ] 37/100 cells, 12.3 s``."""
-
-    WIDTH = 30
-
-    def __init__(self, total: int, stream=None):
-        self.total, self.done, self.t0 = total, 0, time.perf_counter()
-        self.stream = sys.stderr if stream is None else stream
-
-    def step(self, n: int = 1) -> None:
-        self.done += n
-        k = int(self.WIDTH * self.done / max(self.total, 1))
-        self.stream.write(f"\ratlas [{'#' * k}{' ' * (self.WIDTH - k)}] {self.done}/{self.total} cells, "
-                          f"{time.perf_counter() - self.t0:.1f} s")
-        if self.done >= self.total:
-            self.stream.write("\n")
-        self.stream.flush()
-
-
 def _run_local(jobs, template, options, criterion, workers, sink):
     if workers == 1 or len(jobs) <= 1:
         for z1, z2 in jobs:
@@ -216,7 +202,7 @@ DASK_TIMEOUT = 10  #: seconds to reach the scheduler
 
 
 def write_atlas(z1s, z2s, out_dir, template: PairSpec | None = None, *, workers: int = 2,
-                scheduler: str | None = None, criterion: str = "balanced", progress=True, **options) -> dict:
+                scheduler: str | None = None, criterion: str = "balanced", progress=None, **options) -> dict:
     """Write the atlas of ``z1s`` x ``z2s`` to ``out_dir`` (see the module notes); returns the index.
 
     Parameters
@@ -233,8 +219,9 @@ def write_atlas(z1s, z2s, out_dir, template: PairSpec | None = None, *, workers:
         Address of a Dask scheduler (``tcp://host:8786``): the cells run on its workers.
     criterion : str
         Recommendation criterion of every cell.
-    progress : bool or file
-        A progress bar on stderr (or the given stream); False: none.
+    progress : bool, file or None
+        A progress bar (:class:`gearkit.progress.Progress`) on stderr (True) or the given stream;
+        False: none; None: as the command line says (``Progress.mode``).
     **options
         Keyword arguments of :func:`~gearkit.blocking.blocking_contour` (``tol``, ``window`` ...).
     """
@@ -265,20 +252,18 @@ def write_atlas(z1s, z2s, out_dir, template: PairSpec | None = None, *, workers:
                             "give a new directory")
     atomic_write(out / "atlas.json", lambda tmp: Path(tmp).write_text(_dump(head)))
     jobs = [(z1, z2) for z1 in z1s for z2 in z2s if not (cells_dir / cell_name(z1, z2)).exists()]
-    bar = None
-    if progress:
-        bar = _Progress(len(jobs), None if progress is True else progress)
-
-    def sink(record):
-        name = cell_name(record["z1"], record["z2"])
-        atomic_write(cells_dir / name, lambda tmp: Path(tmp).write_text(_dump(record)))
-        if bar:
+    enabled = None if progress is None else bool(progress)
+    stream = progress if progress not in (None, True, False) else None
+    with Progress("atlas", len(jobs), unit="cells", enabled=enabled, stream=stream) as bar:
+        def sink(record):
+            name = cell_name(record["z1"], record["z2"])
+            atomic_write(cells_dir / name, lambda tmp: Path(tmp).write_text(_dump(record)))
             bar.step()
-    if jobs:
-        if scheduler:
-            _run_dask(jobs, template, options, criterion, scheduler, sink)
-        else:
-            _run_local(jobs, template, options, criterion, workers, sink)
+        if jobs:
+            if scheduler:
+                _run_dask(jobs, template, options, criterion, scheduler, sink)
+            else:
+                _run_local(jobs, template, options, criterion, workers, sink)
     rows = []
     records = []
     for z1 in z1s:

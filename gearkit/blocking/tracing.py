@@ -25,6 +25,7 @@ from gearkit.blocking.field import PairField
 from gearkit.blocking.grid import refine_grid, sign_cells
 from gearkit.blocking.level import zero_lines
 from gearkit.blocking.region import best_point, orient_loops, pad, padded_grid
+from gearkit.progress import Progress
 
 __all__ = ["Traced", "trace", "empty_reason", "GRID", "REGION_REFINE"]
 
@@ -70,30 +71,34 @@ def trace(field: PairField, window, names, tol: float, max_step: float | None = 
     def F(p, which):
         count[0] += len(p)
         return F0(p, which)
-    xs = np.linspace(window[0], window[1], GRID)
-    ys = np.linspace(window[2], window[3], GRID)
-    gx, gy = np.meshgrid(xs, ys)
-    nodes = np.column_stack([gx.ravel(), gy.ravel()])
-    at_nodes = array_margins(field, nodes[:, 0], nodes[:, 1], names + (list(field.hard) if region else []))
-    count[0] += len(nodes)
-    px, py = padded_grid(xs, ys)
-    curves = [(px, py, pad(at_nodes[n].reshape(gx.shape), np.nan)) for n in names]
-    reason = None
-    if region:
-        rvals = F(nodes, np.full(len(nodes), len(ids) - 1)).reshape(gx.shape)
-        rv = pad(np.where(np.isfinite(rvals), rvals, -1.0), -1.0)
-        if np.any(rv > 0):
-            cells = sign_cells(rv)
-            for n in field.hard:
-                cells |= sign_cells(pad(at_nodes[n].reshape(gx.shape), -1.0))
-            curves.append(refine_grid(F, len(ids) - 1, px, py, rv, cells, REGION_REFINE))
-        else:
-            curves.append((px, py, np.full_like(rv, -1.0)))
-    kinked = [k for k, n in enumerate(names) if n.partition("=")[0] == "contact_ratio"]
-    traced = zero_lines(F, curves, tol, max_step, measure=(len(ids) - 1,) if region else (), kinked=kinked)
-    polygons = None
-    if region:
-        polygons = orient_loops(traced[-1], window, tol)
-        if not polygons:
-            reason = empty_reason(field, F, len(ids) - 1, window, xs, ys, rvals)
+    with Progress("blocking", 4, unit="stages") as bar:  # the grid, the region's cells, the lines, the polygons
+        xs = np.linspace(window[0], window[1], GRID)
+        ys = np.linspace(window[2], window[3], GRID)
+        gx, gy = np.meshgrid(xs, ys)
+        nodes = np.column_stack([gx.ravel(), gy.ravel()])
+        at_nodes = array_margins(field, nodes[:, 0], nodes[:, 1], names + (list(field.hard) if region else []))
+        count[0] += len(nodes)
+        bar.update(1)
+        px, py = padded_grid(xs, ys)
+        curves = [(px, py, pad(at_nodes[n].reshape(gx.shape), np.nan)) for n in names]
+        reason = None
+        if region:
+            rvals = F(nodes, np.full(len(nodes), len(ids) - 1)).reshape(gx.shape)
+            rv = pad(np.where(np.isfinite(rvals), rvals, -1.0), -1.0)
+            if np.any(rv > 0):
+                cells = sign_cells(rv)
+                for n in field.hard:
+                    cells |= sign_cells(pad(at_nodes[n].reshape(gx.shape), -1.0))
+                curves.append(refine_grid(F, len(ids) - 1, px, py, rv, cells, REGION_REFINE))
+            else:
+                curves.append((px, py, np.full_like(rv, -1.0)))
+        kinked = [k for k, n in enumerate(names) if n.partition("=")[0] == "contact_ratio"]
+        bar.update(2)
+        traced = zero_lines(F, curves, tol, max_step, measure=(len(ids) - 1,) if region else (), kinked=kinked)
+        bar.update(3)
+        polygons = None
+        if region:
+            polygons = orient_loops(traced[-1], window, tol)
+            if not polygons:
+                reason = empty_reason(field, F, len(ids) - 1, window, xs, ys, rvals)
     return Traced({n: traced[k] for k, n in enumerate(names)}, polygons, reason, count[0])

@@ -93,6 +93,8 @@ class ArgumentParser(argparse.ArgumentParser):
 
 def build_parser(command: str | None = None) -> argparse.ArgumentParser:
     """The argument parser: with a known ``command``, only its module is imported and registered."""
+    from gearkit.cli.common import add_progress_flag
+
     parser = ArgumentParser(
         prog="gearkit",
         description="Gear geometry and tooth-contact kernel: generate, check and export gears (lengths in mm). "
@@ -108,8 +110,7 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
     parser.add_argument("--max-points", type=int, default=None, metavar="N",
                         help="raise the size limit a refused output names (points, faces, steps; also after the "
                              "command)")
-    parser.add_argument("--progress", action="store_true",
-                        help="draw progress bars on stderr even when it is not a terminal (also after the command)")
+    add_progress_flag(parser)
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
     module = command_module(command)
     for name in (module,) if module else COMMANDS:
@@ -119,7 +120,8 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
 
 def main(argv: list[str] | None = None) -> int:
     """Run the CLI; return the exit status (0 ok, 1 a check failed, 2 bad input, 130/143 interrupted)."""
-    from gearkit.cli.shell import MAX_POINTS, Progress, run_guarded
+    from gearkit.cli.shell import MAX_POINTS, run_guarded
+    from gearkit.progress import Progress
 
     argv = list(sys.argv[1:] if argv is None else argv)
     debug = "--debug" in argv
@@ -134,12 +136,12 @@ def main(argv: list[str] | None = None) -> int:
         args = parser.parse_args(argv)
     except SystemExit as exc:  # argparse reports bad flags itself and exits 2 (0 for --help/--version)
         return int(exc.code or 0)
-    Progress.enabled_default = True if progress else None
+    Progress.mode = "on" if progress else "auto"  # a bar on a terminal, or wherever --progress says
     MAX_POINTS[0] = max_points
     try:
         return run_guarded(args, debug=debug)
     finally:
-        Progress.enabled_default = None
+        Progress.mode = "off"
         MAX_POINTS[0] = None
 
 

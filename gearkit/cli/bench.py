@@ -26,8 +26,7 @@ def run(args) -> int:
 
     from gearkit.bench import format_table, run_bench
 
-    res = run_bench(quick=args.quick, process=not args.no_process,
-                    progress=lambda msg: print(f"gearkit bench: {msg} ...", file=sys.stderr, flush=True))
+    res = run_bench(quick=args.quick, process=not args.no_process)  # its bar: gearkit.progress
     text = json.dumps(res, indent=1, allow_nan=False) + "\n"
     print(text if args.json else format_table(res), end="" if args.json else "\n")
     if args.output:

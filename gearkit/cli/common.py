@@ -6,6 +6,8 @@ A command module holds only what is particular to it; everything two commands sh
   :func:`tool_from_args`);
 * a pair: the design file (``gearkit check design.toml``) or the pair, tool and limit flags
   (:func:`add_pair_arguments`, :func:`pair_spec_from_args`);
+* progress: ``--progress`` (a bar on stderr for long work even when it is not a terminal;
+  :class:`gearkit.progress.Progress`);
 * output: ``--tol`` (a max deviation in mm, validated by :func:`tol_from`), ``--json`` (one JSON object
   on stdout, :func:`print_json`), ``-o/--output FILE``, ``--keyway WxD`` (:func:`keyway_from_arg`).
 
@@ -23,7 +25,7 @@ Q = QUANTITIES
 
 __all__ = ["QUANTITIES", "RACKS", "RACK_HELP", "SIGN_NOTE", "TIP_RULES", "RenamedFlag", "add_gear_flags",
            "add_json_flag", "add_keyway_flag", "add_module_flag", "add_output_flag", "add_pair_arguments",
-           "add_rack_flag", "add_renamed_flag", "add_tol_flag", "add_tool_flags", "keyway_from_arg", "output_kind",
+           "add_progress_flag", "add_rack_flag", "add_renamed_flag", "add_tol_flag", "add_tool_flags", "keyway_from_arg", "output_kind",
            "pair_spec_from_args", "print_json", "rack_from_args", "tol_from", "tool_from_args"]
 
 #: how a pair's (or a gear's) tip diameters follow (``--tip-rule``)
@@ -89,6 +91,14 @@ def add_output_flag(p, help: str, **kwargs) -> None:
     """``-o/--output FILE``: what the command writes (its formats go in ``help``)."""
     kwargs.setdefault("default", None)
     p.add_argument("-o", "--output", help=help, **kwargs)
+
+
+def add_progress_flag(p) -> None:
+    """``--progress``: draw progress bars on stderr even when it is not a terminal (the command line
+    takes it anywhere on the line, before or after the command)."""
+    p.add_argument("--progress", action="store_true",
+                   help="draw progress bars on stderr even when it is not a terminal (on a terminal they are "
+                        "drawn anyway; also after the command)")
 
 
 def tol_from(value, default: float | None) -> float | None:

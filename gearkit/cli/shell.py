@@ -1,5 +1,5 @@
 """What every ``gearkit`` command gets by construction: exit codes, one-line errors, signals,
-output paths checked before any work, bounded work and a progress bar.
+output paths checked before any work and bounded work (the progress bar is :mod:`gearkit.progress`).
 
 Exit status: 0 ok, 1 a design check fails, 2 bad input or a file problem (one line naming the
 file or field), 130 interrupted (Ctrl-C), 143 terminated (SIGTERM), 70 an internal error (a bug:
@@ -19,7 +19,6 @@ from __future__ import annotations
 import os
 import signal
 import sys
-import time
 
 from gearkit.errors import GearkitError, SpecError
 
@@ -168,48 +167,3 @@ class _Tee:
 
     def __getattr__(self, name):
         return getattr(self.stream, name)
-
-
-class Progress:
-    """A progress bar on stderr, drawn only on a terminal or when asked (``--progress``).
-
-    ``with Progress("contact", total) as bar: ... bar.update(k)``; it redraws at most ten times
-    a second and clears its line when done.
-
-    Examples
-    --------
-    >>> with Progress("steps", 4, enabled=False) as bar:
-    ...     bar.update(2)
-    >>> bar.done
-    2
-    """
-
-    enabled_default = None  # set by the command line's --progress
-
-    def __init__(self, label: str, total: int, enabled: bool | None = None, stream=None):
-        self.label, self.total, self.done = label, max(int(total), 1), 0
-        self.stream = stream if stream is not None else sys.stderr
-        if enabled is None:
-            enabled = Progress.enabled_default
-        if enabled is None:
-            enabled = bool(getattr(self.stream, "isatty", lambda: False)())
-        self.enabled, self._last = enabled, 0.0
-
-    def __enter__(self):
-        return self
-
-    def update(self, done: int) -> None:
-        self.done = int(done)
-        now = time.monotonic()
-        if self.enabled and (now - self._last > 0.1 or self.done >= self.total):
-            self._last = now
-            frac = min(self.done / self.total, 1.0)
-            bar = "#" * int(30 * frac)
-            self.stream.write(f"\r{self.label} [{bar:<30}] {100 * frac:3.0f}%")
-            self.stream.flush()
-
-    def __exit__(self, *exc):
-        if self.enabled:
-            self.stream.write("\r" + " " * (len(self.label) + 38) + "\r")
-            self.stream.flush()
-        return False

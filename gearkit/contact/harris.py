@@ -15,6 +15,7 @@ import numpy as np
 
 from gearkit.errors import is_real, require
 from gearkit.families.involute.modification import Modification
+from gearkit.progress import Progress
 
 __all__ = ["HarrisMap", "harris_map", "long_tip_relief"]
 
@@ -69,11 +70,13 @@ def harris_map(spec, torques, reliefs, *, design_torque: float | None = None, st
     design = float(torques.max() if design_torque is None else design_torque)
     all_t = np.unique(np.concatenate([torques, [design]]))
     pp = np.zeros((len(reliefs), len(all_t)))
-    for i, c in enumerate(reliefs):
-        mods = long_tip_relief(spec, float(c))
-        res = analyse_loaded(spec, [float(t) for t in all_t], modifications=mods, steps=steps, material=material,
-                             tol=tol)
-        pp[i] = [r.transmission_error_pp for r in res]
+    with Progress("harris map", len(reliefs), unit="reliefs") as bar:
+        for i, c in enumerate(reliefs):
+            mods = long_tip_relief(spec, float(c))
+            res = analyse_loaded(spec, [float(t) for t in all_t], modifications=mods, steps=steps,
+                                 material=material, tol=tol)
+            pp[i] = [r.transmission_error_pp for r in res]
+            bar.update(i + 1)
     j_design = int(np.searchsorted(all_t, design))
     best = float(reliefs[int(np.argmin(pp[:, j_design]))])
     keep = np.isin(all_t, torques)

@@ -27,6 +27,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gearkit.progress import Progress
+
 __all__ = ["Bounds", "solve"]
 
 #: Brent iterations of the minimum, Illinois iterations of a crossing (both converge long before)
@@ -301,7 +303,11 @@ def solve(mesh, phi, contact_tol: float, bounds=(0, 1)) -> Bounds:
     phi = np.atleast_1d(np.asarray(phi, dtype=float))
     per_angle = len(mesh.offsets) * 4 * len(mesh.driver.points) // 2  # about half the halves are near
     step = max(1, _CHUNK // per_angle)
-    parts = [_solve_chunk(mesh, phi[i:i + step], contact_tol, bounds) for i in range(0, len(phi), step)]
+    parts = []
+    with Progress("contact", len(phi), unit="positions") as bar:
+        for i in range(0, len(phi), step):
+            parts.append(_solve_chunk(mesh, phi[i:i + step], contact_tol, bounds))
+            bar.update(min(i + step, len(phi)))
     if len(parts) == 1:
         return parts[0]
     return Bounds(*(np.concatenate([getattr(p, f) for p in parts]) for f in Bounds.__dataclass_fields__))

@@ -21,6 +21,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from gearkit.errors import SpecError
+from gearkit.progress import Progress
 from gearkit.solids.gear import gear_solid
 from gearkit.solids.rack import rack_solid
 from gearkit.solids.solid import SolidSpec, default_mesh_tol
@@ -77,7 +78,13 @@ class Assembly:
 
     def sweep(self, angles) -> np.ndarray:
         """Interference volume (mm^3) at each pinion angle (rad)."""
-        return np.array([self.interference(float(t)) for t in np.atleast_1d(angles)])
+        angles = np.atleast_1d(angles)
+        out = np.empty(len(angles))
+        with Progress("sweep", len(angles), unit="rotations") as bar:
+            for k, t in enumerate(angles):
+                out[k] = self.interference(float(t))
+                bar.update(k + 1)
+        return out
 
     def summary(self) -> dict:
         return {"kind": self.kind, "center_distance": self.center_distance,
