@@ -144,9 +144,12 @@ def _scratch() -> Path:
 class _Timer:
     """Interrupt a run after ``SECONDS`` as Ctrl-C would (exit 130 is a legal answer)."""
 
+    returned = False  # set as soon as main returns: a late alarm is the harness's, not the command's
+
     def __enter__(self):
         def fire(signum, frame):
-            raise KeyboardInterrupt
+            if not self.returned:
+                raise KeyboardInterrupt
 
         self.previous = signal.signal(signal.SIGALRM, fire)
         signal.setitimer(signal.ITIMER_REAL, SECONDS)
@@ -170,8 +173,12 @@ def run_one(argv, scratch: Path):
     cwd = os.getcwd()
     os.chdir(scratch)
     try:
-        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err), _Timer():
-            code = main(list(argv))
+        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err), _Timer() as timer:
+            try:
+                code = main(list(argv))
+            except KeyboardInterrupt:  # a real process would print a traceback
+                raise AssertionError(f"gearkit {' '.join(map(repr, argv))}: Ctrl-C escaped main") from None
+            timer.returned = True
     finally:
         os.chdir(cwd)
     return code, out.getvalue(), err.getvalue()

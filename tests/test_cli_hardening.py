@@ -173,6 +173,18 @@ def test_sigterm_during_an_export_exits_143_and_leaves_nothing(capsys, tmp_path,
     assert signal.getsignal(signal.SIGTERM) is before  # the handler is put back
 
 
+def test_ctrl_c_while_the_command_loads_exits_130(capsys, monkeypatch):
+    """An interrupt before the command runs (its modules still importing) is no traceback either."""
+    import gearkit.cli
+
+    def interrupted(name):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(gearkit.cli.importlib, "import_module", interrupted)
+    code, _, err = run(capsys, "gear", "-z", "20", "-m", "2")
+    assert code == 130 and one_error_line(err) == "gearkit: interrupted"
+
+
 def test_internal_error_is_one_line_with_a_debug_hint(capsys, monkeypatch):
     import gearkit.cli.gear
 

@@ -131,11 +131,14 @@ def main(argv: list[str] | None = None) -> int:
     if isinstance(max_points, str):
         print(f"gearkit: error: --max-points: {max_points}", file=sys.stderr)
         return 2
-    parser = build_parser(argv[0] if argv and not argv[0].startswith("-") else None)  # lazy: only its module
     try:
+        parser = build_parser(argv[0] if argv and not argv[0].startswith("-") else None)  # lazy: its module only
         args = parser.parse_args(argv)
     except SystemExit as exc:  # argparse reports bad flags itself and exits 2 (0 for --help/--version)
         return int(exc.code or 0)
+    except KeyboardInterrupt:  # Ctrl-C while the command's modules load: no traceback either
+        print("\ngearkit: interrupted", file=sys.stderr)
+        return 130
     Progress.mode = "on" if progress else "auto"  # a bar on a terminal, or wherever --progress says
     MAX_POINTS[0] = max_points
     try:
