@@ -104,6 +104,9 @@ def _probe(evaluate, w, pts, tol):
 #: the pilot sampling that the vertices are placed from runs at this multiple of tol (its points
 #: and probes only have to show where the curve bends)
 PILOT = 16.0
+#: uniform samples the pilot starts from (more than ``n_init``: the pilot then settles in fewer rounds,
+#: each an ``evaluate`` call, the cost that dominates short chains)
+PILOT_START = 17
 #: chords are placed to deviate by about this fraction of tol: inside the acceptance test's margin,
 #: so that few of them fail it and are split
 PLACE_AT = 0.9
@@ -113,7 +116,8 @@ def adaptive_sample(evaluate, tol: float, n_init: int = 5, max_rounds: int = 60,
                     fewest: bool = False):
     """Sample an exact curve so that every chord is within ``tol`` of it (on request with near the fewest vertices).
 
-    **Placement.** A pilot sampling (:func:`refine_sample` at ``PILOT tol``) and its probes show
+    **Placement.** A pilot sampling (:func:`refine_sample` at ``PILOT tol`` from ``PILOT_START``
+    uniform samples) and its probes show
     where the curve bends: a chord of length L where the curvature is k deviates by about
     k L^2 / 8, so the fewest vertices for a chord deviation t are spaced sqrt(8 t / k) apart. The
     vertices are placed at equal steps of ``N(s) = integral sqrt(k / (8 t)) ds`` (``t =
@@ -177,6 +181,7 @@ def adaptive_sample(evaluate, tol: float, n_init: int = 5, max_rounds: int = 60,
     w = np.linspace(0.0, 1.0, n_init)
     if not fewest:
         return refine_sample(evaluate, w, evaluate(w), tol, max_rounds, max_split)[:3]
+    w = np.linspace(0.0, 1.0, max(n_init, PILOT_START))
     w, pts, _, probes, q = refine_sample(evaluate, w, evaluate(w), PILOT * tol, max_rounds, max_split)
     w = place_by_curvature(np.concatenate([w, probes.ravel()]), np.concatenate([pts, q.reshape(-1, 2)]),
                            PLACE_AT * tol)
