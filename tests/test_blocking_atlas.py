@@ -76,3 +76,4 @@ def test_internal_atlas_names_cells_that_are_no_pair(tmp_path):
     rows = {(c["z1"], c["z2"]): c for c in json.loads((out / "index.json").read_text())["cells"]}
     assert rows[(50, 49)]["status"] == "error" and "teeth" in rows[(50, 49)]["error"]
     assert rows[(20, 49)]["status"] == "ok"
+

@@ -7,6 +7,7 @@ point of a traced line lies within ``CONTRACT * tol`` of the exact line (``CONTR
 point closer than ``CONTRACT * tol`` to the region's boundary may fall on either side (the polygon is
 exact only to that distance), so the property tests skip such points (a handful at most).
 """
+import os
 from dataclasses import replace
 
 import numpy as np
@@ -70,6 +71,44 @@ def test_region_is_the_map_of_check_pair(case):
         if ok != r:
             assert _boundary_distance(c, p) <= CONTRACT * TOL, (name, p, ok)
         assert c.contains(*p) == ok  # membership (--mark) is the check's verdict
+
+
+PROPERTY_PAIRS = int(os.environ.get("GEARKIT_BLOCKING_PAIRS", "3"))  #: random pairs of each kind (a long run:
+#: GEARKIT_BLOCKING_PAIRS=40)
+PROPERTY_TOL = 1e-3
+
+
+def _random_pair(rng, internal: bool) -> PairSpec:
+    if internal:
+        z1 = int(rng.integers(12, 50))
+        z2 = z1 + int(rng.integers(6, 60))
+        return PairSpec(z1, z2, 1.0, kind="internal", tool2=ShaperCutter(int(rng.integers(12, min(40, z2 - 5)))))
+    z1 = int(rng.integers(10, 60))
+    return PairSpec(z1, int(rng.integers(z1, 120)), 1.0)
+
+
+@pytest.mark.parametrize("internal", [False, True])
+def test_region_is_the_map_of_check_pair_for_random_pairs(internal):
+    """Property test over random pairs (external and internal, the ring with its shaper; check_pair also
+    sweeps the tip corners of an internal pair through the mate's teeth): at random points of the window
+    and beside the region's boundary, membership in the region is check_pair's verdict (points within
+    2 tol of the boundary excepted), and ``contains`` (``--mark``) is that verdict exactly."""
+    rng = np.random.default_rng(1919 + internal)
+    for _ in range(PROPERTY_PAIRS):
+        spec = _random_pair(rng, internal)
+        c = blocking_contour(spec, tol=PROPERTY_TOL, lines=[])
+        w = c.window
+        pts = [np.column_stack([rng.uniform(w[0], w[1], 6), rng.uniform(w[2], w[3], 6)])]
+        if c.region:
+            edge = np.concatenate(c.region)
+            pts.append(edge[rng.integers(0, len(edge), 6)] + rng.normal(0.0, 0.03, (6, 2)))
+        pts = np.clip(np.concatenate(pts), [w[0], w[2]], [w[1], w[3]])
+        inside = c.in_region(pts[:, 0], pts[:, 1])
+        for p, r in zip(pts, inside):
+            ok = _check_passes(spec, *p)
+            assert c.contains(*p) == ok
+            if ok != r:
+                assert _boundary_distance(c, p) <= CONTRACT * PROPERTY_TOL, (spec, p, ok)
 
 
 def test_issue_points_of_the_region():

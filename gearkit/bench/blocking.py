@@ -8,7 +8,8 @@
   achieved / tol <= 2 at every row, the reference's closed loops and no duplicate trace (topology),
   and time falling as tol grows.
 * **Targets** (issue 15): the 13/16 and 20/40 contours in-process, at the default tolerance, each
-  under 0.3 s; shown beside the measurement with pass/fail and the load average.
+  under 0.3 s of CPU (the machine is shared: the verdict reads CPU, the wall time is shown beside),
+  median of five runs in a session (generated gears remembered), and the first run of a process.
 * **Atlas throughput** in cells per second for 1 and 2 local workers and the distributed path (a
   Dask cluster of two worker processes on this machine).
 """
@@ -199,11 +200,25 @@ def target_rows(ladder):
     from gearkit.blocking.contour import DEFAULT_TOL, blocking_contour
     from gearkit.pair import PairSpec
 
+    from gearkit.blocking.field import forget_generated
+
     rows = []
     for z1, z2 in ((13, 16), (20, 40)):
-        seconds, _ = _median_time(lambda: blocking_contour(PairSpec(z1, z2, 1.0)), 5)
-        rows.append({"target": f"blocking contour {z1}/{z2} in-process, tol {DEFAULT_TOL:g}", "measured": seconds,
-                     "limit": CONTOUR_TARGET, "unit": "s", "pass": seconds < CONTOUR_TARGET})
+        forget_generated()  # cold: no generated gear remembered
+        c0, t0 = time.process_time(), time.perf_counter()
+        blocking_contour(PairSpec(z1, z2, 1.0))
+        cold_cpu, cold_wall = time.process_time() - c0, time.perf_counter() - t0
+        cpu, wall = [], []
+        for _ in range(5):
+            c0, t0 = time.process_time(), time.perf_counter()
+            blocking_contour(PairSpec(z1, z2, 1.0))
+            cpu.append(time.process_time() - c0)
+            wall.append(time.perf_counter() - t0)
+        cpu, wall = float(np.median(cpu)), float(np.median(wall))
+        rows.append({"target": f"blocking contour {z1}/{z2} in-process, tol {DEFAULT_TOL:g} (CPU; wall {wall:.3f} s)",
+                     "measured": cpu, "limit": CONTOUR_TARGET, "unit": "s", "pass": cpu < CONTOUR_TARGET})
+        rows.append({"target": f"  the same, first in the process (CPU; wall {cold_wall:.3f} s)", "measured": cold_cpu,
+                     "limit": None, "unit": "s", "pass": None})
     mine = [r for r in ladder if r["product"] == "blocking contour"]
     if mine:
         worst = max(r["achieved"] / r["tol"] for r in mine)
@@ -257,7 +272,8 @@ def format_section(res: dict) -> list:
     for r in res.get("blocking_targets", []):
         meas = "" if r["measured"] is None else (f"{r['measured']:.3f} {r['unit']}".strip())
         lim = "" if r["limit"] is None else f"< {r['limit']:g} {r['unit']}".strip()
-        lines.append(f"  {r['target']:55} {meas:>10} {lim:>10}  {'pass' if r['pass'] else 'FAIL'}")
+        verdict = "" if r["pass"] is None else ("pass" if r["pass"] else "FAIL")
+        lines.append(f"  {r['target']:70} {meas:>10} {lim:>10}  {verdict}")
     ladder = [r for r in res.get("ladder", []) if r["product"] == "blocking contour" and "gap" in r]
     if ladder:
         lines.append("blocking ladder (12/30, all lines and the region; shift units; reference: a trace at tol "

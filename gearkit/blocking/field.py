@@ -19,6 +19,7 @@ Units: lengths in module units (margin / m_n), angles in radians, ratios as they
 from __future__ import annotations
 
 import math
+from collections import OrderedDict
 from dataclasses import dataclass, replace
 
 from gearkit.blocking.point import FieldPoint
@@ -28,14 +29,46 @@ from gearkit.errors import SpecError, require
 from gearkit.pair.spec import PairSpec
 from gearkit.pair.tooling import form_roll, section
 
-__all__ = ["LineDef", "PairField"]
+__all__ = ["LineDef", "PairField", "forget_generated", "generated_form_diameter"]
 
 FORM_NODES = 10  #: Chebyshev nodes of the undercut form-circle interpolant (error ~1e-9 m_n)
 FORM_GAP = 0.005  #: the interpolant ends this far below the undercut onset
 FORM_CHECKS = 2  #: test shifts of the interpolant
 FORM_MARGIN = 0.1  #: the interpolant reaches this far below the window
 FORM_TIPS = (0.0, 1.0, -0.5)  #: blank tips tried (m_n above the blank's own) for a gear with a flank
-FORM_BISECTIONS = 16  #: bisections for the smallest shift at which the generated gear has a tooth
+FORM_BISECTIONS = 12  #: bisections for the smallest shift at which the generated gear has a tooth
+GENERATED_CACHE = 4096  #: generated form circles kept per process (an atlas meets each gear in many cells)
+_GENERATED: OrderedDict = OrderedDict()
+
+
+def forget_generated() -> None:
+    """Forget the remembered generated gears (a cold start, e.g. for a timing)."""
+    _GENERATED.clear()
+
+
+def generated_form_diameter(gspec) -> float | None:
+    """The form diameter of the generated gear ``gspec`` (a :class:`~gearkit.families.involute.GearSpec`),
+    or None when its cutter leaves it no tooth; the last ``GENERATED_CACHE`` gears are remembered (the
+    same gear comes back in every contour of a session and every atlas cell it belongs to).
+
+    >>> from gearkit.families.involute import GearSpec
+    >>> d = generated_form_diameter(GearSpec(12, 1.0))
+    >>> round(d, 4), generated_form_diameter(GearSpec(12, 1.0)) == d
+    (11.3027, True)
+    """
+    from gearkit.families.involute import tooth_profile
+
+    if gspec in _GENERATED:
+        _GENERATED.move_to_end(gspec)
+        return _GENERATED[gspec]
+    try:
+        d = tooth_profile(gspec).form_diameter
+    except SpecError:
+        d = None
+    _GENERATED[gspec] = d
+    if len(_GENERATED) > GENERATED_CACHE:
+        _GENERATED.popitem(last=False)
+    return d
 
 
 @dataclass(frozen=True)
@@ -220,8 +253,6 @@ class PairField:
                 return fit[3](x)
         key = (which, float(x))
         if key not in self._forms:
-            from gearkit.families.involute import tooth_profile
-
             from gearkit.families.involute import GearSpec
 
             t = self.template
@@ -237,10 +268,12 @@ class PairField:
                 tip = None if k == 0 else 2 * (r + t.module * (t.addendum + float(x) + up))
                 try:
                     gspec = GearSpec(z, t.module, float(x), beta, False, t.tools[which - 1], tip, thin)
-                    self._forms[key] = tooth_profile(gspec).form_diameter
-                    break
-                except SpecError:
+                except SpecError:  # a shift no gear takes: no tooth
                     continue
+                d = generated_form_diameter(gspec)
+                if d is not None:
+                    self._forms[key] = d
+                    break
         return self._forms[key]
 
     def form_interpolant(self, which: int):

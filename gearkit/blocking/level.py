@@ -41,9 +41,13 @@ MAX_ROUNDS = 60  #: rounds of chord splitting
 MAX_PIECES = 64  #: most pieces one chord is split into in one round
 WIDE_REACH = 1.0  #: a chord's second search for its curve reaches this many chord lengths to each side
 RAY_FRACTIONS = (0.125, 0.25, 0.375, 0.5, 0.75, 1.0, 2.0)  #: where the second search samples (x reach)
+BRIDGE_CELLS = 3.0  #: open pieces of one curve whose ends face each other this many cell diagonals apart join
+BRIDGE_COS = 0.5  #: ... when the gap runs within 60 degrees of both ends' directions
 PLAIN = (5, 6)  #: the samples a measured curve's search reads: the reach, then twice it (an acute corner)
 WIDE_REGION = True  #: the wider search for measured curves too
 JUMP_FACTOR = 100.0  #: a solved vertex with |F| above this times slope x tol sits on a jump, not a zero
+JUMP_FALL = 0.5  #: ... and |F| there above this fraction of the smaller |F| at the bracket's ends (the
+#: solver keeps the better end: a real zero is far below it at any tol, a pole or a jump is not)
 
 
 def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), kinked=()) -> list:
@@ -88,7 +92,9 @@ def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), 
     # a sign change through a pole or a jump of F is no zero: |F| stays large at the "root"; a
     # vertex on no edge with a sign change (beside undefined nodes) is kept only where F = 0
     fv = np.abs(F(moved, ids))
-    jump = np.where(ok, fv > JUMP_FACTOR * grad * tol, ~(fv == 0))
+    with np.errstate(invalid="ignore"):  # and |F| hardly fell from the edge's ends: a zero falls a lot
+        fell = fv <= JUMP_FALL * np.fmin(np.abs(fa), np.abs(fb))
+    jump = np.where(ok, (fv > JUMP_FACTOR * grad * tol) & ~fell, ~(fv == 0))
     jump[np.isin(ids, list(measure))] = False  # the region: where no pair exists is its edge too
     lines, k0 = [], 0
     for p, k in zip(raw, owner):
@@ -99,12 +105,54 @@ def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), 
         q, g, jmp = q[keep], g[keep], jmp[keep]
         if closed and not np.array_equal(q[0], q[-1]):
             q, g, jmp = np.vstack([q, q[:1]]), np.append(g, g[0]), np.append(jmp, jmp[0])
-        for lo, hi in _runs(~jmp):  # a run of one chord off the frame: a speck (see above)
-            if hi - lo >= 3 or hi - lo == 2 and (k in measure or _on_frame(q[lo:hi], *grids[k][:2])):
-                lines.append((k, q[lo:hi], g[lo:hi]))
+        lines += [(k, q[lo:hi], g[lo:hi]) for lo, hi in _runs(~jmp) if hi - lo >= 2]
+    lines = _bridge(lines, grids, measure)
+    # a run of one chord off the frame, bridged to none: a speck (see above)
+    lines = [(k, q, g) for k, q, g in lines if len(q) >= 3 or k in measure or _on_frame(q, *grids[k][:2])]
     for k, q in densify(F, lines, tol, max_step, measure, kinked):
         out[k].append(q)
     return out
+
+
+def _bridge(lines, grids, measure) -> list:
+    """Join open pieces of one curve whose ends face each other across at most ``BRIDGE_CELLS`` grid
+    cells (the grid masks every cell with an undefined corner: a line running beside the edge of
+    where ``F`` is defined comes out in pieces). The bridging chord is then measured like any other
+    (and cut again when no zero lies across it)."""
+    lines = list(lines)
+    while True:
+        ends = []  # (line, at start?, point, outward direction)
+        for n, (k, q, _) in enumerate(lines):
+            if k in measure or np.array_equal(q[0], q[-1]) or len(q) < 3:  # specks are not bridged
+                continue
+            for first in (True, False):
+                a, b = (q[0], q[1]) if first else (q[-1], q[-2])
+                ends.append((n, first, a, (a - b) / max(float(np.hypot(*(a - b))), 1e-300)))
+        pairs = []
+        for u in range(len(ends)):
+            for v in range(u + 1, len(ends)):
+                (n1, f1, a1, t1), (n2, f2, a2, t2) = ends[u], ends[v]
+                k1, k2 = lines[n1][0], lines[n2][0]
+                if n1 == n2 or k1 != k2:
+                    continue
+                xs, ys = grids[k1][:2]
+                gap = a2 - a1
+                d = float(np.hypot(*gap))
+                if 0 < d <= BRIDGE_CELLS * np.hypot(xs[1] - xs[0], ys[1] - ys[0]) and \
+                        np.dot(t1, gap) > BRIDGE_COS * d and np.dot(t2, -gap) > BRIDGE_COS * d:
+                    pairs.append((d, u, v))
+        if not pairs:
+            return lines
+        d, u, v = min(pairs)
+        (n1, f1, _, _), (n2, f2, _, _) = ends[u], ends[v]
+        k, q1, g1 = lines[n1]
+        _, q2, g2 = lines[n2]
+        if f1:  # the first piece ends at the bridge, the second starts there
+            q1, g1 = q1[::-1], g1[::-1]
+        if not f2:
+            q2, g2 = q2[::-1], g2[::-1]
+        joined = (k, np.vstack([q1, q2]), np.concatenate([g1, g2]))
+        lines = [ln for i, ln in enumerate(lines) if i not in (n1, n2)] + [joined]
 
 
 def _on_frame(p, xs, ys) -> bool:
@@ -212,7 +260,9 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
             # a "root" through a pole or a jump of F is none: |F| stays large there
             solved = np.flatnonzero(found)
             slope_end = np.abs(best.fe[solved] - best.flo[solved]) / np.hypot(*(best.end[solved] - best.lo[solved]).T)
-            bad = np.abs(F(root[solved], km[solved])) > JUMP_FACTOR * slope_end * tol
+            fr = np.abs(F(root[solved], km[solved]))
+            bad = (fr > JUMP_FACTOR * slope_end * tol) & (fr > JUMP_FALL * np.fmin(np.abs(best.flo[solved]),
+                                                                               np.abs(best.fe[solved])))
             found[solved[bad & trust[km[solved]]]] = False
         off = np.einsum("ij,ij->i", root - m[meas], nrm[meas])
         # a zero found on a diagonal ray is as far as it lies from the middle (an acute corner beyond it)

@@ -62,6 +62,23 @@ def _label_spot(comp, placed, avoid, lo, hi, gap):
     return best
 
 
+NO_PAIR_GRID = 300  #: pixels per side of the "no pair" shading
+
+
+def _no_pair(contour):
+    """(NO_PAIR_GRID, NO_PAIR_GRID) mask of the window where no pair exists, or None where one exists
+    everywhere."""
+    from gearkit.blocking.arrays import margins
+
+    x0, x1, y0, y1 = contour.window
+    h = 0.5 / NO_PAIR_GRID
+    u = np.linspace(h, 1 - h, NO_PAIR_GRID)
+    gx, gy = np.meshgrid(x0 + (x1 - x0) * u, y0 + (y1 - y0) * u)
+    name = contour.field.hard[0]
+    bad = np.isnan(margins(contour.field, gx.ravel(), gy.ravel(), [name])[name]).reshape(gx.shape)
+    return bad.astype(float) if bad.any() else None
+
+
 def figure(contour, recommendation=None, marked=None):
     """A matplotlib Figure of ``contour`` (Agg backend; nothing is shown): the window fitted, the
     legend beside the axes, one label per line placed apart, the markers on top."""
@@ -84,6 +101,11 @@ def figure(contour, recommendation=None, marked=None):
                                 for p in contour.region])
         ax.add_patch(PathPatch(Path(verts, codes), facecolor="#fde0b2", edgecolor="none", alpha=0.8, zorder=0))
         handles.append(Patch(facecolor="#fde0b2", edgecolor="none", label="admissible (check passes)"))
+    nopair = _no_pair(contour)
+    if nopair is not None:  # where no pair exists the lines end: say why
+        ax.imshow(nopair, extent=(x0, x1, y0, y1), origin="lower", aspect="auto", interpolation="nearest",
+                  cmap=matplotlib.colors.ListedColormap(["#00000000", "#d9d9d9"]), vmin=0, vmax=1, zorder=0)
+        handles.append(Patch(facecolor="#d9d9d9", edgecolor="none", label="no pair (no tight mesh or no tooth)"))
     lo, hi = np.array([x0, y0]), np.array([x1, y1])
     gap = LABEL_GAP * float(np.hypot(*(hi - lo)))
     avoid = []
