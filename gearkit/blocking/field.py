@@ -31,10 +31,11 @@ from gearkit.pair.tooling import form_roll, section
 
 __all__ = ["LineDef", "PairField", "forget_generated", "generated_form_diameter"]
 
-FORM_NODES = 10  #: Chebyshev nodes of the undercut form-circle interpolant (error ~1e-9 m_n)
+FORM_NODES = 14  #: Chebyshev nodes of the undercut form-circle interpolant (error ~1e-9 m_n)
 FORM_GAP = 0.005  #: the interpolant ends this far below the undercut onset
 FORM_CHECKS = 2  #: test shifts of the interpolant
-FORM_MARGIN = 0.1  #: the interpolant reaches this far below the window
+FORM_MARGIN = 0.5  #: the interpolant reaches this far below the window (the probes of chords beside the
+#: window's edge reach past it: each point left outside would generate a gear of its own)
 FORM_TIPS = (0.0, 1.0, -0.5)  #: blank tips tried (m_n above the blank's own) for a gear with a flank
 FORM_BISECTIONS = 12  #: bisections for the smallest shift at which the generated gear has a tooth
 GENERATED_CACHE = 4096  #: generated form circles kept per process (an atlas meets each gear in many cells)
