@@ -335,13 +335,16 @@ def _solve_chunk(mesh, phi, contact_tol, bounds) -> Bounds:
     sb = np.array([1.0, -1.0])
     big_u = w[:, None, :] - sb[None, :, None] * u[:, None, :]  # (A, 2, M1)
     finite = np.isfinite(w)
-    cross = finite[..., :-1] != finite[..., 1:]  # (A, M)
+    # the intervals that cross the mate's tip circle (few): the bound at the crossing
+    c_a, c_m = np.nonzero(finite[..., :-1] != finite[..., 1:])
+    r0, r1, u0 = rho[c_a, c_m], rho[c_a, c_m + 1], u[c_a, c_m]
     with np.errstate(divide="ignore", invalid="ignore"):
-        frac = np.clip((mate.rho_tip - rho[..., :-1]) / (rho[..., 1:] - rho[..., :-1]), 0.0, 1.0)
-    du = np.mod(u[..., 1:] - u[..., :-1] + mesh.pitch2 / 2, mesh.pitch2) - mesh.pitch2 / 2  # across a wrap
-    u_c = np.mod(u[..., :-1] + frac * du + mesh.pitch2 / 2, mesh.pitch2) - mesh.pitch2 / 2
-    big_c = np.where(cross[:, None, :], mate.w_tip - sb[None, :, None] * u_c[:, None, :], np.inf)
-    best = np.minimum(big_u.min(-1), big_c.min(-1))  # (A, 2)
+        frac = np.clip((mate.rho_tip - r0) / (r1 - r0), 0.0, 1.0)
+    du = np.mod(u[c_a, c_m + 1] - u0 + mesh.pitch2 / 2, mesh.pitch2) - mesh.pitch2 / 2  # across a wrap
+    u_c = np.mod(u0 + frac * du + mesh.pitch2 / 2, mesh.pitch2) - mesh.pitch2 / 2
+    big_c = mate.w_tip - sb[None, :] * u_c[:, None]  # (C, 2)
+    best = big_u.min(-1)  # (A, 2)
+    np.minimum.at(best, c_a, big_c)
     # how far the exact function can dip below an interval's ends: the driver's chord deviation
     # plus the mate's bending over the chord, as a normal distance over the arm scale
     rho_mid = 0.5 * (rho[..., :-1] + rho[..., 1:])
@@ -351,14 +354,15 @@ def _solve_chunk(mesh, phi, contact_tol, bounds) -> Bounds:
     arm = np.minimum(np.minimum(arm[..., :-1], arm[..., 1:]), mate.arm(rho_mid, at_mid))
     dip = (mesh.tol + bend * chord ** 2 / 8.0) / np.maximum(arm, 1e-12 * arm_scale)  # (A, M)
     if mate.crest:  # next to a rounded crest the bound falls like a square root: always look
-        dip = np.where(cross, np.inf, dip)
+        dip[c_a, c_m] = np.inf
     glob = np.full((n, 2), np.inf)
     np.minimum.at(glob, r_n, best)
     active = best - dip.max(-1)[:, None] <= glob[r_n] + contact_tol / arm_scale
     ends = np.minimum(big_u[..., :-1], big_u[..., 1:])
     reach = best[..., None] + dip[:, None, :]
-    pick = ((ends <= reach) | (big_c <= reach)) & active[..., None]
-    pick &= np.isin(np.arange(2), bounds)[None, :, None]
+    pick = ends <= reach
+    pick[c_a[:, None], np.arange(2)[None, :], c_m[:, None]] |= big_c <= reach[c_a, :, c_m]
+    pick &= active[..., None] & np.isin(np.arange(2), bounds)[None, :, None]
     i_a, i_b, i_m = np.nonzero(pick)
     i_n, i_k, i_h = r_n[i_a], r_k[i_a], r_h[i_a]
     shape = (n, kk, 2, 2)
