@@ -4,7 +4,8 @@ Every drawn spec is one *case* with one of three outcomes, counted per property:
 
 - ``valid``: it built and passed every check of its property;
 - ``spec_error``: it was refused with a :class:`~gearkit.errors.SpecError` that names a field and says why;
-- ``defect``: anything else (another exception, a failed check, a terse SpecError).
+- ``defect``: anything else (another exception, a failed check, a terse SpecError; numpy's
+  overflow, division and invalid-value warnings are raised as errors, an underflow to zero is not).
 
 In the fast CI run a defect fails the test at once (hypothesis then shrinks it). In the long run
 (``GEARKIT_FUZZ_EXAMPLES=N``, N specs per property) a defect is recorded with its reproducer (the
@@ -59,7 +60,7 @@ def run(name, spec, build, check):
     c = COUNTS.setdefault(name, Counter(tried=0, valid=0, spec_error=0, defect=0))
     c["tried"] += 1
     _progress(name, c)
-    old = np.seterr(all="raise")
+    old = np.seterr(all="raise", under="ignore")  # an underflow to zero is no error
     try:
         try:
             obj = build()

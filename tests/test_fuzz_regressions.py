@@ -281,3 +281,25 @@ def test_7_default_fillet_of_a_protuberance_rack_is_accepted():
     assert rack.fillet * (1 - math.sin(rack.alpha_protuberance)) < rack.protuberance_top
     gear = gk.tooth_profile(gk.GearSpec(30, 2.0, tool=rack))
     assert gear.half_points(2e-3)[1] <= 2e-3
+
+
+# -- found by the cam property of the fuzz suite -----------------------------------------------
+def test_cam_two_velocity_jumps_at_one_angle_build_a_profile():
+    # a near-zero dwell between two constant-velocity phases puts two corners at (almost) one cam
+    # angle; sorting the corners compared their pole arrays and raised ValueError
+    from gearkit.families.cam import CamSpec, MotionProgram, cam_profile
+
+    spec = CamSpec(5.0, MotionProgram.rise_dwell_return(2.5, 20.0, 1.2e-151, 20.0, "constant_velocity"),
+                   roller_radius=1.0)
+    prof = cam_profile(spec)
+    assert len(prof.pieces) >= 1 and len(prof.outline(5e-3)) > 3
+    # the pitch curve's largest radius is the prime radius plus the lift (a closed form)
+    assert np.hypot(*prof.pitch_points(np.linspace(0, 2 * np.pi, 7201)).T).max() == pytest.approx(7.5, rel=1e-6)
+
+
+def test_cam_roller_that_reaches_the_centre_is_refused():
+    from gearkit.families.cam import CamSpec, MotionProgram
+
+    with pytest.raises(SpecError) as exc:
+        CamSpec(5.0, MotionProgram.rise_dwell_return(1.0, 90.0, 0.0, 90.0), roller_radius=1e300)
+    assert exc.value.field == "roller_radius"

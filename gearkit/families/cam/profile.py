@@ -66,8 +66,8 @@ class CamCurve:
         self.start = start
         # sections: ("motion", phi0, phi1) and ("corner", phi, pole0, pole1), each with a weight in w
         sections, phi = [], start
-        for phi_c, p0, p1, weight in sorted((((c - start) % _TWO_PI) + start, p0, p1, wt)
-                                            for c, p0, p1, wt in corners):
+        for phi_c, p0, p1, weight in sorted(((((c - start) % _TWO_PI) + start, p0, p1, wt)
+                                             for c, p0, p1, wt in corners), key=lambda corner: corner[0]):
             if phi_c > phi:
                 sections.append(("motion", phi, phi_c, phi_c - phi))
             sections.append(("corner", phi_c, p0, p1, weight))

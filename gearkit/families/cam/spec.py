@@ -94,6 +94,8 @@ class CamSpec:
         _length(self.roller_radius, "roller_radius", positive=self.contact == "roller")
         if self.contact != "roller":
             require(self.roller_radius == 0.0, "roller_radius", f"a {self.contact} follower has no roller")
+        require(self.roller_radius < self.prime_radius, "roller_radius", f"R_p = {self.roller_radius!r} mm must be below "
+                f"the prime radius {self.prime_radius!r} mm (a roller that reaches the cam's centre leaves no cam)")
         require(is_real(self.offset), "offset", f"{self.offset!r} must be a finite length in mm")
         require(is_real(self.efficiency) and 0.0 < self.efficiency <= 1.0, "efficiency",
                 f"{self.efficiency!r} must be in (0, 1]")
