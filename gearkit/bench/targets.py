@@ -88,26 +88,23 @@ def one_blas_thread(env: dict) -> dict:
 
 
 def process_target_rows(runs: int = 5) -> tuple[dict, list]:
-    """The import floor and the whole-process target rows, medians of ``runs`` runs each.
+    """The import floor and the whole-process target rows over ``runs`` runs each.
+
+    Each run of a command is paired with a run of the floor just before it (and one of the floor
+    with one BLAS thread): the row's ratio is the median of the paired ratios, so a load that
+    drifts during the bench (another process starting or ending) hits both sides of each ratio.
 
     Returns
     -------
-    floor : dict ``{cpu_seconds, wall_seconds, runs, command, one_blas_thread_cpu_seconds}``
-    rows : list of target rows (measured = CPU time / floor CPU time; the note adds the ratio to
-        the one-BLAS-thread floor)
+    floor : dict ``{cpu_seconds, wall_seconds, runs, command, one_blas_thread_cpu_seconds}`` (medians)
+    rows : list of target rows (measured = median of CPU time / floor CPU time; the note adds the
+        median CPU and wall times and the ratio to the one-BLAS-thread floor)
     """
     from gearkit.bench.process import gearkit_command
 
     env = user_environment()
     floor_cmd = [sys.executable, "-c", *FLOOR_COMMAND]
     samples = {"cpu": [], "wall": [], "cpu1": []}
-
-    def floor_sample():
-        cpu, wall, _ = _child_times(floor_cmd, env)
-        samples["cpu"].append(cpu)
-        samples["wall"].append(wall)
-        samples["cpu1"].append(_child_times(floor_cmd, one_blas_thread(env))[0])
-
     _child_times(floor_cmd, env)
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
@@ -117,23 +114,28 @@ def process_target_rows(runs: int = 5) -> tuple[dict, list]:
             if args[0] == "gear":
                 cmd += ["--tol", str(TOL_MM)]
             code = _child_times(cmd, env)[2]  # warm-up: bytecode cached, files in the page cache
-            cpu, wall = [], []
+            cpu, wall, ratio, ratio1 = [], [], [], []
             for _ in range(runs):
-                floor_sample()  # interleaved: a change of load hits floor and command alike
+                f_cpu, f_wall, _ = _child_times(floor_cmd, env)
+                f1_cpu = _child_times(floor_cmd, one_blas_thread(env))[0]
                 c, w, code = _child_times(cmd, env)
+                samples["cpu"].append(f_cpu)
+                samples["wall"].append(f_wall)
+                samples["cpu1"].append(f1_cpu)
                 cpu.append(c)
                 wall.append(w)
-            measured.append((name, target, float(np.median(cpu)), float(np.median(wall)), code))
+                ratio.append(c / f_cpu)
+                ratio1.append(c / f1_cpu)
+            measured.append((name, target, *(float(np.median(v)) for v in (cpu, wall, ratio, ratio1)), code))
     floor = {"cpu_seconds": float(np.median(samples["cpu"])), "wall_seconds": float(np.median(samples["wall"])),
              "runs": len(samples["cpu"]), "command": f"python -c \"{FLOOR_COMMAND[0]}\"",
              "one_blas_thread_cpu_seconds": float(np.median(samples["cpu1"]))}
-    for name, target, cpu, wall, code in measured:
-        note = (f"{cpu * 1e3:.0f} ms CPU, {wall * 1e3:.0f} ms wall; "
-                f"{cpu / floor['one_blas_thread_cpu_seconds']:.2f}x the one-BLAS-thread floor")
+    for name, target, cpu, wall, ratio, ratio1, code in measured:
+        note = f"{cpu * 1e3:.0f} ms CPU, {wall * 1e3:.0f} ms wall; {ratio1:.2f}x the one-BLAS-thread floor"
         if code not in (0, 1):
             rows.append(target_row(name, None, target, "x floor", f"exit {code}"))
         else:
-            rows.append(target_row(name, cpu / floor["cpu_seconds"], target, "x floor", note))
+            rows.append(target_row(name, ratio, target, "x floor", note))
     return floor, rows
 
 
