@@ -118,9 +118,26 @@ def check_output_path(path, field: str = "-o") -> Path:
     if not directory.is_dir():
         what = "is not a directory" if directory.exists() else "does not exist"
         raise SpecError(field, f"directory {str(directory)!r} {what}")
+    _require_writable(directory, field)
+    return target
+
+
+def _require_writable(directory, field: str) -> None:
+    """Raise ``SpecError`` unless a file can be created in ``directory``: a real probe (a private
+    empty file, removed at once), since permission bits do not stop root and say nothing of a
+    read-only or pseudo file system."""
     if not os.access(directory, os.W_OK | os.X_OK):
         raise SpecError(field, f"directory {str(directory)!r} is not writable")
-    return target
+    probe = os.path.join(directory, f".gearkit-probe-{os.urandom(8).hex()}.part")
+    made = False
+    try:
+        os.close(os.open(probe, os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0), 0o600))
+        made = True
+    except OSError as exc:
+        raise SpecError(field, f"directory {str(directory)!r} is not writable ({exc.strerror or exc})") from None
+    finally:
+        if made:
+            os.unlink(probe)
 
 
 def check_output_dir(path, field: str = "--out-dir") -> Path:
@@ -133,8 +150,7 @@ def check_output_dir(path, field: str = "--out-dir") -> Path:
         probe = probe.parent
     if not probe.is_dir():
         raise SpecError(field, f"{str(probe)!r} is a file, not a directory")
-    if not os.access(probe, os.W_OK | os.X_OK):
-        raise SpecError(field, f"directory {str(probe)!r} is not writable")
+    _require_writable(probe, field)
     return target
 
 

@@ -4,7 +4,8 @@ For every command registered in ``gearkit.cli.COMMANDS`` (new commands are cover
 construction), argument vectors are drawn from the command's own argparse actions: its flags
 with values of the declared type biased towards the legal range, hostile numbers (0, negative,
 huge, nan, inf), unknown choices, paths that are folders, missing folders, binary files, and
-stray tokens. Each vector runs in-process through ``gearkit.cli.main`` in a scratch folder, with
+stray tokens; half the vectors use only plausible values (listed choices, small numbers inside a
+flag's declared range, fresh file names) so that the working paths run too. Each vector runs in-process through ``gearkit.cli.main`` in a scratch folder, with
 a timer that interrupts a long run as Ctrl-C would. Asserted for every run:
 
 - the exit status is 0, 1, 2 or 130 (never 70, an internal error, nor anything else);
@@ -89,10 +90,40 @@ def _path(scratch: Path):
     )
 
 
+#: plausible values (half the command lines use only these: the legal paths get exercised too)
+PLAUSIBLE_FLOATS = ["0", "0.1", "0.25", "0.5", "1", "2", "5", "10", "20", "40"]
+PLAUSIBLE_WORDS = ["standard", "0.5,0.3", "3x1.4", "1,2,3,4", "20,40", "12:20:4"]
+PLAUSIBLE_SUFFIXES = ["svg", "dxf", "csv", "json", "png", "stl", "html"]
+#: flags a plausible line always gives (a pair command takes them or a design file)
+CORE = {"z1", "z2", "module", "teeth"}
+
+
+def _plausible(action, scratch: Path):
+    """A value a user would give: a listed choice, a small number in the flag's range, a fresh file name."""
+    if action.choices is not None:
+        return st.sampled_from(sorted(map(str, action.choices)))
+    kind = getattr(action.type, "kind", action.type)  # a vocabulary Quantity says its kind and range
+    lo, hi = getattr(action.type, "lo", None), getattr(action.type, "hi", None)
+    if kind is int:
+        low = 3 if lo is None else max(int(lo), 3)
+        return st.integers(low, max(low, min(60, int(hi) if hi is not None else 60))).map(str)
+    if kind is float:
+        values = [v for v in PLAUSIBLE_FLOATS if (lo is None or float(v) > lo) and (hi is None or float(v) < hi)]
+        return st.sampled_from(values or PLAUSIBLE_FLOATS)
+    return st.one_of(st.sampled_from(PLAUSIBLE_SUFFIXES).map(lambda x: str(scratch / f"out.{x}")),
+                     st.sampled_from(PLAUSIBLE_WORDS))
+
+
+def _plain(action) -> bool:
+    """A switch, a choice, a number or the output file: what a plausible line may add."""
+    kind = getattr(action.type, "kind", action.type)
+    return action.nargs == 0 or action.choices is not None or kind in (int, float) or action.dest == "output"
+
+
 def _value(action, scratch: Path):
     if action.choices is not None:
         return st.one_of(st.sampled_from(sorted(map(str, action.choices))), _text())
-    kind = action.type
+    kind = getattr(action.type, "kind", action.type)
     if kind is int:
         return st.one_of(st.integers(-3, 60).map(str), st.sampled_from(HOSTILE_NUMBERS), st.integers().map(str))
     if kind is float:
@@ -105,14 +136,15 @@ def _takes_value(action) -> bool:
     return action.nargs != 0
 
 
-def _tokens(action, scratch: Path):
+def _tokens(action, scratch: Path, plausible: bool = False):
     """The tokens of one use of ``action`` (its flag and value(s))."""
     flag = st.sampled_from(action.option_strings) if action.option_strings else st.just(None)
     n = action.nargs
     count = 0 if n == 0 else (n if isinstance(n, int) else 1)
     if n in ("*", "+"):
         count = 2
-    values = st.lists(_value(action, scratch), min_size=count, max_size=count)
+    value = _plausible(action, scratch) if plausible else _value(action, scratch)
+    values = st.lists(value, min_size=count, max_size=count)
     return st.tuples(flag, values).map(lambda fv: ([fv[0]] if fv[0] else []) + fv[1])
 
 
@@ -121,14 +153,26 @@ def argv_for(draw, name: str, scratch: Path):
     parser = SUBPARSERS[name]
     actions = [a for a in parser._actions if a.dest != "help"]
     out = [name]
+    plausible = draw(st.booleans())  # only plausible values, fewer optional flags, no stray token
+    taken = set()  # plausible lines use one flag of a mutually exclusive group
+    exclusive = {id(a): g for g in parser._mutually_exclusive_groups for a in g._group_actions}
     for action in actions:
         if not action.option_strings:  # positional
-            if action.nargs in ("?", "*") and draw(st.booleans()):
+            if action.nargs in ("?", "*") and (plausible or draw(st.booleans())):
                 continue
-            out += draw(_tokens(action, scratch))
-        elif action.required or draw(st.integers(0, 3)) == 0:
-            out += draw(_tokens(action, scratch))
-    if draw(st.integers(0, 5)) == 0:
+            out += draw(_tokens(action, scratch, plausible))
+        elif plausible and action.dest in CORE and not action.required:  # the pair a design file would give
+            out += draw(_tokens(action, scratch, True))
+        elif plausible and not action.required and not _plain(action):
+            continue  # free text (keyways, windows, files) stays for the hostile half
+        elif action.required or draw(st.integers(0, 7 if plausible else 3)) == 0:
+            group = exclusive.get(id(action))
+            if plausible and group is not None:
+                if id(group) in taken:
+                    continue
+                taken.add(id(group))
+            out += draw(_tokens(action, scratch, plausible))
+    if not plausible and draw(st.integers(0, 5)) == 0:
         out.insert(draw(st.integers(1, len(out))), draw(st.sampled_from(WORDS + HOSTILE_NUMBERS)))
     return out
 

@@ -100,6 +100,65 @@ def test_unwritable_directory_end_to_end(capsys, tmp_path, monkeypatch):
     assert list(tmp_path.iterdir()) == []
 
 
+#: a command line of every command that writes, without its output (which the test appends)
+WRITERS = [
+    ["demo", "--out-dir"], ["gear", "-z", "20", "-m", "2", "-o"], ["rack", "-m", "2", "-o"],
+    ["pair", "--z1", "20", "--z2", "40", "-m", "2", "-o"], ["bench", "--quick", "-o"],
+    ["novikov", "--z1", "20", "--z2", "40", "-m", "2", "-o"], ["blocking", "--z1", "13", "--z2", "16", "-o"],
+    ["atlas", "--z1", "12", "--z2", "30", "-o"],
+    ["cycloidal-drive", "--pins", "12", "--lobes", "11", "--pin-circle-radius", "40", "--pin-radius", "3",
+     "--eccentricity", "1.5", "-o"],
+    ["cycloid", "-m", "2", "--pinion-teeth", "10", "--wheel-teeth", "40", "-o"],
+    ["contact", "--z1", "20", "--z2", "40", "-m", "2", "-o"], ["view", "pair", "--z1", "20", "--z2", "40", "-m", "2", "-o"],
+    ["cam", "-o"], ["cam", "--plot"], ["scene", "{scene}", "-o"],
+]
+SUFFIX = {"demo": "", "atlas": "", "bench": ".json", "contact": ".png", "blocking": ".png", "view": ".html",
+          "cam": ".svg", "scene": ".html"}
+
+
+@pytest.mark.skipif(not os.path.isdir("/sys/kernel"), reason="needs Linux's /sys (not writable, even by root)")
+@pytest.mark.parametrize("argv", WRITERS, ids=[" ".join(w[:1] + w[-1:]) for w in WRITERS])
+def test_unwritable_directory_for_every_command_even_as_root(capsys, tmp_path, monkeypatch, argv):
+    """A folder nobody can write in (``/sys``: root too; permission bits do not stop root) is refused
+    for every command's output before any work."""
+    import argparse
+
+    real_parse = argparse.ArgumentParser.parse_args
+
+    def parse_without_work(self, *a, **k):
+        ns = real_parse(self, *a, **k)
+        ns.run = lambda args: pytest.fail("the command ran")
+        return ns
+
+    monkeypatch.setattr(argparse.ArgumentParser, "parse_args", parse_without_work)
+    scene = tmp_path / "s.toml"
+    scene.write_text("")
+    target = "/sys/gearkit-test-out" + SUFFIX.get(argv[0], ".svg")
+    code, _, err = run(capsys, *[a.replace("{scene}", str(scene)) for a in argv], target)
+    assert code == 2 and "'/sys' is not writable" in one_error_line(err), err
+    assert not os.path.exists(target)
+
+
+def test_every_writing_command_is_in_the_unwritable_table():
+    """The table above lists every output flag of every command (and of view's subcommands)."""
+    import argparse
+
+    from gearkit.cli.shell import OUTPUT_DESTS, OUTPUT_DIR_DESTS
+
+    parser = build_parser()
+    sub = next(a for a in parser._actions if a.dest == "command")
+    flags = set()
+    for name, sp in sub.choices.items():
+        nested = [a for a in sp._actions if isinstance(a, argparse._SubParsersAction)]
+        parsers = [(name, sp)] + [(f"{name} {n}", p) for a in nested for n, p in a.choices.items()]
+        for label, p in parsers:
+            for action in p._actions:
+                if action.dest in OUTPUT_DESTS + OUTPUT_DIR_DESTS:
+                    flags.add((label.split()[0], action.option_strings[0]))
+    covered = {(w[0], w[-1]) for w in WRITERS}
+    assert flags - covered == set()
+
+
 def test_os_error_while_writing_is_one_line_exit_2(capsys, tmp_path, monkeypatch):
     """A file problem found only while writing (permission, disk full) is one line, exit 2."""
     import gearkit.export
