@@ -87,9 +87,9 @@ def test_design_file_equals_flags(capsys):
     assert from_file["backlash"]["transverse"] > 0
 
 
-def test_design_file_and_flags_are_exclusive(capsys):
-    code, _, err = run([str(EXAMPLE), "--z1", "20"], capsys)
-    assert code == 2 and "either a design file" in err
+def test_flags_override_the_design_file(capsys):
+    code, out, _ = run([str(EXAMPLE), "--z1", "20", "--json"], capsys)
+    assert code in (0, 1) and json.loads(out)["gears"][0]["teeth"] == 20
 
 
 @pytest.mark.parametrize("text,needle", [

@@ -157,7 +157,7 @@ ARITY_EXCEPTIONS = {
 
 
 def _signature(action):
-    kind = type(action).__name__
+    kind = type(action).__name__.removeprefix("Given")  # gearkit.cli.design.track_given's subclass
     return (kind, getattr(action.type, "__name__", action.type), tuple(sorted(action.choices or ())), action.nargs)
 
 
@@ -292,3 +292,108 @@ def test_an_out_of_range_value_is_refused_alike_by_every_command(capsys, tmp_pat
         assert code == 2 and len(lines) == 1 and flag in lines[0] and range_text in lines[0], (name, err)
         tried += 1
     assert tried >= 1
+
+
+# ----------------------------------------------------------------------------- design files
+
+PAIR_TOML = """module = 2.0
+helix_angle_deg = 15.0
+face_width = 20.0
+[gear1]
+teeth = 18
+shift = 0.3
+[gear2]
+teeth = 41
+"""
+NOVIKOV_TOML = 'z1 = 20\nz2 = 60\nmodule = 4\nhelix_angle_deg = 15\nwidth = 60\nrack = "single-arc"\nno_mesh = true\n'
+DRIVE_TOML = "pins = 12\nlobes = 11\npin-circle-radius = 90\npin_radius = 7\neccentricity = 4\n"
+FLAT = ["--z1", "18", "--z2", "41", "-m", "2"]
+DRIVE_ARGS = ["--pins", "12", "--lobes", "11", "--pin-circle-radius", "90", "--pin-radius", "7", "--eccentricity", "3.5"]
+#: command -> (design file, the command with the file and flags that override it, the same by flags alone)
+DESIGN_CASES = {
+    "gear": (PAIR_TOML, ["gear", "{f}", "--gear", "1", "-x", "0.5", "--json"],
+             ["gear", "-z", "18", "-m", "2", "-x", "0.5", "--helix-angle-deg", "15", "--json"]),
+    "check": (PAIR_TOML, ["check", "{f}", "--x1", "0.1", "--helix-angle-deg", "0", "--json"],
+              ["check", *FLAT, "--x1", "0.1", "--width", "20", "--json"]),
+    "pair": (PAIR_TOML, ["pair", "{f}", "--helix-angle-deg", "0", "--tol", "0.05", "--json"],
+             ["pair", *FLAT, "--x1", "0.3", "--width", "20", "--tol", "0.05", "--json"]),
+    "contact": (PAIR_TOML, ["contact", "{f}", "--helix-angle-deg", "0", "--steps", "60", "--json"],
+                ["contact", *FLAT, "--x1", "0.3", "--width", "20", "--steps", "60", "--json"]),
+    "view pair": (PAIR_TOML, ["view", "pair", "{f}", "--z2", "40", "--cycles", "1", "-o", "{t}/a.html"],
+                  ["view", "pair", "--z1", "18", "--z2", "40", "-m", "2", "--x1", "0.3", "--helix-angle-deg", "15",
+                   "--width", "20", "--cycles", "1", "-o", "{t}/b.html"]),
+    "blocking": (PAIR_TOML, ["blocking", "{f}", "--z1", "17", "--tol", "1e-2", "--json"],
+                 ["blocking", "--z1", "17", "--z2", "41", "-m", "2", "--helix-angle-deg", "15", "--tol", "1e-2",
+                  "--json"]),
+    "atlas": (PAIR_TOML, ["atlas", "{f}", "--z2", "40", "--tol", "1e-2", "--workers", "1", "--no-progress",
+                          "-o", "{t}/a", "--json"],
+              ["atlas", "--z1", "18", "--z2", "40", "-m", "2", "--helix-angle-deg", "15", "--tol", "1e-2",
+               "--workers", "1", "--no-progress", "-o", "{t}/b", "--json"]),
+    "novikov": (NOVIKOV_TOML, ["novikov", "{f}", "--rack", "standard", "--json"],
+                ["novikov", "--z1", "20", "--z2", "60", "-m", "4", "--helix-angle-deg", "15", "--width", "60",
+                 "--no-mesh", "--json"]),
+    "cycloid": ("module = 1\npinion-teeth = 8\nwheel_teeth = 64\nclock = true\n",
+                ["cycloid", "{f}", "--wheel-teeth", "40", "--json"],
+                ["cycloid", "-m", "1", "--pinion-teeth", "8", "--wheel-teeth", "40", "--clock", "--json"]),
+    "cycloidal-drive": (DRIVE_TOML, ["cycloidal-drive", "{f}", "--eccentricity", "3.5", "--samples", "100", "--json"],
+                        ["cycloidal-drive", *DRIVE_ARGS, "--samples", "100", "--json"]),
+    "rack": ('module = 2\nrack = "iso53b"\n', ["rack", "{f}", "-m", "3", "--json"],
+             ["rack", "-m", "3", "--rack", "iso53b", "--json"]),
+    "view drive": (DRIVE_TOML, ["view", "drive", "{f}", "--cycles", "1", "-o", "{t}/a.html"],
+                   ["view", "drive", *DRIVE_ARGS[:-1], "4", "--cycles", "1", "-o", "{t}/b.html"]),
+}
+#: commands that take no design file, with the reason
+NO_DESIGN = {"demo": "runs a built-in design", "bench": "measures the kernel; it describes no design",
+             "scene": "its argument is a scene file (gears, shafts, carriers, meshes)",
+             "planetary": "searches tooth numbers for a ratio; it describes no gear yet",
+             "cam": "describes a cam: its own design file, --design FILE ([cam] and [[motion]] tables)"}
+
+
+def _comparable(out: str):
+    data = json.loads(out)
+
+    def clean(obj):
+        if isinstance(obj, dict):
+            return {k: clean(v) for k, v in obj.items() if k not in ("seconds", "path", "output", "dir")}
+        if isinstance(obj, list):
+            return [clean(v) for v in obj]
+        return obj
+    return clean(data)
+
+
+@pytest.mark.parametrize("name", [n for n, _ in parsers()])
+def test_every_gear_or_pair_command_reads_a_design_file_and_flags_override_it(capsys, tmp_path, name):
+    parser = dict(parsers())[name]
+    has_design = any(a.dest == "design" for a in parser._actions)
+    if name.split()[0] in NO_DESIGN:
+        return
+    assert has_design and name in DESIGN_CASES, f"{name}: a command that describes a gear or pair reads a design file"
+    text, with_file, by_flags = DESIGN_CASES[name]
+    f = tmp_path / "design.toml"
+    f.write_text(text)
+    code_f, out_f, err_f = run(capsys, [a.replace("{f}", str(f)) for a in with_file], tmp_path)
+    code_flags, out_flags, err_flags = run(capsys, by_flags, tmp_path)
+    assert code_f == code_flags and code_f in (0, 1), (err_f, err_flags)
+    if "--json" in with_file:
+        assert _comparable(out_f) == _comparable(out_flags)
+    else:
+        assert (tmp_path / "a.html").read_bytes() == (tmp_path / "b.html").read_bytes()
+
+
+def test_a_flag_typed_with_its_default_value_still_overrides_the_file(capsys, tmp_path):
+    f = tmp_path / "d.toml"
+    f.write_text(PAIR_TOML)
+    spur = json.loads(run(capsys, ["check", str(f), "--helix-angle-deg", "0", "--json"], tmp_path)[1])
+    assert spur["helix_angle_deg"] == 0.0 and spur["contact_ratio"]["overlap"] == 0.0
+
+
+@pytest.mark.parametrize("text, needle", [
+    ("pins = 12.5\n", "design: pins: 12.5 must be a whole number"),
+    ("bogus = 1\n", "design: bogus: unknown key"),
+    ("pins = 2\n", "pins: Z_b = 2 must be an integer in [3, 1000]"),
+])
+def test_a_bad_design_value_is_one_line_naming_the_key(capsys, tmp_path, text, needle):
+    f = tmp_path / "d.toml"
+    f.write_text(text + "lobes = 11\npin-circle-radius = 90\npin_radius = 7\neccentricity = 4\n")
+    code, _, err = run(capsys, ["cycloidal-drive", str(f)], tmp_path)
+    assert code == 2 and len(err.strip().splitlines()) == 1 and needle in err

@@ -115,6 +115,16 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
     module = command_module(command)
     for name in (module,) if module else COMMANDS:
         importlib.import_module(f"gearkit.cli.{name}").register(sub)
+    from gearkit.cli.design import track_given
+
+    def track(p):  # every command (and sub-command) knows which flags were typed: they override a design file
+        for action in p._actions:
+            if isinstance(action, argparse._SubParsersAction):
+                for child in action.choices.values():
+                    track(child)
+        track_given(p)
+    for child in sub.choices.values():
+        track(child)
     return parser
 
 

@@ -16,6 +16,7 @@ from __future__ import annotations
 import sys
 
 from gearkit.cli.common import add_json_flag, add_output_flag, add_tol_flag, print_json
+from gearkit.cli.design import add_design_argument
 from gearkit.errors import SpecError
 
 RANGE_MAX = 400  #: largest tooth number of an atlas axis
@@ -32,8 +33,9 @@ def register(subparsers) -> None:
                     "pool, or on a Dask cluster with --scheduler (needs gearkit[dask]).",
         epilog="Exit status: 0 ok, 2 bad input or I/O, 130 interrupted.")
     g = p.add_argument_group("pairs")
-    g.add_argument("--z1", required=True, help="pinion teeth: START:STOP:STEP (STOP included) or a,b,c")
-    g.add_argument("--z2", required=True, help="wheel (ring) teeth: START:STOP:STEP or a,b,c")
+    add_design_argument(p, "pair")
+    g.add_argument("--z1", help="pinion teeth: START:STOP:STEP (STOP included) or a,b,c (default: the design file's)")
+    g.add_argument("--z2", help="wheel (ring) teeth: START:STOP:STEP or a,b,c (default: the design file's)")
     add_template_arguments(p, g)
     c = p.add_argument_group("contours")
     add_tol_flag(c, "accuracy of every traced line, shift units (default 1e-4)")
@@ -72,8 +74,14 @@ def parse_teeth(text: str, flag: str) -> list:
 
 def run(args) -> int:
     from gearkit.blocking.atlas import write_atlas
-    from gearkit.cli.blocking import template_spec
+    from gearkit.cli.blocking import design_template, template_spec
 
+    base = design_template(args)
+    for name in ("z1", "z2"):
+        if getattr(args, name) is None:
+            if base is None or getattr(base, f"teeth{name[1]}") is None:
+                raise SpecError(f"--{name}", "is required (or give a design file)")
+            setattr(args, name, str(getattr(base, f"teeth{name[1]}")))
     z1s = parse_teeth(args.z1, "--z1")
     z2s = parse_teeth(args.z2, "--z2")
     if args.workers < 1:

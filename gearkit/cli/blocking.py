@@ -9,10 +9,12 @@ Exit status: 0 (1 when ``--mark`` is outside the region), 2 for bad input.
 """
 from __future__ import annotations
 
+import argparse
 import sys
 
 from gearkit.cli.common import (QUANTITIES, add_json_flag, add_module_flag, add_output_flag, add_rack_flag, add_tol_flag, print_json,
                                 rack_from_args)
+from gearkit.cli.design import add_design_argument, require_flags
 from gearkit.errors import SpecError
 
 
@@ -27,8 +29,10 @@ def register(subparsers) -> None:
                     "diameter); the shift of a shaper-cut gear (every ring) is the cutter's radial setting.",
         epilog="Exit status: 0 ok, 1 the --mark point is outside the region, 2 bad input.")
     g = p.add_argument_group("pair")
-    g.add_argument("--z1", type=QUANTITIES["teeth"], required=True, help="pinion teeth")
-    g.add_argument("--z2", type=QUANTITIES["teeth"], required=True, help="wheel (or ring) teeth")
+    add_design_argument(p, "pair")
+    g.add_argument("--z1", type=QUANTITIES["teeth"], help="pinion teeth (required unless a design file gives them)")
+    g.add_argument("--z2", type=QUANTITIES["teeth"], help="wheel (or ring) teeth (required unless a design file gives "
+                   "them)")
     add_template_arguments(p, g)
     c = p.add_argument_group("contour")
     c.add_argument("--window", help="x1_lo,x1_hi,x2_lo,x2_hi (default: from the undercut and pointing limits)")
@@ -87,8 +91,28 @@ def _floats(text, n, flag):
     return vals
 
 
+def design_template(args):
+    """The pair of the design file (``args.design``) with the template flags typed applied, its shifts
+    zeroed (the contour varies them); None without a design file."""
+    if getattr(args, "design", None) is None:
+        return None
+    from dataclasses import replace
+
+    from gearkit.checks import load_design
+    from gearkit.cli.common import override_pair_spec
+
+    spec = replace(load_design(args.design)[0], shift1=0.0, shift2=0.0, center_distance=None)
+    view = argparse.Namespace(**{**vars(args), "given_flags": args.given_flags - {"center_distance", "z1", "z2"}})
+    return override_pair_spec(spec, view)  # --center-distance draws a line (no shifts solved); teeth come after
+
+
 def template_spec(args, z1: int, z2: int):
-    """The PairSpec of the template options with tooth numbers z1, z2."""
+    """The PairSpec of the template options (or of the design file, flags applied) with tooth numbers z1, z2."""
+    from dataclasses import replace
+
+    template = design_template(args)
+    if template is not None:
+        return replace(template, teeth1=z1, teeth2=z2)
     from gearkit.pair import PairSpec
     from gearkit.families.involute import ShaperCutter
 
@@ -112,7 +136,11 @@ def template_spec(args, z1: int, z2: int):
 def run(args) -> int:
     from gearkit.blocking import blocking_contour
 
-    spec = template_spec(args, args.z1, args.z2)
+    template = design_template(args)
+    z1 = args.z1 if args.z1 is not None else getattr(template, "teeth1", None)
+    z2 = args.z2 if args.z2 is not None else getattr(template, "teeth2", None)
+    require_flags(argparse.Namespace(z1=z1, z2=z2), ("z1", "--z1"), ("z2", "--z2"))
+    spec = template_spec(args, z1, z2)
     window = _floats(args.window, 4, "--window") if args.window else None
     cds = (args.center_distance,) if args.center_distance else ()
     tol = tol_from_args(args)

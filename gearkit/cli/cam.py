@@ -95,8 +95,7 @@ def spec_from_args(args):
     from gearkit.families.cam import CamSpec, MotionProgram
 
     if args.design is not None:
-        defaults = (None, False, 0.0, "roller", "cycloidal")
-        given = [k for k, v in vars(args).items() if k not in _FIELDS_WITH_DESIGN and v not in defaults]
+        given = sorted(k for k in args.given_flags if k not in _FIELDS_WITH_DESIGN)  # the flags typed
         if given:
             raise SpecError("--design", f"give the cam in the design file or by flags, not both ({given[0]})")
         from gearkit.families.cam.design import load_cam_design

@@ -161,13 +161,6 @@ def tool_from_args(args, internal: bool):
     return rack_from_args(args)
 
 
-#: flags that describe the pair (not allowed together with a design file)
-_MODEL_FLAGS = ("z1", "z2", "module", "x1", "x2", "center_distance", "split", "pressure_angle_deg",
-                "helix_angle_deg", "width", "internal", "rack_pair", "cutter_teeth", "cutter_shift",
-                "cutter_addendum", "pinion_cutter_teeth", "rack", "addendum", "tip_rule", "da1", "da2",
-                "thinning1", "thinning2", "min_tip_thickness", "min_contact_ratio", "min_tip_clearance",
-                "ring_shift")
-
 SIGN_NOTE = ("Shifts are normal coefficients x_n. A ring's --x2 is read as ISO 21771 says (--ring-shift iso, the "
              "default: by its tooth thickness, as if rack-cut; the shaper setting that cuts it is derived) or as "
              "the shaper's radial setting (--ring-shift cutter); positive --x2 makes the ring's teeth thinner and "
@@ -176,7 +169,8 @@ SIGN_NOTE = ("Shifts are normal coefficients x_n. A ring's --x2 is read as ISO 2
 
 def add_pair_arguments(p, limits: bool = True) -> None:
     """The design-file argument and the pair, tool (and limit) flags every pair command shares."""
-    p.add_argument("design", nargs="?", help="TOML design file (instead of the pair flags)")
+    p.add_argument("design", nargs="?", help="TOML design file of the pair (see 'gearkit check --help'); the "
+                   "flags given override its values")
     g = p.add_argument_group("pair")
     g.add_argument("--z1", type=Q["teeth"], help="pinion teeth")
     g.add_argument("--z2", type=Q["teeth"], help="wheel (or ring) teeth")
@@ -225,26 +219,80 @@ def add_pair_arguments(p, limits: bool = True) -> None:
     lim.add_argument("--min-tip-clearance", type=float, help="warn below this c / m_n (default 0.1)")
 
 
-def pair_spec_from_args(args, allowed_with_design=()):
-    """``(PairSpec, CheckLimits)`` from a design file or from the pair flags (not both: flags other
-    than ``allowed_with_design`` next to a design file are a ``SpecError``)."""
+def pair_spec_from_args(args):
+    """``(PairSpec, CheckLimits)`` from the pair flags, or from a design file whose values the flags typed
+    on the command line override (:func:`override_pair_spec`)."""
     if args.design is not None:
-        extra = [name for name in _MODEL_FLAGS
-                 if hasattr(args, name) and name not in allowed_with_design and _given(args, name)]
-        if extra:
-            raise SpecError("design", "give either a design file or pair flags, not both "
-                            f"(also got --{extra[0].replace('_', '-')})")
         from gearkit.checks import load_design
-        return load_design(args.design)
+
+        spec, limits = load_design(args.design)
+        return override_pair_spec(spec, args), _override_limits(limits, args)
     return _spec_from_flags(args)
 
 
-def _given(args, name) -> bool:
-    value = getattr(args, name)
-    default = {"helix_angle_deg": 0.0, "addendum": 1.0, "tip_rule": "shortened", "thinning1": 0.0, "thinning2": 0.0,
-               "cutter_shift": 0.0, "cutter_addendum": 1.25, "internal": False, "rack": "standard", "rack_pair": False,
-               "ring_shift": "iso"}.get(name)
-    return value is not None and value != default
+#: pair flag destination -> the PairSpec field it sets
+_PAIR_FIELDS = {"z1": "teeth1", "z2": "teeth2", "module": "module", "x1": "shift1", "x2": "shift2",
+                "pressure_angle_deg": "pressure_angle_deg", "helix_angle_deg": "helix_angle_deg",
+                "width": "face_width", "addendum": "addendum", "tip_rule": "tip_rule", "da1": "tip_diameter1",
+                "da2": "tip_diameter2", "thinning1": "thinning1", "thinning2": "thinning2",
+                "ring_shift": "shift_convention"}
+
+
+def override_pair_spec(spec, args):
+    """``spec`` (read from a design file) with every pair or tool flag typed on the command line applied;
+    ``--center-distance`` solves the shifts again unless ``--x1``/``--x2`` are typed too."""
+    from dataclasses import replace
+
+    from gearkit.cli.design import given
+    from gearkit.families.involute import BasicRack, ShaperCutter
+
+    changes = {f: getattr(args, d) for d, f in _PAIR_FIELDS.items() if given(args, d)}
+    if given(args, "internal") and args.internal:
+        changes["kind"] = "internal"
+    if given(args, "rack_pair") and args.rack_pair:
+        changes.update(kind="rack", teeth2=None)
+    alpha = changes.get("pressure_angle_deg", spec.pressure_angle_deg)
+    tools = list(spec.tools)
+    for k, tool in enumerate(tools):
+        if isinstance(tool, BasicRack) and given(args, "rack"):
+            tools[k] = rack_from_args(_namespace_with(args, pressure_angle_deg=alpha))
+        elif isinstance(tool, BasicRack) and alpha is not None:
+            tools[k] = replace(tool, pressure_angle_deg=alpha)
+        elif isinstance(tool, ShaperCutter):
+            cutter = {"shift": args.cutter_shift} if given(args, "cutter_shift") else {}
+            cutter.update({"addendum": args.cutter_addendum} if given(args, "cutter_addendum") else {})
+            tools[k] = replace(tool, **cutter, **({} if alpha is None else {"pressure_angle_deg": alpha}))
+    a = 20.0 if alpha is None else alpha
+    shaper = (getattr(args, "cutter_shift", 0.0), getattr(args, "cutter_addendum", 1.25))
+    if given(args, "pinion_cutter_teeth"):
+        tools[0] = ShaperCutter(args.pinion_cutter_teeth, a, *shaper)
+    if given(args, "cutter_teeth"):
+        tools[1] = ShaperCutter(args.cutter_teeth, a, *shaper)
+    spec = replace(spec, tool1=tools[0], tool2=None if changes.get("kind") == "rack" else tools[1], **changes)
+    if given(args, "center_distance"):
+        x1 = args.x1 if given(args, "x1") else None
+        x2 = args.x2 if given(args, "x2") else None
+        return _apply_center_distance(replace(spec, center_distance=None), args.center_distance, x1, x2,
+                                      args.split if given(args, "split") else None)
+    if given(args, "split"):
+        raise SpecError("split", "applies only with a centre distance (--center-distance)")
+    return spec
+
+
+def _namespace_with(args, **values):
+    """A copy of ``args`` with ``values`` set (the namespace is not changed)."""
+    import argparse
+
+    return argparse.Namespace(**{**vars(args), **values})
+
+
+def _override_limits(limits, args):
+    from dataclasses import replace
+
+    from gearkit.cli.design import given
+
+    names = ("min_tip_thickness", "min_contact_ratio", "min_tip_clearance")
+    return replace(limits, **{k: getattr(args, k) for k in names if given(args, k) and getattr(args, k) is not None})
 
 
 def _spec_from_flags(args):

@@ -18,9 +18,13 @@ import sys
 
 from gearkit.cli.common import (QUANTITIES, add_json_flag, add_module_flag, add_output_flag, add_renamed_flag, add_tol_flag,
                                 output_kind, print_json, tol_from)
+from gearkit.cli.design import add_design_argument, apply_flag_design, require_flags
 from gearkit.errors import SpecError
 
 _SCALARS = (int, float, str, bool, type(None))
+#: the flags a drive needs (from the command line or a design file)
+DRIVE_REQUIRED = (("pins", "--pins"), ("lobes", "--lobes"), ("pin_circle_radius", "--pin-circle-radius"),
+                  ("pin_radius", "--pin-radius"), ("eccentricity", "--eccentricity"))
 
 
 def register(subparsers) -> None:
@@ -29,12 +33,13 @@ def register(subparsers) -> None:
         description="Generate the cycloid disc (or ring, when --lobes > --pins) of a pin-wheel drive as the "
                     "envelope of its pins, simulate its mesh and check it (lengths in mm).",
         epilog="Exit status: 0 no finding fails, 1 a finding fails, 2 bad input.")
-    d.add_argument("--pins", type=int, required=True, help="Z_b, pins in the pin ring")
-    d.add_argument("--lobes", type=int, required=True, help="Z_g, disc teeth (lobes); Z_b - Z_g is the tooth "
+    add_design_argument(d, "flags")
+    d.add_argument("--pins", type=int, help="Z_b, pins in the pin ring")
+    d.add_argument("--lobes", type=int, help="Z_g, disc teeth (lobes); Z_b - Z_g is the tooth "
                    "difference (negative: a cycloid ring outside the pins)")
-    d.add_argument("--pin-circle-radius", type=float, required=True, help="R_Z, radius of the pin-centre circle, mm")
-    d.add_argument("--pin-radius", type=float, required=True, help="r_Z, pin radius, mm")
-    d.add_argument("--eccentricity", type=float, required=True, help="e, crank eccentricity, mm")
+    d.add_argument("--pin-circle-radius", type=float, help="R_Z, radius of the pin-centre circle, mm")
+    d.add_argument("--pin-radius", type=float, help="r_Z, pin radius, mm")
+    d.add_argument("--eccentricity", type=float, help="e, crank eccentricity, mm")
     d.add_argument("--equidistant-mod", type=float, default=0.0, help="dr: grind with pins of radius r_Z + dr, mm")
     d.add_argument("--shift-mod", type=float, default=0.0, help="dR: grind on the pin circle R_Z + dR, mm")
     d.add_argument("--disc-eccentricity", type=float, default=None,
@@ -51,9 +56,10 @@ def register(subparsers) -> None:
                     "hypocycloidal dedenda), clock gearing (--clock: radial pinion flanks), or pin gearing "
                     "(--pin-radius RHO: the pinion is a pin wheel and the wheel is cut by its pins); check it.",
         epilog="Exit status: 0 no finding fails, 1 a finding fails, 2 bad input.")
-    add_module_flag(c, "module, mm", required=True)
-    c.add_argument("--pinion-teeth", type=QUANTITIES["teeth"], required=True, help="z1 (pins of the pin wheel with --pin-radius)")
-    c.add_argument("--wheel-teeth", type=QUANTITIES["teeth"], required=True, help="z2")
+    add_design_argument(c, "flags")
+    add_module_flag(c, "module, mm (required)")
+    c.add_argument("--pinion-teeth", type=QUANTITIES["teeth"], help="z1 (pins of the pin wheel with --pin-radius)")
+    c.add_argument("--wheel-teeth", type=QUANTITIES["teeth"], help="z2")
     kind = c.add_mutually_exclusive_group()
     kind.add_argument("--clock", action="store_true", help="clock gearing (BS 978-2 style): generating circles "
                       "r1/2 and r2/2, wheel addendum 0.95 A")
@@ -103,6 +109,8 @@ def run_drive(args) -> int:
     from gearkit.checks.cycloidal import check_drive
     from gearkit.families.cycloidal import DriveSpec
 
+    apply_flag_design(args)
+    require_flags(args, *DRIVE_REQUIRED)
     fmt = output_kind(args.output)
     spec = DriveSpec(args.pins, args.lobes, args.pin_circle_radius, args.pin_radius, args.eccentricity,
                      args.equidistant_mod, args.shift_mod, args.disc_eccentricity, args.tip_radius)
@@ -169,6 +177,8 @@ def _pair_spec(args):
 
 
 def run_cycloid(args) -> int:
+    apply_flag_design(args)
+    require_flags(args, ("module", "-m/--module"), ("pinion_teeth", "--pinion-teeth"), ("wheel_teeth", "--wheel-teeth"))
     fmt = output_kind(args.output)
     if args.pin_radius is not None:
         from gearkit.checks.cycloidal import check_pin_gearing

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from gearkit.cli.common import (QUANTITIES, TIP_RULES, add_gear_flags, add_json_flag, add_keyway_flag, add_output_flag, add_tol_flag,
                                 add_tool_flags, keyway_from_arg, print_json, tol_from, tool_from_args)
+from gearkit.cli.design import add_design_argument, given, require_flags
 from gearkit.errors import SpecError
 
 def register(subparsers) -> None:
@@ -17,7 +18,10 @@ def register(subparsers) -> None:
         description="Generate an involute gear (external, internal, spur or helical) as the envelope of its "
                     "cutter; print key values (mm, transverse section) and export the profile. For an internal "
                     "gear positive -x moves the ring's teeth outward (thinner teeth, larger tip diameter).")
-    add_gear_flags(p)
+    add_design_argument(p, "pair")
+    p.add_argument("--gear", type=int, choices=(1, 2), default=None,
+                   help="with a design file: which gear of the pair (1 pinion, the default; 2 wheel or ring)")
+    add_gear_flags(p, required=False)
     p.add_argument("--helix-angle-deg", type=QUANTITIES["helix_angle_deg"], default=0.0, help="helix angle, degrees (+ right hand)")
     p.add_argument("--internal", action="store_true", help="internal (ring) gear, cut by a shaper cutter")
     p.add_argument("--ring-shift", choices=("iso", "cutter"), default="iso",
@@ -113,12 +117,47 @@ def _solid_only_flags(args) -> list:
     return [name for name, given in flags if given]
 
 
+#: gear flag destination -> the GearSpec field it sets (a design file's gear, overridden)
+_GEAR_FIELDS = {"teeth": "teeth", "module": "module", "shift": "shift", "helix_angle_deg": "helix_angle_deg",
+                "tip_diameter": "tip_diameter", "thinning": "thinning", "ring_shift": "shift_convention"}
+_TOOL_FLAGS = ("rack", "pressure_angle_deg", "cutter_teeth", "cutter_shift", "cutter_addendum")
+
+
+def design_gear(args):
+    """Gear ``--gear`` (default 1) of the design file's pair, as the pair has it (its tip included), with
+    the gear flags typed applied; a changed size or shift drops the pair's tip (the tip rule decides)."""
+    from dataclasses import replace
+
+    from gearkit.checks import load_design
+    from gearkit.pair import gear_specs
+
+    gears = gear_specs(load_design(args.design)[0])
+    n = args.gear or 1
+    if n > len(gears):
+        raise SpecError("--gear", "a rack pair has one gear (the pinion, --gear 1)")
+    gear = gears[n - 1]
+    changes = {f: getattr(args, d) for d, f in _GEAR_FIELDS.items() if given(args, d)}
+    if given(args, "internal") and args.internal:
+        changes["internal"] = True
+    if any(given(args, d) for d in _TOOL_FLAGS):
+        changes["tool"] = tool_from_args(args, changes.get("internal", gear.internal))
+    if "tip_diameter" not in changes and {"teeth", "module", "shift", "helix_angle_deg"} & set(changes):
+        changes["tip_diameter"] = None
+    return replace(gear, **changes)
+
+
 def build(args):
     from gearkit.families.involute import GearSpec, tooth_profile
 
-    spec = GearSpec(args.teeth, args.module, args.shift, args.helix_angle_deg, args.internal,
-                    tool_from_args(args, args.internal), args.tip_diameter, args.thinning,
-                    shift_convention=args.ring_shift)
+    if args.design is not None:
+        spec = design_gear(args)
+    else:
+        if args.gear is not None:
+            raise SpecError("--gear", "picks a gear of a design file: give one")
+        require_flags(args, ("teeth", "-z/--teeth"), ("module", "-m/--module"))
+        spec = GearSpec(args.teeth, args.module, args.shift, args.helix_angle_deg, args.internal,
+                        tool_from_args(args, args.internal), args.tip_diameter, args.thinning,
+                        shift_convention=args.ring_shift)
     if args.tip_rule == "shortened":
         from dataclasses import replace
 

@@ -15,6 +15,7 @@ import sys
 from pathlib import Path
 
 from gearkit.cli.common import QUANTITIES, add_json_flag, add_module_flag, add_output_flag, add_tol_flag, print_json, tol_from
+from gearkit.cli.design import add_design_argument, apply_flag_design
 from gearkit.errors import SpecError
 
 
@@ -25,6 +26,7 @@ def register(subparsers) -> None:
                     "(lengths in mm, angles in degrees). The preset racks are NOT verified against the "
                     "standards: verify against the standard before production.",
         epilog="Exit status: 0 no finding fails, 1 a finding fails, 2 bad input.")
+    add_design_argument(p, "flags")
     g = p.add_argument_group("pair")
     g.add_argument("--z1", type=QUANTITIES["teeth"], help="pinion teeth (required)")
     g.add_argument("--z2", type=QUANTITIES["teeth"], help="wheel teeth (required)")
@@ -101,6 +103,7 @@ def _write_3d(spec, args) -> dict:
 def run(args) -> int:
     from gearkit.checks.novikov import NovikovLimits, check_novikov
 
+    apply_flag_design(args)
     spec = _spec(args)
     limits = NovikovLimits() if args.min_overlap_ratio is None else NovikovLimits(args.min_overlap_ratio)
     tol_from(args.tol, None)  # a bad --tol fails before the check runs

@@ -51,7 +51,7 @@ def register(subparsers) -> None:
 
 
 def _pair_spec(args):
-    return pair_spec_from_args(args, allowed_with_design=("width",))[0]
+    return pair_spec_from_args(args)[0]
 
 
 #: default limit of --sweep (each position is a boolean intersection of the two solids)

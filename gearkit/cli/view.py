@@ -16,6 +16,7 @@ from __future__ import annotations
 import sys
 
 from gearkit.cli.common import QUANTITIES, add_output_flag, add_pair_arguments, pair_spec_from_args
+from gearkit.cli.design import add_design_argument, apply_flag_design, require_flags
 from gearkit.errors import SpecError
 
 
@@ -34,11 +35,12 @@ def register(subparsers) -> None:
     _common(pair)
     pair.set_defaults(run=run_pair)
     drive = sub.add_parser("drive", help="a cycloid-pin-wheel drive (the flags of 'gearkit cycloidal-drive')")
-    drive.add_argument("--pins", type=int, required=True, help="Z_b, pins in the pin ring")
-    drive.add_argument("--lobes", type=int, required=True, help="Z_g, disc lobes")
-    drive.add_argument("--pin-circle-radius", type=float, required=True, help="R_Z, mm")
-    drive.add_argument("--pin-radius", type=float, required=True, help="r_Z, mm")
-    drive.add_argument("--eccentricity", type=float, required=True, help="e, mm")
+    add_design_argument(drive, "flags")
+    drive.add_argument("--pins", type=int, help="Z_b, pins in the pin ring")
+    drive.add_argument("--lobes", type=int, help="Z_g, disc lobes")
+    drive.add_argument("--pin-circle-radius", type=float, help="R_Z, mm")
+    drive.add_argument("--pin-radius", type=float, help="r_Z, mm")
+    drive.add_argument("--eccentricity", type=float, help="e, mm")
     drive.add_argument("--equidistant-mod", type=float, default=0.0, help="dr, mm")
     drive.add_argument("--shift-mod", type=float, default=0.0, help="dR, mm")
     drive.add_argument("--width", type=QUANTITIES["width"], default=None, help="disc width of the solids, mm")
@@ -74,6 +76,10 @@ def run_drive(args) -> int:
     from gearkit.view import drive_view, write_page
 
     _check_output(args)
+    from gearkit.cli.cycloid import DRIVE_REQUIRED
+
+    apply_flag_design(args)
+    require_flags(args, *DRIVE_REQUIRED)
     spec = DriveSpec(args.pins, args.lobes, args.pin_circle_radius, args.pin_radius, args.eccentricity,
                      args.equidistant_mod, args.shift_mod)
     write_page(args.output, drive_view(spec, width=args.width, cycles=args.cycles))
