@@ -397,3 +397,25 @@ def test_a_bad_design_value_is_one_line_naming_the_key(capsys, tmp_path, text, n
     f.write_text(text + "lobes = 11\npin-circle-radius = 90\npin_radius = 7\neccentricity = 4\n")
     code, _, err = run(capsys, ["cycloidal-drive", str(f)], tmp_path)
     assert code == 2 and len(err.strip().splitlines()) == 1 and needle in err
+
+
+# ----------------------------------------------------------------------------- --tol, --json, -o
+
+#: commands without a --json report, with the reason
+NO_JSON = {"demo": "writes a folder and prints the built-in design's report",
+           "view pair": "writes a page; it prints only the line naming it", "view drive": "writes a page"}
+#: commands that write no -o file, with the reason
+NO_OUTPUT = {"demo": "writes several files into --out-dir (a folder)", "check": "a report only",
+             "planetary": "a report only"}
+
+
+@pytest.mark.parametrize("name, parser", parsers(), ids=[n for n, _ in parsers()])
+def test_tol_json_and_output_mean_the_same_everywhere(name, parser):
+    flags = flag_actions(parser)
+    tol = flags.get("--tol")
+    if tol is not None:  # a max deviation of the output: a length in mm, or (blocking, atlas) shift units, said
+        assert "mm" in tol.help or "shift units" in tol.help, (name, tol.help)
+    if name not in NO_JSON:
+        assert "--json" in flags and flags["--json"].nargs == 0, name  # a flag, never a file
+    if name not in NO_OUTPUT:
+        assert {"-o", "--output"} <= set(flags), name
