@@ -17,7 +17,7 @@ import math
 
 import numpy as np
 
-__all__ = ["swept_pin_disc", "swept_pin_wheel", "clock_addendum_by_rolling", "ray_cast"]
+__all__ = ["swept_pin_disc", "swept_pin_wheel", "swept_pin_centres", "swept_pin_clearance", "clock_addendum_by_rolling", "ray_cast"]
 
 
 def ray_cast(centres, radius: float, psi, outside: bool = False):
@@ -76,11 +76,11 @@ def swept_pin_disc(pins: int, lobes: int, pin_circle_radius: float, pin_radius: 
     return ray_cast(centres, pin_radius, np.asarray(psi, dtype=float), outside=dz < 0)
 
 
-def swept_pin_wheel(module: float, pins: int, wheel_teeth: int, pin_radius: float, tip_radius: float, psi,
-                    step: float):
-    """Radii of the wheel the pins of a pin wheel leave (pin gearing), at polar angles ``psi``,
-    tooth 0 on +y, inside the tip circle. The pin wheel (pitch radius ``m z1/2``) rolls on the
-    wheel's pitch circle (``m z2/2``) externally; ``step`` bounds the pin centre's move (mm)."""
+def swept_pin_centres(module: float, pins: int, wheel_teeth: int, pin_radius: float, tip_radius: float,
+                      step: float):
+    """Pin-centre positions in the wheel's frame (pin gearing), ``(k, 2)`` mm, tooth 0 on +y, folded
+    into tooth 0's sector. The pin wheel (pitch radius ``m z1/2``) rolls on the wheel's pitch circle
+    (``m z2/2``) externally; consecutive positions are at most ``step`` (mm) apart."""
     r1, r2 = module * pins / 2.0, module * wheel_teeth / 2.0
     reach = math.acos(max(-1.0, ((r1 + r2) ** 2 + r1 * r1 - (tip_radius + pin_radius) ** 2) / (2 * r1 * (r1 + r2))))
     span = reach + 2.0 * math.pi / pins
@@ -94,8 +94,37 @@ def swept_pin_wheel(module: float, pins: int, wheel_teeth: int, pin_radius: floa
     ang = phi2 + math.pi / wheel_teeth
     px = cx * np.cos(ang) + cy * np.sin(ang)
     py = -cx * np.sin(ang) + cy * np.cos(ang)
-    centres = _fold(np.stack([px, py], -1), wheel_teeth, 2.0 * pin_radius / r2 + 0.1)
+    return _fold(np.stack([px, py], -1), wheel_teeth, 2.0 * pin_radius / r2 + 0.1)
+
+
+def swept_pin_wheel(module: float, pins: int, wheel_teeth: int, pin_radius: float, tip_radius: float, psi,
+                    step: float):
+    """Radii of the wheel the pins of a pin wheel leave (pin gearing), at polar angles ``psi``,
+    tooth 0 on +y, inside the tip circle; ``step`` bounds the pin centre's move (mm).
+
+    A ray gives one radius per angle, the first entry into a pin: where the boundary is not
+    star-shaped about the centre the ray misses the outer crossings. The space bottom (the pin at
+    the pole) does that next to the pitch circle whenever the flank is trimmed above the radius
+    ``sqrt(r2^2 - rho^2)`` at which rays touch that pin: compare there with
+    :func:`swept_pin_clearance`, which has no such limit.
+    """
+    centres = swept_pin_centres(module, pins, wheel_teeth, pin_radius, tip_radius, step)
     return np.minimum(ray_cast(centres, pin_radius, np.asarray(psi, dtype=float)), tip_radius)
+
+
+def swept_pin_clearance(points, module: float, pins: int, wheel_teeth: int, pin_radius: float,
+                        tip_radius: float, step: float, chunk: int = 512):
+    """Signed clearance (mm) of points (wheel frame, tooth 0's sector) from the swept pins: the
+    distance to the nearest pin position minus the pin radius, negative inside a pin (material a
+    pin removes). On the true envelope it lies in ``[0, step**2 / (8 rho)]`` (the pins sit at
+    discrete positions ``step`` apart, the scallop between them)."""
+    c = swept_pin_centres(module, pins, wheel_teeth, pin_radius, tip_radius, step)
+    p = np.asarray(points, dtype=float)
+    out = np.empty(len(p))
+    for k in range(0, len(p), chunk):
+        d = p[k:k + chunk, None, :] - c[None, :, :]
+        out[k:k + chunk] = np.sqrt(np.einsum("ijk,ijk->ij", d, d).min(axis=1))
+    return out - pin_radius
 
 
 def clock_addendum_by_rolling(pinion_teeth: int, wheel_teeth: int, module: float = 1.0) -> float:
