@@ -128,15 +128,13 @@ def _require_writable(directory, field: str) -> None:
     read-only or pseudo file system."""
     if not os.access(directory, os.W_OK | os.X_OK):
         raise SpecError(field, f"directory {str(directory)!r} is not writable")
-    probe = os.path.join(directory, f".gearkit-probe-{os.urandom(8).hex()}.part")
-    made = False
+    probe = os.path.join(directory, f".gearkit-probe-{os.urandom(8).hex()}.part")  # a name no one else holds
     try:
         os.close(os.open(probe, os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_NOFOLLOW", 0), 0o600))
-        made = True
     except OSError as exc:
         raise SpecError(field, f"directory {str(directory)!r} is not writable ({exc.strerror or exc})") from None
-    finally:
-        if made:
+    finally:  # removed whatever happens (an interrupt between the open and here included)
+        if os.path.lexists(probe):
             os.unlink(probe)
 
 

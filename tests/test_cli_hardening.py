@@ -232,6 +232,28 @@ def test_sigterm_during_an_export_exits_143_and_leaves_nothing(capsys, tmp_path,
     assert signal.getsignal(signal.SIGTERM) is before  # the handler is put back
 
 
+@pytest.mark.parametrize("sig, code, word", [(signal.SIGINT, 130, "interrupted"), (signal.SIGTERM, 143, "terminated")])
+def test_a_real_signal_during_a_long_export_leaves_no_part_file(tmp_path, sig, code, word):
+    """A real process, signalled while its ``.part`` file is being written (a z = 2000 DXF writes
+    for about a second): the exit status is 130/143, one line, and the folder is left empty."""
+    import time
+
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path))
+    proc = subprocess.Popen([sys.executable, "-m", "gearkit", "gear", "-z", "2000", "-m", "1", "-o",
+                             str(tmp_path / "g.dxf")], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                            text=True, env=env)
+    deadline = time.monotonic() + 300
+    while not [p for p in leftovers(tmp_path) if p.startswith(".g.dxf.")]:
+        assert proc.poll() is None, "the export ended before its .part file was seen"
+        assert time.monotonic() < deadline, "no .part file within 300 s"
+        time.sleep(0.002)
+    proc.send_signal(sig)
+    err = proc.communicate(timeout=300)[1]
+    assert proc.returncode == code and "Traceback" not in err
+    assert one_error_line(err) == f"gearkit gear: {word}"
+    assert list(tmp_path.iterdir()) == []
+
+
 def test_ctrl_c_while_the_command_loads_exits_130(capsys, monkeypatch):
     """An interrupt before the command runs (its modules still importing) is no traceback either."""
     import gearkit.cli
