@@ -254,6 +254,29 @@ def test_a_real_signal_during_a_long_export_leaves_no_part_file(tmp_path, sig, c
     assert list(tmp_path.iterdir()) == []
 
 
+def test_ctrl_c_while_an_error_is_reported_exits_130(capsys, tmp_path, monkeypatch):
+    """Found by the long CLI fuzz: an interrupt landing in the shell's own clean-up (after the
+    command's error) escaped main. It is one line and 130 too."""
+    import gearkit.cli.shell
+
+    real, calls = gearkit.cli.shell.signal.signal, []
+
+    def signal_then_interrupt(*a):
+        calls.append(a)
+        if len(calls) == 2:  # the handler being put back, in run_guarded's finally
+            raise KeyboardInterrupt
+        return real(*a)
+
+    before = signal.getsignal(signal.SIGTERM)
+    monkeypatch.setattr(gearkit.cli.shell.signal, "signal", signal_then_interrupt)
+    try:
+        code, _, err = run(capsys, "gear", "-z", "20", "-m", "2", "-o", str(tmp_path / "missing" / "g.svg"))
+    finally:
+        monkeypatch.undo()
+        signal.signal(signal.SIGTERM, before)  # the interrupted clean-up left the shell's handler
+    assert code == 130 and err.strip().splitlines()[-1] == "gearkit gear: interrupted"
+
+
 def test_ctrl_c_while_the_command_loads_exits_130(capsys, monkeypatch):
     """An interrupt before the command runs (its modules still importing) is no traceback either."""
     import gearkit.cli

@@ -153,6 +153,9 @@ def main(argv: list[str] | None = None) -> int:
     MAX_POINTS[0] = max_points
     try:
         return run_guarded(args, debug=debug)
+    except KeyboardInterrupt:  # an interrupt while run_guarded reports or cleans up: still one line
+        print(f"\ngearkit {getattr(args, 'command', '')}: interrupted".replace(" :", ":"), file=sys.stderr)
+        return 130
     finally:
         Progress.mode = "off"
         MAX_POINTS[0] = None
