@@ -235,23 +235,35 @@ def test_sigterm_during_an_export_exits_143_and_leaves_nothing(capsys, tmp_path,
 @pytest.mark.parametrize("sig, code, word", [(signal.SIGINT, 130, "interrupted"), (signal.SIGTERM, 143, "terminated")])
 def test_a_real_signal_during_a_long_export_leaves_no_part_file(tmp_path, sig, code, word):
     """A real process, signalled while its ``.part`` file is being written (a z = 2000 DXF writes
-    for about a second): the exit status is 130/143, one line, and the folder is left empty."""
+    for about a second): the exit status is 130/143, one line, and the folder is left empty.
+
+    On a loaded machine the signal can arrive after the file was renamed into place; such an
+    attempt must have finished cleanly (exit 0, the whole file, no ``.part``) and is repeated, so
+    that at least one attempt is really interrupted mid-write."""
     import time
 
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path))
-    proc = subprocess.Popen([sys.executable, "-m", "gearkit", "gear", "-z", "2000", "-m", "1", "-o",
-                             str(tmp_path / "g.dxf")], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-                            text=True, env=env)
-    deadline = time.monotonic() + 300
-    while not [p for p in leftovers(tmp_path) if p.startswith(".g.dxf.")]:
-        assert proc.poll() is None, "the export ended before its .part file was seen"
-        assert time.monotonic() < deadline, "no .part file within 300 s"
-        time.sleep(0.002)
-    proc.send_signal(sig)
-    err = proc.communicate(timeout=300)[1]
-    assert proc.returncode == code and "Traceback" not in err
-    assert one_error_line(err) == f"gearkit gear: {word}"
-    assert list(tmp_path.iterdir()) == []
+    out = tmp_path / "g.dxf"
+    for _attempt in range(5):
+        proc = subprocess.Popen([sys.executable, "-m", "gearkit", "gear", "-z", "2000", "-m", "1", "-o", str(out)],
+                                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, env=env)
+        deadline = time.monotonic() + 300
+        while not [p for p in leftovers(tmp_path) if p.startswith(".g.dxf.")]:
+            assert proc.poll() is None, "the export ended before its .part file was seen"
+            assert time.monotonic() < deadline, "no .part file within 300 s"
+            time.sleep(0.002)
+        proc.send_signal(sig)
+        err = proc.communicate(timeout=300)[1]
+        assert "Traceback" not in err
+        if proc.returncode == 0:  # the signal came after the rename: a whole file, nothing left over
+            assert leftovers(tmp_path) == [] and out.read_text(encoding="utf-8").rstrip().endswith("EOF")
+            out.unlink()
+            continue
+        assert proc.returncode == code
+        assert one_error_line(err) == f"gearkit gear: {word}"
+        assert list(tmp_path.iterdir()) == []
+        return
+    pytest.fail("five exports finished before the signal reached them")
 
 
 def test_ctrl_c_while_an_error_is_reported_exits_130(capsys, tmp_path, monkeypatch):
