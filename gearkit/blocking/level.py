@@ -43,6 +43,8 @@ WIDE_REACH = 1.0  #: a chord's second search for its curve reaches this many cho
 RAY_FRACTIONS = (0.125, 0.25, 0.375, 0.5, 0.75, 1.0, 2.0)  #: where the second search samples (x reach)
 BRIDGE_CELLS = 3.0  #: open pieces of one curve whose ends face each other this many cell diagonals apart join
 BRIDGE_COS = 0.5  #: ... when the gap runs within 60 degrees of both ends' directions
+NRAYS = 1  #: directions searched: the normal only (a diagonal ray's zero may lie on the other branch of a
+#: saddle: a chord joining two branches was kept 3.8e-5 off its line at every tol below 1e-4)
 PLAIN = (5, 6)  #: the samples a measured curve's search reads: the reach, then twice it (an acute corner)
 WIDE_REGION = True  #: the wider search for measured curves too
 JUMP_FACTOR = 100.0  #: a solved vertex with |F| above this times slope x tol sits on a jump, not a zero
@@ -224,7 +226,7 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
         wide = np.flatnonzero(~best.have & (trust[km] | WIDE_REGION))
         if wide.size:
             tg = np.column_stack([nm_[wide, 1], -nm_[wide, 0]])
-            dirs = [sg * dv for dv in (nm_[wide], (nm_[wide] + tg) / np.sqrt(2), (nm_[wide] - tg) / np.sqrt(2))
+            dirs = [sg * dv for dv in (nm_[wide], (nm_[wide] + tg) / np.sqrt(2), (nm_[wide] - tg) / np.sqrt(2))[:NRAYS]
                     for sg in (1.0, -1.0)]
             fr = WIDE_REACH * np.asarray(RAY_FRACTIONS)
             P = np.stack([mm[wide][:, None, :] + (fr[None, :, None] * Lm[wide][:, None, None]) * dv[:, None, :]
