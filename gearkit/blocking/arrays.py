@@ -27,6 +27,7 @@ import numpy as np
 
 from gearkit.curves import inv
 from gearkit.families.involute.tools import BasicRack
+from gearkit.pair.tooling import cutter_radii
 
 __all__ = ["margins", "evaluator", "sliding_ends"]
 
@@ -62,11 +63,7 @@ def _gear(sec, z, x, tool, internal):
     sign = -1 if internal else 1
     a0 = mt * (z + sign * z0) / 2 + x * mn
     rb = z * mt * math.cos(sec.alpha_t) / 2
-    rb0 = z0 * mt * math.cos(sec.alpha_t) / 2
-    ra0 = z0 * mt / 2 + (tool.shift + tool.addendum) * mn
-    rho_t = tool.tip_radius * mn
-    roll_c = rho_t + math.sqrt(max((ra0 - rho_t) ** 2 - rb0 ** 2, 0.0))
-    rc0 = math.hypot(rb0, roll_c)
+    rb0, ra0, rc0 = cutter_radii(sec, tool)
     ok = a0 > abs(rb + sign * rb0)
     a0 = np.where(ok, a0, np.nan)
     with np.errstate(invalid="ignore"):

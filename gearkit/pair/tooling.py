@@ -18,7 +18,7 @@ from gearkit.curves import inv
 from gearkit.errors import SpecError
 from gearkit.families.involute import BasicRack, ShaperCutter
 
-__all__ = ["Section", "section", "thickness_coeff", "cutter_machine", "root_radius", "form_roll",
+__all__ = ["Section", "section", "thickness_coeff", "cutter_machine", "cutter_radii", "root_radius", "form_roll",
            "tip_thickness", "half_angle", "nu_radius"]
 
 
@@ -66,23 +66,37 @@ def cutter_machine(sec: Section, z: int, x: float, cutter: ShaperCutter, interna
         Radius where the cutter's involute flank ends under its tip rounding (= ra0 if sharp).
     """
     mt, mn = sec.mt, sec.mn
-    z0 = cutter.teeth
     sign = -1 if internal else 1
-    a0 = mt * (z + sign * z0) / 2 + x * mn
+    a0 = mt * (z + sign * cutter.teeth) / 2 + x * mn
     rb = z * mt * math.cos(sec.alpha_t) / 2
-    rb0 = z0 * mt * math.cos(sec.alpha_t) / 2
-    ra0 = z0 * mt / 2 + (cutter.shift + cutter.addendum) * mn
-    rho = cutter.tip_radius * mn
+    rb0, ra0, rc0 = cutter_radii(sec, cutter)
     if a0 <= abs(rb + sign * rb0):
         raise SpecError("shift2" if internal else "shift1",
                         f"x = {x:g}: the cutter setting a_0 = {a0:.6g} mm leaves no involute machine mesh "
                         f"(needs a_0 > {abs(rb + sign * rb0):.6g} mm)")
     alpha_c = math.acos((rb + sign * rb0) / a0)
-    # rounding of radius rho tangent to the tip circle and to the involute: its centre lies on the
-    # involute's normal, at roll length t*rb0 - rho from the base tangency point
-    roll_c = rho + math.sqrt(max((ra0 - rho) ** 2 - rb0 ** 2, 0.0))
-    rc0 = math.hypot(rb0, roll_c)
     return a0, alpha_c, ra0, rb0, rc0
+
+
+def cutter_radii(sec: Section, cutter: ShaperCutter):
+    """A shaper cutter's base radius ``rb0``, tip radius ``ra0`` and the radius ``rc0`` where its
+    involute flank ends under the tip rounding (= ``ra0`` if sharp), all in mm.
+
+    The rounding of radius rho touches the tip circle and the involute: its centre lies on the
+    involute's normal, at roll length ``t rb0 - rho`` from the base tangency point.
+
+    Examples
+    --------
+    >>> rb0, ra0, rc0 = cutter_radii(section(1.0, 20.0, 0.0), ShaperCutter(20, tip_radius=0.0))
+    >>> round(rb0, 6), round(ra0, 6), rc0 == ra0
+    (9.396926, 11.25, True)
+    """
+    mt, mn = sec.mt, sec.mn
+    rb0 = cutter.teeth * mt * math.cos(sec.alpha_t) / 2
+    ra0 = cutter.teeth * mt / 2 + (cutter.shift + cutter.addendum) * mn
+    rho = cutter.tip_radius * mn
+    roll_c = rho + math.sqrt(max((ra0 - rho) ** 2 - rb0 ** 2, 0.0))
+    return rb0, ra0, math.hypot(rb0, roll_c)
 
 
 def thickness_coeff(sec: Section, z: int, x: float, tool, internal: bool) -> float:
