@@ -1,6 +1,7 @@
 """Scene kinematics: the Willis relations as one linear system, against the textbook digest's worked
 examples (seed_textbook_other_gears_trains.md §4, §6, §7) and closed-form ratios."""
 from fractions import Fraction
+from pathlib import Path
 
 import pytest
 
@@ -8,20 +9,7 @@ from gearkit.errors import SpecError
 from gearkit.scene import Gear, Mesh, Motion, Relation, Scene, Train, scene_speeds
 from gearkit.scene.files import load_scene, scene_from_text
 
-ISSUE_SCENE = """\
-module = 1.75
-[gears]
-sun    = { teeth = 21, shift = 0.438 }
-planet = { teeth = 43, shift = 0.0426, count = 3, carrier = "carrier" }
-ring   = { teeth = 108, internal = true }
-[meshes]
-sun-planet  = ["sun", "planet"]
-planet-ring = ["planet", "ring"]
-[motion]
-fixed  = ["ring"]
-input  = "sun"
-output = "carrier"
-"""
+ISSUE_SCENE = (Path(__file__).resolve().parent.parent / "examples" / "planetary.toml").read_text(encoding="utf-8")
 
 
 def simple_set(z_sun, z_planet, z_ring, fixed="ring", inputs=None, **kw):
