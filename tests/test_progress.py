@@ -81,6 +81,16 @@ def test_no_bar_to_a_pipe_unless_asked():
     json.loads(out)
 
 
+def test_the_atlas_draws_no_bar_to_a_pipe_unless_asked(tmp_path):
+    """The atlas follows the one rule too (it used to force its bar on whatever stderr was)."""
+    argv = ["atlas", "--z1", "13", "--z2", "16", "--tol", "1e-2", "--workers", "1", "--json"]
+    code, out, err = _run_piped(argv + ["-o", str(tmp_path / "a")])
+    assert code in (0, 1) and "atlas [" not in err
+    json.loads(out)
+    code, out, err = _run_piped(["--progress", *argv, "-o", str(tmp_path / "b")])
+    assert code in (0, 1) and "atlas [" in err and err.endswith("\n")
+
+
 def test_progress_is_a_shared_flag_anywhere_on_the_line(capsys, monkeypatch):
     monkeypatch.setattr(Progress, "delay", 0.0)
     argv = ["pair", "--z1", "20", "--z2", "40", "-m", "2", "--width", "5", "--sweep", "3", "--json"]

@@ -44,7 +44,7 @@ def register(subparsers) -> None:
     r = p.add_argument_group("running")
     r.add_argument("--workers", type=int, default=2, help="local worker processes (default 2)")
     r.add_argument("--scheduler", help="address of a Dask scheduler (tcp://host:8786): run the cells there")
-    r.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
+    r.add_argument("--no-progress", action="store_true", help="no progress bar on stderr, even with --progress")
     o = p.add_argument_group("output")
     add_output_flag(o, "directory of the dataset (default ./atlas; an existing one is resumed)", default="atlas")
     add_json_flag(o, "print the index as one JSON object")
@@ -89,7 +89,7 @@ def run(args) -> int:
     template = template_spec(args, z1s[0], max(z2s[-1], z1s[0] + 8) if args.internal else z2s[0])
     options = {} if args.tol is None else {"tol": args.tol}
     index = write_atlas(z1s, z2s, args.output, template, workers=args.workers, scheduler=args.scheduler,
-                        criterion=args.criterion, progress=not args.no_progress, **options)
+                        criterion=args.criterion, progress=False if args.no_progress else None, **options)
     if args.json:
         print_json(index, indent=None)
     else:
