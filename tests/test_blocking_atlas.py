@@ -77,3 +77,14 @@ def test_internal_atlas_names_cells_that_are_no_pair(tmp_path):
     assert rows[(50, 49)]["status"] == "error" and "teeth" in rows[(50, 49)]["error"]
     assert rows[(20, 49)]["status"] == "ok"
 
+
+
+def test_contact_sheet_title_is_not_cut_off(local):
+    """The 2 x 2 sheet is narrower than its title: the title is wrapped to the figure, so no ink
+    touches the image's left or right edge (a cut-off title runs through both)."""
+    from matplotlib.image import imread
+
+    img = imread(local / "atlas.png")[..., :3]
+    ink = img.min(axis=2) < 0.5  # dark pixels: text and outlines
+    assert not ink[:, 0].any() and not ink[:, -1].any()
+    assert ink[: img.shape[0] // 5].any()  # the title is there, at the top

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import json
 import os
+import textwrap
 
 import numpy as np
 
@@ -174,6 +175,9 @@ def save(contour, path, recommendation=None, marked=None) -> None:
 
 
 SHEET_CELL = 0.62  #: inches per cell of the contact sheet
+SHEET_MIN_WIDTH = 4.0  #: inches: a small sheet still has room for its axis labels and title
+SHEET_MIN_HEIGHT = 3.2  #: inches, the same for the height (the wrapped title takes about one inch)
+SHEET_TITLE_CHARS_PER_INCH = 16  #: characters of the 8 pt title per inch (its average glyph is ~4.5 pt wide)
 
 
 def contact_sheet(records, z1s, z2s, path, template) -> None:
@@ -228,7 +232,8 @@ def contact_sheet(records, z1s, z2s, path, template) -> None:
             if y0 < 0 < y1:
                 v = j + pad + (1 - 2 * pad) * (0 - y0) / (y1 - y0)
                 axes.append(([i + pad, i + 1 - pad], [v, v]))
-    fig = Figure(figsize=(1.2 + SHEET_CELL * n1, 1.0 + SHEET_CELL * n2), dpi=100, layout="constrained")
+    width = max(SHEET_MIN_WIDTH, 1.2 + SHEET_CELL * n1)
+    fig = Figure(figsize=(width, max(SHEET_MIN_HEIGHT, 1.0 + SHEET_CELL * n2)), dpi=100, layout="constrained")
     ax = fig.add_subplot(1, 1, 1)
     for i in range(n1 + 1):
         ax.axvline(i, color="#bbbbbb", lw=0.5)
@@ -254,7 +259,10 @@ def contact_sheet(records, z1s, z2s, path, template) -> None:
     ax.set_aspect("equal")
     ax.set_xlabel("z1 (pinion teeth)")
     ax.set_ylabel("z2 (%s teeth)" % ("ring" if template.kind == "internal" else "wheel"))
-    ax.set_title(f"Blocking atlas ({template.kind}, alpha_n = {template.alpha_n_deg:g} deg): admissible region "
-                 f"of each pair, star = recommended\nevery cell on one scale: x1 from {x0:.2f} to {x1:.2f} (right), "
-                 f"x2 from {y0:.2f} to {y1:.2f} (up); dotted: x1 = 0, x2 = 0", fontsize=8)
+    title = [f"Blocking atlas ({template.kind}, alpha_n = {template.alpha_n_deg:g} deg): admissible region "
+             "of each pair, star = recommended",
+             f"every cell on one scale: x1 from {x0:.2f} to {x1:.2f} (right), x2 from {y0:.2f} to {y1:.2f} (up); "
+             "dotted: x1 = 0, x2 = 0"]
+    columns = int(width * SHEET_TITLE_CHARS_PER_INCH)  # the title is wrapped to the figure, never cut off
+    ax.set_title("\n".join(textwrap.fill(t, columns) for t in title), fontsize=8)
     atomic_write(path, lambda tmp: fig.savefig(tmp, format="png", metadata=_METADATA[".png"]))
