@@ -130,3 +130,36 @@ def test_command_runs_blas_on_one_thread_unless_the_user_says_otherwise(user_val
     proc = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, env=env, timeout=120)
     assert proc.returncode == 0, proc.stderr
     assert proc.stdout.split() == [expected, str(user_value is None)]
+
+
+COLLECTOR_PROBE = """
+import gc, sys
+if sys.argv[1] == "numpy-first":
+    import numpy
+from gearkit.cli import main
+collections = []  # one entry per collection once main runs: has the command begun building its gear?
+gc.callbacks.append(lambda phase, info: phase == "start" and collections.append(
+    "gearkit.families.involute.gear" in sys.modules))
+code = main(sys.argv[2:])
+print(repr({"code": code, "enabled": gc.isenabled(), "frozen": gc.get_freeze_count(),
+            "before_run": collections.count(False)}))
+"""
+
+
+@pytest.mark.parametrize("first, argv", [("fresh", ["gear", "-z", "12", "-m", "2"]), ("fresh", ["--help"]),
+                                         ("numpy-first", ["gear", "-z", "12", "-m", "2"])],
+                         ids=["fresh", "help", "numpy-loaded"])
+def test_fresh_command_imports_without_the_collector_and_leaves_it_on(first, argv):
+    """A fresh ``gearkit`` process imports numpy and its modules with the cycle collector paused (no
+    collection before the command runs), then freezes those objects and resumes the collector; a
+    process that loaded numpy first is left alone, and every way out (``--help`` too) leaves it on."""
+    proc = subprocess.run([sys.executable, "-c", COLLECTOR_PROBE, first, *argv], capture_output=True, text=True,
+                          timeout=120)
+    assert proc.returncode == 0, proc.stderr
+    out = ast.literal_eval(proc.stdout.strip().splitlines()[-1])
+    assert out["code"] == 0 and out["enabled"]
+    if first == "numpy-first":
+        assert out["frozen"] == 0
+    elif argv[0] == "gear":
+        assert out["before_run"] == 0  # none while numpy, the parser and the command's modules load
+        assert out["frozen"] > 10_000  # numpy's and the command's objects, out of the collector's sight

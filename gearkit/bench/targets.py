@@ -10,7 +10,8 @@ time of ``python -c "import numpy, manifold3d"`` (the least any command that wri
 pay), in the user's environment. The ``gearkit`` command runs numpy's BLAS on one thread (see
 :mod:`gearkit.cli`), which saves the thread pool's start-up; the floor with one BLAS thread is
 measured too and each row's note gives the ratio to it: gearkit's own cost over the least any
-process importing numpy and manifold3d pays. CPU time of the child process (user + system) is
+process importing numpy and manifold3d pays. The command also imports with the cycle collector
+paused (:func:`gearkit.cli.hold_collector`), which the floor's plain ``python -c`` does not. CPU time of the child process (user + system) is
 what passes or fails: it holds on a shared machine where wall time is inflated by other work;
 wall time is reported beside it.
 
