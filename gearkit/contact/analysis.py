@@ -191,7 +191,7 @@ def simulate(mesh: Mesh, steps: int = 2000, *, contact_tol: float | None = None,
         delta = ref if top["side"] == "working" else float(at.work[0])
         area = overlap_area(mesh, top["driver_angle"] + shifts[k], delta)
         inter = Interference(True, inter.max_depth, area, inter.where, inter.driver_angle, inter.point, inter.events)
-    counts = np.array([len(s) for s in ev.pair_sets()])
+    counts = ev.pair_counts()
     contacts = _contacts(ev, zeta)
     n = steps
     return ContactAnalysis(

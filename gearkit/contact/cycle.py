@@ -14,8 +14,9 @@ from gearkit.contact.solver import solve
 
 __all__ = ["Cycle", "contact_ratio"]
 
-#: iterations for the instants a pair enters or leaves contact
+#: most iterations for the instants a pair enters or leaves contact, and their tolerance (of a cycle)
 _EXTRAPOLATE = 8
+_INSTANT_TOL = 1e-8
 
 
 class Cycle:
@@ -55,7 +56,6 @@ class Cycle:
         self.excess = np.where(self.exact[..., wb], gap - noise, rough)  # (n, S, K, 2), mm
         self.touch = self.excess <= contact_tol
         self.pid = 2 * self.teeth[..., None] + np.arange(2)
-        self.ids = np.where(self.touch, self.pid, np.iinfo(np.int64).min)
         self.contact_tol = contact_tol
         self.working, self.arm_scale = mesh.working, mesh.arm_scale
 
@@ -84,9 +84,9 @@ class Cycle:
         mine = self.pid.reshape(n, -1) == np.asarray(pid)[:, None]
         return np.where(mine, self.depth(ref, bound).reshape(n, -1), -np.inf).max(axis=1)
 
-    def pair_sets(self):
-        """The set of pair ids (2 tooth + half) in contact at each angle."""
-        return [set(r[r != np.iinfo(np.int64).min].tolist()) for r in self.ids.reshape(len(self.phi), -1)]
+    def pair_counts(self):
+        """The number of pairs (driver halves, over all slices) in contact at each angle."""
+        return np.bincount(_entries(self)[0], minlength=len(self.phi))
 
     def extreme(self, bound):
         """Index tuples ``(n, s, k, h)`` of the extreme contact of ``bound`` at every angle."""
@@ -98,47 +98,106 @@ class Cycle:
 def contact_ratio(mesh, phi, ev, shifts, contact_tol):
     """Time average of the pairs in contact over ``phi[0] .. phi[-1]`` (one cycle).
 
-    Between two steps where a pair enters or leaves contact, the instant is found on
-    :meth:`Cycle.margin` (linear in the angle where the flanks part) by extrapolating its last two
-    values out of contact, bisecting while there are not two; each iteration is one evaluation of
-    every pending instant.
+    Between two steps where a pair enters or leaves contact, the instant is the zero of
+    :meth:`Cycle.margin`: ``sqrt(clearance) - sqrt(contact_tol)``, flat at ``-sqrt(contact_tol)``
+    while the flanks touch, then linear in the angle as they part. It is bracketed by a point in
+    contact and one out of it; each iteration interpolates between them once the point in contact
+    lies on the linear part (Illinois: the end kept twice has its value halved), extrapolates the
+    last two points out of contact while it does not, and bisects when neither lands inside the
+    bracket. Each iteration is one evaluation of every pending instant, until every bracket (or the
+    next correction) is below ``_INSTANT_TOL`` of a pitch.
     """
-    sets = ev.pair_sets()
-    period = phi[-1] - phi[0]
-    total = 0.0
-    todo = []  # (step, pair id, in at the step)
-    for j in range(len(phi) - 1):
-        a, b = sets[j], sets[j + 1]
-        total += len(a & b) * (phi[j + 1] - phi[j])
-        todo += [(j, pid, pid in a) for pid in a ^ b]
-    if todo:
-        j = np.array([t[0] for t in todo])
-        pid = np.array([t[1] for t in todo])
-        start_in = np.array([t[2] for t in todo])
-        # bracket: a point in contact (g <= 0) and one out of it (g > 0); out of contact g is linear in
-        # the angle, so the last two outside points extrapolate to the instant (bisection otherwise)
-        g0, g1 = _margin_at(ev, j, pid), _margin_at(ev, j + 1, pid)
-        inside = np.where(start_in, phi[j], phi[j + 1])
-        out1, gout1 = np.where(start_in, phi[j + 1], phi[j]), np.maximum(np.where(start_in, g1, g0), 1e-300)
-        out2, gout2 = np.full(len(todo), np.nan), np.full(len(todo), np.nan)
-        for _ in range(_EXTRAPOLATE):
-            with np.errstate(invalid="ignore", divide="ignore"):
-                x = out1 - gout1 * (out1 - out2) / (gout1 - gout2)
-            ok = np.isfinite(x) & ((x - inside) * (x - out1) < 0)
-            x = np.where(ok, x, 0.5 * (inside + out1))
-            g = Cycle(mesh, x, shifts, contact_tol, working_only=True).margin(pid)
-            hit = g <= 0
-            inside = np.where(hit, x, inside)
-            out2, gout2 = np.where(hit, out2, out1), np.where(hit, gout2, gout1)
-            out1, gout1 = np.where(hit, out1, x), np.where(hit, gout1, g)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            cut = out1 - gout1 * (out1 - out2) / (gout1 - gout2)
-        # the last bracket holds the instant: an extrapolation a last bit beyond its inside end (the
-        # margin bends where the clearance meets round-off) stops there
-        cut = np.where(np.isfinite(cut), np.clip(cut, np.minimum(inside, out1), np.maximum(inside, out1)),
-                       0.5 * (inside + out1))
-        total += float(np.sum(np.where(start_in, cut - phi[j], phi[j + 1] - cut)))
-    return total / period
+    steps, pid, key, span = _entries(ev)
+    last = len(phi) - 1
+    nxt = np.isin(key + span, key)  # in contact at the next step too
+    prv = np.isin(key - span, key)
+    total = float(np.sum(np.diff(phi)[steps[nxt]]))
+    leave, enter = ~nxt & (steps < last), ~prv & (steps > 0)
+    j = np.concatenate([steps[leave], steps[enter] - 1])
+    pid = np.concatenate([pid[leave], pid[enter]])
+    start_in = np.concatenate([np.ones(leave.sum(), bool), np.zeros(enter.sum(), bool)])
+    if j.size:
+        total += float(np.sum(_instants(mesh, phi, ev, shifts, contact_tol, j, pid, start_in)))
+    return total / (phi[-1] - phi[0])
+
+
+def _instants(mesh, phi, ev, shifts, contact_tol, j, pid, start_in):
+    """The time each pending pair spends in contact between steps ``j`` and ``j + 1`` (rad)."""
+    flat = np.sqrt(contact_tol)
+    g0, g1 = _margin_at(ev, j, pid), _margin_at(ev, j + 1, pid)
+    # the grid step beyond the one out of contact, where it is out of contact too: the second point
+    # of the first extrapolation
+    far = np.clip(np.where(start_in, j + 2, j - 1), 0, len(phi) - 1)
+    g_far = _margin_at(ev, far, pid)
+    far_ok = (np.abs(far - j) == np.where(start_in, 2, 1)) & (g_far > 0)
+    b = {"in": np.where(start_in, phi[j], phi[j + 1]), "g_in": np.where(start_in, g0, g1),
+         "out": np.where(start_in, phi[j + 1], phi[j]), "g_out": np.maximum(np.where(start_in, g1, g0), 1e-300),
+         "out2": np.where(far_ok, phi[far], np.nan), "g_out2": np.where(far_ok, g_far, np.nan),
+         "out3": np.full(len(j), np.nan), "g_out3": np.full(len(j), np.nan),
+         "w_in": np.ones(len(j)), "w_out": np.ones(len(j)), "side": np.zeros(len(j))}
+    xtol = _INSTANT_TOL * (phi[-1] - phi[0])
+    todo = np.arange(len(j))
+    for _ in range(_EXTRAPOLATE):
+        c = {k: v[todo] for k, v in b.items()}
+        x = _estimate(c, flat)
+        g = Cycle(mesh, x, shifts, contact_tol, working_only=True).margin(pid[todo])
+        hit = g <= 0
+        # Illinois: an end kept a second time in a row has its value halved
+        c["w_out"] = np.where(hit, np.where(c["side"] > 0, 0.5 * c["w_out"], c["w_out"]), 1.0)
+        c["w_in"] = np.where(hit, 1.0, np.where(c["side"] < 0, 0.5 * c["w_in"], c["w_in"]))
+        c["side"] = np.where(hit, 1.0, -1.0)
+        c["out3"], c["g_out3"] = np.where(hit, c["out3"], c["out2"]), np.where(hit, c["g_out3"], c["g_out2"])
+        c["out2"], c["g_out2"] = np.where(hit, c["out2"], c["out"]), np.where(hit, c["g_out2"], c["g_out"])
+        c["in"], c["g_in"] = np.where(hit, x, c["in"]), np.where(hit, g, c["g_in"])
+        c["out"], c["g_out"] = np.where(hit, c["out"], x), np.where(hit, c["g_out"], np.maximum(g, 1e-300))
+        for k, v in c.items():
+            b[k][todo] = v
+        width = np.abs(c["out"] - c["in"])
+        with np.errstate(invalid="ignore", divide="ignore"):  # the next correction, on the linear part
+            step = np.abs(g) * width / (c["g_out"] - c["g_in"])
+        done = (width <= xtol) | ((c["g_in"] > -0.5 * flat) & (step <= xtol))
+        todo = todo[~done]
+        if todo.size == 0:
+            break
+    b["w_in"][:], b["w_out"][:] = 1.0, 1.0
+    cut = _estimate(b, flat, final=True)
+    return np.where(start_in, cut - phi[j], phi[j + 1] - cut)
+
+
+def _estimate(b, flat, final=False):
+    """Next point of each bracket ``b``: interpolated (Illinois weights) once its end in contact is on
+    the margin's linear part, else extrapolated from its last two (three) points out of contact, linearly
+    (inverse quadratic); bisection
+    when neither lies strictly inside the bracket. ``final``: the last estimate, which stops at the
+    bracket's end it passes (the margin bends where the clearance meets round-off)."""
+    with np.errstate(invalid="ignore", divide="ignore"):
+        gi, go = b["w_in"] * b["g_in"], b["w_out"] * b["g_out"]
+        x_int = b["out"] - go * (b["out"] - b["in"]) / (go - gi)
+        x_ext = b["out"] - b["g_out"] * (b["out"] - b["out2"]) / (b["g_out"] - b["g_out2"])
+        # three points out of contact: inverse quadratic (the margin bends on its way to zero)
+        g1, g2, g3 = b["g_out"], b["g_out2"], b["g_out3"]
+        x_quad = (b["out"] * g2 * g3 / ((g1 - g2) * (g1 - g3)) + b["out2"] * g1 * g3 / ((g2 - g1) * (g2 - g3))
+                  + b["out3"] * g1 * g2 / ((g3 - g1) * (g3 - g2)))
+        x_ext = np.where(np.isfinite(x_quad), x_quad, x_ext)
+        x = np.where(b["g_in"] > -0.5 * flat, x_int, x_ext)
+    lo, hi = np.minimum(b["in"], b["out"]), np.maximum(b["in"], b["out"])
+    if final:
+        return np.where(np.isfinite(x), np.clip(x, lo, hi), 0.5 * (lo + hi))
+    return np.where(np.isfinite(x) & (x > lo) & (x < hi), x, 0.5 * (lo + hi))
+
+
+def _entries(ev):
+    """The pairs in contact at every step, each once: ``(step, pid, key, span)`` sorted by ``key = step *
+    span + pid - base`` (``key + span``: the same pair at the next step)."""
+    n = len(ev.phi)
+    s, c = np.nonzero(ev.touch.reshape(n, -1))
+    pid = ev.pid.reshape(n, -1)[s, c]
+    if pid.size == 0:
+        return s, pid, s, 1
+    base = int(pid.min())
+    span = int(pid.max()) - base + 1
+    key = np.unique(s * span + (pid - base))
+    return key // span, key % span + base, key, span
 
 
 def _margin_at(ev, steps, pid):

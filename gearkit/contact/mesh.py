@@ -167,7 +167,31 @@ class Mesh:
             x, y = x - self.centre2[0], y - self.centre2[1]
             qx, qy = c * x + s * y, c * y - s * x
             rho, psi = np.hypot(qx, qy), np.arctan2(qx, qy)
-        return rho, np.mod(psi, self.pitch2) - self.pitch2 / 2.0
+        # np.mod(psi, P) to the bit (its remainder is fmod's, moved into [0, P) when negative), in a
+        # fraction of its time
+        r = np.fmod(psi, self.pitch2)
+        return rho, np.where(r < 0, r + self.pitch2, r) - self.pitch2 / 2.0
+
+    def to_mate_derivatives(self, p, d1, d2, phi):
+        """:meth:`to_mate_xy` along a fixed-frame curve: ``rho, u`` and their first and second derivatives
+        in the curve's parameter, from its points ``p = [x, y]`` and their derivatives ``d1``, ``d2``
+        (flat arrays). ``(rho, rho', rho'', u, u', u'')``."""
+        rho, u = self.to_mate_xy(p[0], p[1], phi)
+        if self.kind == "rack":  # rho = a - y, psi = shift - x
+            return rho, -d1[1], -d2[1], u, -d1[0], -d2[0]
+        beta = self.beta0 + self.ratio * np.asarray(phi, dtype=float)
+        c, s = np.cos(beta), np.sin(beta)
+        x, y = p[0] - self.centre2[0], p[1] - self.centre2[1]
+        qx, qy = c * x + s * y, c * y - s * x  # the rotation is linear: so are its derivatives
+        dx, dy = c * d1[0] + s * d1[1], c * d1[1] - s * d1[0]
+        ex, ey = c * d2[0] + s * d2[1], c * d2[1] - s * d2[0]
+        r2 = qx * qx + qy * qy
+        rho_1 = (qx * dx + qy * dy) / rho
+        rho_2 = (dx * dx + dy * dy + qx * ex + qy * ey - rho_1 * rho_1) / rho
+        cross = qy * dx - qx * dy  # psi = atan2(qx, qy): psi' = cross / rho^2
+        u_1 = cross / r2
+        u_2 = (qy * ex - qx * ey) / r2 - 2.0 * u_1 * rho_1 / rho
+        return rho, rho_1, rho_2, u, u_1, u_2
 
     def mate_velocity(self, points):
         """Velocity of mate points at fixed-frame ``points`` per unit ``delta`` (mm/rad or 1 for a rack)."""

@@ -13,9 +13,10 @@ left), the bounds that its boundary puts on the mate's position (see :mod:`geark
    bound falls like a square root). Every interval whose ends come within ``dip`` of the half's
    best value is refined, for every half that may come within the contact tolerance of the best
    bound overall.
-2. **Refinement**, on the exact pieces, one polyline interval at a time: the crossing of the tip
-   circle by root finding (Illinois), the minimum by Brent's method after a few probes, and ``w``
-   by :meth:`HalfWidth.exact`. A smooth contact ends at a stationary point (the flanks touch
+2. **Refinement**, one polyline interval at a time: the crossing of the tip circle by root finding
+   (Illinois), the minimum after a few probes (:func:`~gearkit.contact.minimise.minimise`: Newton on
+   the tables' derivatives, Brent's method on the exact pieces), then each half's best evaluated on
+   the exact pieces, ``w`` by :meth:`HalfWidth.exact`. A smooth contact ends at a stationary point (the flanks touch
    tangentially); a corner contact at an interval end (the driver's corner) or at the tip
    crossing (the mate's corner).
 
@@ -27,16 +28,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gearkit.contact.minimise import minimise
 from gearkit.progress import Progress
 
 __all__ = ["Bounds", "solve"]
 
-#: Brent iterations of the minimum, Illinois iterations of a crossing (both converge long before)
-_MIN_ITER = 60
+#: Illinois iterations of a crossing (it converges long before)
 _CROSS_ITER = 40
-_GOLD = 0.3819660112501051
-#: interior samples of an interval before the bracket is narrowed
-_PROBES = 5
 #: search-array size per chunk of driver angles (memory ~ 40 bytes each)
 _CHUNK = 1_500_000
 
@@ -91,6 +89,25 @@ class _Task:
         self.r2 = np.zeros(len(phi))
         self.exact = False  # True: on the exact pieces even where the mesh has tables
 
+    @property
+    def smooth(self):
+        """The bound function's derivatives are at hand (:meth:`slope`): on tables within their tolerance."""
+        drv, mate = self.mesh.driver.table, self.mesh.mate.table
+        return not self.exact and drv is not None and mate is not None and drv.smooth and mate.smooth
+
+    def slope(self, t, rows):
+        """The bound function on the tables and its first and second derivatives in ``t`` (only where
+        :attr:`smooth`): the driver's and the mate's polynomials, differentiated through the frames."""
+        mesh = self.mesh
+        p, d1, d2 = mesh.driver.table.derivatives(self.piece[rows], t)
+        sig, th = self.sigma[rows], self.theta[rows]
+        c, s = np.cos(th), np.sin(th)
+        fixed = [[c * (sig * a[0]) - s * a[1], s * (sig * a[0]) + c * a[1]] for a in (p, d1, d2)]
+        rho, r1, r2, u, u1, u2 = mesh.to_mate_derivatives(*fixed, self.phi[rows])
+        w, w1, w2 = mesh.mate.table.derivatives(rho)
+        sb = self.sb[rows]
+        return w - sb * u, w1 * r1 - sb * u1, w2 * r1 * r1 + w1 * r2 - sb * u2
+
     def rho(self, t, rows=slice(None)):
         x, y = _driver_xy(self.mesh, self.piece[rows], t, self.sigma[rows], self.theta[rows], self.exact)
         return self.mesh.to_mate_xy(x, y, self.phi[rows])[0]
@@ -137,91 +154,6 @@ def _crossing(task, a, b):
     return np.where(gb <= 0, np.where((ga <= 0) & (ga > gb), a, b), a)
 
 
-def _minimise(task, a, b):
-    """Minimum of the bound function on ``[a, b]`` (finite there): value and parameter.
-
-    The function is sampled at the ends and at ``_PROBES`` interior points. The best sample brackets
-    the minimum with its neighbours (an end sample is the minimum when the function rises from
-    it: second-order one-sided slope, step 1e-7 of the interval); the bracket is then narrowed by
-    Brent's method (parabolic steps from the three best points, golden-section steps when a
-    parabola is not trusted), which compares values only.
-    """
-    width = b - a
-    h = 1e-7 * width
-    n = len(a)
-    frac = np.linspace(0.0, 1.0, _PROBES + 2)
-    grid = a[None, :] + frac[:, None] * width[None, :]  # (P, n)
-    pts = np.concatenate([grid.ravel(), a + h, a + 2 * h, b - h, b - 2 * h])
-    rows_all = np.concatenate([np.tile(np.arange(n), len(frac)), np.tile(np.arange(n), 4)])
-    v = task.value(pts, rows_all)[0]
-    vg = v[:grid.size].reshape(grid.shape)
-    va1, va2, vb1, vb2 = v[grid.size:].reshape(4, n)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        da = (-3 * vg[0] + 4 * va1 - va2) / (2 * h)
-        db = (3 * vg[-1] - 4 * vb1 + vb2) / (2 * h)
-    j = np.argmin(vg, axis=0)
-    best_v = vg[j, np.arange(n)]
-    best_t = grid[j, np.arange(n)]
-    at_a, at_b = j == 0, j == len(frac) - 1
-    settled = (width <= 0) | (at_a & ~(da < 0)) | (at_b & ~(db > 0))
-    rows = np.flatnonzero(~settled)
-    if rows.size == 0:
-        return best_v, best_t
-    jr = j[rows]
-    lo = grid[np.maximum(jr - 1, 0), rows]
-    hi = grid[np.minimum(jr + 1, len(frac) - 1), rows]
-    x = np.where(at_a[rows] | at_b[rows], 0.5 * (lo + hi), grid[jr, rows])
-    fx = np.where(at_a[rows] | at_b[rows], task.value(0.5 * (lo + hi), rows)[0], vg[jr, rows])
-    xw, fw, xv, fv = x.copy(), fx.copy(), x.copy(), fx.copy()
-    d = np.zeros(rows.size)
-    e = np.zeros(rows.size)
-    todo = np.arange(rows.size)
-    for _ in range(_MIN_ITER):
-        tol1 = 1e-8 * np.abs(x[todo]) + 1e-10 * width[rows[todo]]
-        todo = todo[np.abs(x[todo] - 0.5 * (lo[todo] + hi[todo])) > 2 * tol1 - 0.5 * (hi[todo] - lo[todo])]
-        if todo.size == 0:
-            break
-        x_, fx_, w_, fw_, v_, fv_ = x[todo], fx[todo], xw[todo], fw[todo], xv[todo], fv[todo]
-        lo_, hi_, d_, e_ = lo[todo], hi[todo], d[todo], e[todo]
-        mid = 0.5 * (lo_ + hi_)
-        tol1 = 1e-8 * np.abs(x_) + 1e-10 * width[rows[todo]]
-        with np.errstate(invalid="ignore", over="ignore", divide="ignore"):  # inf values: golden steps
-            r = (x_ - w_) * (fx_ - fv_)
-            q = (x_ - v_) * (fx_ - fw_)
-            p = (x_ - v_) * q - (x_ - w_) * r
-            q = 2 * (q - r)
-            p = np.where(q > 0, -p, p)
-            q = np.abs(q)
-            e_old = e_
-            para = (np.abs(e_old) > tol1) & (np.abs(p) < np.abs(0.5 * q * e_old)) & (p > q * (lo_ - x_)) \
-                & (p < q * (hi_ - x_))
-            step_p = p / q
-        golden_e = np.where(x_ >= mid, lo_ - x_, hi_ - x_)
-        e_new = np.where(para, d_, golden_e)
-        d_new = np.where(para, step_p, _GOLD * golden_e)
-        u = x_ + d_new
-        near_end = para & ((u - lo_ < 2 * tol1) | (hi_ - u < 2 * tol1))
-        d_new = np.where(near_end, np.copysign(tol1, mid - x_), d_new)
-        u = np.where(np.abs(d_new) >= tol1, x_ + d_new, x_ + np.copysign(tol1, d_new))
-        fu = task.value(u, rows[todo])[0]
-        better = fu <= fx_
-        lo_n = np.where(better, np.where(u >= x_, x_, lo_), np.where(u < x_, u, lo_))
-        hi_n = np.where(better, np.where(u >= x_, hi_, x_), np.where(u < x_, hi_, u))
-        shift_w = ~better & ((fu <= fw_) | (w_ == x_))
-        shift_v = ~better & ~shift_w & ((fu <= fv_) | (v_ == x_) | (v_ == w_))
-        xv[todo] = np.where(better | shift_w, w_, np.where(shift_v, u, v_))
-        fv[todo] = np.where(better | shift_w, fw_, np.where(shift_v, fu, fv_))
-        xw[todo] = np.where(better, x_, np.where(shift_w, u, w_))
-        fw[todo] = np.where(better, fx_, np.where(shift_w, fu, fw_))
-        x[todo] = np.where(better, u, x_)
-        fx[todo] = np.where(better, fu, fx_)
-        lo[todo], hi[todo], d[todo], e[todo] = lo_n, hi_n, d_new, e_new
-    better = fx < best_v[rows]
-    best_v[rows] = np.where(better, fx, best_v[rows])
-    best_t[rows] = np.where(better, x, best_t[rows])
-    return best_v, best_t
-
-
 def _refine(mesh, phi, theta, sigma, sb, m, fa, fb, half):
     """Minima of the bound function over polyline intervals ``m`` (one row each), the smallest kept
     per ``half`` (row indices ``sel``): on the tables, then the winners evaluated on the exact pieces."""
@@ -242,7 +174,7 @@ def _refine(mesh, phi, theta, sigma, sb, m, fa, fb, half):
         a[rows] = np.where(fa[rows], a[rows], tc)
         b[rows] = np.where(fa[rows], tc, b[rows])
         at_tip[rows] = True
-    value, t = _minimise(task, a, b)
+    value, t = minimise(task, a, b)
     order = np.lexsort((value, half))
     first = np.ones(order.size, bool)
     first[1:] = half[order][1:] != half[order][:-1]

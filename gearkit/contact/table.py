@@ -77,6 +77,15 @@ def _gathered(coef, j, s):
     return out
 
 
+def _derived(coef):
+    """Coefficients ``(n, D+1, c)`` and those of their first and second derivatives in ``s``, each stored
+    ``(c, D+1-i, n)`` (for :func:`_gathered`)."""
+    powers = np.arange(DEGREE + 1)[None, :, None]
+    d1 = coef[:, 1:] * powers[:, 1:]
+    d2 = d1[:, 1:] * powers[:, 1:-1]
+    return tuple(np.ascontiguousarray(c.transpose(2, 1, 0)) for c in (coef, d1, d2))
+
+
 def _build(evaluate, rows, a, b, tol, scale=None):
     """Fit ``evaluate(rows, x) -> (n, c)`` on intervals ``[a, b]`` (``rows``: the caller's index of each).
 
@@ -149,8 +158,9 @@ class CurveTable:
         self.intervals = len(k)
         self._key = 2.0 * k + a  # pieces two apart: t in [0, 1] never reaches the next piece's key
         self._a, self._inv = a, 2.0 / (b - a)
-        self._dcoef = np.ascontiguousarray((self._coef[:, 1:] * np.arange(1, DEGREE + 1)[None, :, None]).transpose(2, 1, 0))
-        self._coef = np.ascontiguousarray(self._coef.transpose(2, 1, 0))
+        self._coef, self._dcoef, self._d2coef = _derived(self._coef)
+        #: every sub-interval within ``tol``: :meth:`derivatives` applies everywhere
+        self.smooth = not self._fallback.any()
 
     def _locate(self, k, t):
         j = np.searchsorted(self._key, 2.0 * k + t, side="right") - 1
@@ -181,6 +191,17 @@ class CurveTable:
             ts = np.clip(tf[slow], h, 1 - h)
             d[slow] = (self._exact_piece(kf[slow], ts + h) - self._exact_piece(kf[slow], ts - h)) / (2 * h)
         return p, d.reshape(shape + (2,))
+
+    def derivatives(self, k, t):
+        """Points of pieces ``k`` at ``t`` (flat arrays) and their first and second derivatives in ``t``:
+        three lists ``[x, y]`` of flat arrays, on the table only (for a table that is :attr:`smooth`)."""
+        j, s = self._locate(k, t)
+        inv = self._inv[j]
+        p = _gathered(self._coef, j, s)
+        d1 = [c * inv for c in _gathered(self._dcoef, j, s)]
+        inv2 = inv * inv
+        d2 = [c * inv2 for c in _gathered(self._d2coef, j, s)]
+        return p, d1, d2
 
 
 class WidthTable:
@@ -214,8 +235,9 @@ class WidthTable:
         self.achieved = float(err[~self._fallback].max(initial=0.0))
         self.intervals = len(rows)
         self._row, self._a, self._b, self._inv = rows, a, b, 2.0 / (b - a)
-        self._coef = np.ascontiguousarray(coef.transpose(2, 1, 0))
-        self._dcoef = np.ascontiguousarray((coef[:, 1:] * np.arange(1, DEGREE + 1)[None, :, None]).transpose(2, 1, 0))
+        self._coef, self._dcoef, self._d2coef = _derived(coef)
+        #: every sub-interval within ``tol``: :meth:`derivatives` applies everywhere
+        self.smooth = not self._fallback.any()
         self._piece = half._k[rows]
         # sub-interval starts in rho, for the lookup (increasing, like the half width's table)
         self._r_start = np.where(self._grazing[rows], self._anchor[rows] + np.sign(a) * a * a, a)
@@ -225,6 +247,36 @@ class WidthTable:
         d = rho - self._anchor[rows]
         return np.where(self._grazing[rows], np.sign(d) * np.sqrt(np.abs(d)), rho)
 
+    def _locate(self, rho):
+        """Sub-interval ``j``, its row, the coordinate ``x`` and the local ``s in [-1, 1]`` of flat ``rho``."""
+        j = np.clip(np.searchsorted(self._r_start, rho, side="right") - 1, 0, len(self._r_start) - 1)
+        row = self._row[j]
+        x = self._x(row, rho)
+        return j, row, x, np.clip((x - self._a[j]) * self._inv[j] - 1.0, -1.0, 1.0)
+
+    def derivatives(self, rho):
+        """``w`` and its first and second derivatives in ``rho`` at flat ``rho``, on the table only (for a
+        table that is :attr:`smooth`): inf beyond the tip, the root's linear width inside the root circle.
+        Next to a stationary end the table is in ``x``, ``rho = end + sign(x) x^2``: the chain rule."""
+        half = self.half
+        j, row, x, s = self._locate(rho)
+        inv = self._inv[j]
+        w = _gathered(self._coef, j, s)[0]
+        w_x = _gathered(self._dcoef, j, s)[0] * inv
+        w_xx = _gathered(self._d2coef, j, s)[0] * (inv * inv)
+        graz = self._grazing[row]
+        r_x = np.where(graz, 2.0 * np.abs(x), 1.0)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            w_r = w_x / r_x
+            w_rr = (w_xx - w_r * np.where(graz, 2.0 * np.sign(x), 0.0)) / (r_x * r_x)
+        body, free = half._body(rho), half.free(rho)
+        if body.any() or free.any():
+            slope = half.outward / half.root_scale
+            w = np.where(body, half._body_width(rho), np.where(free, np.inf, w))
+            w_r = np.where(body, slope, np.where(free, np.nan, w_r))
+            w_rr = np.where(body, 0.0, np.where(free, np.nan, w_rr))
+        return w, w_r, w_rr
+
     def width(self, rho, tangent: bool = False):
         """``w``, the piece (-1 beyond the tip, -2 inside the root circle) and, with ``tangent``, the
         flank's unit tangent in the mate frame (zero off the flank), at ``rho`` (float64 array)."""
@@ -232,10 +284,7 @@ class WidthTable:
         rho = np.asarray(rho, dtype=float)
         shape = rho.shape
         rho = rho.ravel()
-        j = np.clip(np.searchsorted(self._r_start, rho, side="right") - 1, 0, len(self._r_start) - 1)
-        row = self._row[j]
-        x = self._x(row, rho)
-        s = np.clip((x - self._a[j]) * self._inv[j] - 1.0, -1.0, 1.0)
+        j, row, x, s = self._locate(rho)
         w = _gathered(self._coef, j, s)[0]
         slow = np.flatnonzero(self._fallback[j])
         if slow.size:
