@@ -167,31 +167,61 @@ class Mesh:
             x, y = x - self.centre2[0], y - self.centre2[1]
             qx, qy = c * x + s * y, c * y - s * x
             rho, psi = np.hypot(qx, qy), np.arctan2(qx, qy)
-        # np.mod(psi, P) to the bit (its remainder is fmod's, moved into [0, P) when negative), in a
-        # fraction of its time
-        r = np.fmod(psi, self.pitch2)
-        return rho, np.where(r < 0, r + self.pitch2, r) - self.pitch2 / 2.0
+        return rho, self._wrap(psi)
 
-    def to_mate_derivatives(self, p, d1, d2, phi):
-        """:meth:`to_mate_xy` along a fixed-frame curve: ``rho, u`` and their first and second derivatives
-        in the curve's parameter, from its points ``p = [x, y]`` and their derivatives ``d1``, ``d2``
-        (flat arrays). ``(rho, rho', rho'', u, u', u'')``."""
-        rho, u = self.to_mate_xy(p[0], p[1], phi)
+    def _wrap(self, psi):
+        """``np.mod(psi, P) - P / 2`` to the bit (the remainder is fmod's, moved into ``[0, P)`` when
+        negative), in a fraction of its time."""
+        r = np.fmod(psi, self.pitch2)
+        return np.where(r < 0, r + self.pitch2, r) - self.pitch2 / 2.0
+
+    def frames(self, theta, sigma, phi):
+        """Maps from a driver half's own coordinates to the mate's, one per row: driver teeth turned by
+        ``theta``, halves ``sigma`` (1 right, -1 left), at driver angles ``phi`` (arrays of one shape).
+
+        The two turns (the driver's by ``theta``, the mate frame's by ``-beta``) are one: ``X = a px -
+        b py - ox``, ``Y = c px + d py - oy`` are the mate-frame coordinates of a gear's point (the
+        fixed-frame ones for a rack, whose ``rho = a - Y``, ``psi = shift - X``). Returns ``(a, b, c,
+        d, ox, oy, shift)`` for :meth:`mate_coords` and :meth:`mate_derivatives` (index rows with
+        ``[:, rows]``)."""
+        theta, sigma, phi = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (theta, sigma, phi)))
+        beta = self.beta0 + self.ratio * phi
+        if self.kind == "rack":
+            gamma, ox, oy = theta, np.zeros_like(theta), np.zeros_like(theta)
+        else:
+            gamma = theta - beta
+            cb, sb = np.cos(beta), np.sin(beta)
+            ox = cb * self.centre2[0] + sb * self.centre2[1]
+            oy = cb * self.centre2[1] - sb * self.centre2[0]
+        c, s = np.cos(gamma), np.sin(gamma)
+        return np.stack([sigma * c, s, sigma * s, c, ox, oy, beta])
+
+    def mate_coords(self, px, py, frame):
+        """``rho, u`` (as :meth:`to_mate_xy`) of driver points given in their half's own coordinates,
+        through :meth:`frames` ``frame`` (each of its rows broadcast against ``px``, ``py``)."""
+        a, b, c, d, ox, oy, shift = frame
+        x, y = a * px - b * py - ox, c * px + d * py - oy
+        if self.kind == "rack":
+            return self.a - y, self._wrap(shift - x)
+        return np.hypot(x, y), self._wrap(np.arctan2(x, y))
+
+    def mate_derivatives(self, p, d1, d2, frame):
+        """:meth:`mate_coords` along a driver curve, with the first and second derivatives in its
+        parameter, from its points ``p = [px, py]`` and their derivatives ``d1``, ``d2`` (flat arrays):
+        ``(rho, rho', rho'', u, u', u'')``."""
+        a, b, c, d, ox, oy, shift = frame
+        x, y = a * p[0] - b * p[1] - ox, c * p[0] + d * p[1] - oy
+        dx, dy = a * d1[0] - b * d1[1], c * d1[0] + d * d1[1]  # the map is affine: its derivatives linear
+        ex, ey = a * d2[0] - b * d2[1], c * d2[0] + d * d2[1]
         if self.kind == "rack":  # rho = a - y, psi = shift - x
-            return rho, -d1[1], -d2[1], u, -d1[0], -d2[0]
-        beta = self.beta0 + self.ratio * np.asarray(phi, dtype=float)
-        c, s = np.cos(beta), np.sin(beta)
-        x, y = p[0] - self.centre2[0], p[1] - self.centre2[1]
-        qx, qy = c * x + s * y, c * y - s * x  # the rotation is linear: so are its derivatives
-        dx, dy = c * d1[0] + s * d1[1], c * d1[1] - s * d1[0]
-        ex, ey = c * d2[0] + s * d2[1], c * d2[1] - s * d2[0]
-        r2 = qx * qx + qy * qy
-        rho_1 = (qx * dx + qy * dy) / rho
-        rho_2 = (dx * dx + dy * dy + qx * ex + qy * ey - rho_1 * rho_1) / rho
-        cross = qy * dx - qx * dy  # psi = atan2(qx, qy): psi' = cross / rho^2
-        u_1 = cross / r2
-        u_2 = (qy * ex - qx * ey) / r2 - 2.0 * u_1 * rho_1 / rho
-        return rho, rho_1, rho_2, u, u_1, u_2
+            return self.a - y, -dy, -ey, self._wrap(shift - x), -dx, -ex
+        rho = np.hypot(x, y)
+        r2 = x * x + y * y
+        rho_1 = (x * dx + y * dy) / rho
+        rho_2 = (dx * dx + dy * dy + x * ex + y * ey - rho_1 * rho_1) / rho
+        u_1 = (y * dx - x * dy) / r2  # psi = atan2(x, y): psi' = (y x' - x y') / rho^2
+        u_2 = (y * ex - x * ey) / r2 - 2.0 * u_1 * rho_1 / rho
+        return rho, rho_1, rho_2, self._wrap(np.arctan2(x, y)), u_1, u_2
 
     def mate_velocity(self, points):
         """Velocity of mate points at fixed-frame ``points`` per unit ``delta`` (mm/rad or 1 for a rack)."""

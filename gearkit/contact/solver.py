@@ -88,6 +88,7 @@ class _Task:
         self.t2 = np.zeros(len(phi))
         self.r2 = np.zeros(len(phi))
         self.exact = False  # True: on the exact pieces even where the mesh has tables
+        self.frame = mesh.frames(theta, sigma, phi)  # the driver half's own coordinates -> the mate's
 
     @property
     def smooth(self):
@@ -100,20 +101,28 @@ class _Task:
         :attr:`smooth`): the driver's and the mate's polynomials, differentiated through the frames."""
         mesh = self.mesh
         p, d1, d2 = mesh.driver.table.derivatives(self.piece[rows], t)
-        sig, th = self.sigma[rows], self.theta[rows]
-        c, s = np.cos(th), np.sin(th)
-        fixed = [[c * (sig * a[0]) - s * a[1], s * (sig * a[0]) + c * a[1]] for a in (p, d1, d2)]
-        rho, r1, r2, u, u1, u2 = mesh.to_mate_derivatives(*fixed, self.phi[rows])
+        rho, r1, r2, u, u1, u2 = mesh.mate_derivatives(p, d1, d2, self.frame[:, rows])
         w, w1, w2 = mesh.mate.table.derivatives(rho)
         sb = self.sb[rows]
         return w - sb * u, w1 * r1 - sb * u1, w2 * r1 * r1 + w1 * r2 - sb * u2
 
+    def _fast(self, exact):
+        return not (exact or self.exact) and self.mesh.driver.table is not None
+
     def rho(self, t, rows=slice(None)):
+        if self._fast(False):  # the table, through the row's frame
+            p = self.mesh.driver.table.evaluate_xy(self.piece[rows], t)
+            return self.mesh.mate_coords(p[0], p[1], self.frame[:, rows])[0]
         x, y = _driver_xy(self.mesh, self.piece[rows], t, self.sigma[rows], self.theta[rows], self.exact)
         return self.mesh.to_mate_xy(x, y, self.phi[rows])[0]
 
     def value(self, t, rows=slice(None), tangent=False, exact=False):
         exact = exact or self.exact
+        if self._fast(exact) and not tangent:
+            p = self.mesh.driver.table.evaluate_xy(self.piece[rows], t)
+            rho, u = self.mesh.mate_coords(p[0], p[1], self.frame[:, rows])
+            w, piece, _ = self.mesh.mate.table.width(rho)
+            return w - self.sb[rows] * u, None, rho, piece, None
         x, y = _driver_xy(self.mesh, self.piece[rows], t, self.sigma[rows], self.theta[rows], exact)
         rho, u = self.mesh.to_mate_xy(x, y, self.phi[rows])
         q = np.stack([x, y], -1) if tangent else None
@@ -257,11 +266,8 @@ def _solve_chunk(mesh, phi, contact_tol, bounds) -> Bounds:
     near = np.abs(np.mod(theta[..., None] - mid + np.pi, 2 * np.pi) - np.pi) <= reach  # (n, K, 2)
     rows = np.flatnonzero(near)
     r_n, r_k, r_h = np.unravel_index(rows, near.shape)
-    sig = np.where(r_h == 0, 1.0, -1.0)[:, None]
-    th = theta[r_n, r_k][:, None]
-    c, s = np.cos(th), np.sin(th)
-    x, y = sig * pts[None, :, 0], pts[None, :, 1]
-    rho, u = mesh.to_mate_xy(c * x - s * y, s * x + c * y, phi[r_n][:, None])  # (A, M1)
+    frame = mesh.frames(theta[r_n, r_k], np.where(r_h == 0, 1.0, -1.0), phi[r_n])[:, :, None]
+    rho, u = mesh.mate_coords(pts[None, :, 0], pts[None, :, 1], frame)  # (A, M1)
     at = mate.lookup(rho)
     w = mate.coarse(rho, at)
     sb = np.array([1.0, -1.0])

@@ -192,6 +192,16 @@ class CurveTable:
             d[slow] = (self._exact_piece(kf[slow], ts + h) - self._exact_piece(kf[slow], ts - h)) / (2 * h)
         return p, d.reshape(shape + (2,))
 
+    def evaluate_xy(self, k, t):
+        """:meth:`evaluate` of flat ``k``, ``t`` as two flat arrays ``[x, y]``."""
+        j, s = self._locate(k, t)
+        p = _gathered(self._coef, j, s)
+        slow = np.flatnonzero(self._fallback[j])
+        if slow.size:
+            exact = self._exact_piece(k[slow], t[slow])
+            p[0][slow], p[1][slow] = exact[:, 0], exact[:, 1]
+        return p
+
     def derivatives(self, k, t):
         """Points of pieces ``k`` at ``t`` (flat arrays) and their first and second derivatives in ``t``:
         three lists ``[x, y]`` of flat arrays, on the table only (for a table that is :attr:`smooth`)."""

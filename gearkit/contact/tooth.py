@@ -204,14 +204,22 @@ class HalfWidth:
         for end in (self.rho_tip, self.rho_root):  # a stationary end: the normal runs through the centre
             if np.isfinite(self._anchor).any() and np.any(self._anchor == end):
                 self._arm_node[np.argmin(np.abs(self._grid_r - end))] = 0.0
+        # per interval, for the interpolations of the search (:meth:`coarse`, :meth:`arm`)
+        self._graze = np.isfinite(self._anchor)
+        self._inv = 1.0 / (self._r1 - self._r0)
+        self._dw = self._w1 - self._w0
+        with np.errstate(divide="ignore"):
+            step = np.diff(self._grid_r)
+            self._inv_grid = np.where(step > 0, 1.0 / np.where(step > 0, step, 1.0), 0.0)
+        self._darm = np.diff(self._arm_node)
 
     # -- regions ------------------------------------------------------------------------------
     def free(self, rho):
         """True beyond the tip (no tooth of the mate at this radial coordinate)."""
-        return self.outward * (np.asarray(rho) - self.rho_tip) > 0
+        return np.asarray(rho) > self.rho_tip if self.outward > 0 else np.asarray(rho) < self.rho_tip
 
     def _body(self, rho):
-        return self.outward * (np.asarray(rho) - self.rho_root) < 0
+        return np.asarray(rho) < self.rho_root if self.outward > 0 else np.asarray(rho) > self.rho_root
 
     def _body_width(self, rho):
         # inside the root circle everything is material: no space (w < 0; it jumps from w_root)
@@ -223,16 +231,16 @@ class HalfWidth:
         ``rho``, when the caller has it."""
         rho = np.asarray(rho, dtype=float)
         j, off = self.lookup(rho) if at is None else at
-        r0, r1 = self._r0[j], self._r1[j]
-        with np.errstate(invalid="ignore", divide="ignore"):
-            frac = (rho - r0) / (r1 - r0)
-            g = np.nonzero(np.isfinite(self._anchor[j]))
-            if g[0].size:
-                a = self._anchor[j[g]]
-                sq = np.sqrt(np.abs(rho[g] - a)), np.sqrt(np.abs(r0[g] - a)), np.sqrt(np.abs(r1[g] - a))
-                frac[g] = (sq[0] - sq[1]) / (sq[2] - sq[1])
-        frac = np.clip(np.nan_to_num(frac), 0.0, 1.0)
-        w = self._w0[j] + frac * (self._w1[j] - self._w0[j])
+        frac = (rho - self._r0[j]) * self._inv[j]
+        g = np.nonzero(self._graze[j])
+        if g[0].size:
+            jg = j[g]
+            a = self._anchor[jg]
+            sq = np.sqrt(np.abs(rho[g] - a)), np.sqrt(np.abs(self._r0[jg] - a)), np.sqrt(np.abs(self._r1[jg] - a))
+            with np.errstate(invalid="ignore", divide="ignore"):
+                frac[g] = np.nan_to_num((sq[0] - sq[1]) / (sq[2] - sq[1]))
+        np.clip(frac, 0.0, 1.0, out=frac)
+        w = self._w0[j] + frac * self._dw[j]
         if off.any():
             w = np.where(self._body(rho), self._body_width(rho), w)
             w = np.where(self.free(rho), np.inf, w)
@@ -349,10 +357,9 @@ class HalfWidth:
         Interpolated between the table's nodes (linearly: below the square-root rise off a crest)."""
         rho = np.asarray(rho, dtype=float)
         j, off = self.lookup(rho) if at is None else at
-        r0, r1 = self._grid_r[j], self._grid_r[j + 1]
-        with np.errstate(invalid="ignore", divide="ignore"):
-            frac = np.clip(np.nan_to_num((rho - r0) / (r1 - r0)), 0.0, 1.0)
-        out = self._arm_node[j] + frac * (self._arm_node[j + 1] - self._arm_node[j])
+        frac = (rho - self._grid_r[j]) * self._inv_grid[j]
+        np.clip(frac, 0.0, 1.0, out=frac)
+        out = self._arm_node[j] + frac * self._darm[j]
         s = np.abs(rho) if self.root_scale != 1.0 else 1.0
         return np.where(off, s, out)
 
