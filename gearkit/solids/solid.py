@@ -228,10 +228,10 @@ class Solid:
             return self._measures["normals"]
         if self._normals is None:  # a solid made by manifold3d: zero for a facet of no area, as written
             v, f = self.arrays()
-            v32 = v.astype(np.float32)
+            single = _columns(v.astype(np.float32))
             self._normals = np.zeros((len(f), 3), dtype=np.float32)
             for s in range(0, len(f), CHUNK):
-                n = _cross(v32, f[s:s + CHUNK])[1]
+                n = np.stack(_cross(single, _columns(f[s:s + CHUNK]))[1], 1)
                 length = np.sqrt(np.einsum("ij,ij->i", n, n))[:, None]
                 self._normals[s:s + CHUNK] = np.divide(n, length, out=np.zeros_like(n), where=length > 0)
         return self._normals
@@ -310,35 +310,49 @@ def mesh_measures(vertices, faces, what: str = "mesh") -> dict:
         raise GeometryError(f"{what}: the mesh is not a valid solid (non-finite vertices)")
     a = f.astype(np.int64, copy=False).ravel()
     b = f[:, (1, 2, 0)].astype(np.int64, copy=False).ravel()
-    key = np.minimum(a, b) * (2 * len(v)) + np.maximum(a, b) * 2 + (a > b)  # each edge: its two ends, its way
+    key = np.minimum(a, b)  # each edge: its two ends and its way, one integer
+    key *= 2 * len(v)
+    key += 2 * np.maximum(a, b)
+    key += a > b
     del a, b
     key.sort()
     if not ((key[0::2] & 1 == 0).all() and (key[1::2] == key[0::2] + 1).all()):
         raise RepairableMesh(f"{what}: the mesh is not a valid solid (an edge without exactly one opposite edge)")
     del key
-    v32 = v.astype(np.float32)
+    exact, single = _columns(v), _columns(v.astype(np.float32))
     normals = np.empty((len(f), 3), dtype=np.float32)
     volume = area = 0.0
     for s in range(0, len(f), CHUNK):
-        fc = f[s:s + CHUNK]
-        p0, n = _cross(v, fc)
-        volume += float(np.einsum("ij,ij->", p0, n)) / 6.0
-        area += 0.5 * float(np.sqrt(np.einsum("ij,ij->i", n, n)).sum())
-        n = _cross(v32, fc)[1]
-        length = np.sqrt(np.einsum("ij,ij->i", n, n))
+        corners = _columns(f[s:s + CHUNK])
+        p0, n = _cross(exact, corners)
+        volume += sum(float(np.einsum("i,i->", p, c)) for p, c in zip(p0, n)) / 6.0
+        area += 0.5 * float(np.sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sum())
+        n = _cross(single, corners)[1]
+        length = np.sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2])
         if not (length > 0.0).all():
             raise RepairableMesh(f"{what}: the mesh has degenerate facets (zero area in single precision)")
-        normals[s:s + CHUNK] = n / length[:, None]
+        for k in range(3):
+            normals[s:s + CHUNK, k] = n[k] / length
     if not volume > 0.0:
         raise RepairableMesh(f"{what}: the solid is empty or inside out (volume {volume:.6g} mm^3)")
     return {"volume": volume, "area": area, "normals": normals}
 
 
-def _cross(points, faces):
-    """The first corners (float64) of ``faces`` and the cross products of their edges (twice the
-    area along the normal), from ``points`` of either precision."""
-    p0 = points[faces[:, 0]].astype(np.float64)
-    return p0, np.cross(points[faces[:, 1]] - p0, points[faces[:, 2]] - p0)
+def _columns(a):
+    """The three columns of an ``(n, 3)`` array as contiguous float64 (int64 for indices) arrays."""
+    kind = np.int64 if np.issubdtype(a.dtype, np.integer) else np.float64
+    return tuple(np.ascontiguousarray(a[:, k], dtype=kind) for k in range(3))
+
+
+def _cross(points, corners):
+    """The first corners of facets and the cross products of their edges (twice the area along the
+    normal), as columns, from :func:`_columns` of the points and of the facets' corner indices (the
+    products as ``np.cross`` forms them)."""
+    p0 = tuple(c[corners[0]] for c in points)
+    e1 = tuple(c[corners[1]] - q for c, q in zip(points, p0))
+    e2 = tuple(c[corners[2]] - q for c, q in zip(points, p0))
+    n = (e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0])
+    return p0, n
 
 
 def manifold_from_arrays(vertices, faces):
