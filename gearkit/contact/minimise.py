@@ -25,7 +25,7 @@ A parabola with its minimum at 0.3 in ``[0, 1]``, found by Newton on its derivat
 ...     def slope(self, t, rows):
 ...         return (t - 0.3) ** 2, 2 * (t - 0.3), np.full_like(t, 2.0)
 >>> v, t = minimise(Parabola(), np.zeros(1), np.ones(1))
->>> abs(t[0] - 0.3) < 1e-15, v[0] < 1e-30
+>>> bool(abs(t[0] - 0.3) < 1e-15), bool(v[0] < 1e-30)
 (True, True)
 """
 from __future__ import annotations
