@@ -12,11 +12,11 @@ import numpy as np
 
 from gearkit.contact.solver import solve
 
-__all__ = ["Cycle", "contact_ratio"]
+__all__ = ["Cycle", "INSTANT_TOL", "contact_ratio"]
 
 #: most iterations for the instants a pair enters or leaves contact, and their tolerance (of a cycle)
 _EXTRAPOLATE = 8
-_INSTANT_TOL = 1e-8
+INSTANT_TOL = 1e-8
 
 
 class Cycle:
@@ -105,7 +105,7 @@ def contact_ratio(mesh, phi, ev, shifts, contact_tol):
     lies on the linear part (Illinois: the end kept twice has its value halved), extrapolates the
     last two points out of contact while it does not, and bisects when neither lands inside the
     bracket. Each iteration is one evaluation of every pending instant, until every bracket (or the
-    next correction) is below ``_INSTANT_TOL`` of a pitch.
+    next correction) is below ``INSTANT_TOL`` of a pitch.
     """
     steps, pid, key, span = _entries(ev)
     last = len(phi) - 1
@@ -135,7 +135,7 @@ def _instants(mesh, phi, ev, shifts, contact_tol, j, pid, start_in):
          "out2": np.where(far_ok, phi[far], np.nan), "g_out2": np.where(far_ok, g_far, np.nan),
          "out3": np.full(len(j), np.nan), "g_out3": np.full(len(j), np.nan),
          "w_in": np.ones(len(j)), "w_out": np.ones(len(j)), "side": np.zeros(len(j))}
-    xtol = _INSTANT_TOL * (phi[-1] - phi[0])
+    xtol = INSTANT_TOL * (phi[-1] - phi[0])
     todo = np.arange(len(j))
     for _ in range(_EXTRAPOLATE):
         c = {k: v[todo] for k, v in b.items()}
