@@ -139,7 +139,7 @@ def _write(args, prof, tol, kind) -> dict:
         return {"path": args.output, "tol": tol, "points": int(len(prof.outline(tol)))}
     from gearkit.solids import SolidSpec
     from gearkit.solids.cam import cam_solid
-    from gearkit.solids.export import write_mesh
+    from gearkit.cli.shell import write_solids
 
     if args.width is None:
         raise SpecError("--width", "a mesh output needs the cam width (--width, mm)")
@@ -147,7 +147,7 @@ def _write(args, prof, tol, kind) -> dict:
         solid = cam_solid(prof, SolidSpec(args.width, bore=args.bore, keyway=keyway_from_arg(args.keyway)), tol)
     except SpecError as exc:
         raise _as_flag(exc) from None
-    write_mesh(args.output, [solid], ascii=args.ascii)
+    write_solids(args.output, [solid], ascii=args.ascii)
     return {"path": args.output, "tol": tol, "width": args.width, "volume": solid.volume}
 
 

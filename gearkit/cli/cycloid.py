@@ -148,7 +148,8 @@ def _write_drive(args, spec, fmt) -> dict:
         write_profile(args.output, loops, {"family": "cycloidal disc", "pins": spec.pins, "lobes": spec.lobes})
         return {"path": args.output, "loops": len(loops), "tol": tol}
     from gearkit.solids.drive import disc_solid, drive_parts
-    from gearkit.solids.export import mesh_format, write_mesh
+    from gearkit.cli.shell import write_solids
+    from gearkit.solids.export import mesh_format
 
     tol = _tol(args, spec.eccentricity, 5e-3)
     width = args.width if args.width is not None else max(2.0 * spec.pin_radius, 0.1 * spec.pin_circle_radius)
@@ -156,7 +157,7 @@ def _write_drive(args, spec, fmt) -> dict:
         parts = [disc_solid(spec, width, tol, output)]
     else:
         parts = drive_parts(spec, width, tol, output)
-    write_mesh(args.output, parts)
+    write_solids(args.output, parts)
     return {"path": args.output, "parts": [p.name for p in parts], "tol": tol, "width": width,
             "volumes": {p.name: p.volume for p in parts}}
 
@@ -238,8 +239,8 @@ def _write_pair(args, spec, fmt) -> dict:
         write_profile(args.output, loops, {"family": wheel.family, "center_distance": a})
         return {"path": args.output, "loops": len(loops), "tol": tol}
     from gearkit.solids.drive import cylinders
+    from gearkit.cli.shell import write_solids
     from gearkit.solids import SolidSpec, gear_solid
-    from gearkit.solids.export import write_mesh
 
     tol = _tol(args, spec.module, 1e-2)
     width = args.width if args.width is not None else 5.0 * spec.module
@@ -250,7 +251,7 @@ def _write_pair(args, spec, fmt) -> dict:
         parts.append(cylinders(centres, spec.pin_radius, 0.0, width, tol, "pins"))
     else:
         parts.append(gear_solid(pinion, SolidSpec(width=width), tol, name="pinion").placed(turn, (0.0, a, 0.0)))
-    write_mesh(args.output, parts)
+    write_solids(args.output, parts)
     return {"path": args.output, "parts": [p.name for p in parts], "tol": tol, "width": width}
 
 

@@ -286,10 +286,18 @@ def _run_solid(args, spec, prof) -> int:
     from gearkit.solids.gear import estimate_faces
 
     solid_spec = solid_spec_from_args(args)
+    step = mesh_format(args.output) in ("step", "stp")
+    if step:  # the B-rep's faces, from the recipe, before anything is built
+        from gearkit.cli.shell import MAX_STEP_FACES
+        from gearkit.solids.solid import Recipe
+        from gearkit.solids.step import recipe_faces
+
+        bound("-o", recipe_faces(Recipe("gear", (prof, solid_spec, tol))), MAX_STEP_FACES,
+              "B-rep faces in the STEP file")
     bound("--tol", estimate_faces(prof, solid_spec, tol), MAX_FACES, "facets")
     solid = gear_solid(prof, solid_spec, tol, name="gear")
     info = prof.summary(tol, sample=False)  # the accuracy reported is the solid's
-    if mesh_format(args.output) in ("step", "stp"):
+    if step:
         from gearkit.solids.step import write_step
 
         info["tolerance"] = {"requested": tol, "achieved": write_step(args.output, [solid])["achieved"],

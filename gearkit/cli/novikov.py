@@ -81,7 +81,8 @@ def _write_3d(spec, args) -> dict:
     the face), or one gear when the file is named gear*."""
     from gearkit.families.novikov import tooth_profile
     from gearkit.families.novikov.mesh import mesh_contact
-    from gearkit.solids import SolidSpec, default_mesh_tol, gear_solid, write_mesh
+    from gearkit.cli.shell import write_solids
+    from gearkit.solids import SolidSpec, default_mesh_tol, gear_solid
 
     tol = tol_from(args.tol, default_mesh_tol(spec.module))
     body = SolidSpec(width=spec.face_width)
@@ -89,12 +90,12 @@ def _write_3d(spec, args) -> dict:
     which = args.gear if args.gear is not None else (1 if stem.startswith("gear") else None)
     if which is not None:
         solid = gear_solid(tooth_profile(spec.gear(which)), body, tol, name=f"gear{which}")
-        write_mesh(args.output, [solid])
+        write_solids(args.output, [solid])
         return {"parts": [solid.name], "achieved": solid.achieved}
     c = mesh_contact(spec, 0, interference=False)
     parts = [gear_solid(tooth_profile(spec.gear(k)), body, tol, name=f"gear{k}") for k in (1, 2)]
     placed = [parts[0].placed(c.rotations[0]), parts[1].placed(c.rotations[1], (0.0, c.center_distance, 0.0))]
-    write_mesh(args.output, placed)
+    write_solids(args.output, placed)
     overlap = float((placed[0].manifold ^ placed[1].manifold).volume())
     return {"parts": [p.name for p in placed], "achieved": max(p.achieved for p in placed),
             "interference_volume": overlap}

@@ -92,7 +92,9 @@ def run(args) -> int:
         info["sweep"] = {"angles_deg": [math.degrees(a) for a in angles], "interference": vols.tolist()}
         worst = max(worst, float(vols.max()))
     if args.output:
-        asm.export(args.output, angle, ascii=args.ascii)
+        from gearkit.cli.shell import write_solids
+
+        write_solids(args.output, asm.placed(angle), ascii=args.ascii)
         info["output"] = args.output
     if args.json:
         print_json(info)

@@ -65,7 +65,9 @@ def run(args) -> int:
         bound("--count", one.faces * args.count, MAX_FACES, "facets")
         bar = rack_solid(prof, length=args.count * prof.pitch, height=height, width=width, tol=tol,
                          start=-prof.pitch / 2)
-        bar.export(args.output)
+        from gearkit.cli.shell import write_solids
+
+        write_solids(args.output, [bar])
         info.update(output=args.output, volume=bar.volume, faces=bar.faces,
                     tolerance={"requested": tol, "achieved": bar.achieved})
     elif args.output:

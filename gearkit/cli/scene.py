@@ -52,6 +52,10 @@ def run(args) -> int:
     page = args.output is not None and str(args.output).lower().endswith((".html", ".htm"))
     scene = load_scene(args.file)
     model = SceneModel(scene, tol=args.tol, width=args.width, state=args.state)
+    if args.output is not None and not page:
+        from gearkit.cli.shell import bound_step
+
+        bound_step(args.output, model.parts(args.angle) if args.output.lower().endswith((".step", ".stp")) else [])
     rep = scene_report(model, args.fidelity, args.angle, args.state, None if page else args.output)
     if page:  # the page: every gear turning with the input, the solids, the meshes' checks
         from gearkit.view import write_page

@@ -66,6 +66,31 @@ def refuse_size(field: str, estimate: float, limit: float, unit: str, override: 
                                f"raise {override} to compute it anyway")
 
 
+#: default limit of a STEP file's B-rep faces (``--max-points`` raises it): about a minute of work (each
+#: face is made, sewn, checked and written: about 4 ms of CPU per face; a spur gear has 8 faces per tooth)
+MAX_STEP_FACES = 10_000
+
+
+def bound_step(path, parts) -> None:
+    """Refuse (exit 2) a STEP file of more than :data:`MAX_STEP_FACES` B-rep faces, estimated from the
+    parts' recipes before any is built (no-op for any other format)."""
+    from gearkit.solids.export import mesh_format
+
+    if mesh_format(path) in ("step", "stp"):
+        from gearkit.solids.step import estimate_faces
+
+        bound("-o", estimate_faces(parts), MAX_STEP_FACES, "B-rep faces in the STEP file")
+
+
+def write_solids(path, parts, ascii: bool = False):
+    """Write solids (:func:`~gearkit.solids.write_mesh`), a STEP file bounded first (:func:`bound_step`)."""
+    from gearkit.solids.export import write_mesh
+
+    parts = list(parts)
+    bound_step(path, parts)
+    return write_mesh(path, parts, ascii=ascii)
+
+
 def output_paths(args) -> list:
     """``(flag, path, is_folder)`` for every output a parsed command line names."""
     found = []

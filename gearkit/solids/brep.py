@@ -16,7 +16,7 @@ per knot span in u and in z): ``|S(u, z) - (R(theta(z)) c(w(u)) + (s(z), 0, z))|
 the distance of the surface point from the exact surface. The fit is refined until the
 largest measured value meets ``tol`` (the curve fit takes at most ``CURVE_SHARE`` of it).
 
-This is the only module (with :mod:`gearkit.solids.step`) that imports OCP; it is imported
+This module, :mod:`gearkit.solids.faces` and :mod:`gearkit.solids.step` are the only ones that import OCP; it is imported
 only when an exact solid is asked for.
 """
 from __future__ import annotations
@@ -29,6 +29,7 @@ from scipy.interpolate import BSpline, make_interp_spline
 
 from gearkit.accuracy import adaptive_sample
 from gearkit.errors import GeometryError, SpecError
+from gearkit.solids import faces
 
 #: share of ``tol`` the curve fit may take; the rest is the helix interpolation's
 CURVE_SHARE = 0.5
@@ -209,23 +210,6 @@ def _surface_deviation(curve: FittedCurve, run: Run, patch) -> float:
 
 
 # -- OCP ------------------------------------------------------------------------------------------
-def _knot_arrays(knots):
-    from OCP.collections import Array1_double, Array1_int
-
-    vals, mults = [], []
-    for k in knots:
-        if vals and abs(k - vals[-1]) <= 1e-14 * max(1.0, abs(k)):
-            mults[-1] += 1
-        else:
-            vals.append(float(k))
-            mults.append(1)
-    a, m = Array1_double(1, len(vals)), Array1_int(1, len(vals))
-    for i, (v, c) in enumerate(zip(vals, mults), start=1):
-        a.SetValue(i, v)
-        m.SetValue(i, c)
-    return a, m
-
-
 def _surface(curve: FittedCurve, patch):
     from OCP.collections import Array2_gp_Pnt
     from OCP.Geom import Geom_BSplineSurface
@@ -240,96 +224,51 @@ def _surface(curve: FittedCurve, patch):
     for i in range(nu):
         for j in range(nv):
             poles.SetValue(i + 1, j + 1, gp_Pnt(float(qx[i, j]), float(qy[i, j]), float(grev[j])))
-    uk, um = _knot_arrays(curve.knots)
-    vk, vm = _knot_arrays(knots_v)
+    uk, um = faces.knot_arrays(curve.knots)
+    vk, vm = faces.knot_arrays(knots_v)
     surf = Geom_BSplineSurface(poles, uk, vk, um, vm, curve.degree, deg_v)
     ends = [np.column_stack([qx[:, j], qy[:, j], np.full(nu, grev[j])]) for j in (0, -1)]
     return surf, ends
 
 
-def _edge(poles3, knots, degree):
-    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
-    from OCP.collections import Array1_gp_Pnt
-    from OCP.Geom import Geom_BSplineCurve
-    from OCP.gp import gp_Pnt
-
-    arr = Array1_gp_Pnt(1, len(poles3))
-    for i, q in enumerate(poles3, start=1):
-        arr.SetValue(i, gp_Pnt(*map(float, q)))
-    k, m = _knot_arrays(knots)
-    return BRepBuilderAPI_MakeEdge(Geom_BSplineCurve(arr, k, m, degree)).Edge()
-
-
-def _wire(edges):
-    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeWire
-
-    wire = BRepBuilderAPI_MakeWire()
-    for e in edges:
-        wire.Add(e)
-    if not wire.IsDone():
-        raise GeometryError("an end face's edges do not close")
-    return wire.Wire()
-
-
-def _circle_edge(radius: float, z: float):
-    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge
-    from OCP.gp import gp_Ax2, gp_Circ, gp_Dir, gp_Pnt
-
-    return BRepBuilderAPI_MakeEdge(gp_Circ(gp_Ax2(gp_Pnt(0.0, 0.0, z), gp_Dir(0.0, 0.0, 1.0)), radius)).Edge()
-
-
-def _cap(edges, outer=None, z=0.0):
-    """Planar end face bounded by ``edges``; with ``outer`` (radius), an annulus from that circle in
-    to the loop of edges (a ring's end face)."""
-    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
-    from OCP.ShapeFix import ShapeFix_Face
-
-    loop = _wire(edges)
-    if outer is None:
-        face = BRepBuilderAPI_MakeFace(loop, True)
-    else:
-        face = BRepBuilderAPI_MakeFace(_wire([_circle_edge(outer, z)]), True)
-        face.Add(loop)
-    if not face.IsDone():
-        raise GeometryError("an end face is not planar")
-    if outer is None:
-        return face.Face()
-    fix = ShapeFix_Face(face.Face())
-    fix.FixOrientation()
-    return fix.Face()
-
-
-def _cylinder_face(radius: float, z0: float, z1: float):
-    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace
-    from OCP.gp import gp_Ax3, gp_Cylinder, gp_Dir, gp_Pnt
-
-    cyl = gp_Cylinder(gp_Ax3(gp_Pnt(0.0, 0.0, 0.0), gp_Dir(0.0, 0.0, 1.0)), radius)
-    return BRepBuilderAPI_MakeFace(cyl, 0.0, 2.0 * math.pi, z0, z1).Face()
-
-
-def to_shape(sw: Sweep, outer: float | None = None):
+def to_shape(sw: Sweep, outer: float | None = None, sectors=None, bar=None):
     """The closed, valid OCP solid of a planned sweep; with ``outer`` (radius, mm) the section is a
-    hole in a cylinder of that radius (a ring gear)."""
+    hole in a cylinder of that radius (a ring gear). ``sectors`` ``(curves per sector, radius of the
+    dividing circle)`` cuts each end cap into sectors (:func:`~gearkit.solids.faces.sector_caps`: the
+    section's loop must start at a space centre, and every sector too). ``bar``: a
+    :class:`~gearkit.progress.Progress` advanced by one step per face made."""
     from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakeSolid, BRepBuilderAPI_Sewing
     from OCP.TopAbs import TopAbs_SHELL
     from OCP.TopExp import TopExp_Explorer
     from OCP.TopoDS import TopoDS
 
     sewing = BRepBuilderAPI_Sewing(SEW_TOL)
-    bottom, top = [], []
+    bottom, top, ends_at = [], [], ([], [])
     for r, patch in enumerate(sw.patches):
         for c in sw.curves:
             surf, ends = _surface(c, patch)
             sewing.Add(BRepBuilderAPI_MakeFace(surf, 1e-9).Face())
             if r == 0:
-                bottom.append(_edge(ends[0], c.knots, c.degree))
+                bottom.append(faces.bspline_edge(ends[0], c.knots, c.degree))
+                ends_at[0].append(ends[0][0, :2])
             if r == len(sw.patches) - 1:
-                top.append(_edge(ends[1], c.knots, c.degree))
+                top.append(faces.bspline_edge(ends[1], c.knots, c.degree))
+                ends_at[1].append(ends[1][0, :2])
+            if bar is not None:
+                bar.step()
     z0, z1 = sw.runs[0].z0, sw.runs[-1].z1
-    sewing.Add(_cap(bottom, outer, z0))
-    sewing.Add(_cap(top, outer, z1))
+    for edges, starts, z in ((bottom, ends_at[0], z0), (top, ends_at[1], z1)):
+        if sectors is None:
+            sewing.Add(faces.cap(edges, outer, z))
+            continue
+        first = list(range(0, len(edges), sectors[0]))
+        for face in faces.sector_caps(edges, first, [starts[i] for i in first], sectors[1], outer, z):
+            sewing.Add(face)
     if outer is not None:
-        sewing.Add(_cylinder_face(outer, z0, z1))
+        sewing.Add(faces.cylinder_face(outer, z0, z1))
+    if bar is not None:
+        bar.note = "sewing the faces"
+        bar.update(bar.done)
     sewing.Perform()
     sewed = sewing.SewedShape()
     exp = TopExp_Explorer(sewed, TopAbs_SHELL)
@@ -340,9 +279,12 @@ def to_shape(sw: Sweep, outer: float | None = None):
     if exp.More():
         raise GeometryError("the faces sew into more than one shell")
     solid = BRepBuilderAPI_MakeSolid(shell).Solid()
-    from OCP.BRepLib import BRepLib
-
-    BRepLib.OrientClosedSolid_s(solid)
+    if bar is not None:
+        bar.step(len(sw.curves) * len(sw.patches))
+    # the sewn shell's faces agree in orientation (check_solid verifies it): a negative volume means the
+    # whole shell faces inwards (a classifier's orientation costs as much as the sewing for thousands of faces)
+    if volume(solid, None) < 0.0:
+        solid.Reverse()
     return solid
 
 

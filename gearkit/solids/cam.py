@@ -59,5 +59,5 @@ def cam_solid(profile, spec: SolidSpec, tol: float | None = None, name: str = "c
     man = checked(m3.Manifold.extrude(section, float(spec.width)), name)
     info = {"kind": "cam", "tol": tol, "achieved": profile.achieved(tol), "area": area, "width": float(spec.width),
             "bore": spec.bore, "points": int(len(outline))}
-    # the exact pieces rebuild it as B-spline faces for STEP (gearkit.solids.step.prism_shape)
+    # the exact pieces rebuild it as B-spline faces for STEP (gearkit.solids.shapes.prism_shape)
     return Solid(man, name, info, Recipe("prism", (tuple(profile.pieces), spec, float(tol))))

@@ -6,7 +6,7 @@ loop is turned round) gets a :class:`~gearkit.solids.Solid` from :func:`prism_so
 keyway if asked: the mesh is the outline sampled to ``tol``
 (:func:`~gearkit.accuracy.adaptive_sample`, achieved deviation measured) and extruded by
 manifold3d; its recipe rebuilds the same outline as B-spline faces for STEP
-(:func:`gearkit.solids.step.prism_shape`). So STL, OBJ, GLB, 3MF and STEP all work.
+(:func:`gearkit.solids.shapes.prism_shape`). So STL, OBJ, GLB, 3MF and STEP all work.
 """
 from __future__ import annotations
 

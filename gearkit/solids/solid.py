@@ -91,7 +91,7 @@ class SolidSpec:
 
 @dataclass(frozen=True)
 class Recipe:
-    """How to rebuild a solid as an exact B-rep (:func:`gearkit.solids.step.shape`), and where it is placed.
+    """How to rebuild a solid as an exact B-rep (:func:`gearkit.solids.shapes.shape`), and where it is placed.
 
     kind : "gear" (profile, SolidSpec, tol), "rack" (profile, length, height, width, start, tol),
         "prism" (curves, SolidSpec: width, bore, keyway; tol), "section" (curves, runs, tol),
