@@ -97,11 +97,24 @@ def test_design_file_gives_the_same_cam_as_the_flags(tmp_path, capsys):
                       '[[motion]]\nkind = "dwell"\nspan_deg = 60\n\n'
                       '[[motion]]\nkind = "return"\nspan_deg = 60\nlift = 20\n')
     _, by_flags = run_json(capsys, BASE)
-    _, by_file = run_json(capsys, ["cam", "--design", str(design)])
+    _, by_file = run_json(capsys, ["cam", str(design)])
     assert by_file["pressure_angle_max_deg"] == by_flags["pressure_angle_max_deg"]
     assert by_file["min_curvature_radius"] == by_flags["min_curvature_radius"]
+    # the flags typed override the file, as in every command (a motion flag replaces the whole motion)
+    _, smaller = run_json(capsys, ["cam", str(design), "--roller-radius", "6", "--offset", "5"])
+    _, flags = run_json(capsys, BASE[:3] + ["--roller-radius", "6", "--offset", "5"] + BASE[5:])
+    assert smaller == flags and smaller != by_file
+    _, faster = run_json(capsys, ["cam", str(design), "--rise", "20", "--rise-deg", "45", "--return-deg", "60"])
+    _, flags = run_json(capsys, BASE[:9] + ["--rise-deg", "45", "--return-deg", "60"])
+    assert faster == flags
+    assert main(["cam", str(design), "--rise-deg", "45"]) == 2  # a motion flag needs the whole motion
+    assert "--rise:" in capsys.readouterr().err
+    # the old spelling --design FILE reads it too, with one deprecation line
+    code = main(["cam", "--design", str(design), "--json"])
+    out, err = capsys.readouterr()
+    assert code == 0 and json.loads(out) == by_file and err.count("is deprecated") == 1
     design.write_text('[cam]\nprime_radius = 50\nroler_radius = 5\n[[motion]]\nkind = "rise"\nspan_deg = 90\n')
-    assert main(["cam", "--design", str(design)]) == 2
+    assert main(["cam", str(design)]) == 2
     assert "cam.roler_radius" in capsys.readouterr().err
 
 

@@ -320,9 +320,9 @@ def test_internal_error_is_one_line_with_a_debug_hint(capsys, monkeypatch):
     (["gear", "-z", "20", "-m", "2", "--tol", "1e-11", "-o", "{t}/g.svg"], "tol"),
     (["gear", "-z", "20", "-m", "2", "--helix-angle-deg", "20", "--width", "20", "--tol", "1e-6", "-o", "{t}/h.stl"],
      "--tol"),
-    (["rack", "-m", "2", "-n", "10000", "-o", "{t}/r.stl"], "--count"),
-    (["rack", "-m", "2", "-n", "100001"], "--count"),
-    (["rack", "-m", "2", "-n", "0"], "--count"),
+    (["rack", "-m", "2", "-n", "10000", "-o", "{t}/r.stl"], "--bar-teeth"),
+    (["rack", "-m", "2", "-n", "100001"], "--bar-teeth"),
+    (["rack", "-m", "2", "-n", "0"], "--bar-teeth"),
     (["pair", "--z1", "20", "--z2", "40", "-m", "2", "--width", "10", "--sweep", "100000"], "--sweep"),
     (["contact", "--z1", "20", "--z2", "40", "-m", "2", "--steps", "1000000"], "--steps"),
 ])

@@ -143,7 +143,6 @@ def test_text_and_json_spell_the_tool_alike(capsys, tmp_path, argv, label):
 #: flags whose destination differs in meaning between commands on purpose, with the reason
 SAME_NAME_EXCEPTIONS = {
     "--rack": "novikov's names a circular-arc rack system (preset or file); the involute commands' a basic rack",
-    "--count": "rack's -n/--count lays out teeth; planetary's lists sets: both a count of what the command makes",
 }
 #: (command, flag) taking more values of the same quantity than elsewhere, with the reason
 ARITY_EXCEPTIONS = {
@@ -200,15 +199,42 @@ def test_per_gear_flags_are_the_single_gear_flags_numbered():
      ["cycloid", "-m", "1", "--pinion-teeth", "8", "--wheel-teeth", "64", "--pin-radius", "0.4", "--json"]),
     (["check", "--z1", "18", "--z2", "41", "-m", "2", "--da1", "39.5", "--tip", "standard", "--json"],
      ["check", "--z1", "18", "--z2", "41", "-m", "2", "--tip-diameter1", "39.5", "--tip-rule", "standard", "--json"]),
+    (["rack", "-m", "2", "--count", "3", "--json"], ["rack", "-m", "2", "--bar-teeth", "3", "--json"]),
+    (["planetary", "--ratio", "6.1428571", "--planets", "3", "-m", "1.75", "--ratio-tol", "1e-6", "--count", "2",
+      "--json"],
+     ["planetary", "--ratio", "6.1428571", "--planets", "3", "-m", "1.75", "--ratio-tol", "1e-6", "--sets", "2",
+      "--json"]),
 ])
 def test_a_renamed_flag_keeps_working_with_a_deprecation_line(capsys, tmp_path, old, new):
     code_old, out_old, err_old = run(capsys, old, tmp_path)
     code_new, out_new, err_new = run(capsys, new, tmp_path)
     assert code_old == code_new and json.loads(out_old) == json.loads(out_new)
-    assert "is deprecated, use --" in err_old and "deprecated" not in err_new
+    assert "is deprecated, use -" in err_old and "deprecated" not in err_new
     # the old and the new spelling together are refused
-    both = new + [old[old.index(f)] for f in old if f in ("--pins", "--da1")] + ["1"]
+    both = new + [old[old.index(f)] for f in old if f in ("--pins", "--da1", "--count")] + ["1"]
     assert run(capsys, both, tmp_path)[0] == 2
+
+
+#: long flag names that do not say what they count or name (a flag says its quantity: --planets, --sets,
+#: --bar-teeth, --steps), kept only as a renamed flag's deprecated spelling
+VAGUE = ("--count", "--number", "--num", "--n", "--amount", "--size", "--value", "--file")
+
+
+@pytest.mark.parametrize("name, parser", parsers(), ids=[n for n, _ in parsers()])
+def test_a_flag_says_what_it_counts(name, parser):
+    """``--count`` meant teeth in one command and listed sets in another: no flag is that vague."""
+    vague = [f for f, a in flag_actions(parser).items() if f in VAGUE and not isinstance(a, RenamedFlag)]
+    assert vague == [], name
+
+
+@pytest.mark.parametrize("name, parser", parsers(), ids=[n for n, _ in parsers()])
+def test_a_design_file_is_the_first_argument_everywhere(name, parser):
+    """Every command that reads a design file takes it the one way (cli.design.add_design_argument: the
+    first argument, flags typed overriding it); an older ``--design FILE`` is only a deprecated spelling."""
+    positional = [a for a in parser._actions if a.dest == "design" and not a.option_strings]
+    flagged = [a for a in parser._actions if a.dest == "design" and a.option_strings]
+    assert all(isinstance(a, RenamedFlag) for a in flagged), name
+    assert len(positional) == (name.split()[0] not in NO_DESIGN), name
 
 
 # ----------------------------------------------------------------------------- printing
@@ -246,6 +272,7 @@ QUANTITY_FLAGS = {
     "helix_angle_deg": ("--helix-angle-deg",),
     "pressure_angle_deg": ("--pressure-angle-deg",),
     "width": ("--width",),
+    "bar_teeth": ("-n", "--bar-teeth"),
 }
 #: numeric flags whose name looks like one of those quantities but is another, with the reason
 NOT_THE_QUANTITY = {
@@ -339,14 +366,18 @@ DESIGN_CASES = {
                         ["cycloidal-drive", *DRIVE_ARGS, "--samples", "100", "--json"]),
     "rack": ('module = 2\nrack = "iso53b"\n', ["rack", "{f}", "-m", "3", "--json"],
              ["rack", "-m", "3", "--rack", "iso53b", "--json"]),
+    "cam": ('[cam]\nprime_radius = 40\nroller_radius = 8\n[[motion]]\nkind = "rise"\nspan_deg = 90\nlift = 10\n'
+            '[[motion]]\nkind = "return"\nspan_deg = 90\nlift = 10\n',
+            ["cam", "{f}", "--roller-radius", "6", "--json"],
+            ["cam", "--prime-radius", "40", "--roller-radius", "6", "--rise", "10", "--rise-deg", "90", "--return-deg",
+             "90", "--json"]),
     "view drive": (DRIVE_TOML, ["view", "drive", "{f}", "--cycles", "1", "-o", "{t}/a.html"],
                    ["view", "drive", *DRIVE_ARGS[:-1], "4", "--cycles", "1", "-o", "{t}/b.html"]),
 }
 #: commands that take no design file, with the reason
 NO_DESIGN = {"demo": "runs a built-in design", "bench": "measures the kernel; it describes no design",
              "scene": "its argument is a scene file (gears, shafts, carriers, meshes)",
-             "planetary": "searches tooth numbers for a ratio; it describes no gear yet",
-             "cam": "describes a cam: its own design file, --design FILE ([cam] and [[motion]] tables)"}
+             "planetary": "searches tooth numbers for a ratio; it describes no gear yet"}
 
 
 def _comparable(out: str):

@@ -143,7 +143,7 @@ def test_cli_scene_bad_input_is_one_line(tmp_path, capsys):
 
 
 def test_cli_planetary_json_keys(capsys):
-    assert main(["planetary", "--ratio", str(1 + 108 / 21), "--planets", "3", "-m", "1.75", "--count", "2",
+    assert main(["planetary", "--ratio", str(1 + 108 / 21), "--planets", "3", "-m", "1.75", "--sets", "2",
                  "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     best = out["candidates"][0]

@@ -7,7 +7,7 @@ Usage::
                 [--contact roller|knife|flat] [--rocker --pivot-distance L0 --arm-length L] [--groove]
                 [--limit-deg A] [--tol T] [--json] [-o cam.svg|cam.dxf|cam.csv|cam.json|cam.stl|cam.obj|cam.glb]
                 [--width B --bore D [--keyway WxD]] [--plot cam.png]
-    gearkit cam --design cam.toml [--json] [-o FILE] [--plot FILE]
+    gearkit cam cam.toml [flags that override the file] [--json] [-o FILE] [--plot FILE]
 
 Exit status: 0 when no finding fails, 1 when one fails, 2 for bad input (one line naming the flag).
 """
@@ -16,8 +16,9 @@ from __future__ import annotations
 import math
 import sys
 
-from gearkit.cli.common import (QUANTITIES, add_json_flag, add_keyway_flag, add_output_flag, add_tol_flag, keyway_from_arg,
-                                output_kind, print_json, tol_from)
+from gearkit.cli.common import (QUANTITIES, add_json_flag, add_keyway_flag, add_output_flag, add_renamed_flag, add_tol_flag,
+                                keyway_from_arg, output_kind, print_json, tol_from)
+from gearkit.cli.design import add_design_argument, given
 from gearkit.errors import SpecError
 
 #: spec fields as the flags that set them, for error lines a user can act on
@@ -27,8 +28,13 @@ _FLAGS = {"prime_radius": "--prime-radius", "roller_radius": "--roller-radius", 
           "return": "--rise", "rise_deg": "--rise-deg", "return_deg": "--return-deg", "dwell_deg": "--dwell-deg",
           "motion": "--rise-deg", "law": "--law", "contact": "--contact", "width": "--width", "bore": "--bore",
           "keyway": "--keyway", "tol": "--tol"}
-_FIELDS_WITH_DESIGN = ("json", "output", "plot", "tol", "width", "bore", "keyway", "ascii", "design", "run",
-                       "command")
+#: flag destination -> the CamSpec field it overrides in a design file
+_SPEC_FIELDS = {"prime_radius": "prime_radius", "contact": "contact", "roller_radius": "roller_radius",
+                "offset": "offset", "pivot_distance": "pivot_distance", "arm_length": "arm_length",
+                "efficiency": "efficiency", "friction": "friction", "limit_deg": "pressure_angle_limit_deg",
+                "groove": "groove"}
+#: the flags of the motion program: any of them typed replaces a design file's [[motion]] program
+_MOTION_FLAGS = ("law", "return_law", "rise", "rise_deg", "dwell_deg", "return_deg")
 
 
 def register(subparsers) -> None:
@@ -42,7 +48,10 @@ def register(subparsers) -> None:
                     "the profile (2D), the solid or a picture. Lengths in mm, angles in degrees; the cam turns "
                     "counter-clockwise.",
         epilog="Exit status: 0 no finding fails, 1 a finding fails, 2 bad input.")
-    p.add_argument("--design", default=None, metavar="FILE", help="TOML design file ([cam] and [[motion]] tables)")
+    add_design_argument(p, "cam")
+    # the old spelling; a destination of its own (the empty first argument would overwrite it)
+    add_renamed_flag(p, "--design", "the design file as the first argument (gearkit cam FILE)", "design_option",
+                     metavar="FILE")
     p.add_argument("--prime-radius", type=float, default=None, help="r0: smallest radius of the pitch curve (the "
                    "roller centre's path; base circle of a flat face), mm")
     p.add_argument("--contact", choices=("roller", "knife", "flat"), default="roller", help="follower end "
@@ -94,16 +103,16 @@ def spec_from_args(args):
     """The :class:`~gearkit.families.cam.CamSpec` the flags (or ``--design``) describe."""
     from gearkit.families.cam import CamSpec, MotionProgram
 
+    if getattr(args, "design_option", None) is not None:
+        if args.design is not None:
+            raise SpecError("--design", "give the design file once (as the first argument)")
+        args.design = args.design_option
     if args.design is not None:
-        given = sorted(k for k in args.given_flags if k not in _FIELDS_WITH_DESIGN)  # the flags typed
-        if given:
-            raise SpecError("--design", f"give the cam in the design file or by flags, not both ({given[0]})")
-        from gearkit.families.cam.design import load_cam_design
-        return load_cam_design(args.design)
+        return _design_with_flags(args)
     for flag, value in (("--prime-radius", args.prime_radius), ("--rise", args.rise), ("--rise-deg", args.rise_deg),
                         ("--return-deg", args.return_deg)):
         if value is None:
-            raise SpecError(flag, "required (or give --design FILE)")
+            raise SpecError(flag, "required (or give a design file)")
     if args.contact == "roller" and args.roller_radius is None:
         raise SpecError("--roller-radius", "a roller follower needs its radius (or --contact knife|flat)")
     rocker = args.rocker or args.pivot_distance is not None or args.arm_length is not None
@@ -114,6 +123,33 @@ def spec_from_args(args):
                        args.roller_radius or 0.0, args.offset, args.pivot_distance, args.arm_length,
                        1.0 if args.efficiency is None else args.efficiency,
                        0.0 if args.friction is None else args.friction, args.limit_deg, args.groove)
+    except SpecError as exc:
+        raise _as_flag(exc) from None
+
+
+def _design_with_flags(args):
+    """The design file's cam with the flags typed applied (a motion flag: the flags' motion program)."""
+    from dataclasses import replace
+
+    from gearkit.families.cam import MotionProgram
+    from gearkit.families.cam.design import load_cam_design
+
+    spec = load_cam_design(args.design)
+    changes = {field: getattr(args, dest) for dest, field in _SPEC_FIELDS.items() if given(args, dest)}
+    if given(args, "rocker") or given(args, "pivot_distance") or given(args, "arm_length"):
+        changes["follower"] = "rocker"
+    try:
+        if any(given(args, dest) for dest in _MOTION_FLAGS):
+            for flag, value in (("--rise", args.rise), ("--rise-deg", args.rise_deg), ("--return-deg", args.return_deg)):
+                if value is None:
+                    raise SpecError(flag, "required with the other motion flags (they replace the file's motion)")
+            changes["motion"] = MotionProgram.rise_dwell_return(args.rise, args.rise_deg, args.dwell_deg,
+                                                                args.return_deg, args.law, args.return_law)
+        if given(args, "efficiency"):
+            changes["friction"] = 0.0  # --friction and --efficiency exclude each other, as on the command line
+        elif given(args, "friction"):
+            changes["efficiency"] = 1.0
+        return replace(spec, **changes) if changes else spec
     except SpecError as exc:
         raise _as_flag(exc) from None
 

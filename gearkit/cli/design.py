@@ -7,6 +7,8 @@ by :func:`gearkit.export.read_toml` (a file problem is one line, exit 2) and has
 * an involute pair's design file (``kind``, ``module``, ``[gear1]``, ``[gear2]``, ``[limits]``; see
   :mod:`gearkit.checks.design_file`) for ``gear`` (``--gear 1|2`` picks the gear), ``check``, ``pair``,
   ``contact``, ``view pair``, ``blocking`` and ``atlas``;
+* a cam design file (``[cam]`` and ``[[motion]]`` tables, :mod:`gearkit.families.cam.design`) for
+  ``cam``: a flag typed sets its field, and any motion flag typed replaces the file's motion program;
 * for the other families (``novikov``, ``cycloid``, ``cycloidal-drive``, ``rack``, ``view drive``) a
   table of the command's own flags: each key is a long flag's name (``z1 = 20``, ``helix_angle_deg = 15``,
   ``rack = "single-arc"``, ``pin-radius = 7``), each value what the flag takes, checked as the flag is.
@@ -26,8 +28,9 @@ __all__ = ["add_design_argument", "apply_flag_design", "given", "require_flags",
 
 def add_design_argument(p, shape: str) -> None:
     """The optional first argument ``design`` (a TOML file of ``shape``: 'pair' or 'flags')."""
-    what = ("an involute pair's design file (see 'gearkit check --help')" if shape == "pair" else
-            "a TOML table of this command's flags (keys: the long flag names)")
+    what = {"pair": "an involute pair's design file (see 'gearkit check --help')",
+            "cam": "a cam design file ([cam] and [[motion]] tables, see 'gearkit cam --help')",
+            }.get(shape, "a TOML table of this command's flags (keys: the long flag names)")
     p.add_argument("design", nargs="?", help=f"TOML design file: {what}; flags given override its values")
 
 

@@ -3,7 +3,7 @@
 Usage::
 
     gearkit planetary --ratio R --planets K -m M [--ratio-tol T] [--max-teeth Z]
-                      [--scheme simple|compound|external|internal] [--min-teeth N] [--count N]
+                      [--scheme simple|compound|external|internal] [--min-teeth N] [--sets N]
                       [--textbook] [--json]
 
 ``R`` is i_1B: the sun's speed over the carrier's with gear 4 (the ring) fixed. Every set within
@@ -14,7 +14,8 @@ Exit status: 0 sets found, 1 none passes, 2 bad input.
 """
 from __future__ import annotations
 
-from gearkit.cli.common import add_json_flag, add_module_flag, print_json
+from gearkit.cli.common import add_json_flag, add_module_flag, add_renamed_flag, print_json
+from gearkit.errors import SpecError
 
 
 def register(subparsers) -> None:
@@ -34,7 +35,9 @@ def register(subparsers) -> None:
     p.add_argument("--scheme", choices=("simple", "compound", "external", "internal"), default="simple",
                    help="simple: sun-planet-ring; compound: sun-2|3-ring; external: sun-2|3-gear 4; "
                         "internal: ring-2|3-ring (default simple)")
-    p.add_argument("--count", type=int, default=5, help="how many sets to list (default 5)")
+    sets = p.add_mutually_exclusive_group()
+    sets.add_argument("--sets", type=int, default=5, metavar="N", help="how many sets to list (default 5)")
+    add_renamed_flag(sets, "--count", "--sets", "sets", type=int)
     p.add_argument("--textbook", action="store_true", help="the textbook's limits instead (zero gears: ring >= 85, "
                    "planet in a ring >= 20, difference >= 8, exact coaxiality, equal spacing, no pair checks)")
     add_json_flag(p)
@@ -46,12 +49,14 @@ def run(args) -> int:
 
     from gearkit.scene.synthesis import TEXTBOOK_LIMITS, SynthesisLimits, synthesize
 
+    if not 1 <= args.sets <= 1000:
+        raise SpecError("--sets", f"{args.sets} is outside [1, 1000] (sets listed)")
     if args.textbook:
         limits = replace(TEXTBOOK_LIMITS, max_teeth=args.max_teeth)
     else:
         limits = SynthesisLimits(min_teeth=args.min_teeth, max_teeth=args.max_teeth)
     sets = synthesize(args.ratio, args.planets, args.module, scheme=args.scheme, ratio_tol=args.ratio_tol,
-                      limits=limits, count=args.count)
+                      limits=limits, count=args.sets)
     out = {"ratio": args.ratio, "planets": args.planets, "module": args.module, "scheme": args.scheme,
            "ratio_tol": args.ratio_tol, "candidates": [s.to_dict() for s in sets]}
     if args.json:

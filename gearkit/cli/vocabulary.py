@@ -70,6 +70,8 @@ QUANTITIES = {
     "helix_angle_deg": Quantity("helix angle", float, -60.0, 60.0, "degrees", open_lo=True, open_hi=True),
     "pressure_angle_deg": Quantity("pressure angle", float, 1.0, 45.0, "degrees", open_hi=True),
     "width": Quantity("face width", float, 0.0, 1e5, "mm", open_lo=True),
+    # the teeth of a rack bar laid out (not a gear's tooth number: a bar of one tooth is a bar)
+    "bar_teeth": Quantity("teeth of the bar", int, 1, 100_000),
 }
 
 
