@@ -27,6 +27,7 @@ from __future__ import annotations
 import numpy as np
 
 from gearkit.blocking.brackets import NearestBracket, segment_roots
+from gearkit.blocking.corners import corner_splits
 from gearkit.blocking.grid import edge_nodes
 
 __all__ = ["zero_lines", "densify"]
@@ -365,7 +366,13 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
             if first:
                 state[n] = (k, p[:1], g[:1], np.zeros(0, bool))
         state_before = list(state)
-    return [(st[0], st[1]) for st in state if len(st[1]) >= 2]
+    out = [(st[0], st[1], st[2]) for st in state if len(st[1]) >= 2]
+    corners = set(kinked) | set(measure)
+    again = corner_splits(F, out, tol, corners, SPLIT_FRACTION * tol, VERTEX_FRACTION * tol)
+    if again:  # the polylines that got a vertex beside a corner: densified again
+        done = [(k, p) for n, (k, p, _) in enumerate(out) if n not in again]
+        return done + densify(F, [out[n] for n in sorted(again)], tol, max_step, measure, kinked)
+    return [(k, p) for k, p, _ in out]
 
 
 def _cut_positions(p, starts):
@@ -376,5 +383,3 @@ def _cut_positions(p, starts):
         if hits.size:
             out.append(int(hits[0]))
     return sorted(set(out))
-
-

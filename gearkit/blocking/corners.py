@@ -1,0 +1,84 @@
+"""Corners of kinked zero sets beside a chord's end: where :func:`~gearkit.blocking.level.densify`'s
+measure at a chord's middle does not look.
+
+A zero set with a corner (the smallest of two margins, a tip cut down to what its tool leaves) is
+traced by chords whose middles lie on the curve even where the corner, close to a chord's end, lies
+farther than ``tol`` from it; the polyline turns sharply at that end. Such chords are measured a
+quarter from the turning end as well.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from gearkit.blocking.brackets import NearestBracket, segment_roots
+
+__all__ = ["corner_splits"]
+
+CORNER_COS = math.cos(math.radians(20.0))  #: a polyline turning more than this at a vertex has a corner beside it
+CORNER_FRACTION = 0.25  #: ... measured this far along its chords from the turning end
+
+
+def corner_splits(F, lines, tol: float, curves, split: float, vtol: float) -> set:
+    """Chords of the kinked curves ``curves`` beside a sharp turn of their polyline (a corner of the
+    zero set near the chord's end, which its middle does not see: a contact-ratio line turning where
+    a tip reaches what its tool cuts) measured a quarter from the turning end, along the normal; one
+    farther than ``split`` from its curve gets the zero found there as a vertex (in place,
+    slopes too; the zero solved to ``vtol``). ``lines``: ``[(k, points (n, 2), slopes (n,))]``, changed in
+    place. Returns the indices of the polylines that changed.
+
+    >>> import numpy as np
+    >>> F = lambda p, k: np.minimum(p[:, 0] - 1.0, p[:, 1] - 0.0)  # zero set: an L with its corner at (1, 0)
+    >>> lines = [(0, np.array([[1.0, 2.0], [1.0, 0.6], [2.0, 0.0], [3.0, 0.0]]), np.ones(4))]
+    >>> corner_splits(F, lines, 0.01, {0}, 0.0075, 0.0025), len(lines[0][1])
+    ({0}, 5)
+    """
+    rows = []  # (line, chord start index, fraction along the chord)
+    for n, (k, p, _) in enumerate(lines):
+        if k not in curves or len(p) < 3:
+            continue
+        d = np.diff(p, axis=0)
+        L = np.hypot(d[:, 0], d[:, 1])
+        u = d / np.maximum(L, 1e-300)[:, None]
+        turn = np.einsum("ij,ij->i", u[:-1], u[1:]) < CORNER_COS  # at vertex i + 1
+        long = L > 4 * tol
+        for i in np.flatnonzero(turn):  # chord i ends at the turn, chord i + 1 starts there
+            if long[i]:
+                rows.append((n, i, 1.0 - CORNER_FRACTION))
+            if long[i + 1]:
+                rows.append((n, i + 1, CORNER_FRACTION))
+    if not rows:
+        return set()
+    A = np.array([lines[n][1][i] for n, i, _ in rows])
+    B = np.array([lines[n][1][i + 1] for n, i, _ in rows])
+    t = np.array([f for _, _, f in rows])
+    which = np.array([lines[n][0] for n, _, _ in rows])
+    d = B - A
+    L = np.hypot(d[:, 0], d[:, 1])
+    nrm = np.column_stack([-d[:, 1], d[:, 0]]) / L[:, None]
+    P = A + t[:, None] * d
+    fp = F(P, which)
+    best = NearestBracket(P, fp)
+    for sgn in (1.0, -1.0):
+        end = P + sgn * 0.5 * L[:, None] * nrm
+        best.consider(np.arange(len(rows)), P, fp, end, F(end, which))
+    found = np.flatnonzero(best.have)
+    if not found.size:
+        return set()
+    root = segment_roots(F, best.lo[found], best.end[found], best.flo[found], best.fe[found],
+                         vtol, which[found])
+    dev = np.abs(np.einsum("ij,ij->i", root - P[found], nrm[found]))
+    far = dev > split
+    inserts = {}
+    for r, q, dv in zip(found[far], root[far], dev[far]):
+        n, i, _ = rows[r]
+        inserts.setdefault(n, {})[i] = (q, abs(fp[r]) / dv)
+    for n, at in inserts.items():
+        k, p, g = lines[n]
+        for i in sorted(at, reverse=True):  # from the end: earlier indices stay valid
+            q, gq = at[i]
+            p = np.insert(p, i + 1, q, axis=0)
+            g = np.insert(g, i + 1, gq)
+        lines[n] = (k, p, g)
+    return set(inserts)
