@@ -17,7 +17,7 @@ from gearkit.checks import check_pair
 from gearkit.cli import main
 from gearkit.curves import bracketed_root
 from gearkit.errors import SpecError
-from gearkit.pair import PairSpec
+from gearkit.pair import PairSpec, pair_geometry
 from gearkit.families.involute import ShaperCutter
 
 XTOL = 1e-6
@@ -167,8 +167,14 @@ def test_internal_limits_at_x1_zero():
         d = min(distances_to_polyline(np.array([[0.0, want]]), comp)[0] for comp in c.line(name).components)
         assert d < CHORD
     # trimming beyond O2N_u: with each point's own tip shortening the ring's tip stays inside O2N_u along
-    # x1 = 0 (0.522336 holds only with the example's dy frozen, see test_checks_internal)
-    assert max(f.margin("trimming.nu", 0.0, x) for x in np.linspace(0.3, 0.9, 25)) < 0
+    # x1 = 0 (0.522336 holds only with the example's dy frozen, see test_checks_internal) up to x2 = 0.8;
+    # beyond it the shortening (dy < -0.25) would lengthen the ring's teeth inside what the shaper leaves:
+    # the graded tip is the cut one there, a_0 + r_f0 = 14.5 + x2 + 8.75, as on the generated ring
+    assert max(f.margin("trimming.nu", 0.0, x) for x in np.linspace(0.3, 0.8, 21)) < 0
+    spec = PairSpec(46, 49, 1.0, 0.0, 0.9, kind="internal", shift_convention="cutter", tool1=SHAPER, tool2=SHAPER)
+    ring = check_pair(spec).profiles[1]
+    assert ring.tip_diameter == pytest.approx(2 * (23.25 + 0.9), abs=1e-9)
+    assert pair_geometry(spec).gears[1].tip_diameter == pytest.approx(ring.tip_diameter, abs=1e-9)
 
 
 def test_empty_region_names_the_binding_lines():

@@ -187,9 +187,12 @@ def test_fillet_interference_both_sides():
 
 
 def test_tip_clearance_both_sides():
-    """20/40, m = 2, x = 0: a_w = 60, r_f2 = 37.5, so c1 = 22.5 - r_a1; warn below 0.1 m, fail below 0."""
+    """20/40, m = 2, x = 0: a_w = 60, r_f2 = 37.5, so c1 = 22.5 - r_a1; warn below 0.1 m, fail below 0.
+    The pinion is cut by a rack of dedendum 1.4 (its root line at r + 1.4 m = 22.8): a tip beyond the
+    mate's root exists (the standard rack, h_fP* = 1.25, cuts any blank down to 22.5: clearance 0)."""
     def at(c):
-        return check_pair(PairSpec(20, 40, 2.0, tip_diameter1=2 * (22.5 - c))).report["tip_clearance.1"]
+        return check_pair(PairSpec(20, 40, 2.0, tip_diameter1=2 * (22.5 - c),
+                                   tool1=BasicRack(dedendum=1.4))).report["tip_clearance.1"]
 
     assert (at(0.2 + SIDE).status, at(0.2 - SIDE).status) == ("ok", "warn")
     assert (at(SIDE).status, at(-SIDE).status) == ("warn", "fail")

@@ -62,6 +62,8 @@ def _pair_check(data):
         for gear, prof in zip(res.geometry.gears, res.profiles):
             if not prof.internal:
                 assert gear.tip_diameter <= prof.tip_diameter * (1 + 1e-12), "checked tip beyond the cut tip"
+            else:  # a ring's tip is its inner circle: the checked one never inside the cut one
+                assert gear.tip_diameter >= prof.tip_diameter * (1 - 1e-12), "checked ring tip inside the cut tip"
     run("pair_check", (kw, extra), build, check)
 
 

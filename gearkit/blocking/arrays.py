@@ -27,7 +27,7 @@ import numpy as np
 
 from gearkit.curves import inv
 from gearkit.families.involute.tools import BasicRack
-from gearkit.pair.tooling import cutter_radii
+from gearkit.pair.tooling import cutter_radii, graded_tip_radius
 
 __all__ = ["margins", "evaluator", "sliding_ends"]
 
@@ -169,8 +169,10 @@ class _Pair:
             dy = y - x_sum if internal else x_sum - y
             cut = dy if t.tip_rule == "shortened" else 0.0
             ha = t.addendum
-            ra1 = r1 + mn * (ha + x1 - cut)
-            ra2 = r2 - mn * (ha - x2 - cut) if internal else r2 + mn * (ha + x2 - cut)
+            # the tips the check grades: the blank's, cut down to what the tools leave (one function)
+            ra1 = graded_tip_radius(sec, z1, x1 - t.thinning1 / k_e, tool1, False, r1 + mn * (ha + x1 - cut))
+            ra2 = graded_tip_radius(sec, z2, x2c - t.thinning2 / k_e, tool2, internal,
+                                    r2 - mn * (ha - x2 - cut) if internal else r2 + mn * (ha + x2 - cut))
             bad |= ~(ra1 > rb1)
             bad |= ~(ra2 < rf2) if internal else ~(ra2 > rb2)
             self.bad = bad | np.isnan(d1) | np.isnan(d2)

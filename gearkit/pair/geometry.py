@@ -22,7 +22,8 @@ from gearkit.curves import inv, inv_inverse
 from gearkit.errors import SpecError, require
 from gearkit.families.involute import GearSpec, ShaperCutter, tool_label
 from gearkit.pair.spec import TIP_RULES, PairSpec
-from gearkit.pair.tooling import form_roll, nu_radius, root_radius, section, thickness_coeff, tip_thickness
+from gearkit.pair.tooling import (form_roll, graded_tip_radius, nu_radius, root_radius, section, thickness_coeff,
+                                  tip_thickness)
 
 __all__ = ["GearGeometry", "PairGeometry", "gear_specs", "gear_tip_diameter", "pair_geometry"]
 
@@ -197,10 +198,12 @@ def pair_geometry(spec: PairSpec, form_diameters: tuple | None = None) -> PairGe
     ha = spec.addendum
 
     # tips, roots, forms
-    ra1 = spec.tip_diameter1 / 2 if spec.tip_diameter1 else r1 + mn * (ha + x1 - cut)
-    require(ra1 > rb1, "tip_diameter1", f"d_a1 = {2 * ra1:.6g} mm must exceed the base diameter {2 * rb1:.6g} mm")
-    # the allowance feeds the tool in (ISO 21771 generating shift x_E): root and form move with it
+    # the allowance feeds the tool in (ISO 21771 generating shift x_E): root and form move with it.
+    # Every tip is the one the check grades: the blank's, cut down to what the tool leaves.
     xe1 = x1 - spec.thinning1 / (2 * mn * math.tan(sec.alpha_n))
+    ra1 = graded_tip_radius(sec, z1, xe1, tool1, False,
+                            spec.tip_diameter1 / 2 if spec.tip_diameter1 else r1 + mn * (ha + x1 - cut))
+    require(ra1 > rb1, "tip_diameter1", f"d_a1 = {2 * ra1:.6g} mm must exceed the base diameter {2 * rb1:.6g} mm")
     rf1 = root_radius(sec, z1, xe1, tool1, False)
     rho_l1 = form_roll(sec, z1, xe1, tool1, False)
     if kind == "rack":
@@ -213,6 +216,7 @@ def pair_geometry(spec: PairSpec, form_diameters: tuple | None = None) -> PairGe
         else:
             ra2 = r2 + mn * (ha + x2 - cut)
         xe2 = x2c - spec.thinning2 / (2 * mn * math.tan(sec.alpha_n))
+        ra2 = graded_tip_radius(sec, z2, xe2, tool2, internal2, ra2)
         rf2 = root_radius(sec, z2, xe2, tool2, internal2)
         rho_l2 = form_roll(sec, z2, xe2, tool2, internal2)
         if internal2:

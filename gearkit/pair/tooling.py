@@ -19,7 +19,7 @@ from gearkit.errors import SpecError
 from gearkit.families.involute import BasicRack, ShaperCutter
 
 __all__ = ["Section", "section", "thickness_coeff", "cutter_machine", "cutter_radii", "root_radius", "form_roll",
-           "tip_thickness", "half_angle", "nu_radius"]
+           "tip_thickness", "half_angle", "nu_radius", "cut_tip_radius", "graded_tip_radius"]
 
 
 @dataclass(frozen=True)
@@ -97,6 +97,52 @@ def cutter_radii(sec: Section, cutter: ShaperCutter):
     rho = cutter.tip_radius * mn
     roll_c = rho + math.sqrt(max((ra0 - rho) ** 2 - rb0 ** 2, 0.0))
     return rb0, ra0, math.hypot(rb0, roll_c)
+
+
+def cut_tip_radius(sec: Section, z: int, x, tool, internal: bool):
+    """The tip radius (mm) the tool can leave on the gear at generating shift ``x`` (float or array).
+
+    The tool's body beyond its root line (rack) or inside its root circle (shaper) removes all the
+    blank it sweeps, so a tip circle beyond it is cut down to it: rack ``r + (x_E + h_fP*) m_n``
+    (its root line); shaper, external gear ``a_0 - r_f0``, ring ``a_0 + r_f0`` (the inner edge of
+    the annulus its root circle sweeps: a ring's tip cannot lie inside it), with
+    ``r_f0 = m_t z0/2 + (x0 - h_f0*) m_n``. ``x`` is the rack's generating shift x_E or the shaper's
+    radial setting.
+
+    Examples
+    --------
+    >>> s = section(1.0, 20.0, 0.0)
+    >>> round(cut_tip_radius(s, 20, 0.3, BasicRack(), False), 6)       # 10 + 0.3 + 1.25
+    11.55
+    >>> round(cut_tip_radius(s, 60, 0.0, ShaperCutter(20), True), 6)   # 20 + (10 - 1.25)
+    28.75
+    """
+    if isinstance(tool, BasicRack):
+        return z * sec.mt / 2 + (x + tool.dedendum) * sec.mn
+    sign = -1 if internal else 1
+    a0 = sec.mt * (z + sign * tool.teeth) / 2 + x * sec.mn
+    rf0 = tool.teeth * sec.mt / 2 + (tool.shift - tool.dedendum) * sec.mn
+    return a0 + rf0 if internal else a0 - rf0
+
+
+def graded_tip_radius(sec: Section, z: int, x, tool, internal: bool, blank):
+    """The tip radius (mm) a pair check grades: the blank's tip ``blank`` (by the pair's tip rule, or
+    given), cut down to what the tool can leave (:func:`cut_tip_radius` at ``x``, the generating shift
+    or shaper setting): ``min(blank, cut)``, for a ring ``max(blank, cut)``. Floats or arrays (the
+    blocking arrays grade the same tip at many shift pairs at once).
+
+    Examples
+    --------
+    >>> s = section(1.0, 20.0, 0.0)
+    >>> graded_tip_radius(s, 20, 0.3, BasicRack(), False, 11.4), round(graded_tip_radius(s, 20, 0.3, BasicRack(), False, 11.6), 6)
+    (11.4, 11.55)
+    """
+    cut = cut_tip_radius(sec, z, x, tool, internal)
+    if isinstance(blank, float) and isinstance(cut, float):
+        return max(blank, cut) if internal else min(blank, cut)
+    import numpy as np
+
+    return (np.maximum if internal else np.minimum)(blank, cut)
 
 
 def thickness_coeff(sec: Section, z: int, x: float, tool, internal: bool) -> float:
