@@ -215,16 +215,26 @@ def simulate_mesh(spec: DriveSpec, samples: int = 4000, contact_tol: float | Non
 
     The mesh repeats, turned by one disc pitch, after ``Delta psi0 = 2 pi |dz| / (Z_b Z_g)``; that
     period is sampled at ``samples`` midpoints.
+
+    The instants ``psi0`` and ``Delta psi0 - psi0`` are mirror images of each other (the pins, and
+    the disc, are symmetric about its space centre lines: pin k at ``-psi0`` is pin ``-k`` at
+    ``psi0`` mirrored, and one period later the mesh is the same turned by a pitch), so the same
+    pins touch at both and a pin pushing counter-clockwise at one pushes clockwise at the other. The
+    midpoints pair up that way: the first half of them (the middle one included) is simulated and
+    the second half read off it by the mirror.
     """
     outline, contact_tol = _tols(spec, contact_tol)
     period = 2.0 * math.pi * abs(spec.tooth_difference) / (spec.pins * spec.lobes)
-    psis = (np.arange(samples) + 0.5) / samples * period
+    half = (samples + 1) // 2
+    psis = (np.arange(half) + 0.5) / samples * period
     st = _state(spec, outline, psis, 0.0, contact_tol)
+    touching, ccw, cw = (v.sum(axis=-1) for v in (st.touching, st.load_carrying(1), st.load_carrying(-1)))
+    mirrored = slice(samples - half - 1, None, -1) if samples > half else slice(0, 0)  # instant i <- n - 1 - i
 
-    def stats(v):
-        v = v.sum(axis=-1)
+    def stats(v, v_mirror):
+        v = np.concatenate([v, v_mirror[mirrored]])
         return float(v.mean()), int(v.min()), int(v.max())
-    return MeshStats(samples, stats(st.touching), stats(st.load_carrying(1)), stats(st.load_carrying(-1)))
+    return MeshStats(samples, stats(touching, touching), stats(ccw, cw), stats(cw, ccw))
 
 
 def backlash(spec: DriveSpec, psi0: float = 0.0, direction: int = 1, contact_tol: float | None = None):
