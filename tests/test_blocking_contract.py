@@ -257,3 +257,24 @@ def test_the_bench_measure_sees_a_line_off_its_place():
     ln = c.line("undercut.1")
     c.lines = (dc_replace(ln, components=tuple(q + [0.01, 0.0] for q in ln.components)),)
     assert deviation(c) == pytest.approx(0.01, rel=1e-6)
+
+
+def test_the_bench_scan_sees_a_missing_piece_without_a_reference():
+    """The bench's scan gap (exact zeros on scan lines across the window, no trace involved) reads a
+    line cut short as the distance from its cut end to the farthest zero beyond it: for the undercut
+    onset line x1 = x_min cut at the window's middle, the top scan line's zero."""
+    from dataclasses import replace as dc_replace
+
+    from gearkit.bench.blocking import scan_gap
+
+    scans = 20
+    c = blocking_contour(PairSpec(13, 16, 1.0), tol=TOL, lines=["undercut.1"])
+    assert scan_gap(c, scans=scans, samples=50)[0] <= CONTRACT * TOL
+    w, x_min = c.window, c.field.x_min[0]
+    mid = 0.5 * (w[2] + w[3])
+    ln = c.line("undercut.1")
+    c.lines = (dc_replace(ln, components=(np.array([[x_min, w[2]], [x_min, mid]]),)),)
+    d, name, at = scan_gap(c, scans=scans, samples=50)
+    top = w[2] + scans / (scans + 1) * (w[3] - w[2])  # the highest scan line x2 = const
+    assert name == "undercut.1" and at[1] == pytest.approx(top, abs=1e-12)
+    assert d == pytest.approx(top - mid, rel=1e-9)

@@ -4,7 +4,9 @@
   deviation is the larger of (a) the largest distance of the traced polylines from the exact lines,
   measured at every vertex and every chord's middle as the nearest zero of the margin on eight rays
   (the chord's normal, the chord, the diagonals) solved to 1e-14, and (b) the largest distance of a
-  much finer trace (tol 1e-10) from the traced lines (a piece missing: a gap). The contract is
+  much finer trace (tol 1e-10) from the traced lines (a piece missing: a gap), and (c) the largest
+  distance of an exact zero found on scan lines across the window (no trace involved) from the traced
+  lines (a piece every trace misses, the reference's too). The contract is
   achieved / tol <= 2 at every row, the reference's closed loops and no duplicate trace (topology),
   and time falling as tol grows.
 * **Targets** (issue 15): the 13/16 and 20/40 contours in-process, at the default tolerance, each
@@ -20,7 +22,7 @@ import time
 
 import numpy as np
 
-__all__ = ["ladder_rows", "target_rows", "atlas_rows", "deviation", "format_section"]
+__all__ = ["ladder_rows", "target_rows", "atlas_rows", "deviation", "scan_gap", "format_section"]
 
 LADDER = (1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9)
 QUICK_LADDER = (1e-3, 1e-6)
@@ -32,6 +34,10 @@ ROUND_OFF = 1e-12  #: |margin| taken as zero
 MEASURE_TOL = 1e-14  #: accuracy of the exact points the deviation is measured against
 RAY_ROUNDS = 10  #: ray lengths tol / 16 ... tol 4**8: the nearest zero first
 ATLAS_GRID = (10, 20, 30, 40)
+SCANS = 80  #: scan lines per axis of the independent gap measure (:func:`scan_gap`)
+SCAN_SAMPLES = 800  #: samples per scan line
+SCAN_FALL = 0.5  #: a solved sign change is a zero when |F| fell below this fraction of its ends' (a jump
+#: of F keeps |F| up)
 
 
 def _median_time(fn, repeats):
@@ -108,6 +114,62 @@ def deviation(contour) -> float:
     return worst
 
 
+def scan_gap(contour, scans: int = SCANS, samples: int = SCAN_SAMPLES):
+    """Largest distance of an exact zero of a traced line from that line's trace, with the zeros found
+    independently of any trace: every sign change of the line's margin between neighbouring samples on
+    ``scans`` lines x1 = const and ``scans`` lines x2 = const across the window, solved to
+    ``MEASURE_TOL`` (a sign change through a jump of the margin, where |F| does not fall, is none).
+    A piece of a line the trace misses (e.g. cut short before a saddle or the no-pair edge) shows as a
+    zero far from it, however fine the reference trace is. Returns ``(distance, line name, (x1, x2))``.
+
+    Examples
+    --------
+    >>> from gearkit.blocking import blocking_contour
+    >>> from gearkit.pair import PairSpec
+    >>> c = blocking_contour(PairSpec(13, 16, 1.0), tol=1e-4, lines=["undercut.1"])
+    >>> d, name, at = scan_gap(c, scans=20, samples=50)
+    >>> d <= 1e-4
+    True
+    """
+    from gearkit.accuracy import distances_to_polyline
+    from gearkit.blocking.arrays import evaluator
+    from gearkit.blocking.brackets import segment_roots
+
+    w = contour.window
+    names = [ln.name for ln in contour.lines]
+    F = evaluator(contour.field, names, w)
+    u = np.linspace(0.0, 1.0, scans + 2)[1:-1]
+    t = np.linspace(0.0, 1.0, samples)
+    rows = []  # (scans * 2, samples, 2): lines x1 = const, then x2 = const
+    for a in u:
+        x = w[0] + a * (w[1] - w[0])
+        rows.append(np.column_stack([np.full(samples, x), w[2] + t * (w[3] - w[2])]))
+    for a in u:
+        y = w[2] + a * (w[3] - w[2])
+        rows.append(np.column_stack([w[0] + t * (w[1] - w[0]), np.full(samples, y)]))
+    P = np.stack(rows)
+    worst = (0.0, None, None)
+    for k, ln in enumerate(contour.lines):
+        V = F(P.reshape(-1, 2), np.full(P.shape[0] * samples, k)).reshape(P.shape[:2])
+        ch = np.isfinite(V[:, :-1]) & np.isfinite(V[:, 1:]) & ((V[:, :-1] > 0) != (V[:, 1:] > 0))
+        i, j = np.nonzero(ch)
+        if not i.size:
+            continue
+        fa, fb = V[i, j], V[i, j + 1]
+        root = segment_roots(F, P[i, j], P[i, j + 1], fa, fb, MEASURE_TOL, np.full(i.size, k))
+        fr = np.abs(F(root, np.full(i.size, k)))
+        root = root[(fr <= ROUND_OFF) | (fr <= SCAN_FALL * np.fmin(np.abs(fa), np.abs(fb)))]
+        if not len(root):
+            continue
+        best = np.full(len(root), np.inf)
+        for q in ln.components:
+            best = np.minimum(best, distances_to_polyline(root, q))
+        m = int(np.argmax(best))
+        if best[m] > worst[0]:
+            worst = (float(best[m]), ln.name, (float(root[m, 0]), float(root[m, 1])))
+    return worst
+
+
 def _far(points, polylines) -> float:
     """Largest distance from ``points`` (n, 2) to the nearest of ``polylines`` (inf when there are none)."""
     from gearkit.accuracy import distances_to_polyline
@@ -172,23 +234,29 @@ def topology(contour, reference) -> dict:
 
 def ladder_rows(quick: bool):
     """The tolerance ladder of the 12/30 contour (rows of the bench's accuracy ladder): at each tol the
-    largest distance of the traced lines from the exact ones (:func:`deviation`) and of a much finer
-    trace (``REFERENCE_TOL``) from the traced lines (:func:`topology`: a missing piece), whichever is
-    larger, with the loops and duplicates of :func:`topology`."""
+    largest of the distance of the traced lines from the exact ones (:func:`deviation`), of a much finer
+    trace (``REFERENCE_TOL``) from the traced lines (:func:`topology`: a missing piece), and of the exact
+    zeros on scan lines from the traced lines (:func:`scan_gap`: a missing piece, found without any
+    trace), with the loops and duplicates of :func:`topology`; the reference's own deviation and scan
+    gap are in every row (``reference_exact``, ``reference_scan``)."""
     from gearkit.blocking.contour import blocking_contour
     from gearkit.pair import PairSpec
 
     pair = PairSpec(12, 30, 1.0)
     ref_tol = QUICK_REFERENCE_TOL if quick else REFERENCE_TOL
     reference = blocking_contour(pair, tol=ref_tol)
+    ref_exact, ref_scan = deviation(reference), scan_gap(reference)[0]  # is the reference itself fine enough?
     rows = []
     for tol in (QUICK_LADDER if quick else LADDER):
         seconds, contour = _median_time(lambda: blocking_contour(pair, tol=tol), 3 if tol >= 1e-6 else 1)
         exact = deviation(contour)
         topo = topology(contour, reference)
+        scan, scan_line, scan_at = scan_gap(contour)
         rows.append({"family": "involute", "product": "blocking contour", "case": "12/30 m=1, all lines",
-                     "tol": tol, "achieved": max(exact, topo["gap"]), "exact": exact, "gap": topo["gap"],
-                     "reference_tol": ref_tol, "loops": list(topo["loops"]), "duplicates": topo["duplicates"],
+                     "tol": tol, "achieved": max(exact, topo["gap"], scan), "exact": exact, "gap": topo["gap"],
+                     "scan": scan, "scan_line": scan_line, "scan_at": scan_at, "reference_tol": ref_tol,
+                     "reference_exact": ref_exact, "reference_scan": ref_scan,
+                     "loops": list(topo["loops"]), "duplicates": topo["duplicates"],
                      "vertices": int(sum(len(ln.points) for ln in contour.lines)
                                      + sum(len(p) for p in contour.region)),
                      "evaluations": int(contour.evaluations), "seconds": seconds})
@@ -276,14 +344,19 @@ def format_section(res: dict) -> list:
         lines.append(f"  {r['target']:70} {meas:>10} {lim:>10}  {verdict}")
     ladder = [r for r in res.get("ladder", []) if r["product"] == "blocking contour" and "gap" in r]
     if ladder:
+        r0 = ladder[0]
         lines.append("blocking ladder (12/30, all lines and the region; shift units; reference: a trace at tol "
-                     f"{ladder[0]['reference_tol']:g})")
-        lines.append(f"  {'tol':>8} {'exact':>10} {'gap':>10} {'ach/tol':>8} {'loops':>7} {'dup':>4} {'vertices':>9} "
-                     f"{'evals':>9} {'time':>9}")
+                     f"{r0['reference_tol']:g}, itself {r0.get('reference_exact', float('nan')):.2e} from the exact "
+                     f"lines, scan gap {r0.get('reference_scan', float('nan')):.2e})")
+        lines.append(f"  {'tol':>8} {'exact':>10} {'gap':>10} {'scan gap':>10} {'ach/tol':>8} {'loops':>7} {'dup':>4} "
+                     f"{'vertices':>9} {'evals':>9} {'time':>9}  worst scan zero")
         for r in ladder:
-            lines.append(f"  {r['tol']:8.0e} {r['exact']:10.2e} {r['gap']:10.2e} {r['achieved'] / r['tol']:8.2f} "
+            where = "" if r.get("scan_line") is None else f"  {r['scan_line']} at ({r['scan_at'][0]:.4f}, " \
+                f"{r['scan_at'][1]:.4f})"
+            lines.append(f"  {r['tol']:8.0e} {r['exact']:10.2e} {r['gap']:10.2e} {r.get('scan', float('nan')):10.2e} "
+                         f"{r['achieved'] / r['tol']:8.2f} "
                          f"{'%d/%d' % tuple(r['loops']):>7} {r['duplicates']:4d} {r['vertices']:9d} "
-                         f"{r['evaluations']:9d} {r['seconds']:8.3f}s")
+                         f"{r['evaluations']:9d} {r['seconds']:8.3f}s{where}")
     rows = res.get("atlas", [])
     if rows:
         lines.append("atlas throughput (external pairs, z1, z2 in %s)" % (ATLAS_GRID,))
