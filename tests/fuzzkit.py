@@ -15,9 +15,11 @@ if it recorded any. ``GEARKIT_FUZZ_REPORT=FILE`` appends, per property, one JSON
 (the counts are what happened, defects included); while it runs, every 500 cases one line of
 counts to ``FILE.progress`` and every defect at once to ``FILE.defects``.
 """
+import functools
 import json
 import math
 import os
+import sys
 import time
 import traceback
 from collections import Counter
@@ -52,6 +54,15 @@ def _progress(name, c):
             fh.write(json.dumps({"property": name, "time": time.strftime("%H:%M:%S"), **c}) + "\n")
 
 
+def forget_caches():
+    """Empty every ``functools.lru_cache`` of the loaded gearkit modules (the long run keeps nothing
+    per case: cached profiles hold their sampled outlines, and a few hundred of them held gigabytes)."""
+    for mod in [m for n, m in list(sys.modules.items()) if n == "gearkit" or n.startswith("gearkit.")]:
+        for obj in list(vars(mod).values()):
+            if isinstance(obj, functools._lru_cache_wrapper):
+                obj.cache_clear()
+
+
 def run(name, spec, build, check):
     """One case: ``build()`` under raised numpy errors, then ``check(result)``; count the outcome.
 
@@ -76,12 +87,16 @@ def run(name, spec, build, check):
             raise
         line = traceback.format_exception_only(type(exc), exc)[-1].strip()
         found = {"spec": repr(spec), "error": line[:500]}
-        DEFECTS.setdefault(name, []).append(found)
+        kept = DEFECTS.setdefault(name, [])
+        if len(kept) < LISTED:  # the count is exact (COUNTS); the full list goes to FILE.defects
+            kept.append(found)
         if REPORT:  # at once, so a long run's defects can be studied while it goes on
             with open(REPORT + ".defects", "a") as fh:
                 fh.write(json.dumps({"property": name, **found}) + "\n")
     finally:
         np.seterr(**old)
+        if LONG:
+            forget_caches()
 
 
 def write_report():
@@ -98,7 +113,7 @@ def write_report():
 def assert_clean(name):
     """The long run's verdict for one property: no defect recorded (the first few shown)."""
     found = DEFECTS.get(name, [])
-    assert not found, f"{len(found)} defects in {name}: " + "; ".join(f"{d['spec']} -> {d['error']}"
+    assert not found, f"{COUNTS[name]['defect']} defects in {name}: " + "; ".join(f"{d['spec']} -> {d['error']}"
                                                                      for d in found[:3])
 
 

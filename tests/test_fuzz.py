@@ -55,25 +55,47 @@ def _tool(desc):
     return gk.ShaperCutter(*args) if kind == "shaper" else gk.BasicRack(*args)
 
 
-def _to_edges(points, polyline):
-    """Exact distance of each point to a polyline: against every edge (brute force, for few points)."""
-    a, e = polyline[None, :-1], np.diff(polyline, axis=0)[None]
-    q = points[:, None, :]
-    t = np.clip(np.einsum("pei,pei->pe", q - a, np.broadcast_to(e, (len(points),) + e.shape[1:]))
-                / np.maximum(np.einsum("pei,pei->pe", e, e), 1e-300), 0.0, 1.0)
-    return np.linalg.norm(q - (a + t[..., None] * e), axis=-1).min(axis=1)
+def _to_edges(points, polyline, upper):
+    """Exact distance of each point to a polyline, given an upper bound ``upper`` of it per point.
+
+    Every edge within ``upper`` of a point has one of its stations (points spaced at most ``h`` along
+    each edge) within ``upper + h/2`` of it: a tree over the stations lists the candidates, each
+    measured exactly. Memory is bounded by the candidate pairs (a chunk of points at a time)."""
+    from scipy.spatial import cKDTree
+
+    a, e = polyline[:-1], np.diff(polyline, axis=0)
+    length = np.hypot(e[:, 0], e[:, 1])
+    h = max(float(np.median(length)), 1e-300)
+    count = np.clip(np.ceil(length / h).astype(np.int64), 1, 10_000) + 1  # stations per edge, ends included
+    edge = np.repeat(np.arange(len(a)), count)
+    frac = (np.arange(len(edge)) - np.repeat(np.cumsum(count) - count, count)) / np.repeat(count - 1, count)
+    tree = cKDTree(a[edge] + frac[:, None] * e[edge])
+    step = float((length / (count - 1)).max())  # the widest station spacing
+    out = np.empty(len(points))
+    for lo in range(0, len(points), 512):
+        q = points[lo:lo + 512]
+        near = tree.query_ball_point(q, upper[lo:lo + 512] + 0.5 * step + 1e-12)
+        pt = np.repeat(np.arange(len(q)), [len(n) for n in near])
+        ed = np.unique(np.stack([pt, edge[np.concatenate(near).astype(np.int64)]]), axis=1)
+        pt, ed = ed
+        t = np.clip(np.einsum("ij,ij->i", q[pt] - a[ed], e[ed]) / np.maximum(length[ed] ** 2, 1e-300), 0.0, 1.0)
+        d = np.hypot(*(q[pt] - (a[ed] + t[:, None] * e[ed])).T)
+        best = np.full(len(q), np.inf)
+        np.minimum.at(best, pt, d)
+        out[lo:lo + 512] = np.minimum(best, upper[lo:lo + 512])
+    return out
 
 
 def _true_deviation(pieces, polyline):
     """Largest distance of the exact pieces (``DENSE`` points each) from a polyline: nearest vertices'
-    edges first (fast, may overestimate where the curve folds back), the far points against every edge."""
+    edges first (an upper bound: may overestimate where the curve folds back), then the far points
+    exactly against every edge within that bound."""
     w = np.linspace(0.0, 1.0, DENSE)
     exact = np.concatenate([p(w) for p in pieces])
     d = distances_to_polyline(exact, polyline)
     far = np.flatnonzero(d > 0.25 * float(d.max(initial=0.0)))
-    for chunk in np.array_split(far, max(1, len(far) // 256)):
-        if len(chunk):
-            d[chunk] = _to_edges(exact[chunk], polyline)
+    if len(far):
+        d[far] = _to_edges(exact[far], polyline, d[far])
     return float(d.max(initial=0.0))
 
 
