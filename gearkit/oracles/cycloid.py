@@ -17,7 +17,7 @@ import math
 
 import numpy as np
 
-__all__ = ["swept_pin_disc", "swept_pin_wheel", "swept_pin_centres", "swept_pin_clearance", "clock_addendum_by_rolling", "ray_cast"]
+__all__ = ["swept_pin_disc", "swept_pin_disc_centres", "swept_pin_disc_clearance", "swept_pin_wheel", "swept_pin_centres", "swept_pin_clearance", "clock_addendum_by_rolling", "ray_cast"]
 
 
 def ray_cast(centres, radius: float, psi, outside: bool = False):
@@ -53,11 +53,11 @@ def _fold(points, teeth: int, margin: float):
     return out[keep]
 
 
-def swept_pin_disc(pins: int, lobes: int, pin_circle_radius: float, pin_radius: float, eccentricity: float,
-                   psi, step: float):
-    """Radii of the disc (dz > 0) or ring (dz < 0) the swept pins leave, at polar angles ``psi``
-    about the disc centre, lobe 0 on +y. ``step`` (mm) bounds the pin centre's move between
-    consecutive positions relative to the disc."""
+def swept_pin_disc_centres(pins: int, lobes: int, pin_circle_radius: float, pin_radius: float, eccentricity: float,
+                           step: float):
+    """Pin centres relative to the disc (disc frame, lobe 0 on +y, folded into tooth 0's sector and
+    its neighbours), ``(k, 2)`` mm; ``step`` (mm) bounds the pin centre's move between consecutive
+    positions relative to the disc."""
     zb, zg, big_r, e = pins, lobes, pin_circle_radius, eccentricity
     dz = zb - zg
     # one pin pitch of the pin wheel covers every relative position up to the disc's symmetry
@@ -72,8 +72,35 @@ def swept_pin_disc(pins: int, lobes: int, pin_circle_radius: float, pin_radius: 
     if dz > 0:  # the reference frame has a tooth space on +y: turn it by half a pitch
         h = math.pi / zg
         cx, cy = cx * math.cos(h) + cy * math.sin(h), -cx * math.sin(h) + cy * math.cos(h)
-    centres = _fold(np.stack([cx.ravel(), cy.ravel()], -1), zg, 2.0 * pin_radius / (big_r - e) + 0.1)
-    return ray_cast(centres, pin_radius, np.asarray(psi, dtype=float), outside=dz < 0)
+    return _fold(np.stack([cx.ravel(), cy.ravel()], -1), zg, 2.0 * pin_radius / (big_r - e) + 0.1)
+
+
+def swept_pin_disc(pins: int, lobes: int, pin_circle_radius: float, pin_radius: float, eccentricity: float,
+                   psi, step: float):
+    """Radii of the disc (dz > 0) or ring (dz < 0) the swept pins leave, at polar angles ``psi``
+    about the disc centre, lobe 0 on +y. ``step`` (mm) bounds the pin centre's move between
+    consecutive positions relative to the disc. One radius per ray: where the disc is not
+    star-shaped about its centre compare with :func:`swept_pin_disc_clearance` instead."""
+    centres = swept_pin_disc_centres(pins, lobes, pin_circle_radius, pin_radius, eccentricity, step)
+    return ray_cast(centres, pin_radius, np.asarray(psi, dtype=float), outside=pins < lobes)
+
+
+def swept_pin_disc_clearance(points, pins: int, lobes: int, pin_circle_radius: float, pin_radius: float,
+                             eccentricity: float, step: float, chunk: int = 512):
+    """Signed clearance (mm) of disc-frame points (tooth 0's sector) from the swept pins: distance
+    to the nearest pin position minus the pin radius, negative inside a pin. On the true disc
+    boundary it lies in ``[0, step**2 / (8 r)]`` (the scallop between discrete positions)."""
+    c = swept_pin_disc_centres(pins, lobes, pin_circle_radius, pin_radius, eccentricity, step)
+    return _clearance(points, c, pin_radius, chunk)
+
+
+def _clearance(points, centres, radius, chunk):
+    p = np.asarray(points, dtype=float)
+    out = np.empty(len(p))
+    for k in range(0, len(p), chunk):
+        d = p[k:k + chunk, None, :] - centres[None, :, :]
+        out[k:k + chunk] = np.sqrt(np.einsum("ijk,ijk->ij", d, d).min(axis=1))
+    return out - radius
 
 
 def swept_pin_centres(module: float, pins: int, wheel_teeth: int, pin_radius: float, tip_radius: float,
@@ -119,12 +146,7 @@ def swept_pin_clearance(points, module: float, pins: int, wheel_teeth: int, pin_
     pin removes). On the true envelope it lies in ``[0, step**2 / (8 rho)]`` (the pins sit at
     discrete positions ``step`` apart, the scallop between them)."""
     c = swept_pin_centres(module, pins, wheel_teeth, pin_radius, tip_radius, step)
-    p = np.asarray(points, dtype=float)
-    out = np.empty(len(p))
-    for k in range(0, len(p), chunk):
-        d = p[k:k + chunk, None, :] - c[None, :, :]
-        out[k:k + chunk] = np.sqrt(np.einsum("ijk,ijk->ij", d, d).min(axis=1))
-    return out - pin_radius
+    return _clearance(points, c, pin_radius, chunk)
 
 
 def clock_addendum_by_rolling(pinion_teeth: int, wheel_teeth: int, module: float = 1.0) -> float:

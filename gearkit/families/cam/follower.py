@@ -25,11 +25,14 @@ import math
 
 import numpy as np
 
+from dataclasses import dataclass
+
+from gearkit.curves import rotate
 from gearkit.errors import SpecError
 from gearkit.motion import PlanarMotion
 from gearkit.segments import Segment, arc, line
 
-__all__ = ["follower_motion", "follower_tool", "reference_point", "lift_direction", "translating_pressure_angle",
+__all__ = ["RollerMotion", "follower_motion", "follower_tool", "reference_point", "lift_direction", "translating_pressure_angle",
            "rocker_pressure_angle", "friction_angle_model", "smallest_prime_radius"]
 
 
@@ -42,8 +45,30 @@ def _rot(v, angle):
     return np.stack([c * v[..., 0] - s * v[..., 1], s * v[..., 0] + c * v[..., 1]], -1)
 
 
+@dataclass(frozen=True)
+class RollerMotion(PlanarMotion):
+    """The follower's motion for a roller (or knife) of centre ``centre`` (tool frame).
+
+    The roller touches the cam on its line to the pole, on the cam's side. :meth:`tool_pole`
+    returns a point on that line on the cam's side of the centre, ``c + theta' c - R(-theta) J d'``
+    (``theta' (pole - c)`` turned round): finite where the relative motion is a pure translation
+    (``theta' = 0``, the true pole at infinity), and on the cam's side where the relative rotation
+    turns back (a rocker whose ``psi'`` passes -1: the true pole crosses to the far side of the
+    roller, and the contact facing it would be the roller's far side).
+    """
+
+    centre: tuple = (0.0, 0.0)
+
+    def tool_pole(self, t):
+        theta, dtheta, _, _, dd, _ = self.rates(np.asarray(t, dtype=float))
+        c = np.asarray(self.centre, dtype=float)
+        jd = np.stack([-dd[..., 1], dd[..., 0]], -1)
+        return c + dtheta[..., None] * c - rotate(jd, -theta)
+
+
 def follower_motion(spec) -> PlanarMotion:
-    """The follower frame's motion in the cam frame over the cam angle (the generating motion).
+    """The follower frame's motion in the cam frame over the cam angle (the generating motion): a
+    :class:`RollerMotion` for a roller or knife.
 
     Examples
     --------
@@ -67,7 +92,7 @@ def follower_motion(spec) -> PlanarMotion:
             d1 = -_j(dx_) + _rot(dx, -phi)
             d2 = -dx_ - 2.0 * _j(_rot(dx, -phi)) + _rot(ddx, -phi)
             return -phi, -np.ones_like(phi), np.zeros_like(phi), dx_, d1, d2
-        return PlanarMotion(rates)
+        return _motion(spec, rates)
     arm, l0, psi0 = spec.arm_length, spec.pivot_distance, spec.psi0
 
     def rates(phi):
@@ -76,7 +101,13 @@ def follower_motion(spec) -> PlanarMotion:
         s, v, a = (x.reshape(phi.shape) for x in (s, v, a))
         o2 = _rot(np.stack([np.full_like(phi, l0), np.zeros_like(phi)], -1), -phi)
         return math.pi - psi0 - s / arm - phi, -v / arm - 1.0, -a / arm, o2, -_j(o2), -o2
-    return PlanarMotion(rates)
+    return _motion(spec, rates)
+
+
+def _motion(spec, rates):
+    if spec.contact == "flat":
+        return PlanarMotion(rates)
+    return RollerMotion(rates, tuple(float(x) for x in reference_point(spec)))
 
 
 def reference_point(spec) -> np.ndarray:

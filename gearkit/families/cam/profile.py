@@ -20,6 +20,7 @@ from gearkit.accuracy import adaptive_sample
 from gearkit.boundary import Piece, next_crossing
 from gearkit.curves import cross2, polyline_self_intersections
 from gearkit.envelope import Branch, touching
+from gearkit.families.cam.faces import face_depth, kept_runs, roller_depth
 from gearkit.families.cam.follower import follower_motion, follower_tool, lift_direction, reference_point
 
 __all__ = ["CamProfile", "cam_profile"]
@@ -75,6 +76,8 @@ class CamCurve:
         sections.append(("motion", phi, start + _TWO_PI, start + _TWO_PI - phi))
         total = sum(sec[-1] for sec in sections)
         self.sections = sections
+        self._before_corner = np.array([sec[0] == "motion" and k + 1 < len(sections) and sections[k + 1][0] == "corner"
+                                        for k, sec in enumerate(sections)])
         self.edges = np.concatenate([[0.0], np.cumsum([sec[-1] for sec in sections]) / total])
         self.edges[-1] = 1.0
 
@@ -84,6 +87,21 @@ class CamCurve:
         k = np.clip(np.searchsorted(self.edges, w, side="right") - 1, 0, len(self.sections) - 1)
         lo, hi = self.edges[k], self.edges[k + 1]
         return k, np.clip((w - lo) / (hi - lo), 0.0, 1.0)
+
+    def breaks(self, program):
+        """Sorted ``w`` of every section end and every join of the motion program inside a motion
+        section: where the curve may turn at once (a velocity jump's corner) or its curvature jumps,
+        so that each piece between them is smooth for the sampler."""
+        out = list(self.edges)
+        joins = [phi % _TWO_PI for phi, _, _ in program.joins()]
+        for k, sec in enumerate(self.sections):
+            if sec[0] != "motion":
+                continue
+            for phi in joins:
+                for p in (phi + _TWO_PI * j for j in (-1, 0, 1, 2)):
+                    if sec[1] < p < sec[2]:
+                        out.append(self.edges[k] + (p - sec[1]) / (sec[2] - sec[1]) * (self.edges[k + 1] - self.edges[k]))
+        return np.unique(np.asarray(out, dtype=float))
 
     def phi(self, w):
         """Cam angle (rad, from ``start``) at ``w``."""
@@ -96,6 +114,10 @@ class CamCurve:
 
     def __call__(self, w):
         k, t = self.locate(w)
+        # a motion section's end at a corner is the left limit, the corner's start (the law itself
+        # gives the velocity after the jump there)
+        ends = (t >= 1.0) & self._before_corner[k]
+        k, t = np.where(ends, k + 1, k), np.where(ends, 0.0, t)
         out = np.empty((len(k), 2))
         br = self.branch
         for i, sec in enumerate(self.sections):
@@ -105,8 +127,13 @@ class CamCurve:
             if sec[0] == "motion":
                 out[m] = br(sec[1] + t[m] * (sec[2] - sec[1]))
                 continue
-            poles = sec[2][None, :] * (1.0 - t[m, None]) + sec[3][None, :] * t[m, None]
-            u, _ = touching(br.segment, poles, br.root)
+            if br.segment.kind == "arc":  # a roller turns about the corner: its contact angle, the short way
+                ua, ub = touching(br.segment, np.stack([sec[2], sec[3]]), br.root)[0]
+                du = (ub - ua) - np.round(ub - ua)  # the whole circle is u in [0, 1]
+                u = np.mod(ua + t[m] * du, 1.0)
+            else:  # a face slides: its foot point moves with the pole
+                poles = sec[2][None, :] * (1.0 - t[m, None]) + sec[3][None, :] * t[m, None]
+                u, _ = touching(br.segment, poles, br.root)
             pts = br.segment.evaluate(u)[0]
             out[m] = br.motion.to_blank(pts, np.full(int(m.sum()), sec[1]))
         return out
@@ -131,7 +158,9 @@ class CamProfile:
         # the branch's own parameter is the cam angle itself: the curve maps w onto it and the corners
         self.envelope = Branch(self.tool, self.motion, 0.0, 1.0, "near", along="motion")
         scale = spec.prime_radius + spec.stroke
-        self.branch = CamCurve(_AngleBranch(self.envelope), start, self._corners(scale))
+        corners = self._corners(scale)
+        self.corner_angles = tuple(phi % _TWO_PI for phi, _, _, _ in corners)
+        self.branch = CamCurve(_AngleBranch(self.envelope), start, corners)
         self.pieces, self.loops = self._trim()
 
     # -- construction ---------------------------------------------------------------------
@@ -158,6 +187,35 @@ class CamProfile:
         return out
 
     def _trim(self):
+        """The kept pieces (split where the curve has a break: a section's end, a motion join) and
+        the loops cut away, ``(phi_a, phi_b)``."""
+        if self.spec.contact != "knife":
+            scale = self.spec.prime_radius + self.spec.stroke
+            if self.spec.contact == "flat":
+                depth = face_depth(self.motion, self.tool, self.start)
+            else:
+                depth = roller_depth(self.pitch_points, self.spec.roller_radius, self.start)
+            cuts = sorted(kept_runs(self.branch, depth, 1e-7 * scale))
+            loops = tuple((self._phi(wa), self._phi(wb)) for wa, wb in cuts)
+            if not cuts:
+                spans = [(0.0, 1.0)]
+            else:
+                spans = []
+                for (_, wb), (wa, _) in zip(cuts, cuts[1:] + cuts[:1]):
+                    spans += [(wb, wa)] if wb < wa else [(wb, 1.0), (0.0, wa)]
+                spans = sorted(sp for sp in spans if sp[1] > sp[0])
+        else:
+            pieces, loops = self._trim_loops()
+            spans = [(pc.w0, pc.w1) for pc in pieces]
+        breaks = self.branch.breaks(self.spec.motion)
+        out = []
+        for w0, w1 in spans:
+            inner = breaks[(breaks > w0 + 1e-12) & (breaks < w1 - 1e-12)]
+            edges = [w0, *inner.tolist(), w1]
+            out += [Piece(self.spec.contact, self.branch, a, b) for a, b in zip(edges[:-1], edges[1:])]
+        return tuple(out), tuple(loops)
+
+    def _trim_loops(self):
         w = np.linspace(0.0, 1.0, 4 * _SCAN + 1)
         pts = self.branch(w)
         ii, jj, ti, tj = polyline_self_intersections(pts)
@@ -252,8 +310,7 @@ class CamProfile:
     def corner_loops(self) -> tuple:
         """Loops cut at a concave corner of the pitch curve (a velocity jump): the follower switches
         flanks there at once, which the motion law already asks for (flagged as a hard impact)."""
-        corners = [phi % _TWO_PI for phi, dv, _, _ in self.spec.motion.jumps() if dv]
-        return tuple(lp for lp in self.loops if any(_within(c, lp) for c in corners))
+        return tuple(lp for lp in self.loops if any(_within(c, lp) for c in self.corner_angles))
 
     @property
     def undercut(self) -> bool:

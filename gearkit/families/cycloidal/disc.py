@@ -190,7 +190,12 @@ def disc_profile(spec: DriveSpec) -> CycloidalDisc:
     if abs(spec.generating_eccentricity * spec.pins / spec.tooth_difference) >= spec.grind_circle:
         raise SpecError("eccentricity", f"|K1| = {abs(spec.grinding().k1):.6g} >= 1: the pin circle lies inside "
                         "the pin ring's centrode and the pins trace a prolate (looped) cycloid, not a disc")
-    branches = chain_branches(pin_tool(spec), generating_motion(spec), "near", return_root="far")
+    # the two contacts by the signed rule (the root behind / ahead along the pin's outward normal):
+    # each a continuous curve. The near/far rule picks the same roots (near = back for a disc, front
+    # for a ring) until a large pin's two distances cross over inside its arc, where the near root
+    # jumps from one contact to the other (DriveSpec(3, 2, 13.0, 8.0, 3.8): 0.17 mm at a piece end)
+    out, back = ("back", "front") if spec.sign > 0 else ("front", "back")
+    branches = chain_branches(pin_tool(spec), generating_motion(spec), out, return_root=back)
     tip = spec.tip_radius if spec.tip_radius is not None else _far_radius(spec)
     try:
         half = trim_half_tooth(branches, int(spec.lobes), tip, spec.sign < 0,

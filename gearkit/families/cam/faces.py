@@ -1,0 +1,162 @@
+"""What the follower leaves of the blank: the envelope's points that bound the cam, and its corners.
+
+**Roller.** The roller sweeps every point within ``R_p`` of the pitch curve: an envelope point is
+on the cam when no other roller position covers it, i.e. when its distance to the whole pitch
+curve is ``R_p``. Where the roller is larger than the pitch curve's convex radius of curvature, or
+at a concave corner of the pitch curve (a velocity jump), the envelope loops inside the swept
+region and is cut there.
+
+**Flat face.**
+Relative to the cam, the face is a line at every cam angle ``phi`` and the cam lies on the side of
+the cam axis: the cam is the intersection of the half-planes ``n(phi) . x <= h(phi)`` (``n`` the unit
+normal into the follower, ``h > 0`` the line's distance from the axis) — a convex region whatever
+the motion asks for. Where the motion asks for a convex cam (``r0 + s + s'' > 0`` for a translating
+face, textbook 3.45) every line touches it at the envelope point and the envelope is the cam.
+Where it does not, the envelope loops (a swallowtail) or, for a rocker whose face turns back
+relative to the cam (``|psi'| > 1``), runs off along the face; the cam keeps only the envelope's
+points on the boundary of the intersection, and its corners are where the kept arcs cross.
+
+Which lines touch the cam is read off the dual curve ``d = n / h``: the intersection of the
+half-planes is the polar of the convex hull of the ``d``, so a line bounds the cam exactly when
+its dual point is a hull vertex (a line that turns back has its dual point moving towards the
+origin, inside the hull). The envelope's samples are then kept where they lie on the boundary of
+the polygon those lines bound, and each change from kept to cut is refined to the exact crossing
+of the envelope with itself.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from gearkit.errors import GeometryError
+
+__all__ = ["face_lines", "face_depth", "roller_depth", "kept_runs"]
+
+
+def face_lines(motion, tool, phi):
+    """The face at cam angles ``phi`` in the cam frame: unit normals ``n`` (away from the cam axis)
+    and distances ``h > 0`` of the lines ``n . x = h``."""
+    phi = np.atleast_1d(np.asarray(phi, dtype=float))
+    ends = tool.evaluate(np.array([0.0, 1.0]))[0]
+    a = motion.to_blank(np.broadcast_to(ends[0], phi.shape + (2,)), phi)
+    b = motion.to_blank(np.broadcast_to(ends[1], phi.shape + (2,)), phi)
+    d = b - a
+    n = np.stack([d[:, 1], -d[:, 0]], -1) / np.hypot(d[:, 0], d[:, 1])[:, None]
+    h = np.einsum("ij,ij->i", n, a)
+    flip = np.where(h < 0, -1.0, 1.0)
+    return n * flip[:, None], h * flip
+
+
+def _bounding_polygon(n, h):
+    """The lines that bound the intersection of the half-planes (hull vertices of the dual points),
+    in counter-clockwise order, and the polygon's vertex angles: ``(n_active, h_active, angles)``;
+    the edge ending at vertex ``k`` lies on active line ``k``."""
+    from scipy.spatial import ConvexHull
+
+    dual = n / h[:, None]
+    idx = ConvexHull(dual).vertices  # counter-clockwise in 2-D
+    na, ha = n[idx], h[idx]
+    nb, hb = np.roll(na, -1, axis=0), np.roll(ha, -1)
+    det = na[:, 0] * nb[:, 1] - na[:, 1] * nb[:, 0]
+    vx = (ha * nb[:, 1] - hb * na[:, 1]) / det  # vertex of lines k and k + 1
+    vy = (na[:, 0] * hb - nb[:, 0] * ha) / det
+    return na, ha, np.arctan2(vy, vx)
+
+
+def _outside(points, na, ha, ang):
+    """Signed distance of each point outside the polygon (negative inside): against the active line
+    whose edge the ray from the axis through the point crosses."""
+    alpha = np.arctan2(points[:, 1], points[:, 0])
+    order = np.argsort(ang)
+    k = np.searchsorted(ang[order], alpha) % len(ang)  # the edge ends at the next vertex by angle
+    line = order[k]
+    return np.einsum("ij,ij->i", points, na[line]) - ha[line]
+
+
+def face_depth(motion, tool, start: float, samples: int = 65536):
+    """How deep (mm) points lie inside the region the flat face sweeps (negative: on the cam's side
+    of every line), from ``samples`` face positions over one turn from cam angle ``start``."""
+    phi = start + np.linspace(0.0, 2.0 * math.pi, samples, endpoint=False)
+    na, ha, ang = _bounding_polygon(*face_lines(motion, tool, phi))
+    return lambda points: _outside(points, na, ha, ang)
+
+
+def roller_depth(pitch_points, radius: float, start: float, samples: int = 65536):
+    """How deep (mm) points lie inside the region the roller sweeps: ``R_p`` less their distance to
+    the pitch curve (``pitch_points(phi)``, sampled at ``samples`` cam angles over one turn)."""
+    from gearkit.accuracy import distances_to_polyline
+
+    pitch = pitch_points(start + np.linspace(0.0, 2.0 * math.pi, samples, endpoint=False))
+    return lambda points: radius - distances_to_polyline(points, pitch, closed=True)
+
+
+def kept_runs(curve, depth, slack: float, samples: int = 16385):
+    """Where the envelope ``curve`` (of ``w`` in [0, 1], one turn) bounds the cam: ``[(wa, wb), ...]``,
+    the cuts from a kept arc's end ``wa`` to the next kept arc's start ``wb`` (cyclic, ``wb`` may be
+    below ``wa``: the cut runs through ``w = 1``), each refined to the envelope's self-crossing.
+    A sample is kept where ``depth`` (:func:`face_depth`, :func:`roller_depth`) is at most ``slack``
+    (mm: the swept region's own sampling error). Empty when the whole envelope bounds the cam."""
+    w = np.linspace(0.0, 1.0, samples)
+    keep = depth(curve(w)) <= slack
+    keep[-1] = keep[0]  # w = 1 is w = 0
+    if keep.all():
+        return []
+    if not keep.any():
+        raise GeometryError("the flat face leaves no envelope point on the cam (no line touches it)")
+    k = np.flatnonzero(keep[:-1])
+    starts = [int(j) for j in k if not keep[j - 1 if j else samples - 2]]  # runs beginning at j
+    ends = [int(j) for j in k if not keep[j + 1]]  # runs ending at j
+    cuts = []
+    for e in ends:
+        b = min((s for s in starts if s > e), default=starts[0])  # the next run, cyclically
+        cuts.append(_refine_cut(curve, w, e, b))
+    return cuts
+
+
+def _refine_cut(curve, w, e, b):
+    """The crossing ``curve(wa) = curve(wb)`` with ``wa`` just after sample ``e`` and ``wb`` just
+    before sample ``b``: the chords' crossing, then Newton."""
+    n = len(w)
+    ja = np.arange(e - 2, e + 3) % (n - 1)
+    jb = np.arange(b - 3, b + 2) % (n - 1)
+    pa, pb = curve(w[ja]), curve(w[jb])
+    best = None
+    for i in range(len(ja) - 1):
+        for j in range(len(jb) - 1):
+            t = _chord_cross(pa[i], pa[i + 1], pb[j], pb[j + 1])
+            if t is not None:
+                best = (w[ja[i]] + t[0] * (w[1] - w[0]), w[jb[j]] + t[1] * (w[1] - w[0]))
+    if best is None:  # no chord crossing seen: start from the last kept and first kept samples
+        best = (w[e], w[b])
+    return _newton(curve, *best, h=0.5 * (w[1] - w[0]))
+
+
+def _chord_cross(p0, p1, q0, q1):
+    d1, d2, r = p1 - p0, q1 - q0, q0 - p0
+    den = d1[0] * d2[1] - d1[1] * d2[0]
+    if den == 0.0:
+        return None
+    t = (r[0] * d2[1] - r[1] * d2[0]) / den
+    u = (r[0] * d1[1] - r[1] * d1[0]) / den
+    return (t, u) if 0.0 <= t <= 1.0 and 0.0 <= u <= 1.0 else None
+
+
+def _newton(curve, wa, wb, h):
+    """Newton on ``curve(wa) = curve(wb)`` within ``h`` of the start (central differences)."""
+    x = np.array([wa, wb])
+    lo, hi = x - 4 * h, x + 4 * h
+    step_h = 1e-9
+    for _ in range(50):
+        p = curve(np.mod(np.array([x[0] - step_h, x[0] + step_h, x[1] - step_h, x[1] + step_h, x[0], x[1]]), 1.0))
+        jac = np.column_stack([(p[1] - p[0]) / (2 * step_h), -(p[3] - p[2]) / (2 * step_h)])
+        try:
+            step = np.linalg.solve(jac, p[4] - p[5])
+        except np.linalg.LinAlgError:
+            break
+        new = np.clip(x - step, lo, hi)
+        done = np.abs(new - x).max() < 1e-15
+        x = new
+        if done:
+            break
+    return float(np.mod(x[0], 1.0)), float(np.mod(x[1], 1.0))
