@@ -121,8 +121,7 @@ class _Task:
         if self._fast(exact) and not tangent:
             p = self.mesh.driver.table.evaluate_xy(self.piece[rows], t)
             rho, u = self.mesh.mate_coords(p[0], p[1], self.frame[:, rows])
-            w, piece, _ = self.mesh.mate.table.width(rho)
-            return w - self.sb[rows] * u, None, rho, piece, None
+            return self.mesh.mate.table.values(rho) - self.sb[rows] * u, None, rho, None, None
         x, y = _driver_xy(self.mesh, self.piece[rows], t, self.sigma[rows], self.theta[rows], exact)
         rho, u = self.mesh.to_mate_xy(x, y, self.phi[rows])
         q = np.stack([x, y], -1) if tangent else None
@@ -271,7 +270,9 @@ def _solve_chunk(mesh, phi, contact_tol, bounds) -> Bounds:
     at = mate.lookup(rho)
     w = mate.coarse(rho, at)
     sb = np.array([1.0, -1.0])
-    big_u = w[:, None, :] - sb[None, :, None] * u[:, None, :]  # (A, 2, M1)
+    big_u = np.empty((len(rho), 2) + rho.shape[1:])  # (A, 2, M1): w - u, w + u
+    np.subtract(w, u, out=big_u[:, 0])
+    np.add(w, u, out=big_u[:, 1])
     finite = np.isfinite(w)
     # the intervals that cross the mate's tip circle (few): the bound at the crossing
     c_a, c_m = np.nonzero(finite[..., :-1] != finite[..., 1:])
@@ -296,12 +297,21 @@ def _solve_chunk(mesh, phi, contact_tol, bounds) -> Bounds:
     glob = np.full((n, 2), np.inf)
     np.minimum.at(glob, r_n, best)
     active = best - dip.max(-1)[:, None] <= glob[r_n] + contact_tol / arm_scale
-    ends = np.minimum(big_u[..., :-1], big_u[..., 1:])
-    reach = best[..., None] + dip[:, None, :]
+    active &= np.isin(np.arange(2), bounds)[None, :]
+    # the intervals of the active halves (and bounds) that come within their dip of the best
+    p_a, p_b = np.nonzero(active)
+    ends = big_u[p_a, p_b]
+    ends = np.minimum(ends[:, :-1], ends[:, 1:])
+    reach = best[p_a, p_b][:, None] + dip[p_a]
     pick = ends <= reach
-    pick[c_a[:, None], np.arange(2)[None, :], c_m[:, None]] |= big_c <= reach[c_a, :, c_m]
-    pick &= active[..., None] & np.isin(np.arange(2), bounds)[None, :, None]
-    i_a, i_b, i_m = np.nonzero(pick)
+    at_pick = np.full(active.shape, -1)
+    at_pick[p_a, p_b] = np.arange(len(p_a))
+    for b in range(2):  # an interval crossing the tip circle: its bound at the crossing
+        k = at_pick[c_a, b]
+        ok = np.flatnonzero(k >= 0)
+        pick[k[ok], c_m[ok]] |= big_c[ok, b] <= reach[k[ok], c_m[ok]]
+    k, i_m = np.nonzero(pick)
+    i_a, i_b = p_a[k], p_b[k]
     i_n, i_k, i_h = r_n[i_a], r_k[i_a], r_h[i_a]
     shape = (n, kk, 2, 2)
     value = np.full(shape, np.inf)

@@ -254,8 +254,12 @@ class WidthTable:
         self._polar = polar
 
     def _x(self, rows, rho):
-        d = rho - self._anchor[rows]
-        return np.where(self._grazing[rows], np.sign(d) * np.sqrt(np.abs(d)), rho)
+        x = np.array(rho, dtype=float)
+        g = np.flatnonzero(self._grazing[rows])  # few: the square root only there
+        if g.size:
+            d = x[g] - self._anchor[rows[g]]
+            x[g] = np.sign(d) * np.sqrt(np.abs(d))
+        return x
 
     def _locate(self, rho):
         """Sub-interval ``j``, its row, the coordinate ``x`` and the local ``s in [-1, 1]`` of flat ``rho``."""
@@ -286,6 +290,21 @@ class WidthTable:
             w_r = np.where(body, slope, np.where(free, np.nan, w_r))
             w_rr = np.where(body, 0.0, np.where(free, np.nan, w_rr))
         return w, w_r, w_rr
+
+    def values(self, rho):
+        """``w`` alone at flat ``rho`` (as :meth:`width`)."""
+        half = self.half
+        j, row, x, s = self._locate(rho)
+        w = _gathered(self._coef, j, s)[0]
+        slow = np.flatnonzero(self._fallback[j])
+        if slow.size:
+            w[slow] = half.exact(rho[slow])[0]
+        body, free = half._body(rho), half.free(rho)
+        if body.any():
+            w = np.where(body, half._body_width(rho), w)
+        if free.any():
+            w[free] = np.inf
+        return w
 
     def width(self, rho, tangent: bool = False):
         """``w``, the piece (-1 beyond the tip, -2 inside the root circle) and, with ``tangent``, the
