@@ -203,7 +203,7 @@ class Mesh:
         x, y = a * px - b * py - ox, c * px + d * py - oy
         if self.kind == "rack":
             return self.a - y, self._wrap(shift - x)
-        return np.hypot(x, y), self._wrap(np.arctan2(x, y))
+        return np.sqrt(x * x + y * y), self._wrap(np.arctan2(x, y))  # (hypot's scaling not needed here)
 
     def mate_derivatives(self, p, d1, d2, frame):
         """:meth:`mate_coords` along a driver curve, with the first and second derivatives in its
@@ -215,8 +215,8 @@ class Mesh:
         ex, ey = a * d2[0] - b * d2[1], c * d2[0] + d * d2[1]
         if self.kind == "rack":  # rho = a - y, psi = shift - x
             return self.a - y, -dy, -ey, self._wrap(shift - x), -dx, -ex
-        rho = np.hypot(x, y)
         r2 = x * x + y * y
+        rho = np.sqrt(r2)
         rho_1 = (x * dx + y * dy) / rho
         rho_2 = (dx * dx + dy * dy + x * ex + y * ey - rho_1 * rho_1) / rho
         u_1 = (y * dx - x * dy) / r2  # psi = atan2(x, y): psi' = (y x' - x y') / rho^2
