@@ -293,6 +293,10 @@ class WidthTable:
 
     def values(self, rho):
         """``w`` alone at flat ``rho`` (as :meth:`width`)."""
+        return self._values(rho)[0]
+
+    def _values(self, rho):
+        """``w`` at flat ``rho``, with :meth:`_locate`'s ``j, row, x, s`` and the body and free masks."""
         half = self.half
         j, row, x, s = self._locate(rho)
         w = _gathered(self._coef, j, s)[0]
@@ -304,7 +308,7 @@ class WidthTable:
             w = np.where(body, half._body_width(rho), w)
         if free.any():
             w[free] = np.inf
-        return w
+        return w, j, row, x, s, body, free
 
     def width(self, rho, tangent: bool = False):
         """``w``, the piece (-1 beyond the tip, -2 inside the root circle) and, with ``tangent``, the
@@ -313,13 +317,7 @@ class WidthTable:
         rho = np.asarray(rho, dtype=float)
         shape = rho.shape
         rho = rho.ravel()
-        j, row, x, s = self._locate(rho)
-        w = _gathered(self._coef, j, s)[0]
-        slow = np.flatnonzero(self._fallback[j])
-        if slow.size:
-            w[slow] = half.exact(rho[slow])[0]
-        body, free = half._body(rho), half.free(rho)
-        w = np.where(body, half._body_width(rho), np.where(free, np.inf, w))
+        w, j, row, x, s, body, free = self._values(rho)
         piece = np.where(body, -2, np.where(free, -1, self._piece[j]))
         if not tangent:
             return w.reshape(shape), piece.reshape(shape), None
