@@ -88,15 +88,20 @@ def _to_edges(points, polyline, upper):
 
 def _true_deviation(pieces, polyline):
     """Largest distance of the exact pieces (``DENSE`` points each) from a polyline: nearest vertices'
-    edges first (an upper bound: may overestimate where the curve folds back), then the far points
-    exactly against every edge within that bound."""
+    edges first (an upper bound per point: it may overestimate where the curve folds back), then
+    points exactly against every edge within that bound, largest bound first, until no point left
+    can exceed the largest exact distance found."""
     w = np.linspace(0.0, 1.0, DENSE)
     exact = np.concatenate([p(w) for p in pieces])
     d = distances_to_polyline(exact, polyline)
-    far = np.flatnonzero(d > 0.25 * float(d.max(initial=0.0)))
-    if len(far):
-        d[far] = _to_edges(exact[far], polyline, d[far])
-    return float(d.max(initial=0.0))
+    order = np.argsort(d)[::-1]
+    best = 0.0
+    for lo in range(0, len(order), 4096):
+        chunk = order[lo:lo + 4096]
+        if d[chunk[0]] <= best:
+            break
+        best = max(best, float(_to_edges(exact[chunk], polyline, d[chunk]).max()))
+    return best
 
 
 def _check_bound(polyline, achieved, true, tol):
