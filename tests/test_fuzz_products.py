@@ -131,7 +131,8 @@ def _solids(data):
                 area = math.pi * r_out ** 2 - area
                 perimeter += 2 * math.pi * r_out
             # every boundary is a polyline within tol of the exact one: the area moves by <= tol x length
-            assert sol.volume == pytest.approx(area * solid["width"], abs=tol * perimeter * solid["width"])
+            width = float(solid["width"])  # a numpy scalar is a valid width (pytest.approx refuses float32)
+            assert sol.volume == pytest.approx(area * width, abs=tol * perimeter * width)
     run("solids", (gear, solid, tol), build, check)
 
 

@@ -303,3 +303,23 @@ def test_cam_roller_that_reaches_the_centre_is_refused():
     with pytest.raises(SpecError) as exc:
         CamSpec(5.0, MotionProgram.rise_dwell_return(1.0, 90.0, 0.0, 90.0), roller_radius=1e300)
     assert exc.value.field == "roller_radius"
+
+
+# -- found by the long run -------------------------------------------------------------------------
+def test_drive_check_at_k1_exactly_one_is_a_failing_finding():
+    """|K1| = 1 exactly (6 pins, 7 lobes, R 5, e 5/6: K1 = -1): the curvature radius was 0/0 at the
+    ordinary cycloid's cusp phi = pi (numpy's invalid-value error). Its limit there is 0: with
+    t = pi - phi, s ~ t^2 and the denominator ~ -(1 + Z) t^2 / 2, so rho ~ -2 R_Z t / (1 + Z)."""
+    from gearkit.families.cycloidal import curvature_radius
+
+    spec = gk.DriveSpec(6, 7, 5.0, 1.3943247007045099, 5.0 / 6.0)
+    g = spec.grinding()
+    assert g.k1 == -1.0
+    t = 1e-4
+    with np.errstate(all="raise", under="ignore"):
+        rho = curvature_radius(spec, np.array([math.pi, math.pi - t]))
+        res = gk.check_drive(spec, samples=50)
+    assert rho[0] == 0.0
+    assert rho[1] == pytest.approx(-2.0 * g.pin_circle_radius * t / (1.0 + g.equivalent_pins), rel=1e-3)
+    assert res.report["curtate"].status == "fail"
+    _strict(json.dumps(res.to_dict()))

@@ -262,8 +262,10 @@ def curvature_radius(spec: DriveSpec, phi):
     k1, z = g.k1, g.equivalent_pins
     phi = np.asarray(phi, dtype=float)
     s = 1.0 + k1 * k1 - 2.0 * k1 * np.cos(phi)
-    with np.errstate(divide="ignore"):  # an inflection (denominator 0) has an infinite radius
-        return g.pin_circle_radius * s ** 1.5 / (k1 * (1.0 + z) * np.cos(phi) - (1.0 + z * k1 * k1))
+    with np.errstate(divide="ignore", invalid="ignore"):  # an inflection (denominator 0) has an infinite radius
+        rho = g.pin_circle_radius * s ** 1.5 / (k1 * (1.0 + z) * np.cos(phi) - (1.0 + z * k1 * k1))
+    # |K1| = 1 exactly (an ordinary cycloid): at its cusp both vanish and the radius tends to 0
+    return np.where(s == 0.0, 0.0, rho)
 
 
 def min_curvature_radius(spec: DriveSpec):
