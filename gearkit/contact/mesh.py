@@ -316,8 +316,13 @@ class Mesh:
         The driver's working flank (its left flank, facing the turning direction) is brought to
         the pitch point; the mate's position puts its flank through the same point. For
         conjugate profiles this is the position of every flank contact: transmission error and
-        interference are measured from it.
+        interference are measured from it. Found once per mesh (the teeth do not change).
         """
+        if not hasattr(self, "_reference"):
+            self._reference = self._find_reference()
+        return self._reference
+
+    def _find_reference(self):
         try:
             own = HalfWidth(self.gear1, self.pitch1, polar_from_y, min(self.tol, 1e-4 * self.module))
         except GeometryError:
