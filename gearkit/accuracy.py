@@ -11,6 +11,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gearkit.chords import chord_distance as _chord_deviation
+from gearkit.chords import angle_parts, interval_bounds
 from gearkit.errors import check_fields, is_real, require
 
 #: probe fractions of every interval: quarter points, and eighths at both ends (where a square-root
@@ -67,17 +69,6 @@ def default_tol(module: float) -> float:
     return 1e-3 * module
 
 
-def _chord_deviation(a, b, q):
-    """Distance of points ``q`` from the segments ``a``-``b`` (broadcast over the last axis)."""
-    d = b - a
-    dd = np.einsum("...i,...i->...", d, d)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        t = np.clip(np.einsum("...i,...i->...", q - a, d) / dd, 0.0, 1.0)
-    t = np.where(dd > 0, t, 0.0)
-    foot = a + t[..., None] * d
-    return np.linalg.norm(q - foot, axis=-1)
-
-
 #: an interval is accepted when its probed deviation is within this fraction of tol: between the
 #: probes a chord's deviation can run above the largest probed one (by ~5 % where the curvature
 #: grows from 0 to its largest across the interval), so the accepted chords keep that margin
@@ -125,8 +116,9 @@ def adaptive_sample(evaluate, tol: float, n_init: int = 5, max_rounds: int = 60,
     ``ceil(N)`` chords in all: within a few percent of the fewest a chord-at-tol polyline needs.
 
     **Acceptance.** The placed vertices then go through :func:`refine_sample` at ``tol``, which
-    probes every chord and splits the ones that fail: the placement only proposes, the deviation
-    is established by the same test as for any other sampling.
+    probes every chord and splits the ones that fail: the placement only proposes. A curve that
+    gives its tangent's turning (``turning(w)``) is accepted on a proven bound of each chord's
+    deviation (``bound=True``), any other on the deviation measured at the probes.
 
     ``fewest=True`` places the vertices so (what a profile's outline, a mesh or an exported curve
     asks for); the default ``False`` keeps the refinement's own vertices (a uniform ``n_init``
@@ -150,7 +142,10 @@ def adaptive_sample(evaluate, tol: float, n_init: int = 5, max_rounds: int = 60,
     w : (k,) float64
     points : (k, 2) float64, on the curve
     achieved : float, mm
-        Largest chord deviation measured at the probes of every final interval.
+        With ``fewest=True`` on a curve with ``turning(w)`` (every tooth piece: :func:`provable`), a
+        *proven upper bound* of every chord's deviation (:mod:`gearkit.chords`: it holds if each
+        angle part the curve gives is monotone along it and the curve has no cusp inside; round-off
+        of the exact points aside); otherwise the largest deviation measured at the probes.
 
     Examples
     --------
@@ -185,7 +180,14 @@ def adaptive_sample(evaluate, tol: float, n_init: int = 5, max_rounds: int = 60,
     w, pts, _, probes, q = refine_sample(evaluate, w, evaluate(w), PILOT * tol, max_rounds, max_split)
     w = place_by_curvature(np.concatenate([w, probes.ravel()]), np.concatenate([pts, q.reshape(-1, 2)]),
                            PLACE_AT * tol)
-    return refine_sample(evaluate, w, evaluate(w), tol, max_rounds, max_split)[:3]
+    bound = provable(evaluate)
+    return refine_sample(evaluate, w, None if bound else evaluate(w), tol, max_rounds, max_split, bound)[:3]
+
+
+def provable(curve) -> bool:
+    """Whether ``curve`` gives the tangent angle parts that :func:`refine_sample` proves a bound with."""
+    turning = getattr(curve, "turning", None)
+    return turning is not None and turning(np.array([0.0, 1.0])) is not None
 
 
 def place_by_curvature(w, points, tol: float) -> np.ndarray:
@@ -230,7 +232,11 @@ def place_by_curvature(w, points, tol: float) -> np.ndarray:
     return placed[np.concatenate([[True], np.diff(placed) > 0.0])]  # sorted already (np.unique imports numpy.ma)
 
 
-def refine_sample(evaluate, w, pts, tol: float, max_rounds: int = 60, max_split: int = 16):
+#: a parameter interval this short (relative) holds no curve points but its ends and probes
+ATOM = 1e-13
+
+
+def refine_sample(evaluate, w, pts, tol: float, max_rounds: int = 60, max_split: int = 16, bound: bool = False):
     """Split the intervals of a sampling ``(w, pts)`` of an exact curve until every chord is within ``tol``.
 
     Each round probes every interval at its quarter points and eighths at both ends. An interval
@@ -245,21 +251,45 @@ def refine_sample(evaluate, w, pts, tol: float, max_rounds: int = 60, max_split:
     probes, and the quadratic model behind the probes only holds once the speed is even.
     Intervals still too coarse split again.
 
+    ``bound=True`` (the curve has ``turning(w)``, see :mod:`gearkit.chords`): ``dev`` is instead each
+    interval's *proven bound* over the legs between its probes (no margin: ``dev <= tol`` accepts), an
+    interval whose bound is not established is split at its probes, and ``achieved`` is a bound.
+
     Returns
     -------
     w, points, achieved (as :func:`adaptive_sample`), and the final probes' parameters
     ``(k - 1, 5)`` and points ``(k - 1, 5, 2)``.
     """
+    if bound:
+        turning = angle_parts(evaluate.turning)
+        pts, tan, parts = turning(w)
+        margin = 1.0
+    else:
+        margin = PROBE_MARGIN
     for _ in range(max_rounds):
         lo, hi = w[:-1], w[1:]
-        probes, q, dev, uneven = _probe(evaluate, w, pts, tol)
-        bad = dev > PROBE_MARGIN * tol
+        if bound:
+            probes, q, tq, pq, dev = interval_bounds(turning, w, pts, tan, parts, tol, _PROBES)
+            uneven = ~np.isfinite(dev)
+            # an interval below the parameter's resolution has no points but its ends and probes: a curve
+            # that jumps there (an exact solution switching roots at the very end of its range) is
+            # measured at them
+            atom = uneven & (hi - lo <= ATOM * np.maximum(np.abs(lo), np.abs(hi)).clip(1.0))
+            if atom.any():
+                dev[atom] = _chord_deviation(pts[:-1][atom, None], pts[1:][atom, None], q[atom]).max(axis=1)
+                uneven &= ~atom
+        else:
+            probes, q, dev, uneven = _probe(evaluate, w, pts, tol)
+        bad = (dev > margin * tol) & ~uneven
         if not (bad.any() or uneven.any()):
             return w, pts, float(dev.max(initial=0.0)), probes, q
-        k = np.clip(np.ceil(1.1 * np.sqrt(dev[bad] / (PROBE_MARGIN * tol))), 2, max(2, max_split)).astype(int)
+        k = np.clip(np.ceil(1.1 * np.sqrt(dev[bad] / (margin * tol))), 2, max(2, max_split)).astype(int)
         quarters = uneven & ~bad  # split at the probes already evaluated
         new_w = [probes[bad, _MID], probes[quarters].ravel()]
         new_p = [q[bad, _MID], q[quarters].reshape(-1, 2)]
+        if bound:
+            new_t = [tq[bad, _MID], tq[quarters].reshape(-1, 2)]
+            new_a = [pq[bad, _MID], pq[quarters].reshape(-1, parts.shape[-1])]
         if (k > 2).any():  # the midpoint is already evaluated; other split points are new
             many = k > 2
             kk = k[many]
@@ -270,12 +300,25 @@ def refine_sample(evaluate, w, pts, tol: float, max_rounds: int = 60, max_split:
             a, h = lo[bad][many][rows][keep], (hi - lo)[bad][many][rows][keep]
             extra = a + h * frac[keep]
             new_w.append(extra)
-            new_p.append(evaluate(extra))
+            if bound:
+                pe, te, ae = turning(extra)
+                new_p.append(pe)
+                new_t.append(te)
+                new_a.append(ae)
+            else:
+                new_p.append(evaluate(extra))
         w = np.concatenate([w] + new_w)
         pts = np.concatenate([pts] + new_p)
         w, first = np.unique(w, return_index=True)  # sorted; an interval too short to split stays whole
         pts = pts[first]
-    probes, q, dev, _ = _probe(evaluate, w, pts, tol)
+        if bound:
+            tan, parts = np.concatenate([tan] + new_t)[first], np.concatenate([parts] + new_a)[first]
+    if bound:
+        probes, q, _, _, dev = interval_bounds(turning, w, pts, tan, parts, tol, _PROBES)
+        atom = ~np.isfinite(dev) & (np.diff(w) <= ATOM * np.maximum(np.abs(w[:-1]), np.abs(w[1:])).clip(1.0))
+        dev[atom] = _chord_deviation(pts[:-1][atom, None], pts[1:][atom, None], q[atom]).max(axis=1)
+    else:
+        probes, q, dev, _ = _probe(evaluate, w, pts, tol)
     return w, pts, float(dev.max(initial=0.0)), probes, q
 
 

@@ -40,6 +40,10 @@ class CircleArc:
         psi = self.psi0 + np.asarray(w, dtype=float) * (self.psi1 - self.psi0)
         return np.stack([self.radius * np.sin(psi), self.radius * np.cos(psi)], -1)
 
+    def turning(self, w):  # points, unit tangents, the tangent's angle -psi (linear): as Piece.turning
+        psi = self.psi0 + np.asarray(w, dtype=float) * (self.psi1 - self.psi0)
+        return self(w), np.stack([np.cos(psi), -np.sin(psi)], -1), -psi[..., None]
+
 
 @dataclass(frozen=True)
 class Piece:
@@ -52,6 +56,11 @@ class Piece:
 
     def __call__(self, t):
         return self.curve(self.w0 + np.asarray(t, dtype=float) * (self.w1 - self.w0))
+
+    def turning(self, t):
+        """Points, unit tangents and monotone angle parts of the curve (its ``turning``), or None."""
+        turning = getattr(self.curve, "turning", None)
+        return None if turning is None else turning(self.w0 + np.asarray(t, dtype=float) * (self.w1 - self.w0))
 
     def reversed(self) -> "Piece":
         return Piece(self.label, self.curve, self.w1, self.w0)
@@ -126,10 +135,8 @@ class HalfTooth:
 def _drop_coincident(pts, rel=1e-13):
     """Drop vertices within ``rel`` (relative to the largest coordinate) of the previous one.
 
-    Pieces of zero length (a sharp cutter corner's envelope, the dust of a loop far below the
-    detection tolerance next to a cusp) sample to repeated points; repeated points make
-    zero-length edges, and edges that cross at round-off scale, in the outline. The first and
-    last points (tip and space centre) are kept exactly.
+    Pieces of zero length (a sharp cutter corner's envelope, the dust of a tiny loop next to a cusp) sample
+    to repeated points: zero-length edges, crossing at round-off scale. Tip and space centre are kept.
     """
     if len(pts) < 3:
         return pts
@@ -143,10 +150,8 @@ def _drop_coincident(pts, rel=1e-13):
     return pts[keep]
 
 
-# Parameters graded geometrically towards both ends of every branch. A loop of the envelope
-# that is much smaller than the sampling tolerance sits next to a branch junction (the
-# cutter point that generates it is close to where two cutter segments meet), so grading
-# the ends resolves loops down to ~1e-13 of the branch's parameter range.
+# Parameters graded geometrically towards both ends of every branch: a loop much smaller than the sampling
+# tolerance sits next to a branch junction, so grading the ends resolves loops down to ~1e-13 of the range.
 _GRADED = np.geomspace(1e-13, 0.05, 90)
 
 
@@ -166,10 +171,8 @@ def _sample_chain(branches, tol):
 
 
 def _edge_window(owner, ws, edge, reach=3):
-    """Parameter window for refining a crossing found on polyline edge ``edge``: that edge and
-    ``reach`` edges either side on the same branch. The polyline is only within the detection
-    tolerance of the exact curves, so the exact crossing may lie on a neighbouring edge; a
-    window of one edge would clamp Newton short of it and leave a gap at the trim."""
+    """Parameter window for refining a crossing found on polyline edge ``edge``: that edge and ``reach``
+    edges either side on the same branch (the exact crossing may lie on a neighbouring edge)."""
     k = owner[edge]
     lo = edge
     while lo > 0 and lo > edge - reach and owner[lo - 1] == k:
@@ -301,6 +304,9 @@ class TipLine:
     def __call__(self, w):
         x = self.x0 + np.asarray(w, dtype=float) * (self.x1 - self.x0)
         return np.stack([x, np.full_like(x, self.height)], -1)
+
+    def turning(self, w):  # a line: a constant tangent
+        return self(w), np.broadcast_to(np.array([1.0, 0.0]), np.shape(w) + (2,)), np.zeros(np.shape(w) + (1,))
 
 
 def trim_half_tooth(branches, teeth_or_angle, tip_radius: float, internal: bool, detect_tol: float,

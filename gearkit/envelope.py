@@ -75,6 +75,31 @@ class Branch:
         """Blank-frame points at ``w`` (the exact curve)."""
         return self.solve(w, normals=False)[0]
 
+    def turning(self, w):
+        """Points, unit tangents and the tangent's angle in two monotone parts, or None (see below).
+
+        The envelope touches the tool, so its tangent is the tool's tangent carried into the blank:
+        its angle is the tool tangent's angle (:meth:`gearkit.segments.Segment.turning`, monotone in
+        ``u``) plus the motion's rotation at the contact roll, ``(1/c_b - 1/c_t) s`` (linear in ``s``).
+        The roll is monotone along a tool segment: every normal of a line, an arc (through its centre),
+        an involute (tangent to its base circle) or a cycloid (through its rolling point) meets the tool
+        centrode once on the side taken, in the order of the segment. Returns ``parts`` ``(n, 2)``:
+        each monotone in ``w``, their sum the tangent's angle up to a constant -- what
+        :func:`gearkit.accuracy.refine_sample` bounds a chord's deviation by. None along the motion
+        (a cam's follower: its contact turns both ways with the pressure angle).
+        """
+        if self.along != "tool":
+            return None
+        w = np.atleast_1d(np.asarray(w, dtype=float))
+        u = self.u0 * (1.0 - w) + self.u1 * w
+        turned = self.segment.turning(u)
+        if turned is None:
+            return None
+        p, t, tool_angle = turned
+        s, valid = self.motion.contact(p, np.stack([-t[..., 1], t[..., 0]], -1), self.root)
+        shift, angle, offset = self.motion.pose(np.where(valid, s, 0.0))
+        return rotate(p - shift, angle) + offset, rotate(t, angle), np.stack([tool_angle, angle], -1)
+
 
 def touching(segment: Segment, poles, root: str = "near"):
     """Parameter of the point of ``segment`` whose normal line passes through each pole (tool frame).

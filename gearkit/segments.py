@@ -110,9 +110,57 @@ class Segment:
         n[..., 1] = t[..., 0]
         return p, t, n
 
+    def __call__(self, u):
+        """Points at ``u`` (a segment is an exact curve too: the basic rack's pieces)."""
+        return self.evaluate(u)[0]
+
     def endpoints(self):
         p, t, _ = self.evaluate(np.array([0.0, 1.0]))
         return p, t
+
+    def turning(self, u):
+        """Points, unit tangents (as :meth:`evaluate`) and the tangent's angle (rad), continuous along the segment
+        (None for a trochoid, ``ratio != 1``).
+
+        The angle is the walking tangent's direction up to a constant, monotone in ``u`` on every kind: a
+        line's is constant; an arc's, an involute's and a cycloid's (``ratio = 1``) primitive angle is linear
+        in ``u`` (a, the unwinding angle, minus the rolling circle's mean angle), and the affine map carries
+        a monotone angle to a monotone one (a linear map keeps the cyclic order of directions). Used by
+        :meth:`gearkit.envelope.Branch.turning` to bound how far a piece of an envelope turns.
+
+        >>> seg = arc((0.0, 0.0), 1.0, 0.0, math.pi, "tip")
+        >>> _, _, ang = seg.turning(np.array([0.0, 0.5, 1.0]))
+        >>> bool(np.allclose(np.diff(ang), np.pi / 2, rtol=0, atol=1e-12))
+        True
+        """
+        u = np.asarray(u, dtype=float)
+        p, t, n = self.evaluate(u)
+        ue = 1.0 - u if self.reverse else u
+        d = self.data
+        if self.kind == "arc":
+            lin = d[3] + ue * (d[4] - d[3])
+        elif self.kind == "involute":
+            lin = d[3] + d[4] * (d[5] + ue * (d[6] - d[5]))
+        elif self.kind == "roulette":
+            kb, a, ratio, s0, s1 = d
+            if ratio != 1.0:  # a trochoid may turn both ways: no monotone angle
+                return None
+            lin = -(s0 + ue * (s1 - s0)) * (kb + 0.5 / a)
+        else:
+            lin = np.zeros_like(ue)
+        (_, _), (t0x, t0y) = self._primitive(ue)
+        t0x, t0y = np.broadcast_to(t0x, ue.shape), np.broadcast_to(t0y, ue.shape)
+        quarter = np.mod(np.round((np.arctan2(t0y, t0x) - lin) / (0.5 * math.pi)), 4.0)
+        psi = lin + 0.5 * math.pi * quarter  # the primitive's tangent angle, continuous
+        a11, a12, a21, a22 = self.affine[:4]
+        if a11 * a22 - a12 * a21 < 0:  # a reflection: A e(psi) = (A diag(1, -1)) e(-psi)
+            a12, a22, psi = -a12, -a22, -psi
+        rho = math.atan2(a21 - a12, a11 + a22)  # the rotation of A's polar decomposition
+        c, s = math.cos(rho), math.sin(rho)
+        b11, b12, b21, b22 = c * a11 + s * a21, c * a12 + s * a22, -s * a11 + c * a21, -s * a12 + c * a22
+        ex, ey = np.cos(psi), np.sin(psi)
+        fx, fy = b11 * ex + b12 * ey, b21 * ex + b22 * ey  # symmetric positive definite: within 90 deg of e
+        return p, t, rho + psi + np.arctan2(ex * fy - ey * fx, ex * fx + ey * fy)
 
 
 def transform_chain(chain, matrix, offset=(0.0, 0.0)):

@@ -188,3 +188,31 @@ def test_a_gear_checked_with_numpy_measures_as_manifold3d_does():
     moved = solid.placed(0.3, (1.0, 2.0, 3.0))
     assert moved.volume == pytest.approx(volume, rel=1e-12)
     assert moved.manifold.volume() == pytest.approx(volume, rel=1e-12)
+
+
+def test_leg_bound_holds_across_an_inflection_and_refuses_inconsistent_parts():
+    """A curve built from its tangent's angle theta(t) = c1 t - c2 t^2 (two monotone parts on t >= 0;
+    an inflection where c1 = 2 c2 t): the parallelogram bound of random legs against random chords is
+    at least the distance of the densely integrated curve from the chord (oracle: the integration,
+    to its own step error ``STEP_ERR``), and parts that do not reproduce the end tangent give inf."""
+    from gearkit.chords import chord_distance, leg_bound
+
+    rng = np.random.default_rng(7)
+    t = np.linspace(0.0, 1.0, 20001)
+    step_err = 1e-8  # trapezoid integration of a unit tangent over steps of 5e-5
+    for _ in range(200):
+        c1, c2 = rng.uniform(-1.5, 1.5), rng.uniform(0.0, 1.5)
+        theta = c1 * t - c2 * t * t
+        tan = np.stack([np.cos(theta), np.sin(theta)], -1)
+        curve = np.concatenate([[[0.0, 0.0]], np.cumsum(0.5 * (tan[1:] + tan[:-1]) * np.diff(t)[:, None], axis=0)])
+        i, j = np.sort(rng.choice(len(t), 2, replace=False))
+        k, m = np.sort(rng.choice(np.arange(i, j + 1), 2))  # the chord: any chord around the leg
+        parts = np.array([c1 * (t[j] - t[i]), -c2 * (t[j] ** 2 - t[i] ** 2)])
+        bound = leg_bound(curve[i], curve[j], tan[i], tan[j], parts, curve[k], curve[m])
+        real = chord_distance(curve[k], curve[m], curve[i:j + 1]).max()
+        if np.isfinite(bound):
+            assert real <= bound + step_err, (c1, c2, i, j)
+        else:  # only a range of a quarter turn or more is refused
+            assert abs(parts).sum() >= 0.5 * np.pi - 1e-12
+        wrong = leg_bound(curve[i], curve[j], tan[i], tan[j], parts + np.array([0.1, 0.0]), curve[k], curve[m])
+        assert not np.isfinite(wrong) or abs(parts).sum() < 1e-9

@@ -114,7 +114,7 @@ class RackProfile(HalfToothProfile):
 
 
 def _segment_piece(seg, label):
-    return Piece(label, lambda w, _s=seg: _s.evaluate(np.asarray(w, dtype=float))[0], 0.0, 1.0)
+    return Piece(label, seg, 0.0, 1.0)
 
 
 def _basic_rack_half(spec: RackSpec) -> HalfTooth:
