@@ -77,7 +77,7 @@ def run_bench(quick: bool = False, process: bool = True, progress=None) -> dict:
         if products.available("gearkit.solids"):
             say("accuracy ladder: meshes")
             out["ladder"] += meshes.mesh_ladder(quick, repeats)
-        out["targets"] += vertices.vertex_target_rows()
+        out["targets"] += vertices.vertex_target_rows() + [vertices.bound_target_row(out["ladder"])]
         if products.available("gearkit.solids"):
             say("large mesh: z = 1000 to STL, CPU and memory per face")
             out["targets"] += targets.mesh_target_rows(1 if quick else 3)
