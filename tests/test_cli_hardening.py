@@ -234,8 +234,9 @@ def test_sigterm_during_an_export_exits_143_and_leaves_nothing(capsys, tmp_path,
 
 @pytest.mark.parametrize("sig, code, word", [(signal.SIGINT, 130, "interrupted"), (signal.SIGTERM, 143, "terminated")])
 def test_a_real_signal_during_a_long_export_leaves_no_part_file(tmp_path, sig, code, word):
-    """A real process, signalled while its ``.part`` file is being written (a z = 2000 DXF writes
-    for about a second): the exit status is 130/143, one line, and the folder is left empty.
+    """A real process, signalled while its ``.part`` file is being written (a z = 2000 DXF at tol 1e-5
+    is about 19 MB, so its writing lasts long enough to be caught on a loaded machine): the exit
+    status is 130/143, one line, and the folder is left empty.
 
     On a loaded machine the signal can arrive after the file was renamed into place; such an
     attempt must have finished cleanly (exit 0, the whole file, no ``.part``) and is repeated, so
@@ -245,7 +246,8 @@ def test_a_real_signal_during_a_long_export_leaves_no_part_file(tmp_path, sig, c
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(sys.path))
     out = tmp_path / "g.dxf"
     for _attempt in range(5):
-        proc = subprocess.Popen([sys.executable, "-m", "gearkit", "gear", "-z", "2000", "-m", "1", "-o", str(out)],
+        proc = subprocess.Popen([sys.executable, "-m", "gearkit", "gear", "-z", "2000", "-m", "1", "--tol", "1e-5",
+                                 "-o", str(out)],
                                 stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, env=env)
         deadline = time.monotonic() + 300
         while not [p for p in leftovers(tmp_path) if p.startswith(".g.dxf.")]:
