@@ -22,6 +22,8 @@ import time
 
 import numpy as np
 
+from gearkit.export import text_number
+
 __all__ = ["ladder_rows", "target_rows", "atlas_rows", "deviation", "scan_gap", "format_section"]
 
 LADDER = (1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9)
@@ -334,6 +336,11 @@ def atlas_rows(quick: bool):
     return rows
 
 
+def _measured(v) -> str:
+    """A measured distance for the report, or ``not measured`` where the run did not measure it."""
+    return "not measured" if v is None else text_number(v, ".2e")
+
+
 def format_section(res: dict) -> list:
     """Lines of the bench report for the blocking targets and the atlas throughput."""
     lines = ["", "blocking contours: targets (load average %s)" % res["meta"].get("load_before")]
@@ -346,14 +353,14 @@ def format_section(res: dict) -> list:
     if ladder:
         r0 = ladder[0]
         lines.append("blocking ladder (12/30, all lines and the region; shift units; reference: a trace at tol "
-                     f"{r0['reference_tol']:g}, itself {r0.get('reference_exact', float('nan')):.2e} from the exact "
-                     f"lines, scan gap {r0.get('reference_scan', float('nan')):.2e})")
+                     f"{r0['reference_tol']:g}, itself {_measured(r0.get('reference_exact'))} from the exact "
+                     f"lines, scan gap {_measured(r0.get('reference_scan'))})")
         lines.append(f"  {'tol':>8} {'exact':>10} {'gap':>10} {'scan gap':>10} {'ach/tol':>8} {'loops':>7} {'dup':>4} "
                      f"{'vertices':>9} {'evals':>9} {'time':>9}  worst scan zero")
         for r in ladder:
             where = "" if r.get("scan_line") is None else f"  {r['scan_line']} at ({r['scan_at'][0]:.4f}, " \
                 f"{r['scan_at'][1]:.4f})"
-            lines.append(f"  {r['tol']:8.0e} {r['exact']:10.2e} {r['gap']:10.2e} {r.get('scan', float('nan')):10.2e} "
+            lines.append(f"  {r['tol']:8.0e} {r['exact']:10.2e} {r['gap']:10.2e} {_measured(r.get('scan')):>10} "
                          f"{r['achieved'] / r['tol']:8.2f} "
                          f"{'%d/%d' % tuple(r['loops']):>7} {r['duplicates']:4d} {r['vertices']:9d} "
                          f"{r['evaluations']:9d} {r['seconds']:8.3f}s{where}")
