@@ -26,79 +26,15 @@ import math
 import numpy as np
 
 from gearkit.curves import inv
-from gearkit.families.involute.tools import BasicRack
-from gearkit.pair.tooling import cutter_radii, graded_tip_radius
+from gearkit.blocking.gear_arrays import gear_forms, inv_inverse, ring_settings
+from gearkit.pair.internal import SWEEP_RESOLUTION
+from gearkit.pair.sweep import SWEEP_ENOUGH, sweep_depth
+from gearkit.pair.tooling import graded_tip_radius, half_angle
 
 __all__ = ["margins", "evaluator", "sliding_ends"]
 
 PLUNGE_SAMPLES = 97  #: samples of the plunge-trimming gap (over a quarter wave of the shaper's corner: at
 #: most two extrema), then Newton on the derivative from the smallest; the check samples 801
-NEWTON = 12  #: most Newton steps of the inverse involute (quadratic from the start: 4 to 6 suffice)
-
-
-def _inv_inverse(v):
-    """The angle ``a`` with ``inv a = v`` (v > 0), arrays: Newton from the right of the root, where
-    ``inv`` is convex (the iterates fall monotonically), stopping at round-off."""
-    a = np.minimum(np.cbrt(3.0 * v), np.arctan(v + np.pi / 2.0))
-    for _ in range(NEWTON):
-        t = np.tan(a)
-        step = (inv(a) - v) / (t * t)
-        a = a - step
-        if not np.any(np.abs(step) > 4e-15 * a):
-            break
-    return a
-
-
-def _gear(sec, z, x, tool, internal):
-    """Per-gear closed forms at shifts ``x`` (array): (Delta, r_f, rho_l, a_0 or None), NaN where no mesh."""
-    mt, mn = sec.mt, sec.mn
-    if isinstance(tool, BasicRack):
-        r = z * mt / 2
-        s = math.sin(sec.alpha_t)
-        delta = 2 * x * math.tan(sec.alpha_n)
-        rf = r + (x - tool.dedendum) * mn
-        rho = r * s - (tool.straight_height - x) * mn / s
-        return delta, rf, rho, None
-    z0 = tool.teeth
-    sign = -1 if internal else 1
-    a0 = mt * (z + sign * z0) / 2 + x * mn
-    rb = z * mt * math.cos(sec.alpha_t) / 2
-    rb0, ra0, rc0 = cutter_radii(sec, tool)
-    ok = a0 > abs(rb + sign * rb0)
-    a0 = np.where(ok, a0, np.nan)
-    with np.errstate(invalid="ignore"):
-        alpha_c = np.arccos((rb + sign * rb0) / a0)
-    d0 = 2 * tool.shift * math.tan(sec.alpha_n)
-    if internal:
-        delta = (z - z0) * (inv(sec.alpha_t) - inv(alpha_c)) - d0
-    else:
-        delta = (z + z0) * (inv(alpha_c) - inv(sec.alpha_t)) - d0
-    rf = a0 + ra0 if internal else a0 - ra0
-    cutter_roll = math.sqrt(max(rc0 ** 2 - rb0 ** 2, 0.0))
-    along = a0 * np.sin(alpha_c)
-    rho = along + cutter_roll if internal else along - cutter_roll
-    return delta, rf, rho, a0
-
-
-def _ring_setting(sec, t, x):
-    """:func:`~gearkit.families.involute.ring_cutter_setting` at ISO ring shifts ``x`` (array): the
-    shaper's radial setting, NaN where no setting cuts a tooth that thick."""
-    cutter = t.tools[1]
-    dz = t.teeth2 - cutter.teeth
-    an = math.radians(cutter.pressure_angle_deg)
-    at = math.atan(math.tan(an) / math.cos(sec.beta))
-    value = inv(at) + 2 * (x - cutter.shift) * math.tan(an) / dz
-    ok = value > 0
-    ac = _inv_inverse(np.where(ok, value, 1.0))
-    return np.where(ok, dz / (2 * math.cos(sec.beta)) * (math.cos(at) / np.cos(ac) - 1.0), np.nan)
-
-
-def _half(sec, z, delta, radius, internal):
-    """Half angular tooth thickness at ``radius`` (textbook 3.83), arrays."""
-    rb = z * sec.mt * math.cos(sec.alpha_t) / 2
-    ay = np.arccos(np.clip(rb / radius, -1.0, 1.0))
-    sign = -1.0 if internal else 1.0
-    return (math.pi / 2 + delta) / z + sign * (inv(sec.alpha_t) - inv(ay))
 
 
 def _form_roll(field, which, x, rho_l, rb):
@@ -145,12 +81,12 @@ class _Pair:
         self.r1, self.r2, self.rb1, self.rb2 = r1, r2, rb1, rb2
         # a ring's shift read by the ISO convention is cut by the shaper setting x2c (closed form);
         # the thickness allowance feeds the tool in (generating shift x_E) for roots and form circles
-        x2c = _ring_setting(sec, t, x2) if internal and t.shift_convention == "iso" else x2
+        x2c = ring_settings(sec, t, x2) if internal and t.shift_convention == "iso" else x2
         k_e = 2 * mn * math.tan(sec.alpha_n)
-        d1, _, _, _ = _gear(sec, z1, x1, tool1, False)
-        _, rf1, rho_l1, _ = _gear(sec, z1, x1 - t.thinning1 / k_e, tool1, False)
-        d2, _, _, a02 = _gear(sec, z2, x2c, tool2, internal)
-        _, rf2, rho_l2, _ = _gear(sec, z2, x2c - t.thinning2 / k_e, tool2, internal)
+        d1, _, _, _ = gear_forms(sec, z1, x1, tool1, False)
+        _, rf1, rho_l1, _ = gear_forms(sec, z1, x1 - t.thinning1 / k_e, tool1, False)
+        d2, _, _, a02 = gear_forms(sec, z2, x2c, tool2, internal)
+        _, rf2, rho_l2, _ = gear_forms(sec, z2, x2c - t.thinning2 / k_e, tool2, internal)
         self.a02 = a02
         with np.errstate(invalid="ignore", divide="ignore"):
             if internal:
@@ -160,7 +96,7 @@ class _Pair:
                 value = inv(at) + (d1 + d2) / (z1 + z2)
                 base, a_ref, x_sum = rb1 + rb2, r1 + r2, x1 + x2
             bad = ~(value > 1e-9)
-            alpha_tight = _inv_inverse(np.where(bad, 1.0, value))
+            alpha_tight = inv_inverse(np.where(bad, 1.0, value))
             a_w = np.where(bad, np.nan, base / np.cos(alpha_tight))
             bad |= ~(a_w > base * (1 + 1e-12))
             a_w = np.where(bad, np.nan, a_w)
@@ -228,7 +164,7 @@ class _Pair:
         internal = self.internal and which == 2
         with np.errstate(invalid="ignore"):
             rr = np.maximum(ra, rb)
-            s_at = 2 * rr * _half(sec, z, t, rr, internal)
+            s_at = 2 * rr * half_angle(sec, z, t, rr, internal)
             beta_a = np.arctan(math.tan(sec.beta) * ra / r)
             return s_at * np.cos(beta_a)
 
@@ -274,9 +210,9 @@ class _Pair:
         if sel is not None:
             r2, t2 = r2[sel], np.asarray(t2)[sel]
         with np.errstate(invalid="ignore"):
-            d2 = math.pi / z2 - _half(sec, z2, t2, r2, True)
+            d2 = math.pi / z2 - half_angle(sec, z2, t2, r2, True)
         ra0 = z0 * sec.mt / 2 + (cutter.shift + cutter.addendum) * sec.mn
-        d0 = float(_half(sec, z0, np.float64(2 * cutter.shift * math.tan(sec.alpha_n)), np.float64(ra0), False))
+        d0 = float(half_angle(sec, z0, 2 * cutter.shift * math.tan(sec.alpha_n), float(ra0), False))
         k = z2 / z0
         hi = math.pi / (2 * k)
         phi = np.linspace(0.0, hi, PLUNGE_SAMPLES)
@@ -295,6 +231,21 @@ class _Pair:
         val = r2 * np.sin(p + d2) - ra0 * np.sin(k * p + d0)
         return np.where(val < best, val, best)
 
+
+    def tip_clearance_margin(self, sel=None):
+        """``SWEEP_RESOLUTION`` minus the tip sweep's depth (m_n) at the points ``sel``: the check's
+        :func:`~gearkit.pair.internal.tip_sweep_depth`, the same function on arrays (exact down to
+        ``-SWEEP_ENOUGH``, below it an upper bound)."""
+        pick = (lambda v: np.asarray(v)) if sel is None else (lambda v: np.asarray(v)[sel])
+        mn = self.sec.mn
+        with np.errstate(invalid="ignore"):
+            rl1 = np.maximum(self.rb1, np.hypot(self.rb1, self.rhoF1))
+            rw2 = self.rb2 / np.cos(self.alpha_w)
+        depth, _ = sweep_depth(self.sec, self.z1, self.z2, pick(self.a_w), pick(self.ra1),
+                               pick(np.maximum(self.ra2, self.rb2)), pick(rl1), pick(self.rf2), pick(self.t1),
+                               pick(self.t2), pick(rw2), SWEEP_RESOLUTION * mn,
+                               (SWEEP_RESOLUTION + SWEEP_ENOUGH) * mn)
+        return SWEEP_RESOLUTION - depth / mn
 
     def margin(self, name, sel=None):
         """Margin ``name`` (see :func:`margins`) at the points ``sel`` (indices; None: all)."""
@@ -331,6 +282,8 @@ class _Pair:
             gap = self.plunge_gap(sel) / mn
             v = np.where(gap > 0, gap, np.minimum(gap, -5e-324))
             return np.where(pick(self.bad), np.nan, v)
+        elif base == "tip_interference":
+            return np.where(pick(self.bad), np.nan, self.tip_clearance_margin(sel))
         elif base == "trimming.nu":
             v = (self.ra2 - self.nu) / mn
         elif base == "center_distance":
@@ -353,7 +306,7 @@ def margins(field, x1, x2, names) -> dict:
     """Margins ``names`` of ``field`` at the shift pairs ``(x1[i], x2[i])``: name -> (n,) float64, NaN
     where no pair exists (see :meth:`~gearkit.blocking.field.PairField.margin` for names and units)."""
     g = _Pair(field, *_points(x1, x2))
-    return {name: g.margin(name) for name in names}
+    return {name: g.margin(name) for name in dict.fromkeys(names)}
 
 
 def sliding_ends(field, x1, x2):
@@ -369,7 +322,9 @@ def evaluator(field, names, window):
     from one evaluation of the pair formulas. The name ``"region"`` is the smallest hard margin
     and, with a ``window``, the distances to its edges (-1 where no pair exists:
     the function of :mod:`gearkit.blocking.region`)."""
-    hard = list(field.hard)  # not the backlash: zero at the tight mesh by construction (the check
+    hard = list(field.hard)
+    sweep = "tip_interference" in hard  # the costly one: see "region" below
+    cheap = [n for n in hard if n != "tip_interference"]  # not the backlash: zero at the tight mesh by construction (the check
     # forgives 1e-9 m_n of round-off); a plateau at 1e-9 would hide the region's real edges
 
     def F(p, which):
@@ -384,7 +339,10 @@ def evaluator(field, names, window):
                 out[sel] = g.margin(name, sel)
                 continue
             with np.errstate(invalid="ignore"):
-                m = np.minimum.reduce([g.margin(n, sel) for n in hard])
+                m = np.minimum.reduce([g.margin(n, sel) for n in cheap])
+                if sweep:  # the tip sweep only where the others pass (elsewhere the region fails anyway)
+                    at = np.flatnonzero(m >= 0)
+                    m[at] = np.minimum(m[at], g.margin("tip_interference", sel[at]))
             if window is None:
                 out[sel] = m
                 continue

@@ -5,6 +5,7 @@ are ignored) and evaluates, at any (x1, x2), the margins the blocking lines are 
 Every margin is read off the same :func:`~gearkit.pair.pair_geometry` and the same check functions
 as :func:`~gearkit.checks.check_pair` (:func:`~gearkit.checks.involute.fail_margins`,
 :func:`~gearkit.pair.internal.exit_jamming_margin`, :func:`~gearkit.pair.internal.plunge_trimming`,
+:func:`~gearkit.pair.internal.tip_sweep_depth`,
 :func:`~gearkit.checks.min_shift_undercut`): there is one implementation of each check.
 
 Form circles. The check reads each gear's form circle off the generated gear. A rack- or
@@ -182,7 +183,10 @@ class PairField:
             out += [LineDef("exit_jamming", "B6", "exit jamming: tip interference on leaving mesh", True,
                             "exit_jamming"),
                     LineDef("trimming.plunge", "B6", "the shaper trims the ring while plunging", True,
-                            "trimming.plunge")]
+                            "trimming.plunge"),
+                    LineDef("tip_interference", "B6", "tip interference: a tip corner swept along its path "
+                            "through the mate's teeth reaches into one (admissible: it clears them)", True,
+                            "tip_interference", (True, False))]
         for i in (1, 2):
             if self.x_min[i - 1] is not None:
                 out.append(LineDef(f"undercut.{i}", "Q", f"undercut onset of gear {i}: x{i} = x{i},min "

@@ -112,6 +112,10 @@ class FieldPoint:
             from gearkit.pair.internal import plunge_trimming
             gap = plunge_trimming(g)[0]
             return gap / mn if gap > 0 else min(gap / mn, -5e-324)
+        if base == "tip_interference":
+            from gearkit.pair.internal import SWEEP_RESOLUTION, tip_sweep_depth
+            from gearkit.pair.sweep import SWEEP_ENOUGH
+            return SWEEP_RESOLUTION - tip_sweep_depth(g, enough=(SWEEP_RESOLUTION + SWEEP_ENOUGH) * mn)[0] / mn
         if base == "trimming.nu":
             from gearkit.pair.internal import nu_radius
             return (g.gears[1].tip_diameter / 2 - nu_radius(g)) / mn

@@ -42,7 +42,7 @@ from gearkit.curves import bracketed_root
 from gearkit.errors import SpecError, require
 from gearkit.export import json_number
 from gearkit.pair.geometry import PairGeometry, gear_specs, pair_geometry
-from gearkit.pair.internal import exit_jamming_margin, nu_radius, plunge_trimming, tip_sweep
+from gearkit.pair.internal import SWEEP_RESOLUTION, exit_jamming_margin, nu_radius, plunge_trimming, tip_sweep
 from gearkit.pair.spec import PairSpec
 from gearkit.pair.tooling import form_roll, section
 from gearkit.families.involute import BasicRack
@@ -322,7 +322,7 @@ def internal_findings(spec: PairSpec, g: PairGeometry) -> list:
                        + ("< 0: the pinion's tip corner hits the ring's tooth tip (raise x2 or z2 - z1)"
                           if margin < 0 else ">= 0"), "min"))
     depth, phi = tip_sweep(g)
-    res = 1e-4 * mn
+    res = SWEEP_RESOLUTION * mn
     out.append(Finding("tip_interference", "fail" if depth > 0 else "ok", depth, res,
                        f"tip corners swept along their trochoidal paths through the mate's teeth: "
                        + (f"penetrate {depth:.4g} mm at pinion angle {math.degrees(phi):.2f} deg" if depth > 0

@@ -1,0 +1,82 @@
+"""Per-gear closed forms of the machine mesh on arrays of shifts, for :mod:`gearkit.blocking.arrays`.
+
+The array forms of :func:`~gearkit.pair.tooling.thickness_coeff`, :func:`~gearkit.pair.tooling.root_radius`,
+:func:`~gearkit.pair.tooling.form_roll` and :func:`~gearkit.families.involute.ring_cutter_setting`
+(the tests hold them equal to the scalar ones through the blocking margins).
+
+>>> import numpy as np
+>>> from gearkit.curves import inv
+>>> a = inv_inverse(np.array([inv(0.3), inv(0.5)]))
+>>> np.allclose(a, [0.3, 0.5], rtol=0, atol=1e-14)
+True
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from gearkit.curves import inv
+from gearkit.families.involute.tools import BasicRack
+from gearkit.pair.tooling import cutter_radii
+
+__all__ = ["inv_inverse", "gear_forms", "ring_settings"]
+
+NEWTON = 12  #: most Newton steps of the inverse involute (quadratic from the start: 4 to 6 suffice)
+
+
+def inv_inverse(v):
+    """The angle ``a`` with ``inv a = v`` (v > 0), arrays: Newton from the right of the root, where
+    ``inv`` is convex (the iterates fall monotonically), stopping at round-off."""
+    a = np.minimum(np.cbrt(3.0 * v), np.arctan(v + np.pi / 2.0))
+    for _ in range(NEWTON):
+        t = np.tan(a)
+        step = (inv(a) - v) / (t * t)
+        a = a - step
+        if not np.any(np.abs(step) > 4e-15 * a):
+            break
+    return a
+
+
+def gear_forms(sec, z, x, tool, internal):
+    """Per-gear closed forms at shifts ``x`` (array): (Delta, r_f, rho_l, a_0 or None), NaN where no mesh."""
+    mt, mn = sec.mt, sec.mn
+    if isinstance(tool, BasicRack):
+        r = z * mt / 2
+        s = math.sin(sec.alpha_t)
+        delta = 2 * x * math.tan(sec.alpha_n)
+        rf = r + (x - tool.dedendum) * mn
+        rho = r * s - (tool.straight_height - x) * mn / s
+        return delta, rf, rho, None
+    z0 = tool.teeth
+    sign = -1 if internal else 1
+    a0 = mt * (z + sign * z0) / 2 + x * mn
+    rb = z * mt * math.cos(sec.alpha_t) / 2
+    rb0, ra0, rc0 = cutter_radii(sec, tool)
+    ok = a0 > abs(rb + sign * rb0)
+    a0 = np.where(ok, a0, np.nan)
+    with np.errstate(invalid="ignore"):
+        alpha_c = np.arccos((rb + sign * rb0) / a0)
+    d0 = 2 * tool.shift * math.tan(sec.alpha_n)
+    if internal:
+        delta = (z - z0) * (inv(sec.alpha_t) - inv(alpha_c)) - d0
+    else:
+        delta = (z + z0) * (inv(alpha_c) - inv(sec.alpha_t)) - d0
+    rf = a0 + ra0 if internal else a0 - ra0
+    cutter_roll = math.sqrt(max(rc0 ** 2 - rb0 ** 2, 0.0))
+    along = a0 * np.sin(alpha_c)
+    rho = along + cutter_roll if internal else along - cutter_roll
+    return delta, rf, rho, a0
+
+
+def ring_settings(sec, t, x):
+    """:func:`~gearkit.families.involute.ring_cutter_setting` at ISO ring shifts ``x`` (array): the
+    shaper's radial setting, NaN where no setting cuts a tooth that thick."""
+    cutter = t.tools[1]
+    dz = t.teeth2 - cutter.teeth
+    an = math.radians(cutter.pressure_angle_deg)
+    at = math.atan(math.tan(an) / math.cos(sec.beta))
+    value = inv(at) + 2 * (x - cutter.shift) * math.tan(an) / dz
+    ok = value > 0
+    ac = inv_inverse(np.where(ok, value, 1.0))
+    return np.where(ok, dz / (2 * math.cos(sec.beta)) * (math.cos(at) / np.cos(ac) - 1.0), np.nan)
