@@ -98,3 +98,19 @@ def test_only_the_solids_and_the_oracle_import_the_mesh_libraries():
         if pattern.search(path.read_text()):
             offenders.append(rel)
     assert offenders == []
+
+
+def test_the_stl_command_samples_the_tooth_surface_once(tmp_path, capsys, monkeypatch):
+    """``gearkit gear -o x.stl`` plans the tooth surface once: it sizes the solid from the plan and builds
+    the solid from it (it sampled the tooth a second time for the size)."""
+    import gearkit.solids.gear as gear_module
+    from gearkit.families.involute import GearSpec, tooth_profile
+    from gearkit.solids import SolidSpec
+
+    calls = []
+    sample = gear_module.tooth_polyline
+    monkeypatch.setattr(gear_module, "tooth_polyline", lambda *a, **k: calls.append(a[1]) or sample(*a, **k))
+    gear_module.gear_plan(tooth_profile(GearSpec(12, 2.0)), SolidSpec(5.0), 0.001)
+    planned, calls[:] = list(calls), []
+    assert main(["gear", "-z", "12", "-m", "2", "--width", "5", "--tol", "0.001", "-o", str(tmp_path / "z12.stl")]) == 0
+    assert calls == planned and len(planned) >= 1

@@ -288,3 +288,22 @@ def test_impossible_bodies_raise_spec_errors():
         gear_solid(prof, SolidSpec(5.0), -1.0)
     with pytest.raises(SpecError, match="height"):
         rack_solid(rack_profile(RackSpec(2.0)), 20.0, 3.0, 5.0)
+
+
+@pytest.mark.parametrize("beta, herring", [(0.0, False), (15.0, False), (20.0, True)])
+def test_a_solid_built_from_its_plan_is_the_one_planned_and_counted_from_it(beta, herring):
+    """``gear_plan`` once, then ``estimate_faces(plan=)`` and ``gear_solid(plan=)`` (the command's way: the
+    tooth sampled once) build the very mesh ``gear_solid`` plans itself, and the count from the plan is
+    the side facets exactly (two a quad of the polyline over every layer) plus about the caps."""
+    from gearkit.solids.gear import estimate_faces, gear_plan
+
+    prof = tooth_profile(GearSpec(20, M, helix_angle_deg=beta))
+    spec = SolidSpec(B, herringbone=herring)
+    plan = gear_plan(prof, spec, TOL)
+    own, planned = gear_solid(prof, spec, TOL), gear_solid(prof, spec, TOL, plan=plan)
+    for a, b in zip(own.arrays(), planned.arrays()):
+        np.testing.assert_array_equal(a, b)
+    v, f = planned.arrays()
+    side = int((np.ptp(v[f][:, :, 2], axis=1) > 1e-9).sum())  # the end faces are planar
+    assert side == 2 * plan.polyline.edges * prof.teeth * planned.info["layers"] * (2 if herring else 1)
+    assert abs(estimate_faces(prof, spec, TOL, plan=plan) - planned.faces) / planned.faces < 0.05

@@ -283,7 +283,7 @@ def _run_solid(args, spec, prof) -> int:
 
     tol = tol_from(args.tol, default_mesh_tol(spec.module))
     from gearkit.cli.shell import bound
-    from gearkit.solids.gear import estimate_faces
+    from gearkit.solids.gear import estimate_faces, gear_plan
 
     solid_spec = solid_spec_from_args(args)
     step = mesh_format(args.output) in ("step", "stp")
@@ -294,8 +294,9 @@ def _run_solid(args, spec, prof) -> int:
 
         bound("-o", recipe_faces(Recipe("gear", (prof, solid_spec, tol))), MAX_STEP_FACES,
               "B-rep faces in the STEP file")
-    bound("--tol", estimate_faces(prof, solid_spec, tol), MAX_FACES, "facets")
-    solid = gear_solid(prof, solid_spec, tol, name="gear")
+    plan = gear_plan(prof, solid_spec, tol)  # sampled once: it sizes the solid, then builds it
+    bound("--tol", estimate_faces(prof, solid_spec, tol, plan=plan), MAX_FACES, "facets")
+    solid = gear_solid(prof, solid_spec, tol, name="gear", plan=plan)
     info = prof.summary(tol, sample=False)  # the accuracy reported is the solid's
     if step:
         from gearkit.solids.step import write_step

@@ -22,7 +22,7 @@ import numpy as np
 from gearkit.accuracy import check_tol
 from gearkit.errors import GeometryError, SpecError, check_length
 from gearkit.solids.solid import Recipe, Solid, SolidSpec, default_mesh_tol
-from gearkit.solids.surface import helix_angle, plan_layers, reference_radius, tooth_polyline
+from gearkit.solids.surface import LayerPlan, helix_angle, plan_layers, reference_radius, tooth_polyline
 
 
 def circle_points(radius: float, tol: float) -> np.ndarray:
@@ -208,14 +208,15 @@ class _Mesh:
         return Solid.from_arrays(np.concatenate(self.vertices), np.concatenate(self.faces), name, info, recipe)
 
 
-def estimate_faces(profile, spec: SolidSpec, tol: float | None = None) -> int:
+def estimate_faces(profile, spec: SolidSpec, tol: float | None = None, plan: LayerPlan | None = None) -> int:
     """About how many facets :func:`gear_solid` would make, found cheaply before building it.
 
     One tooth's polyline at ``tol`` (its edge count grows as ``tol**-0.5``) times the teeth, times
     the layers the helix chord alone needs (``twist / sqrt(8 tol / r_a)``), two triangles a quad,
     plus the two end caps. Within a few percent of the real count for spur and helical gears
     (a herringbone or a bore adds a little): for refusing work that would hang, not for sizing
-    buffers.
+    buffers. Given the ``plan`` :func:`gear_plan` made (which the solid is then built from), its
+    polyline and layers are counted instead of sampling the tooth again.
 
     Examples
     --------
@@ -227,6 +228,10 @@ def estimate_faces(profile, spec: SolidSpec, tol: float | None = None) -> int:
     True
     """
     tol = default_mesh_tol(profile.module) if tol is None else check_tol(tol, profile.module)
+    if plan is not None:
+        ring = plan.polyline.edges * int(profile.teeth)
+        twisted = helix_angle(profile, spec) != 0.0
+        return int(2 * ring * (plan.layers if twisted else 1) * (2 if spec.herringbone else 1) + 2 * ring)
     beta = math.radians(helix_angle(profile, spec))
     run = (spec.width - spec.gap) / 2.0 if spec.herringbone else spec.width
     twist = abs(math.tan(beta) / reference_radius(profile, abs(beta)) * run)
@@ -237,7 +242,22 @@ def estimate_faces(profile, spec: SolidSpec, tol: float | None = None) -> int:
     return int(2 * ring * layers + 2 * ring)
 
 
-def gear_solid(profile, spec: SolidSpec, tol: float | None = None, name: str = "gear") -> Solid:
+def gear_plan(profile, spec: SolidSpec, tol: float | None = None) -> LayerPlan:
+    """How :func:`gear_solid` meshes the tooth surface of ``profile`` by ``spec`` at ``tol``: the tooth
+    polyline, the layers of one helical run and the diagonals (:func:`~gearkit.solids.surface.plan_layers`).
+
+    Planned once, it both sizes the solid (:func:`estimate_faces`) and builds it (``gear_solid(...,
+    plan=plan)``): the tooth is sampled once.
+    """
+    tol = default_mesh_tol(profile.module) if tol is None else check_tol(tol, profile.module)
+    beta = math.radians(helix_angle(profile, spec))
+    k = math.tan(beta) / reference_radius(profile, abs(beta))
+    run = (spec.width - spec.gap) / 2.0 if spec.herringbone else spec.width
+    return plan_layers(lambda t: tooth_polyline(profile, t), tol, k * run, both_hands=spec.herringbone)
+
+
+def gear_solid(profile, spec: SolidSpec, tol: float | None = None, name: str = "gear",
+               plan: LayerPlan | None = None) -> Solid:
     """The solid of a generated gear.
 
     Parameters
@@ -248,6 +268,8 @@ def gear_solid(profile, spec: SolidSpec, tol: float | None = None, name: str = "
         Largest deviation of any vertex or facet from the exact tooth surface (default
         :func:`~gearkit.solids.solid.default_mesh_tol`). ``info["achieved"]`` is the measured one.
     name : str
+    plan : LayerPlan or None
+        :func:`gear_plan` of the same profile, spec and tol, when made already (else planned here).
 
     Returns
     -------
@@ -275,7 +297,7 @@ def gear_solid(profile, spec: SolidSpec, tol: float | None = None, name: str = "
     check_length(spec.width, "width", 1e-4 * m, 1e5 * m)  # magnitudes a mesh of this gear can carry
     b, gap = spec.width, spec.gap
     run = (b - gap) / 2.0 if spec.herringbone else b
-    plan = plan_layers(lambda t: tooth_polyline(profile, t), tol, k * run, both_hands=spec.herringbone)
+    plan = gear_plan(profile, spec, tol) if plan is None else plan
     poly = plan.polyline
     radii = np.hypot(poly.points[:, 0], poly.points[:, 1])
     bore = outer = None
