@@ -175,3 +175,28 @@ def test_mirror_halved_simulation_matches_every_instant(case, samples):
     assert got.loaded_reverse == stats(every.load_carrying(-1))
     if case in ("tip", "short"):  # cases where the count varies over the period
         assert got.touching[1] < got.touching[2]
+
+
+#: the outline polyline is within OUTLINE_TOL of the disc (its chords' proven bound), so a point's
+#: distance to it is within OUTLINE_TOL of its distance to the disc
+OUTLINE_TOL = 1e-7
+
+
+@pytest.mark.parametrize("args", [CASES["+1"], CASES["+2"], CASES["-1"], (12, 11, 40.0, 3.0, 1.5),
+                                  (12, 11, 90.0, 7.0, 4.0, 0.02, 0.01), (12, 11, 90.0, 7.0, 4.0, 0.0, 0.0, 4.05),
+                                  (14, 12, 60.0, 4.0, 2.0, 0.0, 0.0, None, 57.0), (40, 39, 100.0, 5.3, 2.25),
+                                  (6, 9, 40.0, 5.0, 4.0)])
+def test_pin_clearances_equal_the_distance_to_the_outline_polyline(args):
+    """The mesh's clearances (a pin centre's nearest disc point: by the roll at the pin centre's polar
+    angle, kept where the foot attains the bound every grinding pin position sets, else from the
+    nearest sample of every mirror image) against a second method: the distance of the pin centres,
+    at instants over a whole lobe, to the disc's whole outline sampled to OUTLINE_TOL. Pins off the
+    generating pin's path: modifications, a disc generated with another eccentricity, far pins of
+    multi-difference drives."""
+    from gearkit.accuracy import distances_to_polyline
+
+    spec = DriveSpec(*args)
+    outline = disc_profile(spec).outline(OUTLINE_TOL)
+    state = mesh_state(spec, np.linspace(0.0, 2.0 * math.pi / spec.lobes, 41))
+    oracle = distances_to_polyline(state.centres.reshape(-1, 2), outline, closed=True) - spec.pin_radius
+    assert np.abs(state.clearance.ravel() - oracle).max() <= OUTLINE_TOL + 1e-12 * spec.pin_circle_radius

@@ -140,6 +140,25 @@ class CycloidalDisc(ToothProfile):
         p2 = turned(q2x - 2.0 * w * q1y - w * w * qx, q2y + 2.0 * w * q1x - w * w * qy, -sb / c_b, cb / c_b)
         return p, p1, p2
 
+    def centre_at_roll(self, s):
+        """The generating pin's centre at roll ``s`` (mm), disc frame, ``(n, 2)``: the theoretical
+        curve, on which the disc's normal at :meth:`at_roll` ``(s)`` passes (at the pin's radius).
+
+        Examples
+        --------
+        >>> disc = disc_profile(DriveSpec(12, 11, 90.0, 7.0, 4.0))
+        >>> s = np.array([-100.0, -30.0])
+        >>> np.linalg.norm(disc.at_roll(s) - disc.centre_at_roll(s), axis=1).round(12).tolist()
+        [7.0, 7.0]
+        """
+        s = np.atleast_1d(np.asarray(s, dtype=float))
+        c_t, c_b = self.motion.tool_centre, self.motion.blank_centre
+        ct, st, cb, sb = np.cos(s / c_t), np.sin(s / c_t), np.cos(s / c_b), np.sin(s / c_b)
+        vx, vy = self.pin_centre[0] - c_t * st, self.pin_centre[1] - c_t * (1.0 - ct)
+        cos_turn, sin_turn = cb * ct + sb * st, sb * ct - cb * st
+        return np.stack([cos_turn * vx - sin_turn * vy + c_b * sb,
+                         sin_turn * vx + cos_turn * vy + c_b * (1.0 - cb) - c_b], -1)
+
     def flank_rolls(self):
         """Roll intervals ``[(s0, s1), ...]`` of the envelope pieces kept in the half tooth (merged
         where consecutive pieces continue each other); the tip arc of a truncated disc is not included."""

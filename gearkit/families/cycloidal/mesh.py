@@ -31,6 +31,13 @@ __all__ = ["CONTACT_TOL", "MeshState", "MeshStats", "pin_centres", "mesh_state",
 #: are exact to ~1e-13 of it; a pin leaving a pointed tip does so tangentially, its clearance
 #: growing with the square of the angle, so the threshold must be far below the sampling)
 CONTACT_TOL = 1e-11
+#: a foot is certified the nearest when it lies within this fraction of the pin-circle radius of the bound
+#: every disc point keeps (round-off of the closed forms: ~1e-15 of the radii)
+CERTIFY_TOL = 1e-13
+_FLIP_X = np.array([-1.0, 1.0])
+#: rolls in the table of the pin centre's polar angle (its linear interpolation starts Newton close
+#: enough that one step meets the certificate)
+_ANGLE_TABLE = 2049
 
 
 def pin_centres(spec: DriveSpec, psi0, turn: float = 0.0):
@@ -55,11 +62,17 @@ class _Outline:
     disc's symmetry; its nearest disc point is then on the half tooth or on the half tooth's
     mirror image in the tooth's or the space's centre line. The half tooth is the generating
     pin's envelope over the rolls the kernel kept (:meth:`CycloidalDisc.flank_rolls`), plus the
-    tip arc of a truncated disc; ``samples`` points per roll interval find a start and Newton's
-    method in the roll finds the foot of the perpendicular.
+    tip arc of a truncated disc; Newton's method in the roll finds the foot of the perpendicular.
+
+    Newton starts at the roll where the generating pin's centre had the query's polar angle (a
+    table of ``_ANGLE_TABLE`` rolls, where one roll interval is kept and that angle is monotone):
+    one step, and the foot is kept where it is certified the nearest point of the whole outline
+    (:meth:`_certified`: every pin near the theoretical curve, all of them in an unmodified drive).
+    Every other query (``fast=False``: all) starts from its nearest of ``samples`` points per roll
+    interval, for itself and its mirror images.
     """
 
-    def __init__(self, spec: DriveSpec, samples: int = 128):
+    def __init__(self, spec: DriveSpec, samples: int = 128, fast: bool = True):
         disc = disc_profile(spec)
         self.disc = disc
         self.half = math.pi / disc.teeth
@@ -75,18 +88,41 @@ class _Outline:
         self.least_side = (float((pts @ self.space_normal).min()), float(pts[:, 0].min()))
         first = disc.half.pieces[0]
         self.tip = first.curve if not hasattr(first.curve, "solve") else None
+        self.by_angle = self._angle_table(rolls) if fast else None
+        self.certify_tol = CERTIFY_TOL * spec.pin_circle_radius
+
+    def _angle_table(self, rolls):
+        """``(polar angles, rolls)`` of the generating pin's centre, sorted by angle, when one roll
+        interval is kept and the centre's polar angle is strictly monotone in it (else None)."""
+        if len(rolls) != 1:
+            return None
+        table = np.linspace(rolls[0][0], rolls[0][-1], _ANGLE_TABLE)
+        centre = self.disc.centre_at_roll(table)
+        ang = np.arctan2(centre[:, 0], centre[:, 1])
+        step = np.diff(ang)
+        if not (np.all(step > 0) or np.all(step < 0)):
+            return None
+        order = np.argsort(ang)
+        return ang[order], table[order]
 
     def _start(self, q):
         """Distance to the sampled flank and the nearest sample's index."""
         return nearest(self.points, q)
 
-    def _refine(self, q, idx):
-        """Newton in the roll from the samples ``idx``: exact distance to the flank and foot point."""
-        x = self.rolls[idx].copy()
-        lo, hi = self.bounds[idx, 0], self.bounds[idx, 1]
+    def _by_angle(self, q):
+        """Start rolls read off the pin centre's polar angle: the roll at which the generating pin's
+        centre had the query's polar angle (a pin centre near the theoretical curve has its foot there)."""
+        ang, rolls = self.by_angle
+        return np.interp(np.arctan2(q[:, 0], q[:, 1]), ang, rolls)
+
+    def _refine(self, q, x, lo, hi, steps: int = 40):
+        """Newton in the roll from the rolls ``x`` within ``[lo, hi]`` (at most ``steps`` steps): exact
+        distance to the flank (or the tip arc), foot point and the foot's roll on the flank."""
+        x = np.array(x, dtype=float)
+        lo, hi = np.broadcast_to(lo, x.shape), np.broadcast_to(hi, x.shape)
         span = hi - lo
         act = np.arange(len(q))
-        for _ in range(40):
+        for _ in range(steps):
             xa, qa = x[act], q[act]
             p, d1, dd = self.disc.at_roll(xa, derivatives=True)  # exact derivatives in the roll
             r = p - qa
@@ -100,6 +136,7 @@ class _Outline:
                 break
         foot = self.disc.at_roll(x)
         best = np.linalg.norm(foot - q, axis=1)
+        roll = x
         if self.tip is not None:  # truncated disc: the tip arc about the centre
             psi = np.arctan2(q[:, 0], q[:, 1])
             ang = np.clip(psi, min(self.tip.psi0, self.tip.psi1), max(self.tip.psi0, self.tip.psi1))
@@ -108,27 +145,60 @@ class _Outline:
             better = dist < best
             best = np.where(better, dist, best)
             foot = np.where(better[:, None], p, foot)
-        return best, foot
+        return best, foot, roll
 
     def nearest(self, q):
         """Distance to the disc outline and the nearest outline point for each query point."""
-        flip_x = np.array([-1.0, 1.0])
         k = np.round(np.arctan2(q[:, 0], q[:, 1]) / (2.0 * self.half))
         local = turn_polar(q, -k * 2.0 * self.half)
-        flip = np.where(local[:, :1] < 0, flip_x, 1.0)
+        flip = np.where(local[:, :1] < 0, _FLIP_X, 1.0)
         local = local * flip
+        dist, foot = np.full(len(q), np.inf), np.zeros((len(q), 2))
+        rest = np.arange(len(q))
+        if self.by_angle is not None:
+            dist, foot, certified = self._certified(local)
+            rest = np.flatnonzero(~certified)
+        if len(rest):
+            d, f = self._nearest_by_samples(local[rest])
+            better = d < dist[rest]
+            dist[rest] = np.where(better, d, dist[rest])
+            foot[rest] = np.where(better[:, None], f, foot[rest])
+        return dist, turn_polar(foot * flip, k * 2.0 * self.half)
 
+    def _certified(self, local):
+        """One Newton step in the roll from :meth:`_by_angle`: distance, foot and whether the foot is
+        certified the nearest point of the whole outline.
+
+        The disc lies outside every position of the grinding pin (radius ``r``): a query at ``|q - c|``
+        from the pin's centre ``c`` at some roll is at least ``r - |q - c|`` from every disc point, so a
+        foot at that roll attaining it (within ``certify_tol``: the query on the radius from the
+        pin's centre to the foot) is the nearest point, on this flank or any other.
+        """
+        lo, hi = self.bounds[0]
+        x = self._by_angle(local)
+        p, d1, dd = self.disc.at_roll(x, derivatives=True)
+        r = p - local
+        f = np.einsum("ij,ij->i", r, d1)
+        gn = np.einsum("ij,ij->i", d1, d1)
+        x = np.clip(x - f / np.maximum(gn + np.einsum("ij,ij->i", r, dd), 0.1 * gn), lo, hi)
+        dist, foot, _ = self._refine(local, x, lo, hi, steps=0)
+        reach = np.linalg.norm(local - self.disc.centre_at_roll(x), axis=1) + dist
+        return dist, foot, reach <= self.disc.pin_radius + self.certify_tol
+
+    def _nearest_by_samples(self, local):
+        """The nearest of the three candidates (the query and its mirror images in the space and the
+        tooth centre lines), each by Newton from its nearest flank sample: ``(dist, foot)``, local frame."""
         def mirror_s(p):  # mirror image in the space centre line (polar pi/z)
-            return turn_polar(turn_polar(p, -self.half) * flip_x, self.half)
-        cands = (local, mirror_s(local), local * flip_x)
-        coarse = np.full((3, len(q)), np.inf)
-        idx = np.zeros((3, len(q)), dtype=np.intp)
+            return turn_polar(turn_polar(p, -self.half) * _FLIP_X, self.half)
+        cands = (local, mirror_s(local), local * _FLIP_X)
+        sides = (local @ self.space_normal + self.least_side[0], local[:, 0] + self.least_side[1])
+        coarse = np.full((3, len(local)), np.inf)
+        idx = np.zeros(coarse.shape, dtype=np.intp)
         coarse[0], idx[0] = self._start(local)
         # a mirrored candidate lies at least as far from every sample as the query from the mirror
         # line (plus the samples' least distance from it): past coarse[0] + 2 spacing it cannot be
         # kept, so its nearest sample is not searched (the same candidates are kept as with a search)
         bound = coarse[0] + 2.0 * self.spacing
-        sides = (local @ self.space_normal + self.least_side[0], local[:, 0] + self.least_side[1])
         for c, side in zip((1, 2), sides):
             sel = np.flatnonzero(side <= bound)
             coarse[c, sel], idx[c, sel] = self._start(cands[c][sel])
@@ -137,12 +207,13 @@ class _Outline:
         feet = np.zeros(coarse.shape + (2,))
         for c, p in enumerate(cands):
             sel = np.flatnonzero(keep[c])
-            dist[c, sel], feet[c, sel] = self._refine(p[sel], idx[c, sel])
+            i = idx[c, sel]
+            dist[c, sel], feet[c, sel], _ = self._refine(p[sel], self.rolls[i], self.bounds[i, 0], self.bounds[i, 1])
         feet[1] = mirror_s(feet[1])
-        feet[2] = feet[2] * flip_x
+        feet[2] = feet[2] * _FLIP_X
         which = np.argmin(dist, axis=0)
-        n = np.arange(len(q))
-        return dist[which, n], turn_polar(feet[which, n] * flip, k * 2.0 * self.half)
+        n = np.arange(len(local))
+        return dist[which, n], feet[which, n]
 
 
 @dataclass(frozen=True)
