@@ -20,6 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from gearkit.errors import SpecError
+from gearkit.progress import Progress
 
 PROFILE_FORMATS = ("svg", "dxf", "csv", "json")
 
@@ -205,21 +206,46 @@ def profile_format(path) -> str:
     return ext
 
 
+#: points formatted at once by the 2D writers: bounds their temporaries and paces their progress bars
+CHUNK = 1 << 15
+
+
+def _points(loops) -> int:
+    return sum(len(lp) for lp in loops)
+
+
 def _svg(loops, tmp):
     allpts = np.concatenate(loops)
     lo, hi = allpts.min(axis=0), allpts.max(axis=0)
     pad = 0.02 * float((hi - lo).max())
     w, h = hi - lo + 2 * pad
-    paths = []
-    for loop in loops:
-        d = "M " + " L ".join(f"{x:.9g} {-y:.9g}" for x, y in loop) + " Z"
-        paths.append(f'<path d="{d}"/>')
-    body = "\n".join(paths)
-    text = (f'<svg xmlns="http://www.w3.org/2000/svg" width="{w:.6g}mm" height="{h:.6g}mm" '
-            f'viewBox="{lo[0] - pad:.9g} {-hi[1] - pad:.9g} {w:.9g} {h:.9g}">\n'
-            f'<g fill="none" stroke="black" stroke-width="{max(w, h) / 1000:.3g}" fill-rule="evenodd">\n'
-            f"{body}\n</g>\n</svg>\n")
-    Path(tmp).write_text(text)
+    with open(tmp, "w") as fh, Progress("SVG", _points(loops), unit="points") as bar:
+        fh.write(f'<svg xmlns="http://www.w3.org/2000/svg" width="{w:.6g}mm" height="{h:.6g}mm" '
+                 f'viewBox="{lo[0] - pad:.9g} {-hi[1] - pad:.9g} {w:.9g} {h:.9g}">\n'
+                 f'<g fill="none" stroke="black" stroke-width="{max(w, h) / 1000:.3g}" fill-rule="evenodd">\n')
+        for k, loop in enumerate(loops):
+            flipped = loop * (1.0, -1.0)  # y up
+            fh.write(("\n" if k else "") + '<path d="M %.9g %.9g' % tuple(flipped[0]))
+            for s in range(1, len(flipped), CHUNK):
+                block = flipped[s:s + CHUNK]
+                fh.write((" L %.9g %.9g" * len(block)) % tuple(block.ravel().tolist()))
+                bar.step(len(block))
+            fh.write(' Z"/>')
+            bar.step(1)
+        fh.write("\n</g>\n</svg>\n")
+
+
+class _CountedWrites:
+    """A text stream that advances a progress bar by one step per write (a writer that writes tag by tag)."""
+
+    def __init__(self, stream, bar):
+        self.stream, self.bar, self.writes = stream, bar, 0
+
+    def write(self, text):
+        self.writes += 1
+        if not self.writes & 0xFFF:
+            self.bar.update(self.writes)
+        return self.stream.write(text)
 
 
 def _dxf(loops, tmp):
@@ -234,7 +260,37 @@ def _dxf(loops, tmp):
         vertices[:, :2] = loop
         pl = msp.add_lwpolyline([], close=True)
         pl.lwpoints.set(vertices)
-    doc.saveas(tmp)
+    # the writer writes a piece at a time: one per vertex, and about 1500 for the rest of the document
+    with open(tmp, "wt", encoding=doc.output_encoding, errors="dxfreplace") as fh, \
+            Progress("DXF", _points(loops) + 1500) as bar:
+        doc.write(_CountedWrites(fh, bar))
+
+
+def _csv(loops, tmp):
+    with open(tmp, "w") as fh, Progress("CSV", _points(loops), unit="points") as bar:
+        fh.write("loop,x_mm,y_mm\n")
+        for k, lp in enumerate(loops):
+            for s in range(0, len(lp), CHUNK):
+                block = lp[s:s + CHUNK]
+                fh.write((f"{k},%.12g,%.12g\n" * len(block)) % tuple(block.ravel().tolist()))
+                bar.step(len(block))
+
+
+def _json(loops, info, tmp):
+    """One JSON object: ``info``'s keys, then ``loops`` (lists of [x, y]), written a chunk at a time."""
+    import json
+
+    head = json.dumps({k: v for k, v in info.items() if k != "loops"}, allow_nan=False)
+    with open(tmp, "w") as fh, Progress("JSON", _points(loops), unit="points") as bar:
+        fh.write(head[:-1] + (", " if len(head) > 2 else "") + '"loops": [')
+        for k, lp in enumerate(loops):
+            fh.write((", " if k else "") + "[")
+            for s in range(0, len(lp), CHUNK):
+                block = lp[s:s + CHUNK]
+                fh.write((", " if s else "") + json.dumps(block.tolist(), allow_nan=False)[1:-1])
+                bar.step(len(block))
+            fh.write("]")
+        fh.write("]}")
 
 
 def write_profile(path, loops, info: dict | None = None) -> Path:
@@ -245,20 +301,5 @@ def write_profile(path, loops, info: dict | None = None) -> Path:
         raise SpecError("output", "nothing to write: a profile needs closed loops of at least 3 points")
     if not all(np.isfinite(lp).all() for lp in loops):
         raise SpecError("output", "the profile has non-finite points; nothing was written")
-    if fmt == "svg":
-        return atomic_write(path, lambda tmp: _svg(loops, tmp))
-    if fmt == "dxf":
-        return atomic_write(path, lambda tmp: _dxf(loops, tmp))
-    if fmt == "csv":
-        def csv(tmp):
-            with open(tmp, "w") as fh:
-                fh.write("loop,x_mm,y_mm\n")
-                for k, lp in enumerate(loops):
-                    np.savetxt(fh, np.column_stack([np.full(len(lp), k), lp]), fmt=["%d", "%.12g", "%.12g"],
-                               delimiter=",")
-        return atomic_write(path, csv)
-    payload = dict(info or {})
-    payload["loops"] = [lp.tolist() for lp in loops]
-    import json
-
-    return atomic_write(path, lambda tmp: Path(tmp).write_text(json.dumps(payload, allow_nan=False)))
+    writer = {"svg": _svg, "dxf": _dxf, "csv": _csv, "json": lambda lp, tmp: _json(lp, info or {}, tmp)}[fmt]
+    return atomic_write(path, lambda tmp: writer(loops, tmp))

@@ -12,7 +12,8 @@ library's default: a program that calls gearkit sees nothing on its stderr), ``"
 command: a bar when stderr is a terminal) or ``"on"`` (``gearkit --progress``: also to a pipe or file).
 A bar appears only once its work has run :attr:`Progress.delay` seconds (quick runs stay quiet), redraws
 at most ten times a second, ends with its final state (complete, unless the work raised) and a newline, and only the outermost of nested
-bars draws. When off, ``update`` is one attribute test: nothing worth measuring per step. Standard
+bars draws: a bar opened inside it moves it within its current step (a scene's bar of meshes advances
+while one mesh's contact runs). When off, ``update`` is one attribute test: nothing worth measuring per step. Standard
 library only (the gear and check paths import nothing for it).
 
 Examples
@@ -67,6 +68,7 @@ class Progress:
     #: characters of the bar
     width = 30
     _depth = 0  # bars open in this process: only the outermost draws
+    _drawing = None  # the outermost bar, while it is open and enabled
 
     def __init__(self, label: str, total: int, *, unit: str = "", enabled: bool | None = None, stream=None,
                  delay: float | None = None):
@@ -76,12 +78,17 @@ class Progress:
         if enabled is None:
             enabled = self.mode == "on" or (self.mode == "auto" and _is_terminal(self.stream))
         self.enabled = bool(enabled) and Progress._depth == 0
+        # a bar right inside a drawn one moves that one within its step (deeper bars are not seen)
+        self._outer = Progress._drawing if Progress._depth == 1 else None
+        self._within = 0.0  # the part of the current step a bar inside this one has done
         self.delay = Progress.delay if delay is None else float(delay)
         self.drawn, self._tty, self._shown = False, False, None
         self._t0 = self._next = 0.0
 
     def __enter__(self) -> "Progress":
         Progress._depth += 1
+        if self.enabled:
+            Progress._drawing = self
         self._t0 = time.monotonic()
         self._next = self._t0 + self.delay
         self._tty = self.enabled and _is_terminal(self.stream)
@@ -89,6 +96,8 @@ class Progress:
 
     def __exit__(self, *exc) -> bool:
         Progress._depth -= 1
+        if Progress._drawing is self:
+            Progress._drawing = None
         if self.drawn:
             if exc[0] is None:  # the work is done: the last line says so
                 self.done = max(self.done, self.total)
@@ -102,9 +111,19 @@ class Progress:
         """``done`` of the ``total`` steps are finished (redraws when due)."""
         self.done = done
         if self.enabled:
+            self._within = 0.0
             now = time.monotonic()
             if now >= self._next:
                 self._draw(now)
+        elif self._outer is not None:
+            self._outer._inner(done / self.total)
+
+    def _inner(self, fraction: float) -> None:
+        """A bar inside this one has done ``fraction`` of its work (of this bar's current step)."""
+        self._within = min(max(fraction, 0.0), 1.0)
+        now = time.monotonic()
+        if now >= self._next:
+            self._draw(now)
 
     def step(self, n: int = 1) -> None:
         """``n`` more steps are finished."""
@@ -113,7 +132,7 @@ class Progress:
     def _draw(self, now: float) -> None:
         self._next = now + self.interval
         self.drawn, self._shown = True, self.done
-        frac = min(max(self.done / self.total, 0.0), 1.0)
+        frac = min(max((self.done + self._within) / self.total, 0.0), 1.0)
         k = int(self.width * frac)
         count = f"{self.done}/{self.total} {self.unit}" if self.unit else f"{100 * frac:3.0f}%"
         elapsed = now - self._t0

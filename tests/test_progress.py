@@ -12,7 +12,9 @@ import pty
 import select
 import subprocess
 import sys
+from pathlib import Path
 
+import numpy as np
 import pytest
 
 from gearkit.cli import main
@@ -144,3 +146,61 @@ def test_delay_throttle_nesting_and_interrupt():
             raise KeyboardInterrupt
     assert stream.getvalue().endswith("\n") and "1/4" not in stream.getvalue() and " 25%" in stream.getvalue()
     assert Progress._depth == 0
+
+
+def test_a_bar_inside_a_drawn_one_moves_it_within_its_step(monkeypatch):
+    monkeypatch.setattr(Progress, "interval", 0.0)  # every update draws
+    stream = io.StringIO()
+    with Progress("scene", 2, unit="meshes", enabled=True, stream=stream, delay=0.0) as outer:
+        outer.update(0)
+        with Progress("contact", 4, unit="positions", enabled=True, stream=stream, delay=0.0) as inner:
+            for k in range(4):
+                inner.update(k + 1)
+        outer.update(1)
+    frames = stream.getvalue().replace("\n", "").split("\r")[1:]
+    assert inner.enabled is False and not any(f.startswith("contact") for f in frames)
+    # each step of the inner bar is an eighth of the outer bar (a quarter of its first half)
+    bars = [f.split("[", 1)[1].split("]", 1)[0].count("#") for f in frames]
+    assert bars[:5] == [int(Progress.width * k / 8) for k in range(5)]
+    assert [f.split("] ", 1)[1].split(",")[0] for f in frames[:5]] == ["0/2 meshes"] * 5
+    assert frames[-1].startswith("scene [" + "#" * Progress.width + "] 2/2 meshes")
+
+
+def test_a_long_export_draws_its_bar_only_where_asked(tmp_path):
+    """Every mesh and profile writer advances a bar by what it has written: with ``--progress`` the
+    bar of a binary STL ends at the facet count the file's header states; to a pipe without it, nothing."""
+    stl = tmp_path / "g.stl"
+    argv = ["gear", "-z", "40", "-m", "2", "--width", "5", "--tol", "1e-3", "-o", str(stl)]
+    code, out, err = _run_piped(argv)
+    assert code == 0 and "[" not in err
+    code, out, err = _run_piped(["--progress", *argv])
+    facets = int(np.frombuffer(stl.read_bytes()[80:84], "<u4")[0])
+    assert code == 0 and f"STL [{'#' * Progress.width}] {facets}/{facets} facets" in err
+    assert "mesh check [" in err and err.rstrip("\n").rsplit("\n", 1)[-1].startswith("gearkit gear: wrote")
+    for suffix in ("obj", "glb", "3mf"):
+        code, out, err = _run_piped(["--progress", *argv[:-1], str(tmp_path / f"g.{suffix}")])
+        assert code == 0 and f"{suffix.upper()} [{'#' * Progress.width}]" in err
+    for suffix in ("dxf", "svg", "csv", "json"):
+        code, out, err = _run_piped(["--progress", "rack", "-m", "2", "-n", "400", "-o", str(tmp_path / f"r.{suffix}")])
+        assert code == 0 and f"{suffix.upper()} [{'#' * Progress.width}]" in err
+
+
+def test_a_rack_bar_draws_on_a_terminal(tmp_path):
+    code, out, term = _run_on_a_terminal(["rack", "-m", "1", "-n", "30", "-o", str(tmp_path / "r.stl")], tmp_path)
+    assert code == 0, term
+    assert "rack bar [" in term and "2/2 stages" in term and "STL [" in term
+    assert "rack bar [" not in out
+
+
+def test_scene_and_planetary_queries_draw_bars_when_asked(tmp_path):
+    scene = str(Path(__file__).resolve().parent.parent / "examples" / "planetary.toml")
+    code, out, err = _run_piped(["--progress", "scene", scene, "--fidelity", "simulated", "--json"])
+    meshes = len(json.loads(out)["meshes"])
+    assert code in (0, 1) and f"scene [{'#' * Progress.width}] {meshes}/{meshes} meshes" in err
+    assert "contact [" not in err  # the contact of each mesh moves the scene's bar instead
+    code, out, err = _run_piped(["scene", scene, "--fidelity", "simulated", "--json"])
+    assert code in (0, 1) and err == ""
+    argv = ["planetary", "--ratio", "5", "--planets", "3", "-m", "1", "--max-teeth", "80", "--ratio-tol", "0.01", "--json"]
+    code, out, err = _run_piped(["--progress", *argv])
+    assert code == 0 and "planetary search [" in err and "planetary checks [" in err
+    assert _run_piped(argv)[2] == ""

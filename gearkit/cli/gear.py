@@ -3,7 +3,7 @@
 ``-o`` with a 2D extension (.svg .dxf .csv .json) writes the transverse profile; with a mesh
 extension (.stl .obj .glb .3mf .step) it writes the solid (``--width`` required): spur or helical,
 ``--herringbone [--gap G]``, ``--bore D [--keyway WxD]``, a ring's ``--outer-diameter`` or
-``--rim``. The mesh path imports only numpy and manifold3d for STL (trimesh for OBJ/GLB).
+``--rim``. The mesh path imports only numpy and manifold3d (every mesh format is written with numpy).
 """
 from __future__ import annotations
 

@@ -40,6 +40,7 @@ import math
 from dataclasses import dataclass
 
 from gearkit.errors import SpecError, require
+from gearkit.progress import Progress
 
 __all__ = ["FIDELITIES", "MeshCheck", "SceneModel"]
 
@@ -215,27 +216,34 @@ class SceneModel:
 
     def check(self, fidelity: str = "formula", meshes=None, angle_deg: float = 0.0) -> list:
         """Check every mesh (or those named in ``meshes``) at ``fidelity``: a list of :class:`MeshCheck`."""
-        from gearkit.checks.involute import check_pair
-
         require(fidelity in FIDELITIES, "fidelity", f"{fidelity!r} is not one of {', '.join(FIDELITIES)}")
         layout = self.layout()
         wanted = [m.mesh.label for m in layout.meshes] if meshes is None else list(meshes)
         out = []
-        for label in wanted:
-            m = layout.mesh(label)
-            if fidelity == "formula":
-                chk = check_pair(m.spec, geometry="formula")
-            elif fidelity == "simulated":
-                chk = check_pair(m.spec, simulate=True, profiles=self._profiles(m), analysis=self.simulation(label))
-            else:
-                chk = check_pair(m.spec, profiles=self._profiles(m))
-            inter = bound = None
-            if fidelity == "solid":
-                inter = self.interference(label, angle_deg)
-                tol = max(self.solid(n).info["tol"] for n in (m.mesh.first, m.mesh.second))
-                bound = 2.0 * tol * self.width * m.spec.module
-            out.append(MeshCheck(label, m.names, m.center_distance, chk, inter, bound))
+        with Progress("scene", len(wanted), unit="meshes") as bar:
+            for k, label in enumerate(wanted):
+                bar.note = f"mesh {label}"
+                bar.update(k)
+                out.append(self._check_mesh(layout.mesh(label), fidelity, angle_deg))
         return out
+
+    def _check_mesh(self, m, fidelity: str, angle_deg: float):
+        """The :class:`MeshCheck` of one mesh of the layout at ``fidelity``."""
+        from gearkit.checks.involute import check_pair
+
+        label = m.mesh.label
+        if fidelity == "formula":
+            chk = check_pair(m.spec, geometry="formula")
+        elif fidelity == "simulated":
+            chk = check_pair(m.spec, simulate=True, profiles=self._profiles(m), analysis=self.simulation(label))
+        else:
+            chk = check_pair(m.spec, profiles=self._profiles(m))
+        inter = bound = None
+        if fidelity == "solid":
+            inter = self.interference(label, angle_deg)
+            tol = max(self.solid(n).info["tol"] for n in (m.mesh.first, m.mesh.second))
+            bound = 2.0 * tol * self.width * m.spec.module
+        return MeshCheck(label, m.names, m.center_distance, chk, inter, bound)
 
     def export(self, path, angle_deg: float = 0.0):
         """Write the placed scene: ``.obj``/``.glb``/``.stl`` (solids, named parts) or ``.png``/``.svg``

@@ -33,6 +33,7 @@ from dataclasses import dataclass
 from fractions import Fraction
 
 from gearkit.errors import SpecError, check_fields, is_int, is_real, require
+from gearkit.progress import Progress
 
 __all__ = ["SCHEMES", "SynthesisLimits", "TEXTBOOK_LIMITS", "PlanetarySet", "synthesize", "candidate_sets",
            "set_ratio", "planetary_scene", "factorised_teeth"]
@@ -159,22 +160,26 @@ def candidate_sets(scheme: str, ratio: float, tol: float, lim: SynthesisLimits) 
     zmax = lim.max_teeth
     found = []
     deltas = range(-lim.max_sum_difference, lim.max_sum_difference + 1)
-    if scheme == "simple":
-        for z1 in range(max(lim.min_teeth, 3), zmax + 1):
-            for z4 in _int_range((lo - 1) * z1, (hi - 1) * z1, max(lim.min_ring, z1 + 2), zmax):
-                for d in deltas:
-                    if (z4 - z1 - d) % 2 == 0 and (z4 - z1 - d) > 0:
-                        found.append((z1, (z4 - z1 - d) // 2, z4))
-    else:
-        for z2 in range(3, zmax + 1):
-            for z3 in range(3, zmax + 1):
-                for d in deltas:
-                    found += _compound_z1(scheme, z2, z3, d, lo, hi, zmax)
+    outer = range(max(lim.min_teeth, 3), zmax + 1) if scheme == "simple" else range(3, zmax + 1)
     out = []
-    for t in found:
-        r = set_ratio(scheme, t)
-        if lo - slack <= r <= hi + slack and _ok_teeth(scheme, t, lim):
-            out.append((_envelope(scheme, t), abs(float(r) - ratio), abs(_mismatch(scheme, t)), t))
+    with Progress("planetary search", 2 * max(len(outer), 1)) as bar:  # the sets made, then their ratios
+        for k, z in enumerate(outer):
+            if scheme == "simple":
+                for z4 in _int_range((lo - 1) * z, (hi - 1) * z, max(lim.min_ring, z + 2), zmax):
+                    for d in deltas:
+                        if (z4 - z - d) % 2 == 0 and (z4 - z - d) > 0:
+                            found.append((z, (z4 - z - d) // 2, z4))
+            else:
+                for z3 in range(3, zmax + 1):
+                    for d in deltas:
+                        found += _compound_z1(scheme, z, z3, d, lo, hi, zmax)
+            bar.update(k + 1)
+        for k, t in enumerate(found):
+            r = set_ratio(scheme, t)
+            if lo - slack <= r <= hi + slack and _ok_teeth(scheme, t, lim):
+                out.append((_envelope(scheme, t), abs(float(r) - ratio), abs(_mismatch(scheme, t)), t))
+            if not k & 0x3FF:
+                bar.update(len(outer) + len(outer) * k // len(found))
     out.sort()
     return [(t, set_ratio(scheme, t)) for *_, t in out]
 
@@ -308,9 +313,6 @@ def synthesize(ratio: float, planets: int, module: float, *, scheme: str = "simp
     count : int
         How many accepted sets to return (best first).
     """
-    from gearkit.scene.layout import scene_layout
-    from gearkit.scene.phasing import PlanetMesh, assembly_positions, planet_phasing, textbook_assembly
-
     require(is_real(ratio) and ratio != 0, "ratio", f"{ratio!r} must be a non-zero number")
     require(is_int(planets) and 1 <= planets <= 64, "planets", f"{planets!r} must be an integer in [1, 64]")
     require(is_real(module) and module > 0, "module", f"{module!r} must be > 0 mm")
@@ -320,36 +322,48 @@ def synthesize(ratio: float, planets: int, module: float, *, scheme: str = "simp
         require(ratio * (1 + ratio_tol) > 2, "ratio", f"a simple planetary set gives i_1B > 2 (asked {ratio:g}): "
                 "use a compound scheme")
     out = []
-    for teeth, r in candidate_sets(scheme, float(ratio), float(ratio_tol), limits):
-        if scheme == "simple":
-            meshes = [PlanetMesh(teeth[0], teeth[1], False), PlanetMesh(teeth[2], teeth[1], True)]
-        else:
-            meshes = [PlanetMesh(teeth[0], teeth[1], scheme == "internal"),
-                      PlanetMesh(teeth[3], teeth[2], scheme != "external")]
-        positions = assembly_positions(meshes)
-        if not positions or positions < planets or limits.equal_spacing and positions % planets:
-            continue
-        try:
-            phasing = planet_phasing(planets, meshes)
-            shifts, a_w = _coaxial_shifts(scheme, teeth, module)
-            scene = planetary_scene(scheme, teeth, planets, module, shifts, tuple(phasing.angles_deg))
-            layout = scene_layout(scene)
-        except SpecError:  # overlapping planets, shifts out of range, a loop that does not close
-            continue
-        gap = layout.neighbour_clearance["carrier"]
-        if gap < limits.neighbour_margin * module:
-            continue
-        status = "unchecked"
-        if limits.checks:
-            from gearkit.checks.involute import check_pair
-
-            reports = [check_pair(m.spec, geometry="formula").report for m in layout.meshes]
-            if any(not rep.ok for rep in reports):
-                continue
-            status = "warn" if any(rep.status == "warn" for rep in reports) else "ok"
-        a_w = layout.radii["planets" if scheme != "simple" else "planet"]
-        out.append(PlanetarySet(scheme, teeth, planets, r, float(module), shifts, a_w, phasing, positions,
-                                textbook_assembly(teeth[0], r, planets, max_p=1000), gap, status, scene))
-        if len(out) == count:
-            break
+    candidates = candidate_sets(scheme, float(ratio), float(ratio_tol), limits)
+    with Progress("planetary checks", len(candidates), unit="sets") as bar:
+        for k, (teeth, r) in enumerate(candidates):
+            bar.update(k)
+            if _accepted(out, scheme, teeth, r, planets, module, limits) and len(out) == count:
+                break
     return out
+
+
+def _accepted(out: list, scheme: str, teeth: tuple, r, planets: int, module: float, limits) -> bool:
+    """Append the set ``teeth`` (ratio ``r``) to ``out`` if it assembles, is coaxial, clears its
+    neighbours and passes the pair checks; True if it did."""
+    from gearkit.scene.layout import scene_layout
+    from gearkit.scene.phasing import PlanetMesh, assembly_positions, planet_phasing, textbook_assembly
+
+    if scheme == "simple":
+        meshes = [PlanetMesh(teeth[0], teeth[1], False), PlanetMesh(teeth[2], teeth[1], True)]
+    else:
+        meshes = [PlanetMesh(teeth[0], teeth[1], scheme == "internal"),
+                  PlanetMesh(teeth[3], teeth[2], scheme != "external")]
+    positions = assembly_positions(meshes)
+    if not positions or positions < planets or limits.equal_spacing and positions % planets:
+        return False
+    try:
+        phasing = planet_phasing(planets, meshes)
+        shifts, a_w = _coaxial_shifts(scheme, teeth, module)
+        scene = planetary_scene(scheme, teeth, planets, module, shifts, tuple(phasing.angles_deg))
+        layout = scene_layout(scene)
+    except SpecError:  # overlapping planets, shifts out of range, a loop that does not close
+        return False
+    gap = layout.neighbour_clearance["carrier"]
+    if gap < limits.neighbour_margin * module:
+        return False
+    status = "unchecked"
+    if limits.checks:
+        from gearkit.checks.involute import check_pair
+
+        reports = [check_pair(m.spec, geometry="formula").report for m in layout.meshes]
+        if any(not rep.ok for rep in reports):
+            return False
+        status = "warn" if any(rep.status == "warn" for rep in reports) else "ok"
+    a_w = layout.radii["planets" if scheme != "simple" else "planet"]
+    out.append(PlanetarySet(scheme, teeth, planets, r, float(module), shifts, a_w, phasing, positions,
+                            textbook_assembly(teeth[0], r, planets, max_p=1000), gap, status, scene))
+    return True

@@ -5,17 +5,16 @@ a solid: spur, helical, herringbone / double-helical, ring gears (:func:`gear_so
 (:func:`rack_solid`); bores with keyways. Pairs are placed at their centre distance, phased,
 and tested for 3D interference (:func:`pair_assembly`). A solid built from a triangle mesh is
 checked with numpy (closed, oriented, no facet of zero area in single precision, positive volume)
-and handed to manifold3d only when a boolean asks for it; STL is written with numpy, OBJ (named parts) and GLB through trimesh
-(:func:`write_mesh`, atomic). The same ``tol`` (mm) bounds the deviation of every vertex and
+and handed to manifold3d only when a boolean asks for it; STL, OBJ (named parts), GLB (named nodes) and
+3MF are written with numpy a chunk at a time behind a progress bar (:func:`write_mesh`, atomic). The same ``tol`` (mm) bounds the deviation of every vertex and
 facet from the exact tooth surface, twist included, and every solid reports the deviation it
-achieved (``Solid.achieved``). 3MF (unit mm, named objects) is written with the standard
-library; STEP rebuilds each part from its :class:`Recipe` as an exact B-rep
+achieved (``Solid.achieved``). STEP rebuilds each part from its :class:`Recipe` as an exact B-rep
 (:mod:`gearkit.solids.step`, B-spline flanks, planar ends, cylindrical bores) with the optional
 ``gearkit[step]`` kernel, imported only then. Any other closed outline of exact curves (a cam,
 a plate) becomes a solid, with its recipe, through :func:`prism_solid`.
 
 This package (with :mod:`gearkit.oracles.involute`) is the only place that imports manifold3d and OCP; trimesh
-is imported only where a format or a check needs it.
+is imported only by :meth:`Solid.to_trimesh`.
 """
 from gearkit import lazy_exports
 

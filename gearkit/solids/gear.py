@@ -21,6 +21,7 @@ import numpy as np
 
 from gearkit.accuracy import check_tol
 from gearkit.errors import GeometryError, SpecError, check_length
+from gearkit.progress import Progress
 from gearkit.solids.solid import Recipe, Solid, SolidSpec, default_mesh_tol
 from gearkit.solids.surface import LayerPlan, helix_angle, plan_layers, reference_radius, tooth_polyline
 
@@ -178,17 +179,20 @@ class _Mesh:
 
     def band(self, sec: _Section, zs, thetas, diagonals) -> tuple:
         """Swept teeth through the slices; returns the first and last slice's base index."""
-        bases = [self.add(_rotate(sec.outline, th), z) for z, th in zip(zs, thetas)]
         j = np.arange(sec.count)
         jn = (j + 1) % sec.count
-        for s in range(len(zs) - 1):
-            a, b = bases[s] + j, bases[s] + jn
-            c, d = bases[s + 1] + j, bases[s + 1] + jn
-            diag = np.tile(diagonals[1 if thetas[s + 1] >= thetas[s] else -1], sec.z).astype(bool)[:, None]
-            t1 = np.where(diag, np.stack([a, b, c], 1), np.stack([a, b, d], 1))
-            t2 = np.where(diag, np.stack([b, d, c], 1), np.stack([a, d, c], 1))
-            tris = np.concatenate([t1, t2])
-            self.faces.append(tris[:, ::-1] if sec.internal else tris)
+        with Progress("solid", len(zs), unit="layers") as bar:
+            bases = [self.add(_rotate(sec.outline, thetas[0]), zs[0])]
+            for s in range(len(zs) - 1):
+                bases.append(self.add(_rotate(sec.outline, thetas[s + 1]), zs[s + 1]))
+                a, b = bases[s] + j, bases[s] + jn
+                c, d = bases[s + 1] + j, bases[s + 1] + jn
+                diag = np.tile(diagonals[1 if thetas[s + 1] >= thetas[s] else -1], sec.z).astype(bool)[:, None]
+                t1 = np.where(diag, np.stack([a, b, c], 1), np.stack([a, b, d], 1))
+                t2 = np.where(diag, np.stack([b, d, c], 1), np.stack([a, d, c], 1))
+                tris = np.concatenate([t1, t2])
+                self.faces.append(tris[:, ::-1] if sec.internal else tris)
+                bar.update(s + 2)
         return bases[0], bases[-1]
 
     def wall(self, poly, z0: float, z1: float, hole: bool) -> tuple:

@@ -18,6 +18,7 @@ import numpy as np
 
 from gearkit.accuracy import check_tol
 from gearkit.errors import SpecError, check_length
+from gearkit.progress import Progress
 from gearkit.solids.solid import Recipe, Solid, checked, default_mesh_tol, manifold_from_arrays
 from gearkit.solids.surface import plan_layers, tooth_polyline
 
@@ -67,13 +68,14 @@ def rack_solid(profile, length: float, height: float, width: float, tol: float |
     reach = abs(shear) * width + p
     k0 = math.floor((start - reach) / p)
     k1 = math.ceil((start + length + reach) / p)
-    tooth = poly.points[:-1]
-    row = np.concatenate([tooth + (k * p, 0.0) for k in range(k0, k1 + 1)] + [poly.points[-1:] + (k1 * p, 0.0)])
+    tooth = poly.points
+    row = np.concatenate([tooth[:-1] + (k * p, 0.0) for k in range(k0, k1 + 1)] + [tooth[-1:] + (k1 * p, 0.0)])
     back = tip - height
-    bar = np.concatenate([row, [[row[-1, 0], back], [row[0, 0], back]]])[::-1]  # counter-clockwise
-    prism = _sheared_prism(bar, width, shear)
-    box = m3.Manifold.cube((length, 4.0 * height, 2.0 * width)).translate((start, back - height, -0.5 * width))
-    man = checked(prism ^ box, name)
+    with Progress("rack bar", 2, unit="stages") as bar:  # the bar of whole teeth, then its ends cut square
+        prism = _sheared_prism(row, tooth, back, width, shear)
+        bar.update(1)
+        box = m3.Manifold.cube((length, 4.0 * height, 2.0 * width)).translate((start, back - height, -0.5 * width))
+        man = checked(prism ^ box, name)
     info = {"kind": "helical rack" if shear else "rack", "module": float(profile.module), "width": float(width),
             "length": float(length), "height": float(height), "helix_angle_deg": beta_deg, "tol": tol,
             "achieved": plan.achieved, "polyline_tol": poly.tol, "layers": 1, "points_per_tooth": poly.edges,
@@ -81,14 +83,31 @@ def rack_solid(profile, length: float, height: float, width: float, tol: float |
     return Solid(man, name, info, Recipe("rack", (profile, length, height, width, start, tol)))
 
 
-def _sheared_prism(polygon, width: float, shear: float):
-    """Prism over a CCW polygon from z = 0 to ``width``, its top moved by ``width * shear`` in x."""
-    n = len(polygon)
+def _sheared_prism(row, tooth, back: float, width: float, shear: float):
+    """The bar under a tooth row (left to right, whole teeth of ``tooth``'s points) down to ``y = back``,
+    as a prism from z = 0 to ``width`` whose top is moved by ``width * shear`` in x.
+
+    The end faces are cut into one cell per tooth (the tooth down to the back, triangulated once and
+    repeated), so the work stays linear in the teeth; a tooth that reaches past its pitch (so that
+    the cells would overlap) has its end face triangulated whole."""
+    n = len(tooth) - 1  # edges per tooth
+    teeth = (len(row) - 1) // n
+    ends = row[::n, 0]  # the teeth's ends on the row, left to right (teeth + 1)
+    polygon = np.concatenate([row, np.column_stack([ends[::-1], np.full(teeth + 1, back)])])[::-1]  # CCW
+    count = len(polygon)
+    if tooth[:, 0].min() >= tooth[0, 0] and tooth[:, 0].max() <= tooth[-1, 0]:
+        cell = np.concatenate([tooth, [[tooth[-1, 0], back], [tooth[0, 0], back]]])[::-1]  # CCW
+        local = np.asarray(m3.triangulate([np.ascontiguousarray(cell)]), dtype=np.int64).reshape(-1, 3)
+        c = n + 2 - local  # index along the clockwise cell: tooth points 0..n, then its right and left back
+        i = np.arange(teeth)[:, None, None]
+        on_row = np.where(c <= n, i * n + c, len(row) + teeth - i - (c == n + 1))
+        cap = (count - 1 - on_row).reshape(-1, 3)
+    else:
+        cap = np.asarray(m3.triangulate([np.ascontiguousarray(polygon)]), dtype=np.int64).reshape(-1, 3)
     top = polygon + (width * shear, 0.0)
-    v = np.concatenate([np.column_stack([polygon, np.zeros(n)]), np.column_stack([top, np.full(n, width)])])
-    cap = np.asarray(m3.triangulate([np.ascontiguousarray(polygon)]), dtype=np.int64).reshape(-1, 3)
-    j = np.arange(n)
-    a, b = j, (j + 1) % n
-    side = np.concatenate([np.stack([a, b, b + n], 1), np.stack([a, b + n, a + n], 1)])
-    f = np.concatenate([cap[:, ::-1], cap + n, side])
+    v = np.concatenate([np.column_stack([polygon, np.zeros(count)]), np.column_stack([top, np.full(count, width)])])
+    j = np.arange(count)
+    a, b = j, (j + 1) % count
+    side = np.concatenate([np.stack([a, b, b + count], 1), np.stack([a, b + count, a + count], 1)])
+    f = np.concatenate([cap[:, ::-1], cap + count, side])
     return checked(manifold_from_arrays(v, f), "rack bar")

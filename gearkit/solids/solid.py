@@ -13,6 +13,7 @@ import manifold3d as m3
 import numpy as np
 
 from gearkit.errors import GeometryError, SpecError, check_fields, require
+from gearkit.progress import Progress
 
 
 def default_mesh_tol(module: float) -> float:
@@ -308,6 +309,11 @@ def mesh_measures(vertices, faces, what: str = "mesh") -> dict:
         raise GeometryError(f"{what}: the mesh is not a valid solid (no faces, or faces naming missing vertices)")
     if not np.isfinite(v).all():
         raise GeometryError(f"{what}: the mesh is not a valid solid (non-finite vertices)")
+    with Progress("mesh check", 2 * len(f)) as bar:  # the edges' sort, then the facets
+        return _measures(v, f, what, bar)
+
+
+def _measures(v, f, what: str, bar) -> dict:
     a = f.astype(np.int64, copy=False).ravel()
     b = f[:, (1, 2, 0)].astype(np.int64, copy=False).ravel()
     key = np.minimum(a, b)  # each edge: its two ends and its way, one integer
@@ -319,6 +325,7 @@ def mesh_measures(vertices, faces, what: str = "mesh") -> dict:
     if not ((key[0::2] & 1 == 0).all() and (key[1::2] == key[0::2] + 1).all()):
         raise RepairableMesh(f"{what}: the mesh is not a valid solid (an edge without exactly one opposite edge)")
     del key
+    bar.step(len(f))
     exact, single = _columns(v), _columns(v.astype(np.float32))
     normals = np.empty((len(f), 3), dtype=np.float32)
     volume = area = 0.0
@@ -333,6 +340,7 @@ def mesh_measures(vertices, faces, what: str = "mesh") -> dict:
             raise RepairableMesh(f"{what}: the mesh has degenerate facets (zero area in single precision)")
         for k in range(3):
             normals[s:s + CHUNK, k] = n[k] / length
+        bar.step(len(corners[0]))
     if not volume > 0.0:
         raise RepairableMesh(f"{what}: the solid is empty or inside out (volume {volume:.6g} mm^3)")
     return {"volume": volume, "area": area, "normals": normals}
