@@ -173,16 +173,23 @@ def _refine(mesh, phi, theta, sigma, sb, m, fa, fb, half):
     if cross.any():
         rows = np.flatnonzero(cross)
         sub = _Task(mesh, phi[rows], theta[rows], sigma[rows], sb[rows], piece[rows])
-        tc = _crossing(sub, a[rows], b[rows])
+        tc = inner = _crossing(sub, a[rows], b[rows])
         if mesh.tables:  # the crossing on the exact pieces, in a narrow bracket about the tables' one
             sub.exact = True
             span = 1e-6 * (b[rows] - a[rows])
             tx = _crossing(sub, np.maximum(tc - span, a[rows]), np.minimum(tc + span, b[rows]))
-            tc = np.where(mesh.mate.outward * (sub.rho(tx) - mesh.mate.rho_tip) <= 0, tx, tc)
+            tx = np.where(mesh.mate.outward * (sub.rho(tx) - mesh.mate.rho_tip) <= 0, tx, tc)
+            # the minimum is searched up to the nearer of the two crossings, finite on the tables and the
+            # exact pieces alike (beyond the tables' own, a corner contact would be approached by halving)
+            inner, tc = np.where(fa[rows], np.minimum(tx, tc), np.maximum(tx, tc)), tx
         a[rows] = np.where(fa[rows], a[rows], tc)
         b[rows] = np.where(fa[rows], tc, b[rows])
         at_tip[rows] = True
-    value, t = minimise(task, a, b)
+    lo, hi = a.copy(), b.copy()
+    if cross.any():
+        lo[rows] = np.where(fa[rows], a[rows], inner)
+        hi[rows] = np.where(fa[rows], inner, b[rows])
+    value, t = minimise(task, lo, hi)
     order = np.lexsort((value, half))
     first = np.ones(order.size, bool)
     first[1:] = half[order][1:] != half[order][:-1]
