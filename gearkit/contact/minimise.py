@@ -51,15 +51,24 @@ def minimise(task, a, b):
     n = len(a)
     frac = np.linspace(0.0, 1.0, _PROBES + 2)
     grid = a[None, :] + frac[:, None] * width[None, :]  # (P, n)
-    pts = np.concatenate([grid.ravel(), a + h, a + 2 * h, b - h, b - 2 * h])
-    rows_all = np.concatenate([np.tile(np.arange(n), len(frac)), np.tile(np.arange(n), 4)])
-    v = task.value(pts, rows_all)[0]
-    vg = v[:grid.size].reshape(grid.shape)
-    va1, va2, vb1, vb2 = v[grid.size:].reshape(4, n)
+    if task.smooth:  # the one-sided slopes only where the best sample is an end (values alone on tables)
+        vg = task.value(grid.ravel(), np.tile(np.arange(n), len(frac)))[0].reshape(grid.shape)
+        j = np.argmin(vg, axis=0)
+        ea, eb = np.flatnonzero(j == 0), np.flatnonzero(j == len(frac) - 1)
+        v = task.value(np.concatenate([a[ea] + h[ea], a[ea] + 2 * h[ea], b[eb] - h[eb], b[eb] - 2 * h[eb]]),
+                       np.concatenate([ea, ea, eb, eb]))[0]
+        va1, va2, vb1, vb2 = np.full((4, n), np.nan)
+        va1[ea], va2[ea], vb1[eb], vb2[eb] = np.split(v, np.cumsum([len(ea), len(ea), len(eb)]))
+    else:
+        pts = np.concatenate([grid.ravel(), a + h, a + 2 * h, b - h, b - 2 * h])
+        rows_all = np.concatenate([np.tile(np.arange(n), len(frac)), np.tile(np.arange(n), 4)])
+        v = task.value(pts, rows_all)[0]
+        vg = v[:grid.size].reshape(grid.shape)
+        va1, va2, vb1, vb2 = v[grid.size:].reshape(4, n)
+        j = np.argmin(vg, axis=0)
     with np.errstate(invalid="ignore", divide="ignore"):
         da = (-3 * vg[0] + 4 * va1 - va2) / (2 * h)
         db = (3 * vg[-1] - 4 * vb1 + vb2) / (2 * h)
-    j = np.argmin(vg, axis=0)
     best_v = vg[j, np.arange(n)]
     best_t = grid[j, np.arange(n)]
     at_a, at_b = j == 0, j == len(frac) - 1
