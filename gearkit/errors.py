@@ -142,6 +142,6 @@ def require_cut_inputs(module, helix_angle_deg, thinning) -> None:
 
     require(is_real(module) and 1e-4 <= module <= 1e4, "module", f"{module!r} must be a length in [0.0001, 10000] mm")
     b = helix_angle_deg
-    require(is_real(b) and -80.0 < b < 80.0, "helix_angle_deg", f"{b!r} must be in (-80, 80) degrees")
+    require(is_real(b) and -60.0 < b < 60.0, "helix_angle_deg", f"{b!r} must be in (-60, 60) degrees")
     require(is_real(thinning) and 0.0 <= thinning < 0.5 * math.pi * module, "thinning",
             f"{thinning!r} must be in [0, pi*m/2) mm")

@@ -158,7 +158,7 @@ def test_roulette_segments_are_the_classical_curves():
 
 
 @pytest.mark.parametrize("kwargs,field", [
-    (dict(module=0.0), "module"), (dict(pinion_teeth=3), "pinion_teeth"), (dict(wheel_teeth=10), "wheel_teeth"),
+    (dict(module=0.0), "module"), (dict(pinion_teeth=2), "pinion_teeth"), (dict(wheel_teeth=10), "wheel_teeth"),
     (dict(rolling_radius1=20.0), "rolling_radius1"), (dict(addendum1=5.0), "addendum1"),
     (dict(rolling_radius1=0.5), "rolling_radius1")])
 def test_pair_bad_input_names_its_field(kwargs, field):

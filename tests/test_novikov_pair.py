@@ -240,11 +240,24 @@ def test_contact_travels_along_the_face_one_pitch_apart():
         mesh_contact(worked(racks="single-arc"), 1)
 
 
+def test_a_negative_helix_is_the_left_hand_mirror_pair():
+    """The sign of beta is the pinion's hand (as for an involute pair): the left-hand pair is the mirror
+    image of the right-hand one, so every value but the signed angle and the hand is the same."""
+    right, left = worked(), worked(helix_angle_deg=-worked().helix_angle_deg)
+    assert (right.hand, left.hand) == ("right", "left")
+    assert left.gear(1).helix_angle_deg == right.gear(2).helix_angle_deg < 0 < left.gear(2).helix_angle_deg
+    a, b = novikov_pair_geometry(right).to_dict(), novikov_pair_geometry(left).to_dict()
+    assert b.pop("helix_angle_deg") == -a.pop("helix_angle_deg") and (a.pop("hand"), b.pop("hand")) == ("right", "left")
+    assert a == b
+    ca, cb = mesh_contact(right, 0, interference=False), mesh_contact(left, 0, interference=False)
+    assert ca.rotations == cb.rotations and ca.center_distance == cb.center_distance
+
+
 def test_invalid_pair_specs():
     with pytest.raises(SpecError, match="face_width"):
         worked(face_width=0.0)
     with pytest.raises(SpecError, match="helix_angle_deg"):
-        worked(helix_angle_deg=-5.0)
+        worked(helix_angle_deg=-60.0)
     with pytest.raises(SpecError, match="center_distance"):
         worked(center_distance=170.0)
     with pytest.raises(SpecError, match="unknown rack"):

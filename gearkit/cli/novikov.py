@@ -31,8 +31,8 @@ def register(subparsers) -> None:
     g.add_argument("--z1", type=QUANTITIES["teeth"], help="pinion teeth (required)")
     g.add_argument("--z2", type=QUANTITIES["teeth"], help="wheel teeth (required)")
     add_module_flag(g, "normal module m_n, mm (required)")
-    g.add_argument("--helix-angle-deg", type=QUANTITIES["helix_angle_deg"], help="helix angle beta, degrees (required; 0 fails the "
-                   "overlap check)")
+    g.add_argument("--helix-angle-deg", type=QUANTITIES["helix_angle_deg"], help="helix angle beta, degrees, its sign the pinion's hand "
+                   "(negative: left hand; the wheel has the other hand; required; 0 fails the overlap check)")
     g.add_argument("--width", type=QUANTITIES["width"], help="face width b, mm (required)")
     g.add_argument("--rack", default="standard", help="rack system: dca24 (double arc, 24 deg; the default, also "
                    "named 'standard' as every command's default rack), single-arc, or a TOML rack file written as "
@@ -134,7 +134,8 @@ def format_report(result) -> str:
     deg = math.degrees
     lines = [
         f"gearkit novikov: {g.kind} pair, z1 = {s.teeth1}, z2 = {s.teeth2}, m_n = {g.module:g} mm, "
-        f"beta = {text_number(deg(g.helix_angle))} deg, b = {s.face_width:g} mm, racks {s.racks.name}"
+        f"beta = {text_number(s.helix_angle_deg)} deg" + (f" (pinion {s.hand} hand)" if s.helix_angle_deg else "")
+        + f", b = {s.face_width:g} mm, racks {s.racks.name}"
         + ("" if s.racks.verified else " (UNVERIFIED)"),
         f"  a {g.reference_center_distance:.4f} mm   a_w {g.center_distance:.4f} mm   m_t {g.transverse_module:.5f}"
         + (f"   p_x {g.axial_pitch:.4f} mm" if math.isfinite(g.axial_pitch) else

@@ -148,8 +148,8 @@ def simulate(mesh: Mesh, steps: int = 2000, *, contact_tol: float | None = None,
     require(isinstance(slices, (int, np.integer)) and 1 <= slices <= 1000, "slices",
             f"{slices!r} must be an integer in [1, 1000]")
     require(math.isfinite(face_width) and face_width >= 0, "face_width", f"{face_width!r} must be >= 0 mm")
-    require(math.isfinite(helix_angle_deg) and abs(helix_angle_deg) < 80, "helix_angle_deg",
-            f"{helix_angle_deg!r} must be in (-80, 80) degrees")
+    require(math.isfinite(helix_angle_deg) and abs(helix_angle_deg) < 60, "helix_angle_deg",
+            f"{helix_angle_deg!r} must be in (-60, 60) degrees")
     m = mesh.module
     ctol = 1e-12 * max([m] + [r for r in mesh.pitch_radii if math.isfinite(r)]) if contact_tol is None \
         else float(contact_tol)

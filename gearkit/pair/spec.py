@@ -118,8 +118,8 @@ class PairSpec:
         b = self.helix_angle_deg
         require(is_real(b) and abs(b) < 60.0, "helix_angle_deg", f"{b!r} must be in (-60, 60) degrees")
         if self.face_width is not None:
-            require(is_real(self.face_width) and self.face_width > 0, "face_width",
-                    f"b = {self.face_width!r} must be > 0 mm")
+            require(is_real(self.face_width) and 0 < self.face_width <= 1e5, "face_width",
+                    f"b = {self.face_width!r} must be a length in (0, 100000] mm")
         require(is_real(self.addendum) and 0.0 < self.addendum <= 3.0, "addendum",
                 f"h_a* = {self.addendum!r} must be in (0, 3]")
         require(self.shift_convention in SHIFT_CONVENTIONS, "shift_convention",

@@ -101,7 +101,8 @@ class Gear:
         require(is_int(self.teeth) and 3 <= self.teeth <= 100000, f"{n}.teeth",
                 f"z = {self.teeth!r} must be an integer in [3, 100000]")
         require(is_real(self.shift) and -3.0 <= self.shift <= 3.0, f"{n}.shift", f"x = {self.shift!r} must be in [-3, 3]")
-        require(self.module is None or self.module > 0, f"{n}.module", f"m = {self.module!r} must be > 0 mm")
+        require(self.module is None or is_real(self.module) and 1e-4 <= self.module <= 1e4, f"{n}.module",
+                f"m = {self.module!r} must be a length in [0.0001, 10000] mm")
         require(not (self.internal and self.rack), f"{n}.internal", "a gear cannot be both a ring and a rack")
         for key in ("shaft", "carrier"):
             if getattr(self, key) is not None:
@@ -245,16 +246,18 @@ class Scene:
         require(len(self.gears) >= 1 and all(isinstance(g, Gear) for g in self.gears), "gears",
                 "give at least one Gear")
         require(all(isinstance(m, Mesh) for m in self.meshes), "meshes", "give Mesh values")
-        require(is_real(self.module) and self.module > 0, "module", f"m = {self.module!r} must be > 0 mm")
-        require(is_real(self.pressure_angle_deg) and 0 < self.pressure_angle_deg < 45, "pressure_angle_deg",
-                f"{self.pressure_angle_deg!r} must be in (0, 45) degrees")
+        require(is_real(self.module) and 1e-4 <= self.module <= 1e4, "module",
+                f"m = {self.module!r} must be a length in [0.0001, 10000] mm")
+        require(is_real(self.pressure_angle_deg) and 1 <= self.pressure_angle_deg < 45, "pressure_angle_deg",
+                f"{self.pressure_angle_deg!r} must be in [1, 45) degrees")
         require(is_real(self.helix_angle_deg) and abs(self.helix_angle_deg) < 60, "helix_angle_deg",
                 f"{self.helix_angle_deg!r} must be in (-60, 60) degrees")
         require(is_real(self.addendum) and 0 < self.addendum <= 3, "addendum", f"{self.addendum!r} must be in (0, 3]")
         require(is_real(self.clearance) and 0 <= self.clearance <= 1, "clearance",
                 f"c* = {self.clearance!r} must be in [0, 1]")
         if self.face_width is not None:
-            require(is_real(self.face_width) and self.face_width > 0, "face_width", "must be > 0 mm")
+            require(is_real(self.face_width) and 0 < self.face_width <= 1e5, "face_width",
+                    f"{self.face_width!r} must be a length in (0, 100000] mm")
         names = [g.name for g in self.gears]
         dup = {n for n in names if names.count(n) > 1}
         require(not dup, "gears", f"gear names must be unique ({', '.join(sorted(dup))} repeated)")

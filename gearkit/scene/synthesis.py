@@ -315,7 +315,7 @@ def synthesize(ratio: float, planets: int, module: float, *, scheme: str = "simp
     """
     require(is_real(ratio) and ratio != 0, "ratio", f"{ratio!r} must be a non-zero number")
     require(is_int(planets) and 1 <= planets <= 64, "planets", f"{planets!r} must be an integer in [1, 64]")
-    require(is_real(module) and module > 0, "module", f"{module!r} must be > 0 mm")
+    require(is_real(module) and 1e-4 <= module <= 1e4, "module", f"{module!r} must be a length in [0.0001, 10000] mm")
     require(is_real(ratio_tol) and 0 <= ratio_tol < 0.5, "ratio_tol", f"{ratio_tol!r} must be in [0, 0.5)")
     require(is_int(count) and count >= 1, "count", f"{count!r} must be >= 1")
     if scheme == "simple":

@@ -66,10 +66,11 @@ class SolidSpec:
     def __post_init__(self):
         check_fields(self)
         _positive(self.width, "width", allow_none=False)
+        require(self.width <= 1e5, "width", f"{self.width!r} must be a length in (0, 100000] mm")
         if self.helix_angle_deg is not None:
             b = self.helix_angle_deg
-            require(isinstance(b, (int, float)) and math.isfinite(b) and -80.0 < b < 80.0, "helix_angle_deg",
-                    f"{b!r} must be in (-80, 80) degrees")
+            require(isinstance(b, (int, float)) and math.isfinite(b) and -60.0 < b < 60.0, "helix_angle_deg",
+                    f"{b!r} must be in (-60, 60) degrees")
         require(isinstance(self.gap, (int, float)) and math.isfinite(self.gap) and self.gap >= 0, "gap",
                 f"{self.gap!r} must be a length >= 0 mm")
         if self.gap:

@@ -67,11 +67,11 @@ class PinGearSpec:
     def __post_init__(self):
         check_fields(self)
         m = self.module
-        require(is_real(m) and 1e-3 <= m <= 1e3, "module", f"{m!r} must be a length in [0.001, 1000] mm")
-        require(is_int(self.pins) and 3 <= self.pins <= 10000, "pins", f"z1 = {self.pins!r} must be an integer "
-                "in [3, 10000]")
-        require(is_int(self.wheel_teeth) and 3 <= self.wheel_teeth <= 10000, "wheel_teeth",
-                f"z2 = {self.wheel_teeth!r} must be an integer in [3, 10000]")
+        require(is_real(m) and 1e-4 <= m <= 1e4, "module", f"{m!r} must be a length in [0.0001, 10000] mm")
+        require(is_int(self.pins) and 3 <= self.pins <= 100000, "pins", f"z1 = {self.pins!r} must be an integer "
+                "in [3, 100000]")
+        require(is_int(self.wheel_teeth) and 3 <= self.wheel_teeth <= 100000, "wheel_teeth",
+                f"z2 = {self.wheel_teeth!r} must be an integer in [3, 100000]")
         lim = self.r1 * math.sin(math.pi / self.pins)
         require(is_real(self.pin_radius) and 0 < self.pin_radius < lim, "pin_radius",
                 f"rho = {self.pin_radius!r} mm must be in (0, r1 sin(pi/z1) = {lim:.6g}) mm (pins must not touch)")

@@ -123,11 +123,11 @@ class CycloidPairSpec:
     def __post_init__(self):
         check_fields(self)
         m = self.module
-        require(is_real(m) and 1e-3 <= m <= 1e3, "module", f"{m!r} must be a length in [0.001, 1000] mm")
-        require(is_int(self.pinion_teeth) and 4 <= self.pinion_teeth <= 10000, "pinion_teeth",
-                f"z1 = {self.pinion_teeth!r} must be an integer in [4, 10000]")
-        require(is_int(self.wheel_teeth) and self.pinion_teeth <= self.wheel_teeth <= 10000, "wheel_teeth",
-                f"z2 = {self.wheel_teeth!r} must be an integer in [z1 = {self.pinion_teeth}, 10000]")
+        require(is_real(m) and 1e-4 <= m <= 1e4, "module", f"{m!r} must be a length in [0.0001, 10000] mm")
+        require(is_int(self.pinion_teeth) and 3 <= self.pinion_teeth <= 100000, "pinion_teeth",
+                f"z1 = {self.pinion_teeth!r} must be an integer in [3, 100000]")
+        require(is_int(self.wheel_teeth) and self.pinion_teeth <= self.wheel_teeth <= 100000, "wheel_teeth",
+                f"z2 = {self.wheel_teeth!r} must be an integer in [z1 = {self.pinion_teeth}, 100000]")
         for k, r in ((1, self.r1), (2, self.r2)):
             a = getattr(self, f"rolling_radius{k}")
             if a is not None:

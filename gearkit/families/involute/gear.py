@@ -81,7 +81,7 @@ class GearSpec:
     module : float, mm, > 0 (normal module m_n)
     shift : float
         Normal profile shift coefficient x_n (for shaper-cut gears the radial setting, see module doc).
-    helix_angle_deg : float, degrees, in (-80, 80); positive right hand
+    helix_angle_deg : float, degrees, in (-60, 60); positive right hand
     internal : bool
     tool : BasicRack or ShaperCutter or None
         None: the standard rack (alpha 20 deg, h_aP* 1, h_fP* 1.25, largest fillet) for external
@@ -116,8 +116,8 @@ class GearSpec:
                 f"{z!r} must be an integer in [3, 100000]")
         m = self.module
         require_cut_inputs(m, self.helix_angle_deg, self.thinning)
-        require(math.isfinite(self.shift) and -3.0 <= self.shift <= 5.0, "shift",
-                f"x = {self.shift!r} must be in [-3, 5]")
+        require(math.isfinite(self.shift) and -3.0 <= self.shift <= 3.0, "shift",
+                f"x = {self.shift!r} must be in [-3, 3]")
         require(self.shift_convention in SHIFT_CONVENTIONS, "shift_convention",
                 f"{self.shift_convention!r} is not one of {', '.join(SHIFT_CONVENTIONS)}")
         if self.tool is None:

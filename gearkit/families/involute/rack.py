@@ -36,7 +36,7 @@ class RackSpec:
     tool : BasicRack or ShaperCutter or None
         BasicRack: the rack's own profile. ShaperCutter: the cutter that generates it.
         None: the standard basic rack.
-    helix_angle_deg : float, degrees in (-80, 80): teeth inclined to the rack's axis
+    helix_angle_deg : float, degrees in (-60, 60): teeth inclined to the rack's axis
     thinning : float, mm: tooth thinning for backlash (normal section, on the datum line)
     """
 

@@ -32,7 +32,9 @@ class NovikovPairSpec:
     teeth1, teeth2 : int
         Pinion (gear 1) and wheel (gear 2) tooth numbers.
     module : float, mm (normal module m_n)
-    helix_angle_deg : float, degrees, in [0, 60): beta (0 is allowed, and fails the overlap check)
+    helix_angle_deg : float, degrees, in (-60, 60): beta, its sign the pinion's hand (positive right, negative
+        left; the wheel has the other hand). A left-hand pair is the mirror image of the right-hand one: its
+        geometry, checks and contact are those of ``|beta|``. 0 is allowed, and fails the overlap check.
     face_width : float, mm, > 0
     racks : RackSystem or str
         A preset name (``"dca24"``, ``"single-arc"``), a ``.toml`` rack file, or a RackSystem.
@@ -58,9 +60,10 @@ class NovikovPairSpec:
         require(is_real(self.module) and 1e-4 <= self.module <= 1e4, "module",
                 f"{self.module!r} must be a length in [0.0001, 10000] mm")
         b = self.helix_angle_deg
-        require(is_real(b) and 0.0 <= b < 60.0, "helix_angle_deg", f"{b!r} must be in [0, 60) degrees")
-        require(is_real(self.face_width) and self.face_width > 0, "face_width",
-                f"{self.face_width!r} must be a positive length in mm")
+        require(is_real(b) and -60.0 < b < 60.0, "helix_angle_deg", f"{b!r} must be in (-60, 60) degrees (the sign is "
+                "the pinion's hand: positive right, negative left)")
+        require(is_real(self.face_width) and 0 < self.face_width <= 1e5, "face_width",
+                f"{self.face_width!r} must be a length in (0, 100000] mm")
         object.__setattr__(self, "racks", rack_system(self.racks))
         if self.center_distance is not None:
             a, m = self.reference_center_distance, self.module
@@ -71,7 +74,14 @@ class NovikovPairSpec:
 
     @property
     def beta(self) -> float:
-        return math.radians(self.helix_angle_deg)
+        """|beta|, rad: the pair's geometry is that of its right-hand twin (the mirror image)."""
+        return math.radians(abs(self.helix_angle_deg))
+
+    @property
+    def hand(self) -> str:
+        """The pinion's hand: ``"right"``, ``"left"`` or ``"none"`` (spur); the wheel's is the other."""
+        b = self.helix_angle_deg
+        return "right" if b > 0 else "left" if b < 0 else "none"
 
     @property
     def reference_center_distance(self) -> float:
@@ -161,7 +171,8 @@ class NovikovPairGeometry:
         return {
             "kind": self.kind, "racks": self.spec.racks.name, "verified_racks": self.spec.racks.verified,
             "teeth": [self.spec.teeth1, self.spec.teeth2], "module": self.module,
-            "transverse_module": self.transverse_module, "helix_angle_deg": deg(self.helix_angle),
+            "transverse_module": self.transverse_module, "helix_angle_deg": float(self.spec.helix_angle_deg),
+            "hand": self.spec.hand,
             "face_width": self.spec.face_width, "reference_center_distance": self.reference_center_distance,
             "center_distance": self.center_distance, "pitch_diameters": [2 * r for r in self.pitch_radii],
             "tip_diameters": list(self.tip_diameters), "root_diameters": list(self.root_diameters),
