@@ -243,8 +243,7 @@ class Scene:
         object.__setattr__(self, "meshes", tuple(self.meshes))
         object.__setattr__(self, "states", tuple((str(k), v) for k, v in self.states))
         object.__setattr__(self, "coaxial", tuple(tuple(g) for g in self.coaxial))
-        require(len(self.gears) >= 1 and all(isinstance(g, Gear) for g in self.gears), "gears",
-                "give at least one Gear")
+        require(len(self.gears) >= 1 and all(isinstance(g, Gear) for g in self.gears), "gears", "give at least one Gear")
         require(all(isinstance(m, Mesh) for m in self.meshes), "meshes", "give Mesh values")
         require(is_real(self.module) and 1e-4 <= self.module <= 1e4, "module",
                 f"m = {self.module!r} must be a length in [0.0001, 10000] mm")
@@ -255,9 +254,8 @@ class Scene:
         require(is_real(self.addendum) and 0 < self.addendum <= 3, "addendum", f"{self.addendum!r} must be in (0, 3]")
         require(is_real(self.clearance) and 0 <= self.clearance <= 1, "clearance",
                 f"c* = {self.clearance!r} must be in [0, 1]")
-        if self.face_width is not None:
-            require(is_real(self.face_width) and 0 < self.face_width <= 1e5, "face_width",
-                    f"{self.face_width!r} must be a length in (0, 100000] mm")
+        require(self.face_width is None or is_real(self.face_width) and 0 < self.face_width <= 1e5, "face_width",
+                f"{self.face_width!r} must be a length in (0, 100000] mm")
         names = [g.name for g in self.gears]
         dup = {n for n in names if names.count(n) > 1}
         require(not dup, "gears", f"gear names must be unique ({', '.join(sorted(dup))} repeated)")
