@@ -190,10 +190,22 @@ def _refine(mesh, phi, theta, sigma, sb, m, fa, fb, half):
         lo[rows] = np.where(fa[rows], a[rows], inner)
         hi[rows] = np.where(fa[rows], inner, b[rows])
     value, t = minimise(task, lo, hi)
-    order = np.lexsort((value, half))
-    first = np.ones(order.size, bool)
-    first[1:] = half[order][1:] != half[order][:-1]
-    sel = order[first]
+    sel = _winners(value, half)
+    if mesh.tables:
+        # a winner the tables place on the mate's tip circle (within 1e-9 of its radius) may lie a last bit
+        # beyond it on the exact pieces, where the bound is infinite and the tables' value is not one: its
+        # half is minimised again on the exact pieces (a tip crossing's own end aside)
+        mate = mesh.mate
+        ts, ls, hs = t[sel], lo[sel], hi[sel]
+        g = mate.outward * (task.rho(ts, sel) - mate.rho_tip)
+        rim = 1e-9 * max(abs(mate.rho_tip), abs(mate.rho_root))
+        flag = (g > -rim) & ~(at_tip[sel] & ((ts == ls) | (ts == hs)))
+        if flag.any():
+            r = np.flatnonzero(np.isin(half, half[sel[flag]]))
+            sub = _Task(mesh, phi[r], theta[r], sigma[r], sb[r], piece[r])
+            sub.exact = True
+            value[r], t[r] = minimise(sub, a[r], b[r])
+            sel = _winners(value, half)
     phi, theta, sigma, sb, m, fa, fb = phi[sel], theta[sel], sigma[sel], sb[sel], m[sel], fa[sel], fb[sel]
     piece, a, b, t, at_tip = piece[sel], a[sel], b[sel], t[sel], at_tip[sel]
     task = _Task(mesh, phi, theta, sigma, sb, piece)
@@ -225,6 +237,14 @@ def _refine(mesh, phi, theta, sigma, sb, m, fa, fb, half):
     dot = np.einsum("ij,ij->i", normal, vel)
     normal = np.where((sb * dot > 0)[:, None], -normal, normal)
     return sel, (value, q, normal, np.abs(dot), piece, k2, rho, corner1, corner2)
+
+
+def _winners(value, half):
+    """Row of the least ``value`` of each ``half`` (group)."""
+    order = np.lexsort((value, half))
+    first = np.ones(order.size, bool)
+    first[1:] = half[order][1:] != half[order][:-1]
+    return order[first]
 
 
 def _mate_direction(mesh, tangent, phi, delta):
