@@ -7,13 +7,13 @@ every chord lies within ``tol`` (mm) of the curve and reports the deviation it a
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
 from gearkit.chords import chord_distance as _chord_deviation
 from gearkit.chords import angle_parts, interval_bounds
 from gearkit.errors import check_fields, is_real, require
+from gearkit.values import frozen
 
 #: probe fractions of every interval: quarter points, and eighths at both ends (where a square-root
 #: end, x ~ sqrt(w), puts the chord's largest deviation)
@@ -22,7 +22,7 @@ _MID = 2
 _WIDTHS = np.diff(np.concatenate([[0.0], _PROBES, [1.0]]))
 
 
-@dataclass(frozen=True)
+@frozen
 class Accuracy:
     """Requested accuracy: the largest distance (mm) of any output point or chord from the exact curve.
 

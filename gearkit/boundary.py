@@ -18,16 +18,16 @@ Undercut, trimming and pointing are not special cases: they are read off these s
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
 from gearkit.accuracy import adaptive_sample
 from gearkit.curves import bracketed_root, polar_from_y, polyline_self_intersections
 from gearkit.errors import GeometryError
+from gearkit.values import frozen
 
 
-@dataclass(frozen=True)
+@frozen
 class CircleArc:
     """Arc of radius ``radius`` about the blank centre, polar angle from +y (towards +x)."""
 
@@ -45,7 +45,7 @@ class CircleArc:
         return self(w), np.stack([np.cos(psi), -np.sin(psi)], -1), -psi[..., None]
 
 
-@dataclass(frozen=True)
+@frozen
 class Piece:
     """A labelled piece of a tooth boundary: ``curve`` (a Branch or CircleArc) on ``[w0, w1]``."""
 
@@ -109,7 +109,7 @@ def _refine_crossing(fa, fb, wa, wb, bounds_a, bounds_b):
     return float(x[0]), float(x[1])
 
 
-@dataclass(frozen=True)
+@frozen
 class HalfTooth:
     """The right half of one tooth, from the tip (psi = 0) to the space centre (psi = pi/z).
 
@@ -292,7 +292,7 @@ def linear_coords(points):
     return p[..., 1], p[..., 0]
 
 
-@dataclass(frozen=True)
+@frozen
 class TipLine:
     """Tip of a rack tooth: the line y = ``height`` from x = ``x0`` to ``x1``."""
 

@@ -16,16 +16,16 @@ machine precision wherever it is asked.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
 
 import numpy as np
 
 from gearkit.curves import rotate
 from gearkit.motion import RollingMotion
 from gearkit.segments import Segment
+from gearkit.values import frozen
 
 
-@dataclass(frozen=True)
+@frozen
 class Branch:
     """Envelope of one tool segment over a sub-range ``[u0, u1]`` of its parameter.
 

@@ -19,13 +19,13 @@ The *blank frame* has its origin at the blank centre (for a rack blank: at the p
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
 
 from gearkit.curves import cross2, rotate
 from gearkit.errors import require
+from gearkit.values import frozen
 
 
 def _centrode(c, s):
@@ -42,7 +42,7 @@ def _centrode(c, s):
     return out, a
 
 
-@dataclass(frozen=True)
+@frozen
 class RollingMotion:
     """Tool centrode rolling on the blank centrode.
 
@@ -208,7 +208,7 @@ class RollingMotion:
         return s
 
 
-@dataclass(frozen=True)
+@frozen
 class PlanarMotion:
     """A general planar motion of the tool relative to the blank, given by its pose over a parameter.
 

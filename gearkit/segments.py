@@ -15,14 +15,16 @@ cutter: :mod:`gearkit.families.involute.tools`).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 import numpy as np
+
+from gearkit.values import frozen
 
 _IDENTITY = (1.0, 0.0, 0.0, 1.0, 0.0, 0.0)
 
 
-@dataclass(frozen=True)
+@frozen
 class Segment:
     """One exact piece of a tool edge, parametrised by ``u`` in ``[0, 1]``.
 

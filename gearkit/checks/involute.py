@@ -33,7 +33,7 @@ profile must lie inside the involute parts of both flanks, ``F1 <= A`` and ``E <
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 
 from gearkit.checks.limits import CheckLimits, min_cutter_difference, min_teeth_undercut, min_tooth_difference
@@ -46,13 +46,14 @@ from gearkit.pair.internal import SWEEP_RESOLUTION, exit_jamming_margin, nu_radi
 from gearkit.pair.spec import PairSpec
 from gearkit.pair.tooling import form_roll, section
 from gearkit.families.involute import BasicRack
+from gearkit.values import frozen
 
 __all__ = ["PairCheck", "check_pair", "fail_margins", "internal_findings", "min_shift_undercut"]
 
 GEOMETRY_MODES = ("generated", "formula")
 
 
-@dataclass(frozen=True)
+@frozen
 class PairCheck:
     """Result of :func:`check_pair`: the geometry checked, the generated gears, the findings."""
 

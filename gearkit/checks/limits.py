@@ -10,7 +10,7 @@ Examples
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 
 from gearkit.errors import SpecError, check_fields, require
@@ -19,11 +19,12 @@ from gearkit.pair.internal import exit_jamming_margin, plunge_trimming
 from gearkit.pair.spec import PairSpec
 from gearkit.pair.tooling import form_roll, section
 from gearkit.families.involute import BasicRack
+from gearkit.values import frozen
 
 __all__ = ["CheckLimits", "min_teeth_undercut", "min_tooth_difference", "min_cutter_difference"]
 
 
-@dataclass(frozen=True)
+@frozen
 class CheckLimits:
     """Thresholds of :func:`~gearkit.checks.check_pair` (module units are normal-module units).
 

@@ -12,10 +12,10 @@ Examples
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 from gearkit.errors import require
 from gearkit.export import json_number, text_number
+from gearkit.values import frozen
 
 __all__ = ["STATUSES", "Finding", "CheckReport", "grade"]
 
@@ -24,7 +24,7 @@ STATUSES = ("ok", "warn", "fail")
 SENSES = ("min", "max")
 
 
-@dataclass(frozen=True)
+@frozen
 class Finding:
     """One check result.
 
@@ -77,7 +77,7 @@ def grade(value: float, *, fail_below=None, warn_below=None, fail_above=None, wa
     return "ok"
 
 
-@dataclass(frozen=True)
+@frozen
 class CheckReport:
     """Ordered findings; the report's ``status`` is the worst finding's."""
 

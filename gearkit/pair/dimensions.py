@@ -29,16 +29,16 @@ Examples
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 from gearkit.curves import inv, inv_inverse
 from gearkit.errors import require
 from gearkit.pair.tooling import Section
+from gearkit.values import frozen
 
 __all__ = ["Span", "OverPins", "Chordal", "span", "span_number", "over_pins", "suggested_pin", "chordal"]
 
 
-@dataclass(frozen=True)
+@frozen
 class Span:
     """Span over ``k`` teeth: ``W`` (normal section, mm), ``W_t`` (transverse), ``d_M`` the measuring circle
     (where the anvils touch the flanks), ``b_min = W sin b_b`` the face width the anvils need (helical)."""
@@ -50,7 +50,7 @@ class Span:
     b_min: float
 
 
-@dataclass(frozen=True)
+@frozen
 class OverPins:
     """Dimension over pins/balls (external) or between them (internal): ``M`` (mm) with pins of
     diameter ``d_p``; ``d_M`` the circle of the pin centres, ``d_contact`` where the pins touch the flanks."""
@@ -62,7 +62,7 @@ class OverPins:
     internal: bool
 
 
-@dataclass(frozen=True)
+@frozen
 class Chordal:
     """Chordal tooth thickness ``s`` and chordal height ``h`` (from the tip) at the circle ``d_y`` (mm)."""
 

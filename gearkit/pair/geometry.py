@@ -13,7 +13,6 @@ Examples
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
@@ -24,11 +23,12 @@ from gearkit.families.involute import GearSpec, ShaperCutter, tool_label
 from gearkit.pair.spec import TIP_RULES, PairSpec
 from gearkit.pair.tooling import (form_roll, graded_tip_radius, nu_radius, root_radius, section, thickness_coeff,
                                   tip_thickness)
+from gearkit.values import frozen
 
 __all__ = ["GearGeometry", "PairGeometry", "gear_specs", "gear_tip_diameter", "pair_geometry"]
 
 
-@dataclass(frozen=True)
+@frozen
 class GearGeometry:
     """Per-gear results, transverse section, lengths in mm (``None`` fields: not applicable).
 
@@ -55,7 +55,7 @@ class GearGeometry:
     cutter_setting: float | None = None
 
 
-@dataclass(frozen=True)
+@frozen
 class PairGeometry:
     """Everything :func:`pair_geometry` derives (mm, radians, coefficients in m_n units).
 

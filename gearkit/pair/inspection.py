@@ -17,13 +17,13 @@ Examples
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 from gearkit.errors import require
 from gearkit.pair.dimensions import Chordal, OverPins, Span, chordal, over_pins, span, suggested_pin
 from gearkit.pair.gauging import measure_chordal, measure_over_pins, measure_span
 from gearkit.pair.tooling import Section, section, thickness_coeff
 from gearkit.families.involute import BasicRack
+from gearkit.values import frozen
 
 __all__ = ["GearInspection", "gear_section", "gear_thickness_coeff", "inspect_gear"]
 
@@ -43,7 +43,7 @@ def gear_thickness_coeff(spec, thinning: float | None = None) -> float:
     return thickness_coeff(sec, spec.teeth, spec.cutter_setting, spec.tool, spec.internal) - thin / spec.module
 
 
-@dataclass(frozen=True)
+@frozen
 class GearInspection:
     """Inspection dimensions of one gear, by formula and as measured on the generated tooth (mm).
 

@@ -17,11 +17,12 @@ Conventions
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 from gearkit.errors import SpecError, check_fields, is_int, is_real, require
 from gearkit.families.involute.tools import MIN_PRESSURE_ANGLE_DEG, BasicRack, ShaperCutter
 from gearkit.families.involute.gear import SHIFT_CONVENTIONS, ring_cutter_setting
+from gearkit.values import frozen
 
 __all__ = ["KINDS", "TIP_RULES", "PairSpec"]
 
@@ -31,7 +32,7 @@ TIP_RULES = ("shortened", "standard")
 
 
 
-@dataclass(frozen=True)
+@frozen
 class PairSpec:
     """Inputs of an involute gear pair (frozen; derived values come from :func:`pair_geometry`).
 

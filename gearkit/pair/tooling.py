@@ -11,18 +11,18 @@ the reference circle, ``s_t = m_t (pi/2 + Delta)``; for a ring it is the ring to
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from functools import lru_cache
 
 from gearkit.curves import inv
 from gearkit.errors import SpecError
 from gearkit.families.involute import BasicRack, ShaperCutter
+from gearkit.values import frozen
 
 __all__ = ["Section", "section", "thickness_coeff", "cutter_machine", "cutter_radii", "root_radius", "form_roll",
            "tip_thickness", "half_angle", "nu_radius", "cut_tip_radius", "graded_tip_radius"]
 
 
-@dataclass(frozen=True)
+@frozen
 class Section:
     """Normal and transverse constants of a pair: m_n, m_t (mm), alpha_n, alpha_t, beta, beta_b (rad)."""
 

@@ -7,13 +7,13 @@ requested and achieved deviation, layer count, polyline points per tooth.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import manifold3d as m3
 import numpy as np
 
 from gearkit.errors import GeometryError, SpecError, check_fields, require
 from gearkit.progress import Progress
+from gearkit.values import frozen
 
 
 def default_mesh_tol(module: float) -> float:
@@ -28,7 +28,7 @@ def _positive(value, field, allow_none=True):
             field, f"{value!r} must be a positive length in mm")
 
 
-@dataclass(frozen=True)
+@frozen
 class SolidSpec:
     """The body around a tooth profile, inputs only (mm, degrees).
 
@@ -91,7 +91,7 @@ class SolidSpec:
             raise SpecError("rim", "give the outer diameter or the rim thickness, not both")
 
 
-@dataclass(frozen=True)
+@frozen
 class Recipe:
     """How to rebuild a solid as an exact B-rep (:func:`gearkit.solids.shapes.shape`), and where it is placed.
 

@@ -19,12 +19,12 @@ polyline tolerance are chosen together to meet ``tol`` with the fewest facets.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
 from gearkit.accuracy import adaptive_sample
 from gearkit.errors import GeometryError, SpecError
+from gearkit.values import frozen
 
 #: exact sub-points per polyline edge (the reference the deviation is measured against)
 FINE = 16
@@ -35,7 +35,7 @@ MARGIN = 0.98
 FRACTIONS = (0.95, 0.8, 0.65, 0.5, 0.35, 0.25)
 
 
-@dataclass(frozen=True)
+@frozen
 class ToothPolyline:
     """One tooth's boundary sampled on the exact profile.
 
@@ -183,7 +183,7 @@ def layer_deviation(poly: ToothPolyline, dtheta: float) -> np.ndarray:
     return out
 
 
-@dataclass(frozen=True)
+@frozen
 class LayerPlan:
     """How a tooth surface is meshed: the polyline, the layers of one helical run and the diagonals.
 

@@ -25,12 +25,11 @@ import math
 
 import numpy as np
 
-from dataclasses import dataclass
-
 from gearkit.curves import rotate
 from gearkit.errors import SpecError
 from gearkit.motion import PlanarMotion
 from gearkit.segments import Segment, arc, line
+from gearkit.values import frozen
 
 __all__ = ["RollerMotion", "follower_motion", "follower_tool", "reference_point", "lift_direction", "translating_pressure_angle",
            "rocker_pressure_angle", "friction_angle_model", "smallest_prime_radius"]
@@ -45,7 +44,7 @@ def _rot(v, angle):
     return np.stack([c * v[..., 0] - s * v[..., 1], s * v[..., 0] + c * v[..., 1]], -1)
 
 
-@dataclass(frozen=True)
+@frozen
 class RollerMotion(PlanarMotion):
     """The follower's motion for a roller (or knife) of centre ``centre`` (tool frame).
 

@@ -24,7 +24,6 @@ Either way a positive shift makes a ring's teeth thinner and its tip (inner) dia
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
@@ -39,6 +38,7 @@ from gearkit.motion import RollingMotion
 from gearkit.families.involute.names import tool_label
 from gearkit.families.involute.tools import BasicRack, ShaperCutter
 from gearkit.segments import rotation_matrix, transform_chain
+from gearkit.values import frozen
 
 
 SHIFT_CONVENTIONS = ("iso", "cutter")
@@ -71,7 +71,7 @@ def ring_cutter_setting(teeth: int, shift: float, cutter: ShaperCutter, helix_an
     return dz / (2 * math.cos(beta)) * (math.cos(at) / math.cos(ac) - 1.0)
 
 
-@dataclass(frozen=True)
+@frozen
 class GearSpec:
     """An involute gear, inputs only.
 

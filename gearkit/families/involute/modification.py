@@ -33,12 +33,12 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
 from gearkit.boundary import CircleArc, Piece
 from gearkit.errors import check_fields, is_real, require
+from gearkit.values import frozen
 
 __all__ = ["Modification", "modify_half"]
 
@@ -47,7 +47,7 @@ _PROFILE = ("tip_relief", "root_relief", "profile_crowning", "profile_slope")
 _LEAD = ("lead_crowning", "end_relief", "helix_slope")
 
 
-@dataclass(frozen=True)
+@frozen
 class Modification:
     """Profile and lead modifications of one gear (mm of material removed, see the module notes).
 

@@ -8,12 +8,13 @@ walked with the tool material on the right.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import field
 
 import numpy as np
 
 from gearkit.errors import SpecError, check_fields, require
 from gearkit.segments import Segment, arc, corner, line
+from gearkit.values import frozen
 
 # ----------------------------------------------------------------------------- basic rack
 
@@ -26,7 +27,7 @@ ISO53_PROFILES = tuple(_ISO53)
 #: limit (2 / sin^2 alpha teeth) runs to millions of teeth (1e-12 degrees exhausted the memory)
 MIN_PRESSURE_ANGLE_DEG = 1.0
 
-@dataclass(frozen=True)
+@frozen
 class BasicRack:
     """Generating (basic) rack in module units, normal section.
 
@@ -226,7 +227,7 @@ class BasicRack:
 
 # ----------------------------------------------------------------------------- shaper cutter
 
-@dataclass(frozen=True)
+@frozen
 class ShaperCutter:
     """Pinion-type (shaper) cutter: a gear-shaped tool whose flanks are involutes.
 
