@@ -78,10 +78,10 @@ def _refine_crossing(fa, fb, wa, wb, bounds_a, bounds_b):
     lo = np.array([bounds_a[0], bounds_b[0]])
     hi = np.array([bounds_a[1], bounds_b[1]])
 
-    def gap(v):
-        return fa(np.array([v[0]]))[0] - fb(np.array([v[1]]))[0]
+    def gap(v):  # the gap, and the point on curve a (the convergence test's scale)
+        return (on_a := fa(np.array([v[0]]))[0]) - fb(np.array([v[1]]))[0], on_a
 
-    f = gap(x)
+    f, _ = gap(x)
     for _ in range(60):
         pa = fa(np.array([x[0] - h, x[0] + h]))
         pb = fb(np.array([x[1] - h, x[1] + h]))
@@ -95,7 +95,7 @@ def _refine_crossing(fa, fb, wa, wb, bounds_a, bounds_b):
         norm = np.linalg.norm(f)
         for _ in range(40):
             trial = np.clip(x - step, lo, hi)
-            f_trial = gap(trial)
+            f_trial, on_a = gap(trial)
             if np.linalg.norm(f_trial) < norm or not np.any(step):
                 break
             step = 0.5 * step
@@ -103,7 +103,7 @@ def _refine_crossing(fa, fb, wa, wb, bounds_a, bounds_b):
             break
         moved = np.abs(trial - x).max()
         x, f = trial, f_trial
-        scale = 1.0 + float(np.abs(fa(np.array([x[0]]))[0]).max())
+        scale = 1.0 + float(np.abs(on_a).max())
         if moved < 1e-16 or np.linalg.norm(f) <= 2e-16 * scale:
             break
     return float(x[0]), float(x[1])
