@@ -75,14 +75,25 @@ def frozen(cls: type) -> type:
         if name not in own or (name == "__hash__" and own[name] is None):  # a body's __eq__ alone sets it None
             method.__qualname__ = f"{cls.__qualname__}.{name}"
             setattr(cls, name, method)
-    cls.__signature__ = inspect.Signature([
-        inspect.Parameter(f.name, inspect.Parameter.POSITIONAL_OR_KEYWORD, annotation=f.type,
-                          **({"default": f.default} if f.default is not dataclasses.MISSING else
-                             {"default": FACTORY} if f.default_factory is not dataclasses.MISSING else {}))
-        for f in fields if f.init], return_annotation=None)
+    cls.__signature__ = _SIGNATURE
     if not documented:
-        cls.__doc__ = cls.__name__ + str(cls.__signature__).replace(" -> None", "")
+        cls.__doc__ = cls.__name__ + str(inspect.signature(cls)).replace(" -> None", "")
     return cls
+
+
+class _Signature:
+    """``__signature__`` of a frozen class (what ``inspect.signature`` and ``help`` show), made when asked
+    for: the fields' names, annotations and defaults, as the standard library's ``__init__`` has them."""
+
+    def __get__(self, instance, owner):
+        return inspect.Signature([
+            inspect.Parameter(f.name, inspect.Parameter.POSITIONAL_OR_KEYWORD, annotation=f.type,
+                              **({"default": f.default} if f.default is not dataclasses.MISSING else
+                                 {"default": FACTORY} if f.default_factory is not dataclasses.MISSING else {}))
+            for f in dataclasses.fields(owner) if f.init], return_annotation=None)
+
+
+_SIGNATURE = _Signature()
 
 
 def _init(cls, names, fields):
