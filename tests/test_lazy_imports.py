@@ -89,7 +89,7 @@ def test_lazy_package_exports_every_name_of_its_all_and_imports_nothing_first(pa
 NOT_LOADED = {
     "gear": ("gearkit.checks", "gearkit.pair", "gearkit.solids.pair", "gearkit.solids.rack", "tempfile", "shutil",
              "json"),
-    "check": ("gearkit.solids", "tempfile", "shutil"),
+    "check": ("gearkit.solids", "gearkit.pair.internal", "gearkit.pair.sweep", "tempfile", "shutil"),
     "cycloidal-drive": ("gearkit.families.involute", "gearkit.pair", "gearkit.checks.involute", "tempfile",
                         "shutil"),
 }
@@ -106,7 +106,8 @@ print(repr({"code": code, "modules": sorted(sys.modules)}))
                                                                              "cycloidal-drive"])
 def test_command_loads_no_module_it_does_not_use(tmp_path, argv):
     """The STL path of ``gear`` loads no pair or check code, no temporary-file, shell-utility or
-    JSON module (a file written atomically needs none of them); ``cycloidal-drive`` no involute code."""
+    JSON module (a file written atomically needs none of them); ``check`` of an external pair none of
+    the internal pair's geometry; ``cycloidal-drive`` no involute code."""
     argv = [a.replace("{tmp}", str(tmp_path)) for a in argv if a != "--json"]
     proc = subprocess.run([sys.executable, "-c", UNUSED_PROBE, *argv], capture_output=True, text=True, timeout=300)
     assert proc.returncode == 0, proc.stderr

@@ -42,7 +42,6 @@ from gearkit.curves import bracketed_root
 from gearkit.errors import SpecError, require
 from gearkit.export import json_number
 from gearkit.pair.geometry import PairGeometry, gear_specs, pair_geometry
-from gearkit.pair.internal import SWEEP_RESOLUTION, exit_jamming_margin, nu_radius, plunge_trimming, tip_sweep
 from gearkit.pair.spec import PairSpec
 from gearkit.pair.tooling import form_roll, section
 from gearkit.families.involute import BasicRack
@@ -311,7 +310,9 @@ def _mesh_findings(spec, g, lim) -> list:
 
 def internal_findings(spec: PairSpec, g: PairGeometry) -> list:
     """The internal-pair findings of :func:`check_pair` (see the module's table), from the internal
-    pair geometry of :mod:`gearkit.pair.internal`."""
+    pair geometry of :mod:`gearkit.pair.internal` (loaded here: an external pair's check never needs it)."""
+    from gearkit.pair.internal import SWEEP_RESOLUTION, exit_jamming_margin, nu_radius, plunge_trimming, tip_sweep
+
     mn = g.module
     p, ring = g.gears
     z1, z2, z0 = p.teeth, ring.teeth, spec.tools[1].teeth

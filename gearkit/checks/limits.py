@@ -12,10 +12,8 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 
-
 from gearkit.errors import SpecError, check_fields, require
 from gearkit.pair.geometry import pair_geometry
-from gearkit.pair.internal import exit_jamming_margin, plunge_trimming
 from gearkit.pair.spec import PairSpec
 from gearkit.pair.tooling import form_roll, section
 from gearkit.families.involute import BasicRack
@@ -81,6 +79,8 @@ def min_teeth_undercut(tool, shift: float, module: float = 1.0, pressure_angle_d
 
 
 def _jams(spec: PairSpec) -> bool:
+    from gearkit.pair.internal import exit_jamming_margin  # internal pairs only: loaded when one asks
+
     return exit_jamming_margin(pair_geometry(spec)) < 0
 
 
@@ -109,6 +109,8 @@ def min_cutter_difference(spec: PairSpec) -> int | None:
     The ring (z2, its shift and tip) is kept and the shaper's tooth number varied (textbook
     3.108). None when even the smallest admissible shaper (6 teeth) trims.
     """
+    from gearkit.pair.internal import plunge_trimming  # internal pairs only: loaded when one asks
+
     cutter = spec.tools[1]
     g = pair_geometry(spec)
     tip2 = g.gears[1].tip_diameter
