@@ -121,7 +121,11 @@ def rotate(points, angle):
     """Rotate ``(n, 2)`` points counter-clockwise about the origin by ``angle`` (scalar or ``(n,)``)."""
     p = np.asarray(points, dtype=float)
     c, s = np.cos(angle), np.sin(angle)
-    return np.stack([c * p[..., 0] - s * p[..., 1], s * p[..., 0] + c * p[..., 1]], -1)
+    x, y = c * p[..., 0] - s * p[..., 1], s * p[..., 0] + c * p[..., 1]
+    out = np.empty(np.shape(x) + (2,), dtype=np.result_type(x, y))  # np.stack's result, without its overhead
+    out[..., 0] = x
+    out[..., 1] = y
+    return out
 
 
 def polar_from_y(points):
