@@ -32,7 +32,6 @@ from gearkit.boundary import trim_half_tooth
 from gearkit.profile import ToothProfile
 from gearkit.curves import inv, polar_from_y
 from gearkit.envelope import chain_branches
-from gearkit.families.involute.modification import Modification, modify_half
 from gearkit.errors import GeometryError, SpecError, check_fields, require, require_cut_inputs
 from gearkit.motion import RollingMotion
 from gearkit.families.involute.names import tool_label
@@ -129,10 +128,12 @@ class GearSpec:
             require(z - self.tool.teeth >= 4, "tool.teeth",
                     f"a shaper with {self.tool.teeth} teeth cannot cut an internal gear of {z} teeth "
                     f"(needs at most z - 4 = {z - 4})")
-        require(self.modification is None or isinstance(self.modification, Modification), "modification",
-                "must be a Modification or None")
-        require(self.modification is None or not (self.internal and self.modification.has_profile),
-                "modification", "profile modifications are supported on external gears only")
+        if self.modification is not None:  # its module loads only for a modified gear
+            from gearkit.families.involute.modification import Modification
+
+            require(isinstance(self.modification, Modification), "modification", "must be a Modification or None")
+            require(not (self.internal and self.modification.has_profile), "modification",
+                    "profile modifications are supported on external gears only")
         if self.tip_diameter is not None:
             d = self.tip_diameter
             require(math.isfinite(d) and 0.0 < d, "tip_diameter", f"{d!r} must be a positive length in mm")
@@ -260,6 +261,8 @@ def tooth_profile(spec: GearSpec) -> ToothProfile:
         raise SpecError("shift", f"x = {spec.shift} leaves no involute flank on a {spec.teeth}-tooth gear "
                         "(the cutter's tip cuts the whole tooth away)")
     if spec.modification is not None and spec.modification.has_profile:
+        from gearkit.families.involute.modification import modify_half
+
         half = modify_half(half, spec.modification, spec.base_diameter / 2.0, _root_radius(half))
     prof = InvoluteProfile(half, spec.teeth, spec.internal, spec.module, family="involute", spec=spec,
                            reference_diameter=spec.reference_diameter, base_diameter=spec.base_diameter,
