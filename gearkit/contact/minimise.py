@@ -2,7 +2,8 @@
 
 The contact solver (:mod:`gearkit.contact.solver`) hands over a *task*: the bound function of each
 row, ``task.value(t, rows)`` (values only) and, where the teeth are evaluated on their tables,
-``task.slope(t, rows)`` (value, first and second derivative in ``t``; ``task.smooth`` says so).
+``task.slope(t, rows)`` (value, first and second derivative in ``t``; ``task.smooth`` says so);
+``task.noise`` (optional) bounds the error of its values.
 
 1. **Probes.** The function is sampled at the interval's ends and at ``_PROBES`` interior points.
    The best sample brackets the minimum with its neighbours; an end sample is the minimum when the
@@ -72,7 +73,10 @@ def minimise(task, a, b):
     best_v = vg[j, np.arange(n)]
     best_t = grid[j, np.arange(n)]
     at_a, at_b = j == 0, j == len(frac) - 1
-    settled = (width <= 0) | (at_a & ~(da < 0)) | (at_b & ~(db > 0))
+    # an end is the minimum where the function rises from it by more than its values' noise over the
+    # step can fake (values on tables carry their fitting error: a flat end is searched, not settled)
+    rise = 2.0 * getattr(task, "noise", 0.0) / h
+    settled = (width <= 0) | (at_a & ~(da < rise)) | (at_b & ~(db > -rise))
     rows = np.flatnonzero(~settled)
     if rows.size == 0:
         return best_v, best_t

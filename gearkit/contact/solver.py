@@ -91,6 +91,16 @@ class _Task:
         self.frame = mesh.frames(theta, sigma, phi)  # the driver half's own coordinates -> the mate's
 
     @property
+    def noise(self):
+        """A bound of the error of :meth:`value` where it is read off tables without derivatives (not
+        :attr:`smooth`; mate units): the tables' deviation as a normal distance over the arm scale, ten
+        times over (its effect on ``w`` and ``u`` both). 0 on the exact pieces and on smooth tables,
+        whose minima :func:`minimise` finds by Newton."""
+        if self.exact or self.mesh.driver.table is None or self.smooth:
+            return 0.0
+        return 10.0 * self.mesh.table_deviation / self.mesh.arm_scale
+
+    @property
     def smooth(self):
         """The bound function's derivatives are at hand (:meth:`slope`): on tables within their tolerance."""
         drv, mate = self.mesh.driver.table, self.mesh.mate.table
