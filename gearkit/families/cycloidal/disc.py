@@ -140,9 +140,11 @@ class CycloidalDisc(ToothProfile):
         p2 = turned(q2x - 2.0 * w * q1y - w * w * qx, q2y + 2.0 * w * q1x - w * w * qy, -sb / c_b, cb / c_b)
         return p, p1, p2
 
-    def centre_at_roll(self, s):
+    def centre_at_roll(self, s, derivative: bool = False):
         """The generating pin's centre at roll ``s`` (mm), disc frame, ``(n, 2)``: the theoretical
-        curve, on which the disc's normal at :meth:`at_roll` ``(s)`` passes (at the pin's radius).
+        curve, on which the disc's normal at :meth:`at_roll` ``(s)`` passes (at the pin's radius);
+        with ``derivative`` also its derivative in the roll, ``R(phi)(w J v - C') + B'`` (``v`` the
+        pin centre less the pole ``C``, as in :meth:`at_roll`).
 
         Examples
         --------
@@ -156,8 +158,13 @@ class CycloidalDisc(ToothProfile):
         ct, st, cb, sb = np.cos(s / c_t), np.sin(s / c_t), np.cos(s / c_b), np.sin(s / c_b)
         vx, vy = self.pin_centre[0] - c_t * st, self.pin_centre[1] - c_t * (1.0 - ct)
         cos_turn, sin_turn = cb * ct + sb * st, sb * ct - cb * st
-        return np.stack([cos_turn * vx - sin_turn * vy + c_b * sb,
-                         sin_turn * vx + cos_turn * vy + c_b * (1.0 - cb) - c_b], -1)
+        rx, ry = cos_turn * vx - sin_turn * vy, sin_turn * vx + cos_turn * vy
+        c = np.stack([rx + c_b * sb, ry + c_b * (1.0 - cb) - c_b], -1)
+        if not derivative:
+            return c
+        w = 1.0 / c_b - 1.0 / c_t
+        return c, np.stack([-w * ry - (cos_turn * ct - sin_turn * st) + cb,
+                            w * rx - (sin_turn * ct + cos_turn * st) + sb], -1)
 
     def flank_rolls(self):
         """Roll intervals ``[(s0, s1), ...]`` of the envelope pieces kept in the half tooth (merged

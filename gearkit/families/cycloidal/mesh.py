@@ -35,8 +35,8 @@ CONTACT_TOL = 1e-11
 #: every disc point keeps (round-off of the closed forms: ~1e-15 of the radii)
 CERTIFY_TOL = 1e-13
 _FLIP_X = np.array([-1.0, 1.0])
-#: rolls in the table of the pin centre's polar angle (its linear interpolation starts Newton close
-#: enough that one step meets the certificate)
+#: rolls in the table of the pin centre's polar angle (its cubic interpolation finds the foot of a pin
+#: centre on the theoretical curve within the certificate's tolerance; one Newton step any other's)
 _ANGLE_TABLE = 2049
 
 
@@ -64,10 +64,11 @@ class _Outline:
     pin's envelope over the rolls the kernel kept (:meth:`CycloidalDisc.flank_rolls`), plus the
     tip arc of a truncated disc; Newton's method in the roll finds the foot of the perpendicular.
 
-    Newton starts at the roll where the generating pin's centre had the query's polar angle (a
-    table of ``_ANGLE_TABLE`` rolls, where one roll interval is kept and that angle is monotone):
-    one step, and the foot is kept where it is certified the nearest point of the whole outline
-    (:meth:`_certified`: every pin near the theoretical curve, all of them in an unmodified drive).
+    The foot is first sought at the roll where the generating pin's centre had the query's polar
+    angle (a table of ``_ANGLE_TABLE`` rolls, where one roll interval is kept and that angle is
+    monotone), then one Newton step from it, and kept where it is certified the nearest point of
+    the whole outline (:meth:`_certified`: every pin near the theoretical curve, all of them in an
+    unmodified drive).
     Every other query (``fast=False``: all) starts from its nearest of ``samples`` points per roll
     interval, for itself and its mirror images.
     """
@@ -92,18 +93,18 @@ class _Outline:
         self.certify_tol = CERTIFY_TOL * spec.pin_circle_radius
 
     def _angle_table(self, rolls):
-        """``(polar angles, rolls)`` of the generating pin's centre, sorted by angle, when one roll
-        interval is kept and the centre's polar angle is strictly monotone in it (else None)."""
+        """``(polar angles, rolls, d roll / d angle)`` of the generating pin's centre, sorted by angle,
+        when one roll interval is kept and the centre's polar angle is strictly monotone in it (else None)."""
         if len(rolls) != 1:
             return None
         table = np.linspace(rolls[0][0], rolls[0][-1], _ANGLE_TABLE)
-        centre = self.disc.centre_at_roll(table)
-        ang = np.arctan2(centre[:, 0], centre[:, 1])
-        step = np.diff(ang)
-        if not (np.all(step > 0) or np.all(step < 0)):
+        (x, y), (dx, dy) = (v.T for v in self.disc.centre_at_roll(table, derivative=True))
+        ang = np.arctan2(x, y)
+        turn = (y * dx - x * dy) / (x * x + y * y)  # d angle / d roll
+        if not (np.all(turn > 0) or np.all(turn < 0)) or not (np.all(np.diff(ang) * turn[0] > 0)):
             return None
         order = np.argsort(ang)
-        return ang[order], table[order]
+        return ang[order], table[order], 1.0 / turn[order]
 
     def _start(self, q):
         """Distance to the sampled flank and the nearest sample's index."""
@@ -111,9 +112,16 @@ class _Outline:
 
     def _by_angle(self, q):
         """Start rolls read off the pin centre's polar angle: the roll at which the generating pin's
-        centre had the query's polar angle (a pin centre near the theoretical curve has its foot there)."""
-        ang, rolls = self.by_angle
-        return np.interp(np.arctan2(q[:, 0], q[:, 1]), ang, rolls)
+        centre had the query's polar angle (a pin centre on the theoretical curve has its foot there),
+        by cubic Hermite interpolation in the table (the ends beyond it)."""
+        ang, rolls, slope = self.by_angle
+        a = np.arctan2(q[:, 0], q[:, 1])
+        i = np.clip(np.searchsorted(ang, a) - 1, 0, len(ang) - 2)
+        h = ang[i + 1] - ang[i]
+        t = np.clip((a - ang[i]) / h, 0.0, 1.0)
+        t2, t3 = t * t, t * t * t
+        return ((2.0 * t3 - 3.0 * t2 + 1.0) * rolls[i] + (t3 - 2.0 * t2 + t) * h * slope[i]
+                + (3.0 * t2 - 2.0 * t3) * rolls[i + 1] + (t3 - t2) * h * slope[i + 1])
 
     def _refine(self, q, x, lo, hi, steps: int = 40):
         """Newton in the roll from the rolls ``x`` within ``[lo, hi]`` (at most ``steps`` steps): exact
@@ -166,8 +174,9 @@ class _Outline:
         return dist, turn_polar(foot * flip, k * 2.0 * self.half)
 
     def _certified(self, local):
-        """One Newton step in the roll from :meth:`_by_angle`: distance, foot and whether the foot is
-        certified the nearest point of the whole outline.
+        """Distance, foot and whether the foot is certified the nearest point of the whole outline: at
+        the roll :meth:`_by_angle` reads off (a pin centre on the theoretical curve), else after one
+        Newton step in the roll from it.
 
         The disc lies outside every position of the grinding pin (radius ``r``): a query at ``|q - c|``
         from the pin's centre ``c`` at some roll is at least ``r - |q - c|`` from every disc point, so a
@@ -175,14 +184,23 @@ class _Outline:
         pin's centre to the foot) is the nearest point, on this flank or any other.
         """
         lo, hi = self.bounds[0]
-        x = self._by_angle(local)
-        p, d1, dd = self.disc.at_roll(x, derivatives=True)
-        r = p - local
-        f = np.einsum("ij,ij->i", r, d1)
-        gn = np.einsum("ij,ij->i", d1, d1)
-        x = np.clip(x - f / np.maximum(gn + np.einsum("ij,ij->i", r, dd), 0.1 * gn), lo, hi)
-        dist, foot, _ = self._refine(local, x, lo, hi, steps=0)
-        reach = np.linalg.norm(local - self.disc.centre_at_roll(x), axis=1) + dist
+        x = np.clip(self._by_angle(local), lo, hi)
+        dist, foot, ok = self._check(local, x)
+        redo = np.flatnonzero(~ok)
+        if redo.size:
+            q, x = local[redo], x[redo]
+            p, d1, dd = self.disc.at_roll(x, derivatives=True)
+            r = p - q
+            f = np.einsum("ij,ij->i", r, d1)
+            gn = np.einsum("ij,ij->i", d1, d1)
+            x = np.clip(x - f / np.maximum(gn + np.einsum("ij,ij->i", r, dd), 0.1 * gn), lo, hi)
+            dist[redo], foot[redo], ok[redo] = self._check(q, x)
+        return dist, foot, ok
+
+    def _check(self, q, x):
+        """Distance and foot at the rolls ``x``, and whether the foot is certified (:meth:`_certified`)."""
+        dist, foot, _ = self._refine(q, x, *self.bounds[0], steps=0)
+        reach = np.linalg.norm(q - self.disc.centre_at_roll(x), axis=1) + dist
         return dist, foot, reach <= self.disc.pin_radius + self.certify_tol
 
     def _nearest_by_samples(self, local):
