@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -182,12 +183,18 @@ class DriveSpec:
         return self.pin_circle_radius * math.sin(math.pi / self.pins)
 
     def grinding(self) -> "DriveSpec":
-        """The drive whose nominal pins are the grinding pins (R_Z + ΔR, r_Z + Δr, e')."""
-        from dataclasses import replace
+        """The drive whose nominal pins are the grinding pins (R_Z + ΔR, r_Z + Δr, e'); made once per
+        drive (the closed forms ask for it at every evaluation)."""
+        return _grinding(self)
 
-        return replace(self, pin_circle_radius=self.grind_circle, pin_radius=self.grind_pin,
-                       eccentricity=self.generating_eccentricity, equidistant_mod=0.0, shift_mod=0.0,
-                       disc_eccentricity=None)
+
+@lru_cache(maxsize=64)
+def _grinding(spec: DriveSpec) -> DriveSpec:
+    from dataclasses import replace
+
+    return replace(spec, pin_circle_radius=spec.grind_circle, pin_radius=spec.grind_pin,
+                   eccentricity=spec.generating_eccentricity, equidistant_mod=0.0, shift_mod=0.0,
+                   disc_eccentricity=None)
 
 
 # ----------------------------------------------------------------------------- closed forms
