@@ -166,3 +166,32 @@ def test_fresh_command_imports_without_the_collector_and_leaves_it_on(first, arg
     elif argv[0] == "gear":
         assert out["before_run"] == 0  # none while numpy, the parser and the command's modules load
         assert out["frozen"] > 10_000  # numpy's and the command's objects, out of the collector's sight
+
+
+CLASSES_PROBE = """
+import contextlib, dataclasses, io, sys
+from gearkit.cli import main
+with contextlib.redirect_stdout(io.StringIO()):
+    code = main(sys.argv[1:])
+made = {}
+for name, module in list(sys.modules.items()):
+    if name.split(".")[0] == "gearkit":
+        for value in vars(module).values():
+            if isinstance(value, type) and dataclasses.is_dataclass(value) and value.__module__ == name:
+                made[name + "." + value.__qualname__] = value.__init__.__module__
+print(repr({"code": code, "made": made}))
+"""
+
+
+@pytest.mark.parametrize("argv", [c[0] for c in CASES[:1] + CASES[3:4]], ids=["gear-stl", "check"])
+def test_command_paths_make_their_value_classes_without_compiling(tmp_path, argv):
+    """Every dataclass the ``gear`` and ``check`` paths load is made by ``gearkit.values.frozen`` (its
+    ``__init__`` is the closure of that module), none by ``dataclass(frozen=True)``, which compiles six
+    methods per class as the command starts."""
+    argv = [a.replace("{tmp}", str(tmp_path)) for a in argv if a != "--json"]
+    proc = subprocess.run([sys.executable, "-c", CLASSES_PROBE, *argv], capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    out = ast.literal_eval(proc.stdout.strip().splitlines()[-1])
+    assert out["code"] in (0, 1) and len(out["made"]) >= 10  # the specs and records of the path are seen
+    compiled = sorted(name for name, maker in out["made"].items() if maker != "gearkit.values")
+    assert compiled == []
