@@ -51,6 +51,22 @@ def _kinds(annotation) -> set:
     return {k.strip() for k in text.split("|")}
 
 
+#: spec class -> its fields that :func:`check_fields` checks, with their kinds (read once per class)
+_TYPED: dict = {}
+
+
+def _typed_fields(cls) -> tuple:
+    """``(name, kinds)`` of the fields of ``cls`` whose annotation names only int, float, bool, str
+    and None (a union with a class, ``RackSystem | str``, is left to the spec's own check)."""
+    typed = _TYPED.get(cls)
+    if typed is None:
+        import dataclasses
+
+        kinds = [(f.name, _kinds(f.type)) for f in dataclasses.fields(cls)]
+        typed = _TYPED[cls] = tuple((n, k) for n, k in kinds if not k - {"int", "float", "bool", "str", "None"})
+    return typed
+
+
 def check_fields(spec, prefix: str = "") -> None:
     """The one type gate of every spec: each field's value must match its annotation.
 
@@ -82,37 +98,31 @@ def check_fields(spec, prefix: str = "") -> None:
     ...
     gearkit.errors.SpecError: n: True (bool) must be an integer
     """
-    import dataclasses
-
     import numpy as np
 
-    for f in dataclasses.fields(spec):
-        kinds = _kinds(f.type)
-        if kinds - {"int", "float", "bool", "str", "None"}:
-            continue  # a union with a class (``RackSystem | str``): the spec's own check knows it
-        v = getattr(spec, f.name)
-        name = prefix + f.name
-        got = f"{v!r} ({type(v).__name__})"
+    for field, kinds in _typed_fields(type(spec)):
+        v = getattr(spec, field)
         if v is None:
-            require("None" in kinds or not kinds & {"int", "float", "bool", "str"}, name,
+            require("None" in kinds or not kinds & {"int", "float", "bool", "str"}, prefix + field,
                     "is required (None is not allowed)")
             continue
         if "bool" in kinds:
-            require(isinstance(v, (bool, np.bool_)), name, f"{got} must be True or False")
-            value = bool(v)
+            ok, need = isinstance(v, (bool, np.bool_)), "must be True or False"
+            value = bool(v) if ok else v
         elif "int" in kinds and "float" not in kinds:
-            require(is_int(v), name, f"{got} must be an integer")
-            value = int(v)
+            ok, need = is_int(v), "must be an integer"
+            value = int(v) if ok else v
         elif "float" in kinds:
-            require(is_real(v), name, f"{got} must be a finite real number")
-            value = int(v) if is_int(v) else float(v)
+            ok, need = is_real(v), "must be a finite real number"
+            value = (int(v) if is_int(v) else float(v)) if ok else v
         elif "str" in kinds:
-            require(isinstance(v, str), name, f"{got} must be a string")
-            value = v
+            ok, need, value = isinstance(v, str), "must be a string", v
         else:
             continue
+        if not ok:  # the message (a repr of the value) is made only for a value refused
+            raise SpecError(prefix + field, f"{v!r} ({type(v).__name__}) {need}")
         if value is not v:
-            object.__setattr__(spec, f.name, value)
+            object.__setattr__(spec, field, value)
 
 
 def check_count(value, field: str, lo: int, hi: int) -> int:
