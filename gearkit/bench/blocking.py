@@ -65,6 +65,7 @@ def deviation(contour) -> float:
     """
     from gearkit.blocking.arrays import evaluator
     from gearkit.blocking.brackets import segment_roots
+    from gearkit.blocking.edges import toward_edge
 
     names = [ln.name for ln in contour.lines] + ["region"]
     F = evaluator(contour.field, names, contour.window)
@@ -97,6 +98,13 @@ def deviation(contour) -> float:
         for D in rays:
             end = P[todo] + r * D[todo]
             fe = F(end, K[todo])
+            edge = np.isnan(fe)
+            if edge.any():  # a ray into the no-pair area ends at its edge: the sign change nearest before it
+                i = todo[edge]
+                lo, flo, hi, fhi = toward_edge(F, P[i], f0[i], end[edge], K[i])
+                found = np.any(lo != hi, axis=1)
+                end[edge] = np.where(found[:, None], hi, end[edge])
+                fe[edge] = np.where(found, fhi, fe[edge])
             hit = np.isfinite(fe) & ((fe > 0) != (f0[todo] > 0))
             if hit.any():
                 i = todo[hit]

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["grid_values", "sign_cells", "refine_grid", "edge_nodes"]
+__all__ = ["grid_values", "sign_cells", "refine_grid", "edge_nodes", "bridge_pieces"]
 
 
 def grid_values(F, xs, ys, which: int = 0) -> np.ndarray:
@@ -72,3 +72,44 @@ def refine_grid(F, which: int, xs, ys, values, cells, factor: int = 4):
         pts = np.column_stack([fx[ii], fy[jj]])
         fine[jj, ii] = F(pts, np.full(len(pts), which))
     return fx, fy, fine
+
+
+def bridge_pieces(lines, grids, measure, cells: float, cos: float) -> list:
+    """Join open pieces of one curve whose ends face each other across at most ``cells`` grid
+    cells (the grid masks every cell with an undefined corner: a line running beside the edge of
+    where ``F`` is defined comes out in pieces). The bridging chord is then measured like any other
+    (and cut again when no zero lies across it)."""
+    lines = list(lines)
+    while True:
+        ends = []  # (line, at start?, point, outward direction)
+        for n, (k, q, _) in enumerate(lines):
+            if k in measure or np.array_equal(q[0], q[-1]) or len(q) < 3:  # specks are not bridged
+                continue
+            for first in (True, False):
+                a, b = (q[0], q[1]) if first else (q[-1], q[-2])
+                ends.append((n, first, a, (a - b) / max(float(np.hypot(*(a - b))), 1e-300)))
+        pairs = []
+        for u in range(len(ends)):
+            for v in range(u + 1, len(ends)):
+                (n1, f1, a1, t1), (n2, f2, a2, t2) = ends[u], ends[v]
+                k1, k2 = lines[n1][0], lines[n2][0]
+                if n1 == n2 or k1 != k2:
+                    continue
+                xs, ys = grids[k1][:2]
+                gap = a2 - a1
+                d = float(np.hypot(*gap))
+                if 0 < d <= cells * np.hypot(xs[1] - xs[0], ys[1] - ys[0]) and \
+                        np.dot(t1, gap) > cos * d and np.dot(t2, -gap) > cos * d:
+                    pairs.append((d, u, v))
+        if not pairs:
+            return lines
+        d, u, v = min(pairs)
+        (n1, f1, _, _), (n2, f2, _, _) = ends[u], ends[v]
+        k, q1, g1 = lines[n1]
+        _, q2, g2 = lines[n2]
+        if f1:  # the first piece ends at the bridge, the second starts there
+            q1, g1 = q1[::-1], g1[::-1]
+        if not f2:
+            q2, g2 = q2[::-1], g2[::-1]
+        joined = (k, np.vstack([q1, q2]), np.concatenate([g1, g2]))
+        lines = [ln for i, ln in enumerate(lines) if i not in (n1, n2)] + [joined]

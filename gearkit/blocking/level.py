@@ -28,7 +28,8 @@ import numpy as np
 
 from gearkit.blocking.brackets import NearestBracket, segment_roots
 from gearkit.blocking.corners import corner_splits
-from gearkit.blocking.grid import edge_nodes
+from gearkit.blocking.ends import extend_ends
+from gearkit.blocking.grid import bridge_pieces, edge_nodes
 
 __all__ = ["zero_lines", "densify"]
 
@@ -109,53 +110,15 @@ def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), 
         if closed and not np.array_equal(q[0], q[-1]):
             q, g, jmp = np.vstack([q, q[:1]]), np.append(g, g[0]), np.append(jmp, jmp[0])
         lines += [(k, q[lo:hi], g[lo:hi]) for lo, hi in _runs(~jmp) if hi - lo >= 2]
-    lines = _bridge(lines, grids, measure)
+    lines = bridge_pieces(lines, grids, measure, BRIDGE_CELLS, BRIDGE_COS)
     # a run of one chord off the frame, bridged to none: a speck (see above)
     lines = [(k, q, g) for k, q, g in lines if len(q) >= 3 or k in measure or _on_frame(q, *grids[k][:2])]
-    for k, q in densify(F, lines, tol, max_step, measure, kinked):
+    lines = densify(F, lines, tol, max_step, measure, kinked, slopes=True)
+    # lines the grid cut short of their ends (a saddle): carried on to them (ends)
+    lines = densify(F, extend_ends(F, lines, grids, tol, measure), tol, max_step, measure, kinked)
+    for k, q in (ln[:2] for ln in lines):
         out[k].append(q)
     return out
-
-
-def _bridge(lines, grids, measure) -> list:
-    """Join open pieces of one curve whose ends face each other across at most ``BRIDGE_CELLS`` grid
-    cells (the grid masks every cell with an undefined corner: a line running beside the edge of
-    where ``F`` is defined comes out in pieces). The bridging chord is then measured like any other
-    (and cut again when no zero lies across it)."""
-    lines = list(lines)
-    while True:
-        ends = []  # (line, at start?, point, outward direction)
-        for n, (k, q, _) in enumerate(lines):
-            if k in measure or np.array_equal(q[0], q[-1]) or len(q) < 3:  # specks are not bridged
-                continue
-            for first in (True, False):
-                a, b = (q[0], q[1]) if first else (q[-1], q[-2])
-                ends.append((n, first, a, (a - b) / max(float(np.hypot(*(a - b))), 1e-300)))
-        pairs = []
-        for u in range(len(ends)):
-            for v in range(u + 1, len(ends)):
-                (n1, f1, a1, t1), (n2, f2, a2, t2) = ends[u], ends[v]
-                k1, k2 = lines[n1][0], lines[n2][0]
-                if n1 == n2 or k1 != k2:
-                    continue
-                xs, ys = grids[k1][:2]
-                gap = a2 - a1
-                d = float(np.hypot(*gap))
-                if 0 < d <= BRIDGE_CELLS * np.hypot(xs[1] - xs[0], ys[1] - ys[0]) and \
-                        np.dot(t1, gap) > BRIDGE_COS * d and np.dot(t2, -gap) > BRIDGE_COS * d:
-                    pairs.append((d, u, v))
-        if not pairs:
-            return lines
-        d, u, v = min(pairs)
-        (n1, f1, _, _), (n2, f2, _, _) = ends[u], ends[v]
-        k, q1, g1 = lines[n1]
-        _, q2, g2 = lines[n2]
-        if f1:  # the first piece ends at the bridge, the second starts there
-            q1, g1 = q1[::-1], g1[::-1]
-        if not f2:
-            q2, g2 = q2[::-1], g2[::-1]
-        joined = (k, np.vstack([q1, q2]), np.concatenate([g1, g2]))
-        lines = [ln for i, ln in enumerate(lines) if i not in (n1, n2)] + [joined]
 
 
 def _on_frame(p, xs, ys) -> bool:
@@ -171,19 +134,22 @@ def _runs(mask):
     return list(zip(np.flatnonzero(d == 1), np.flatnonzero(d == -1)))
 
 
-def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kinked=()) -> list:
+def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kinked=(), slopes=False) -> list:
     """``lines`` (a list of ``(k, points (n, 2), slope (n,))``: curve index, vertices on the curve, and
     estimates of ``|grad F_k|`` there, NaN if unknown) with vertices added until every chord lies
-    within ``tol`` of its curve and is at most ``max_step`` long; returns ``[(k, points)]``. Curves whose
+    within ``tol`` of its curve and is at most ``max_step`` long (a fourth entry, a mask of the
+    chords still to refine, leaves the others as they are); returns ``[(k, points)]`` (with
+    ``slopes=True``: ``[(k, points, slopes)]``). Curves whose
     index is in ``measure`` (e.g. the smallest of several functions, whose slope jumps at the kinks)
     have every chord measured, never estimated; so do the curves in ``kinked`` (a kink between two
     branches of one margin, e.g. the contact ratio where its limiting end changes: an acute wedge's
     middle value says nothing of its tip), which are otherwise traced as the rest."""
     vtol = VERTEX_FRACTION * tol
     step = np.inf if not max_step else float(max_step)
-    state = [(k, np.asarray(p, float), np.asarray(g, float), np.ones(len(p) - 1, bool)) for k, p, g in lines]
+    state = [(ln[0], np.asarray(ln[1], float), np.asarray(ln[2], float),
+              np.asarray(ln[3], bool) if len(ln) > 3 else np.ones(len(ln[1]) - 1, bool)) for ln in lines]
     state_before = list(state)
-    n_curves = 1 + max((k for k, _, _ in lines), default=0)
+    n_curves = 1 + max((ln[0] for ln in lines), default=0)
     trust = np.ones(n_curves, dtype=bool)
     trust[[k for k in measure if k < n_curves]] = False
     estimate = trust.copy()
@@ -370,9 +336,9 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
     corners = set(kinked) | set(measure)
     again = corner_splits(F, out, tol, corners, SPLIT_FRACTION * tol, VERTEX_FRACTION * tol)
     if again:  # the polylines that got a vertex beside a corner: densified again
-        done = [(k, p) for n, (k, p, _) in enumerate(out) if n not in again]
-        return done + densify(F, [out[n] for n in sorted(again)], tol, max_step, measure, kinked)
-    return [(k, p) for k, p, _ in out]
+        done = [out[n] if slopes else out[n][:2] for n in range(len(out)) if n not in again]
+        return done + densify(F, [out[n] for n in sorted(again)], tol, max_step, measure, kinked, slopes)
+    return out if slopes else [(k, p) for k, p, _ in out]
 
 
 def _cut_positions(p, starts):

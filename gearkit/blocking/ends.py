@@ -1,0 +1,308 @@
+"""Where the grid cut a traced line short of a saddle: continuation to the saddle.
+
+Marching squares cut a crossing of two branches of a zero set (a saddle of ``F``) inside its grid
+cell, and the chords that cross the cell find no zero across them: the four arms stop short of
+the saddle (12/30: interference.1 up to 6e-3 short of its saddle at (x1, x2) = (1, -1)). Here every
+open end inside the window (not on its frame, not beside the no-pair area, where a line ends at
+the area's edge) is carried along its line by predictor-corrector continuation until
+
+* it meets another end of the same function heading back along it: the two join. The arms of a
+  saddle join in the pairs ``F`` connects (a step never flips the side on which ``F`` is positive,
+  as going straight through a crossing would): where ``F`` at the saddle is not exactly zero (the
+  check forgives 1e-9 m_n there), the two branches of the zero set turn off before the saddle,
+  and the joined arms follow them;
+* it runs onto a piece of the same line traced already (it joins that piece's end there, or stops);
+* its step shrinks below ``tol / 4`` (a line that ends: the edge where ``F`` is undefined), or
+* it reaches the window's frame.
+
+Each step predicts along the tangent and looks for the zero along the normal through the
+prediction (:func:`~gearkit.blocking.edges.across`: samples shrinking geometrically, the nearest
+sign change with ``F`` positive on the same side as before, solved to ``tol / 4``); a step that
+turns by more than ``TURN_DEG`` or finds no zero is halved. The new chords are then refined to
+``tol`` like the others (:func:`~gearkit.blocking.level.densify`).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from gearkit.blocking.brackets import segment_roots
+from gearkit.blocking.edges import across, edge_point
+
+__all__ = ["extend_ends"]
+
+TURN_DEG = 30.0  #: a step turning more than this is halved
+MAX_STEP_CELLS = 2.0  #: longest step, in grid cell diagonals (the chords are refined afterwards)
+MAX_STEPS = 400  #: steps of one front
+
+
+def extend_ends(F, lines, grids, tol, measure=()):
+    """Carry every open end of ``lines`` (``[(k, points, slopes)]``, the curves ``measure`` aside)
+    that lies inside the window, off its frame and away from the undefined area, on along its line
+    (see the module notes). Returns ``[(k, points, slopes, todo)]``: ``todo`` marks the chords to
+    refine (the new ones).
+
+    >>> import numpy as np
+    >>> F = lambda p, k: p[:, 0] ** 2 - p[:, 1] ** 2 + 1e-4  # branches y = +-sqrt(x^2 + 1e-4)
+    >>> xs = ys = np.linspace(-1.1, 1.1, 5)  # a padded grid: the window is [-0.55, 0.55]^2
+    >>> y = lambda x: np.sqrt(x * x + 1e-4)
+    >>> arms = [(0, np.array([[a, s * y(a)], [b, s * y(b)]]), np.full(2, np.nan))
+    ...         for s in (1, -1) for a, b in ((-0.55, -0.3), (0.3, 0.55))]  # cut 0.3 short of the saddle
+    >>> out = extend_ends(F, arms, [(xs, ys, np.zeros((5, 5)))], 1e-6)
+    >>> [bool(np.all(p[:, 1] * p[0, 1] > 0)) for _, p, _, _ in out]  # joined: one branch each
+    [True, True]
+    """
+    lined = [k for k in range(len(grids)) if k not in measure]
+    if not lined:
+        return [(k, p, g, np.zeros(len(p) - 1, bool)) for k, p, g in lines]
+    xs, ys = grids[lined[0]][0], grids[lined[0]][1]
+    lo = np.array([xs[1], ys[1]])
+    hi = np.array([xs[-2], ys[-2]])
+    span = float(np.hypot(*(hi - lo)))
+    cell = float(np.hypot(xs[2] - xs[1], ys[2] - ys[1]))
+    vtol = tol / 4
+    eps = max(vtol, 1e-9 * span)
+    recs = [[k, np.asarray(p, float), np.asarray(g, float), [], []] for k, p, g in lines]
+    starts = []
+    for r, (k, p, g, _, _) in enumerate(recs):
+        if k in measure or len(p) < 2 or np.array_equal(p[0], p[-1]):
+            continue
+        for end, a, b in ((0, p[0], p[1]), (1, p[-1], p[-2])):
+            if np.any(np.abs(a - lo) <= 1e-12) or np.any(np.abs(a - hi) <= 1e-12):
+                continue  # on the window's frame
+            i = int((a[0] - xs[0]) // (xs[1] - xs[0]))
+            j = int((a[1] - ys[0]) // (ys[1] - ys[0]))
+            if not np.all(np.isfinite(grids[k][2][max(j - 1, 0):j + 3, max(i - 1, 0):i + 3])):
+                continue  # beside the no-pair area: not a saddle (see the notes)
+            t = (a - b) / np.hypot(*(a - b))
+            starts.append((r, end, a, t))
+    front, joins = [], []
+    geo = (span, vtol, MAX_STEP_CELLS * cell, lo, hi, tol)
+    _run(F, front, _fronts(F, starts, recs, eps, geo[2]), recs, joins, geo)
+    return _assemble(recs, joins)
+
+
+def _fronts(F, starts, recs, eps, hmax) -> list:
+    """Fronts ``[rec, end, point, tangent, sigma, step]`` for ``starts`` (rec, end, point, tangent):
+    sigma is the sign of ``F`` to the left of the direction of travel (0: unknown)."""
+    if not starts:
+        return []
+    P0 = np.array([s[2] for s in starts])
+    T0 = np.array([s[3] for s in starts])
+    K0 = np.array([recs[s[0]][0] for s in starts])
+    N0 = np.column_stack([-T0[:, 1], T0[:, 0]])
+    V = F(np.concatenate([P0 + eps * N0, P0 - eps * N0]), np.tile(K0, 2)).reshape(2, -1)
+    sig = np.where(np.isfinite(V[0]) & np.isfinite(V[1]), np.sign(V[0] - V[1]),
+                   np.where(np.isfinite(V[0]), np.sign(V[0]), -np.sign(V[1])))
+    return [[r, end, a.copy(), t.copy(), float(s) if np.isfinite(s) else 0.0, hmax]
+            for (r, end, a, t), s in zip(starts, sig)]
+
+
+def _run(F, front, new, recs, joins, geo):
+    """Carry the fronts ``new`` (appended to ``front``; the earlier ones stay there to be met) until
+    each has joined another, stopped or reached the window's frame."""
+    span, vtol, hmax, lo, hi, tol = geo
+    first = len(front)
+    front += new
+    active = [False] * first + [f[4] != 0 for f in new]
+    turn = math.cos(math.radians(TURN_DEG))
+    for _ in range(MAX_STEPS):
+        act = [i for i, a in enumerate(active) if a]
+        if not act:
+            break
+        _join(F, front, active, act, recs, joins, span, vtol)
+        act = [i for i in act if active[i]]
+        for i in act:  # the frame: no step past it
+            f = front[i]
+            with np.errstate(divide="ignore", invalid="ignore"):
+                lim = np.where(f[3] > 0, (hi - f[2]) / f[3], np.where(f[3] < 0, (lo - f[2]) / f[3], np.inf))
+            f[5] = min(f[5], float(np.min(lim)))
+            if f[5] <= vtol:
+                active[i] = False
+        act = [i for i in act if active[i]]
+        if act:
+            _step(F, front, act, active, recs, joins, vtol, span, hmax, turn, lo, hi)
+
+
+def _join(F, front, active, act, recs, joins, span, close):
+    """Join fronts that meet: another end of the same function within both steps, each ahead of
+    the other, with ``F`` changing sign within a quarter of their distance from the middle of the
+    chord between them, on the side the fronts expect (or within ``close`` of each other). Two
+    such fronts not joinable yet halve their steps towards each other, so as not to pass."""
+    cand = []
+    for i in act:
+        fi = front[i]
+        for j, fj in enumerate(front):
+            if j == i or recs[fj[0]][0] != recs[fi[0]][0] or fj[4] != -fi[4]:
+                continue
+            if fj[0] == fi[0] and not (recs[fi[0]][3] or recs[fi[0]][4]):
+                continue  # the two fronts of one point that has not moved
+            d = fj[2] - fi[2]
+            L = float(np.hypot(*d))
+            if L > fi[5] + fj[5] or np.dot(fi[3], fj[3]) > 0:
+                continue
+            if L <= close:
+                cand.append((-1.0, i, j))  # met: joined as they are
+            elif np.dot(d, fi[3]) > 0 and np.dot(d, fj[3]) < 0:
+                cand.append((L, i, j))
+    if not cand:
+        return
+    cand.sort()
+    met = [c for c in cand if c[0] < 0]
+    cand = [c for c in cand if c[0] >= 0]
+    used = set()
+    for _, i, j in met:
+        if i not in used and j not in used:
+            joins.append(((front[i][0], front[i][1]), (front[j][0], front[j][1])))
+            active[i] = active[j] = False
+            front[i][4] = front[j][4] = 0.0
+            used |= {i, j}
+    cand = [c for c in cand if c[1] not in used and c[2] not in used]
+    if not cand:
+        return
+    Q = np.array([0.5 * (front[i][2] + front[j][2]) for _, i, j in cand])
+    D = np.array([front[j][2] - front[i][2] for _, i, j in cand])
+    N = np.column_stack([-D[:, 1], D[:, 0]]) / np.hypot(*D.T)[:, None]
+    reach = 0.25 * np.array([L for L, _, _ in cand])
+    sig = np.array([front[i][4] for _, i, _ in cand])
+    which = np.array([recs[front[i][0]][0] for _, i, _ in cand])
+    found = [c >= 0 for _, _, c in across(F, Q, N, reach, sig, which, span)]
+    for (L, i, j), ok in zip(cand, found):
+        if i in used or j in used or not (active[i] or active[j]):
+            continue
+        if ok:
+            joins.append(((front[i][0], front[i][1]), (front[j][0], front[j][1])))
+            active[i] = active[j] = False
+            front[i][4] = front[j][4] = 0.0  # joined: no longer a candidate
+            used |= {i, j}
+        else:
+            front[i][5] = min(front[i][5], 0.5 * L)
+
+
+def _step(F, front, act, active, recs, joins, vtol, span, hmax, turn, lo, hi):
+    """One predictor-corrector step of the fronts ``act``."""
+    T = np.array([front[i][3] for i in act])
+    P = np.array([front[i][2] for i in act])
+    Q = P + np.array([front[i][5] for i in act])[:, None] * T
+    out = np.flatnonzero(np.isnan(F(Q, np.array([recs[front[i][0]][0] for i in act]))))
+    if out.size:  # the prediction left the defined area: the step ends just before its edge
+        E = edge_point(F, P[out], Q[out], np.array([recs[front[act[r]][0]][0] for r in out]), span)
+        for r, q in zip(out, E):
+            f = front[act[r]]
+            f[5] = float(np.dot(q - P[r], T[r]))
+            Q[r] = P[r] + f[5] * T[r]
+        stop = [act[r] for r in out if front[act[r]][5] < vtol]
+        for i in stop:
+            active[i] = False
+        keep = [r for r in range(len(act)) if act[r] not in stop]
+        act, T, P, Q = [act[r] for r in keep], T[keep], P[keep], Q[keep]
+        if not act:
+            return
+    N = np.column_stack([-T[:, 1], T[:, 0]])
+    sig = np.array([front[i][4] for i in act])
+    which = np.array([recs[front[i][0]][0] for i in act])
+    reach = np.array([front[i][5] for i in act])
+    lo_p, hi_p, flo, fhi, ks, who = [], [], [], [], [], []
+    for r, (i, (s, v, c)) in enumerate(zip(act, across(F, Q, N, reach, sig, which, span, vtol / 4))):
+        f = front[i]
+        if c < 0:
+            f[5] *= 0.5
+            if f[5] < vtol:
+                active[i] = False
+            continue
+        lo_p.append(Q[r] + s[c] * N[r]), hi_p.append(Q[r] + s[c + 1] * N[r])
+        flo.append(v[c]), fhi.append(v[c + 1]), ks.append(which[r]), who.append(i)
+    if not who:
+        return
+    R = segment_roots(F, np.array(lo_p), np.array(hi_p), np.array(flo), np.array(fhi), vtol, np.array(ks))
+    for i, r in zip(who, R):
+        f = front[i]
+        d = r - f[2]
+        L = float(np.hypot(*d))
+        if L <= 0 or np.dot(d, f[3]) < turn * L or np.any(r < lo - vtol) or np.any(r > hi + vtol):
+            f[5] *= 0.5
+            if f[5] < vtol:
+                active[i] = False
+            continue
+        if _collides(i, r, L, front, active, recs, joins, 8 * vtol):
+            continue
+        recs[f[0]][3 + f[1]].append(r)
+        f[2], f[3] = r, d / L
+        f[5] = min(2 * f[5], hmax)
+
+
+def _collides(i, r, L, front, active, recs, joins, close) -> bool:
+    """True when front ``i``'s next point ``r`` lies within ``close`` of a line of the same
+    function traced already (another record): the front has run onto it. It joins that line's
+    nearest open end within ``2 L`` (heading back), or stops."""
+    from gearkit.accuracy import distances_to_polyline
+
+    f = front[i]
+    k = recs[f[0]][0]
+    for rr, (kk, p, _, hd, tl) in enumerate(recs):
+        if kk != k or rr == f[0]:
+            continue
+        q = np.vstack([np.reshape(hd[::-1], (-1, 2)), p, np.reshape(tl, (-1, 2))])
+        if len(q) < 2 or float(distances_to_polyline(r[None], q)[0]) > close:
+            continue
+        ends = [j for j, g in enumerate(front) if g[0] == rr and g[4] == -f[4] and g[4] != 0
+                and float(np.hypot(*(g[2] - f[2]))) <= 2 * L]
+        if ends:
+            j = min(ends, key=lambda j: float(np.hypot(*(front[j][2] - f[2]))))
+            joins.append(((f[0], f[1]), (front[j][0], front[j][1])))
+            active[j] = False
+            front[j][4] = 0.0
+            f[4] = 0.0
+        active[i] = False
+        return True
+    return False
+
+
+def _assemble(recs, joins):
+    """Polylines from the records (points, the points added at each end) and the joins."""
+    def full(r):
+        k, p, g, head, tail = recs[r]
+        pts = [np.array(head[::-1]).reshape(-1, 2), p, np.array(tail).reshape(-1, 2)]
+        gs = [np.full(len(head), np.nan), g, np.full(len(tail), np.nan)]
+        todo = np.concatenate([np.ones(len(head), bool), np.zeros(max(len(p) - 1, 0), bool),
+                               np.ones(len(tail), bool)])
+        if len(p) == 1:  # a seed: every chord new
+            todo[:] = True
+        return np.concatenate(pts), np.concatenate(gs), todo
+
+    link = {}
+    for a, b in joins:
+        link[a], link[b] = b, a
+    seen, out = set(), []
+    order = list(range(len(recs)))
+    # chains start at an unlinked end; what is left after them are closed loops
+    for first_pass in (True, False):
+        for r in order:
+            if r in seen:
+                continue
+            if first_pass and (r, 0) in link and (r, 1) in link:
+                continue
+            start_end = 0 if (r, 0) not in link else 1
+            if first_pass is False:
+                start_end = 0
+            P, G, T = [], [], []
+            cur, enter = r, start_end
+            while cur not in seen:
+                seen.add(cur)
+                p, g, t = full(cur)
+                if enter == 1:
+                    p, g, t = p[::-1], g[::-1], t[::-1]
+                if P:
+                    T.append(np.ones(1, bool))  # the joining chord
+                P.append(p), G.append(g), T.append(t)
+                nxt = link.get((cur, 1 - enter))
+                if nxt is None:
+                    break
+                cur, enter = nxt
+            p, g, t = np.concatenate(P), np.concatenate(G), np.concatenate(T)
+            if not first_pass:  # closed: back to the first vertex
+                p, g, t = np.vstack([p, p[:1]]), np.append(g, g[0]), np.append(t, True)
+            if len(p) >= 2:
+                out.append((recs[r][0], p, g, t))
+    return out
