@@ -22,8 +22,15 @@ class HalfToothProfile:
     """
 
     def _end(self, which):
-        piece = self.half.pieces[0] if which == "tip" else self.half.pieces[-1]
-        return piece(np.array([0.0 if which == "tip" else 1.0]))[0]
+        """The tip (the first piece's start) or the space centre (the last piece's end), ``(2,)`` mm,
+        read-only: evaluated once (the key values and the gauges read it many times)."""
+        key = ("end", which)
+        if key not in self._cache:
+            piece = self.half.pieces[0] if which == "tip" else self.half.pieces[-1]
+            point = piece(np.array([0.0 if which == "tip" else 1.0]))[0]
+            point.flags.writeable = False
+            self._cache[key] = point
+        return self._cache[key]
 
     @property
     def pointed(self) -> bool:

@@ -242,3 +242,30 @@ def test_pair_check_reports_both_gears(capsys):
         k = gears[i]["inspection"]["span"]["k"]
         assert gears[i]["inspection"]["span"]["W"] == pytest.approx(textbook_span(2.0, z, x, k), abs=EXACT)
         assert res.report[f"inspection.span.{i + 1}"].status == "ok"
+
+
+@pytest.mark.parametrize("z, x", [(20, 0.0), (9, 0.3), (40, -0.2)])
+def test_over_pins_evaluates_each_point_of_the_tooth_once(monkeypatch, z, x):
+    """The pin's contact search refines one nearest point per trial centre; the centres are close, so the
+    refinements start at the same points of the tooth: each point is evaluated once per measurement
+    (a repeat would be the same exact evaluation again), and the dimension is still the formula's."""
+    from gearkit.boundary import Piece
+
+    prof = tooth_profile(GearSpec(z, 2.0, x))
+    seen, repeats = set(), []
+    evaluate = Piece.__call__
+
+    def counting(self, t):
+        if len(t) == 1:
+            key = (id(self), float(t[0]))
+            if key in seen:
+                repeats.append(key)
+            seen.add(key)
+        return evaluate(self, t)
+
+    monkeypatch.setattr(Piece, "__call__", counting)
+    formula = over_pins(section(2.0, 20.0, 0.0), z, 2 * x * math.tan(A20), 3.5)
+    measured, touch = measure_over_pins(prof, 3.5, near=formula.d_M / 2)
+    assert len(seen) > 10 and repeats == []
+    if touch == "flank":
+        assert measured.M == pytest.approx(formula.M, abs=AGREE)

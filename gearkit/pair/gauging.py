@@ -30,21 +30,32 @@ __all__ = ["measure_span", "measure_over_pins", "measure_chordal"]
 _GRID = 161  # samples per piece before refining an extreme (pieces are smooth between joins)
 
 
-def _refine(piece, lo: float, hi: float, score, fallback: float):
-    """Refine a sampled maximum of ``score`` on ``piece`` between parameters ``lo`` and ``hi``."""
+def _refine(piece, lo: float, hi: float, score, fallback: float, memo: dict | None = None):
+    """Refine a sampled maximum of ``score`` on ``piece`` between parameters ``lo`` and ``hi``.
+
+    ``memo`` (parameter -> the piece's ``(1, 2)`` point there, per piece) keeps the points evaluated,
+    for a caller that refines many scores on the same pieces (the searches start alike)."""
     from gearkit.roots import fminbound
 
-    x, fun = fminbound(lambda w: -float(score(piece(np.array([w])))[0]), lo, hi, xatol=1e-14)
-    w = x if -fun > float(score(piece(np.array([fallback])))[0]) else fallback
-    point = piece(np.array([w]))[0]
+    known = {} if memo is None else memo.setdefault(id(piece), {})
+
+    def at(w):
+        key = float(w).hex()  # exactly this parameter (0.0 and -0.0 apart)
+        if key not in known:
+            known[key] = piece(np.array([w]))
+        return known[key]
+
+    x, fun = fminbound(lambda w: -float(score(at(w))[0]), lo, hi, xatol=1e-14)
+    w = x if -fun > float(score(at(fallback))[0]) else fallback
+    point = at(w)[0]
     return float(score(point[None])[0]), point, piece.label
 
 
-def _extreme(pieces, score, samples=None):
+def _extreme(pieces, score, samples=None, memo: dict | None = None):
     """Largest ``score(points)`` over the pieces: (value, point, label), refined to ~1e-14 of the parameter.
 
-    ``samples``: the pieces' points at the grid (:func:`_grid_points`), when the caller scores the
-    same pieces many times."""
+    ``samples``: the pieces' points at the grid (:func:`_grid_points`), and ``memo`` the points the
+    refinements evaluated (:func:`_refine`), when the caller scores the same pieces many times."""
     t = np.linspace(0.0, 1.0, _GRID)
     best = (-math.inf, None, 0)
     for k, piece in enumerate(pieces):
@@ -53,7 +64,7 @@ def _extreme(pieces, score, samples=None):
         if values[i] > best[0]:
             best = (float(values[i]), piece, i)
     _, piece, i = best
-    return _refine(piece, t[max(i - 1, 0)], t[min(i + 1, _GRID - 1)], score, float(t[i]))
+    return _refine(piece, t[max(i - 1, 0)], t[min(i + 1, _GRID - 1)], score, float(t[i]), memo)
 
 
 def _grid_points(pieces) -> list:
@@ -137,13 +148,15 @@ def measure_over_pins(profile, d_p: float, beta_b: float = 0.0, near: float | No
     e = np.array([math.sin(math.pi / z), math.cos(math.pi / z)])  # centre line of the space
     pieces = profile.half.pieces
     grid = _grid_points(pieces)  # every gap() searches the same grid first
+    memo = {}  # and the refinements of nearby centres start at the same points of the tooth
 
     known = {}
 
     def gap(radius):
         if radius not in known:  # brentq re-evaluates its bracket's ends
             centre = radius * e
-            known[radius] = math.sqrt(-_extreme(pieces, lambda p: -np.sum((p - centre) ** 2, axis=-1), grid)[0]) - rho
+            known[radius] = math.sqrt(-_extreme(pieces, lambda p: -np.sum((p - centre) ** 2, axis=-1), grid,
+                                                memo)[0]) - rho
         return known[radius]
 
     r_tip = profile.tip_diameter / 2
@@ -169,7 +182,7 @@ def measure_over_pins(profile, d_p: float, beta_b: float = 0.0, near: float | No
             raise AssertionError("the pin never touched the tooth")
         r_m = brentq(gap, min(a, b), max(a, b), xtol=1e-13, rtol=4 * np.finfo(float).eps)
     centre = r_m * e
-    _, point, label = _extreme(pieces, lambda p: -np.sum((p - centre) ** 2, axis=-1), grid)
+    _, point, label = _extreme(pieces, lambda p: -np.sum((p - centre) ** 2, axis=-1), grid, memo)
     label = _corner(profile, point, label)
     centres = 2 * r_m * (math.cos(math.pi / (2 * z)) if z % 2 else 1.0)
     m = centres - d_p if profile.internal else centres + d_p
