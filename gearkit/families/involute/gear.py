@@ -287,9 +287,10 @@ class InvoluteProfile(ToothProfile):
     def _involute_half_angle(self, rho):
         """Half-angle of the ideal involute tooth through the generated flank, at radii ``rho``."""
         rb = self.base_diameter / 2.0
-        flank = next(p for p in self.half.pieces if p.label == "flank")
-        q = flank(np.array([0.5]))
-        r0, psi0 = polar_from_y(q)
+        if "flank reference" not in self._cache:  # the ideal involute's point on the flank, found once
+            flank = next(p for p in self.half.pieces if p.label == "flank")
+            self._cache["flank reference"] = polar_from_y(flank(np.array([0.5])))
+        r0, psi0 = self._cache["flank reference"]
         sign = -1.0 if self.internal else 1.0
         a0 = math.acos(min(1.0, rb / float(r0[0])))
         a = np.arccos(np.minimum(1.0, rb / np.asarray(rho)))
