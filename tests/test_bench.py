@@ -118,3 +118,17 @@ def test_target_rows_pass_reads_measured_against_target_and_every_row_is_printed
     assert "pass" in next(x for x in lines if x.strip().startswith("gear z=12"))
     md = markdown_target_rows(res)
     assert sum(x.startswith("| rigid cycle") or x.startswith("| gear z=12") for x in md) == 2
+
+
+def test_overhead_ratio_is_measured_on_a_coarse_cpu_clock(monkeypatch):
+    """A CPU clock that ticks every 15.6 ms (Windows; 4 ms while an interval timer runs on some kernels)
+    read 0 s for the bare closed form and the ratio divided by zero; batches of calls span many ticks."""
+    import time
+
+    from gearkit.bench.profiles import overhead
+
+    real, tick = time.process_time, 15.6e-3
+    monkeypatch.setattr(time, "process_time", lambda: math.floor(real() / tick) * tick)
+    out = overhead(3)
+    assert out["baseline_seconds"] > 0 and math.isfinite(out["overhead_ratio"]) and out["overhead_ratio"] > 0
+    assert math.isfinite(out["overhead_ratio_sampling"]) and out["overhead_ratio_sampling"] > 0

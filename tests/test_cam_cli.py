@@ -56,6 +56,15 @@ def test_bad_input_exits_2_naming_the_flag(capsys, tmp_path, args, flag):
     assert err.count("\n") == 1 and flag in err and "Traceback" not in err
 
 
+@pytest.mark.parametrize("given, missing", [("--pivot-distance", "--arm-length"), ("--arm-length", "--pivot-distance")])
+def test_a_rocker_without_its_other_length_names_it(capsys, given, missing):
+    """A rocker needs both lengths: the one not typed is named as required (it read 'None must be a
+    positive length')."""
+    code = main(BASE + [given, "60"])
+    err = capsys.readouterr().err
+    assert code == 2 and err.count("\n") == 1 and missing in err and "required" in err and "None" not in err
+
+
 def test_csv_svg_dxf_exports_and_csv_header(tmp_path, capsys):
     for ext in ("csv", "svg", "dxf"):
         path = tmp_path / f"cam.{ext}"

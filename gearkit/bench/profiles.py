@@ -182,7 +182,7 @@ def overhead(repeats: int = 21):
     """
     import time
 
-    from gearkit.bench.timing import closed_form_involute
+    from gearkit.bench.timing import BATCH, batch_calls, closed_form_involute
     from gearkit.families.involute import GearSpec, tooth_profile
 
     spec = GearSpec(40, 1.0)
@@ -198,13 +198,17 @@ def overhead(repeats: int = 21):
 
     runs = {"kernel": lambda: _generate_and_sample(spec, tol), "sampling": sample_only,
             "baseline": lambda: closed_form_involute(n, r_b, roll_max)}
+    # a CPU clock may tick coarsely (every 4 ms while an interval timer runs, 15.6 ms on some systems): each
+    # time is of a batch of calls lasting about BATCH seconds, divided by the calls
+    batch = {k: batch_calls(fn, BATCH) for k, fn in runs.items()}
     times = {k: [] for k in runs}
     start = time.perf_counter()
     for i in range(max(3, repeats)):
         for key, fn in runs.items():
             t0 = time.process_time()
-            fn()
-            times[key].append(time.process_time() - t0)
+            for _ in range(batch[key]):
+                fn()
+            times[key].append((time.process_time() - t0) / batch[key])
         if i >= 2 and time.perf_counter() - start > 6.0:
             break
     kernel, sampling, base = (float(np.median(times[k])) for k in ("kernel", "sampling", "baseline"))

@@ -6,6 +6,7 @@ warm interpreter; the spread is reported beside it so a noisy machine shows as n
 """
 from __future__ import annotations
 
+import math
 import time
 
 import numpy as np
@@ -28,6 +29,24 @@ def median_time(fn, repeats: int = 5, budget: float = 2.0):
         if i >= 2 and time.perf_counter() - start > budget:
             break
     return float(np.median(times)), result
+
+
+#: seconds a timed batch of calls lasts at least (many ticks of a coarse CPU clock)
+BATCH = 0.05
+
+
+def batch_calls(fn, seconds: float) -> int:
+    """How many calls of ``fn`` last about ``seconds`` of wall time (at least 1), from one timed call.
+
+    Examples
+    --------
+    >>> batch_calls(lambda: None, 1e-3) > 1, batch_calls(lambda: sum(range(10)), 0.0)
+    (True, 1)
+    """
+    t0 = time.perf_counter()
+    fn()
+    one = time.perf_counter() - t0
+    return max(1, min(10_000, math.ceil(seconds / one))) if one > 0 else 10_000
 
 
 def closed_form_involute(n: int, base_radius: float, roll_max: float):

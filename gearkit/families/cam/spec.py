@@ -31,7 +31,8 @@ CONTACTS = ("roller", "knife", "flat")
 DEFAULT_LIMIT_DEG = {"translating": 30.0, "rocker": 45.0}
 
 
-def _length(v, name, positive=True):
+def _length(v, name, positive=True, needed_by: str = ""):
+    require(v is not None, name, f"is required{needed_by} (a length in mm)")
     ok = is_real(v) and (v > 0 if positive else v >= 0)
     require(ok, name, f"{v!r} must be a {'positive' if positive else 'non-negative'} length in mm")
 
@@ -114,8 +115,8 @@ class CamSpec:
                         "line must cut the prime circle to reach the cam)")
             return
         require(self.offset == 0.0, "offset", "a rocker has no offset (give pivot_distance and arm_length)")
-        _length(self.pivot_distance, "pivot_distance")
-        _length(self.arm_length, "arm_length")
+        _length(self.pivot_distance, "pivot_distance", needed_by=" by a rocker follower")
+        _length(self.arm_length, "arm_length", needed_by=" by a rocker follower")
         l0, arm = self.pivot_distance, self.arm_length
         if self.contact == "flat":
             require(r0 < l0, "prime_radius", f"r0 = {r0:g} mm must be below the pivot distance {l0:g} mm")
