@@ -183,11 +183,16 @@ print(repr({"code": code, "made": made}))
 """
 
 
-@pytest.mark.parametrize("argv", [c[0] for c in CASES[:1] + CASES[3:4]], ids=["gear-stl", "check"])
+#: ``cycloidal-drive`` with its output mechanism too (its pins and holes are one more value class)
+CYCLOID_ALL = CASES[4][0] + ["--output-pins", "6", "-o", "{tmp}/disc.stl"]
+
+
+@pytest.mark.parametrize("argv", [c[0] for c in CASES[:1] + CASES[3:4]] + [CYCLOID_ALL],
+                         ids=["gear-stl", "check", "cycloidal-drive"])
 def test_command_paths_make_their_value_classes_without_compiling(tmp_path, argv):
-    """Every dataclass the ``gear`` and ``check`` paths load is made by ``gearkit.values.frozen`` (its
-    ``__init__`` is the closure of that module), none by ``dataclass(frozen=True)``, which compiles six
-    methods per class as the command starts."""
+    """Every dataclass the ``gear``, ``check`` and ``cycloidal-drive`` paths load is made by
+    ``gearkit.values.frozen`` (its ``__init__`` is the closure of that module), none by
+    ``dataclass(frozen=True)``, which compiles six methods per class as the command starts."""
     argv = [a.replace("{tmp}", str(tmp_path)) for a in argv if a != "--json"]
     proc = subprocess.run([sys.executable, "-c", CLASSES_PROBE, *argv], capture_output=True, text=True, timeout=300)
     assert proc.returncode == 0, proc.stderr

@@ -19,10 +19,10 @@ pin gearing
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 from gearkit.checks.report import CheckReport, Finding, grade
 from gearkit.errors import GearkitError
+from gearkit.values import frozen
 
 __all__ = ["DriveCheck", "check_drive", "PairCheck", "check_cycloid_pair", "PinGearCheck", "check_pin_gearing",
            "MIN_CONTACT_RATIO"]
@@ -31,7 +31,7 @@ __all__ = ["DriveCheck", "check_drive", "PairCheck", "check_cycloid_pair", "PinG
 MIN_CONTACT_RATIO = 1.2
 
 
-@dataclass(frozen=True)
+@frozen
 class FamilyCheck:
     """The values of a check (JSON-ready through :meth:`to_dict`) and its findings."""
 

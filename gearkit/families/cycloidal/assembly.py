@@ -13,13 +13,13 @@ The same parts as solids (the disc with its bore and output holes, pins, housing
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
 from gearkit.errors import require
 from gearkit.families.cycloidal.disc import disc_profile
 from gearkit.families.cycloidal.drive import DriveSpec, frame_phase
+from gearkit.values import frozen
 
 __all__ = ["OutputMechanism", "circle", "disc_offset", "drive_loops", "pin_centres", "output_pin_centres"]
 
@@ -33,7 +33,7 @@ def circle(centre, radius: float, tol: float, clockwise: bool = False):
     return np.asarray(centre, dtype=float) + radius * np.stack([np.cos(t), np.sin(t)], -1)
 
 
-@dataclass(frozen=True)
+@frozen
 class OutputMechanism:
     """Output pins and the disc's bore, mm (None: derived from the disc's root radius r_f).
 

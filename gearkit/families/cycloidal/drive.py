@@ -22,12 +22,12 @@ nominal pins, so a positive ``Δr - ΔR`` opens a clearance (backlash).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
 
 from gearkit.errors import check_fields, is_int, is_real, require
+from gearkit.values import frozen
 
 __all__ = ["DriveSpec", "disc_curve", "theoretical_curve", "curve_normal", "curvature_radius",
            "min_curvature_radius", "psi_max", "contact_ratio", "line_of_action_point", "frame_phase", "turn_polar"]
@@ -35,7 +35,7 @@ __all__ = ["DriveSpec", "disc_curve", "theoretical_curve", "curve_normal", "curv
 
 
 
-@dataclass(frozen=True)
+@frozen
 class DriveSpec:
     """A cycloid–pin-wheel drive, inputs only (lengths in mm).
 

@@ -20,7 +20,6 @@ Frames: wheel centre at the origin, tooth 0 centred on +y.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
@@ -31,6 +30,7 @@ from gearkit.envelope import chain_branches
 from gearkit.errors import GeometryError, SpecError, check_fields, is_int, is_real, require
 from gearkit.motion import RollingMotion
 from gearkit.segments import arc
+from gearkit.values import frozen
 
 __all__ = ["PinGearSpec", "PinGearWheel", "pin_gear_wheel", "first_usable_roll", "pin_wheel_outline", "DETECT_TOL"]
 
@@ -41,7 +41,7 @@ DETECT_TOL = 1e-6
 
 
 
-@dataclass(frozen=True)
+@frozen
 class PinGearSpec:
     """Pin gearing: a pin wheel of ``pins`` pins and a toothed wheel, inputs only.
 

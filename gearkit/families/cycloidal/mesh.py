@@ -16,7 +16,6 @@ averages are taken over that period; uniform ``psi0`` is uniform crank angle.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
@@ -24,6 +23,7 @@ import numpy as np
 from gearkit.accuracy import nearest
 from gearkit.families.cycloidal.disc import disc_profile
 from gearkit.families.cycloidal.drive import DriveSpec, frame_phase, turn_polar
+from gearkit.values import frozen
 
 __all__ = ["CONTACT_TOL", "MeshState", "MeshStats", "pin_centres", "mesh_state", "simulate_mesh", "backlash"]
 
@@ -234,7 +234,7 @@ class _Outline:
         return dist[which, n], feet[which, n]
 
 
-@dataclass(frozen=True)
+@frozen
 class MeshState:
     """One instant of the mesh (disc frame, mm), or ``n`` instants stacked along a first axis.
 
@@ -285,7 +285,7 @@ def mesh_state(spec: DriveSpec, psi0: float = 0.0, contact_tol: float | None = N
     return _state(spec, outline, psi0, 0.0, contact_tol)
 
 
-@dataclass(frozen=True)
+@frozen
 class MeshStats:
     """Counts over one mesh period (``samples`` instants, uniform in crank angle).
 

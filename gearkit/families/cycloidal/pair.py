@@ -20,7 +20,6 @@ Frames: gear centre at the origin, tooth 0 centred on +y (the kernel's conventio
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
@@ -31,6 +30,7 @@ from gearkit.envelope import chain_branches
 from gearkit.errors import GeometryError, SpecError, check_fields, is_int, is_real, require
 from gearkit.motion import RollingMotion
 from gearkit.segments import Segment, corner, line
+from gearkit.values import frozen
 
 __all__ = ["CycloidPairSpec", "CycloidalRack", "CycloidGear", "cycloid_gear", "clock_factors",
            "contact_ratio", "epicycloid_flank", "hypocycloid_flank", "CLOCK_ADDENDUM", "CLOCK_TIP_RADIUS"]
@@ -42,7 +42,7 @@ CLOCK_TIP_RADIUS = 1.40
 
 
 
-@dataclass(frozen=True)
+@frozen
 class CycloidalRack:
     """Generating rack of a cycloid gear, in mm.
 
@@ -88,7 +88,7 @@ class CycloidalRack:
                 line(top[1], (-dx, self.reach), "tip"))
 
 
-@dataclass(frozen=True)
+@frozen
 class CycloidPairSpec:
     """A cycloid gear pair, inputs only (lengths in mm, heights in module units).
 

@@ -13,12 +13,12 @@ wheel's tooth 0 and a pinion space face P.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
 from gearkit.accuracy import adaptive_sample
 from gearkit.families.cycloidal.pair import CycloidPairSpec, cycloid_gear
+from gearkit.values import frozen
 
 __all__ = ["ConjugateCheck", "conjugate_check", "generated_contact_ratio"]
 
@@ -79,7 +79,7 @@ class _Foot:
         return best, foot, normal
 
 
-@dataclass(frozen=True)
+@frozen
 class ConjugateCheck:
     """Wheel flank points in contact with the pinion (mm, pair frame) and the checks at each.
 
