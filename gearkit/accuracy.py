@@ -3,6 +3,8 @@
 Nothing in gearkit hard-codes a point count. A curve is known exactly as a function
 ``w -> points`` on ``[0, 1]``; :func:`adaptive_sample` splits parameter intervals until
 every chord lies within ``tol`` (mm) of the curve and reports the deviation it achieved.
+A polyline is measured against points of the exact curve taken independently by
+:mod:`gearkit.distances`.
 """
 from __future__ import annotations
 
@@ -165,6 +167,7 @@ def adaptive_sample(evaluate, tol: float, n_init: int = 5, max_rounds: int = 60,
     >>> def f(w):
     ...     t = np.tanh((w - 0.053) / 0.001)
     ...     return np.stack([t + w, 0.1 * (1 - t * t)], -1)
+    >>> from gearkit.distances import polyline_deviation
     >>> w, p, achieved = adaptive_sample(f, 1e-3)
     >>> dense = f(np.linspace(0, 1, 100001))
     >>> bool(polyline_deviation(p, dense) <= 1e-3), bool(achieved <= 1e-3)
@@ -320,81 +323,3 @@ def refine_sample(evaluate, w, pts, tol: float, max_rounds: int = 60, max_split:
     else:
         probes, q, dev, _ = _probe(evaluate, w, pts, tol)
     return w, pts, float(dev.max(initial=0.0)), probes, q
-
-
-#: point pairs up to which :func:`distances_to_polyline` searches directly instead of through a k-d tree
-_DIRECT = 4_000_000
-
-
-def nearest(points, queries, k: int = 1, block: int = 1 << 17):
-    """The ``k`` nearest of ``points`` to each of ``queries`` by direct search: ``(dist, idx)``.
-
-    Shapes as a k-d tree query gives them: ``(m,)`` for ``k = 1``, else ``(m, k)`` (the k
-    columns in no particular order). For the few hundred to few thousand sample points of
-    one tooth a blocked direct search is as fast as building a tree and imports nothing;
-    :func:`distances_to_polyline` switches to a k-d tree above ``_DIRECT`` point pairs. ``block``
-    bounds the distance table worked on at once (1 MB: it stays in the processor's cache, several
-    times faster than one large table for a few hundred points).
-
-    Examples
-    --------
-    >>> d, i = nearest([[0.0, 0.0], [1.0, 0.0], [3.0, 0.0]], [[0.9, 0.0], [2.5, 1.0]])
-    >>> i.tolist(), [round(float(x), 6) for x in d]
-    ([1, 2], [0.1, 1.118034])
-    """
-    a = np.asarray(points, dtype=float)
-    q = np.asarray(queries, dtype=float).reshape(-1, a.shape[1])
-    k = min(int(k), len(a))
-    idx = np.empty((len(q), k), dtype=np.intp)
-    dist = np.empty((len(q), k))
-    step = max(1, block // max(len(a), 1))
-    a2 = np.einsum("ij,ij->i", a, a)
-    for s in range(0, len(q), step):
-        qs = q[s:s + step]
-        rank = a2 - 2.0 * (qs @ a.T)  # |q - a|^2 - |q|^2: one matrix product ranks the points
-        part = np.argmin(rank, axis=1)[:, None] if k == 1 else np.argpartition(rank, k - 1, axis=1)[:, :k]
-        idx[s:s + step] = part
-        dist[s:s + step] = np.linalg.norm(a[part] - qs[:, None, :], axis=-1)  # exact, not from the expansion
-    return (dist[:, 0], idx[:, 0]) if k == 1 else (dist, idx)
-
-
-def distances_to_polyline(points, polyline, closed: bool = False, neighbours: int = 6):
-    """Distance of each point to a (dense) polyline, via its nearest vertices' edges.
-
-    Parameters
-    ----------
-    points : (k, 2) float64
-    polyline : (n, 2) float64
-    closed : bool, the last vertex joins the first
-
-    Returns
-    -------
-    (k,) float64, mm
-    """
-    a = np.asarray(polyline, dtype=float)
-    q = np.asarray(points, dtype=float)
-    n = len(a)
-    if n * len(q) <= _DIRECT:  # small: a direct search, no tree to build (and no scipy import)
-        _, idx = nearest(a, q, k=min(neighbours, n))
-    else:
-        from scipy.spatial import cKDTree
-
-        _, idx = cKDTree(a).query(q, k=min(neighbours, n))
-    idx = np.atleast_2d(idx.T).T if idx.ndim == 1 else idx
-    best = np.full(len(q), np.inf)
-    for col in range(idx.shape[1]):
-        for off in (0, -1):
-            i = idx[:, col] + off
-            if closed:
-                i = i % n
-                j = (i + 1) % n
-            else:
-                i = np.clip(i, 0, n - 2)
-                j = i + 1
-            best = np.minimum(best, _chord_deviation(a[i], a[j], q))
-    return best
-
-
-def polyline_deviation(polyline, exact_points, closed: bool = False) -> float:
-    """Largest distance from points on the exact curve to a polyline: an independent deviation measure."""
-    return float(distances_to_polyline(exact_points, polyline, closed).max(initial=0.0))

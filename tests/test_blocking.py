@@ -11,11 +11,11 @@ import math
 import numpy as np
 import pytest
 
-from gearkit.accuracy import distances_to_polyline
 from gearkit.blocking import blocking_contour
 from gearkit.checks import check_pair
 from gearkit.cli import main
 from gearkit.curves import bracketed_root
+from gearkit.distances import distances_to_polyline
 from gearkit.errors import SpecError
 from gearkit.pair import PairSpec, pair_geometry
 from gearkit.families.involute import ShaperCutter

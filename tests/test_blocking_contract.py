@@ -13,12 +13,12 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from gearkit.accuracy import distances_to_polyline
 from gearkit.blocking import blocking_contour
 from gearkit.blocking.arrays import margins
 from gearkit.blocking.field import PairField
 from gearkit.checks import check_pair
 from gearkit.curves import polyline_self_intersections
+from gearkit.distances import distances_to_polyline
 from gearkit.errors import SpecError
 from gearkit.pair import PairSpec
 from gearkit.families.involute import BasicRack, ShaperCutter

@@ -12,10 +12,10 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq, root
 
-from gearkit.accuracy import distances_to_polyline
 from gearkit.blocking import blocking_contour
 from gearkit.blocking.level import zero_lines
 from gearkit.blocking.region import pad, padded_grid
+from gearkit.distances import distances_to_polyline
 from gearkit.pair import PairSpec
 
 CONTRACT = 2.0  #: achieved / tol (issue 19)

@@ -11,7 +11,7 @@ import math
 import numpy as np
 import pytest
 
-from gearkit.accuracy import distances_to_polyline
+from gearkit.distances import distances_to_polyline
 from gearkit.errors import SpecError
 from gearkit.families.cam import (LAWS, CamSpec, MotionProgram, MotionSegment, cam_profile, law_shape,
                                   rocker_pressure_angle, smallest_prime_radius)

@@ -193,7 +193,7 @@ def test_pin_clearances_equal_the_distance_to_the_outline_polyline(args):
     at instants over a whole lobe, to the disc's whole outline sampled to OUTLINE_TOL. Pins off the
     generating pin's path: modifications, a disc generated with another eccentricity, far pins of
     multi-difference drives."""
-    from gearkit.accuracy import distances_to_polyline
+    from gearkit.distances import distances_to_polyline
 
     spec = DriveSpec(*args)
     outline = disc_profile(spec).outline(OUTLINE_TOL)

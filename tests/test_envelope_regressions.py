@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 import gearkit as gk
-from gearkit.accuracy import distances_to_polyline
+from gearkit.distances import distances_to_polyline
 from gearkit.families.cam import CamSpec, MotionProgram, cam_profile
 from gearkit.oracles.cam import oracle_error_bound, swept_cam
 from gearkit.oracles.cycloid import swept_pin_disc_clearance

@@ -187,7 +187,7 @@ def test_profile_changes_continuously_across_the_undercut_limit(z):
     # compare the sampled tooth boundaries both ways: a 2e-12 change in x moves nothing visibly
     pb = np.concatenate([p(w) for p in below.half.pieces])
     pa = np.concatenate([p(w) for p in above.half.pieces])
-    from gearkit.accuracy import distances_to_polyline
+    from gearkit.distances import distances_to_polyline
 
     dense_a = above.half_points(1e-9)[0]
     dense_b = below.half_points(1e-9)[0]
@@ -227,7 +227,7 @@ def test_tip_thickness_goes_continuously_to_zero_at_the_pointing_limit(z):
 
 # -- the tooth converges to the rack's as z grows -----------------------------------------------
 def test_tooth_converges_to_the_rack_tooth_as_z_grows():
-    from gearkit.accuracy import distances_to_polyline
+    from gearkit.distances import distances_to_polyline
     from gearkit.families.involute.rack import RackSpec, rack_profile
 
     rack = rack_profile(RackSpec(1.0))  # the basic rack's own profile: the gear's counterpart at z = inf

@@ -28,8 +28,8 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 import gearkit as gk
-from gearkit.accuracy import distances_to_polyline
 from gearkit.curves import polyline_self_intersections
+from gearkit.distances import distances_to_polyline
 
 #: dense re-evaluation points per exact piece (independent deviation measure)
 DENSE = 4001

@@ -10,9 +10,9 @@ import numpy as np
 import pytest
 
 import gearkit as gk
-from gearkit.accuracy import polyline_deviation
 from gearkit.cli import main
 from gearkit.curves import inv
+from gearkit.distances import polyline_deviation
 from gearkit.errors import SpecError
 
 #: exact geometry against closed forms (mm, relative to a module of 1)

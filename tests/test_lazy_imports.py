@@ -1,7 +1,7 @@
 """The command line imports only what the command runs: the lazy parser loads only the module of
 the command given, and the paths of ``gear`` (STL and SVG), ``check``, ``cycloidal-drive`` and
 ``novikov --no-mesh`` never import scipy (the kernel has its own root finder, bounded minimiser and
-nearest-point search, :mod:`gearkit.roots` and :func:`gearkit.accuracy.nearest`).
+nearest-point search, :mod:`gearkit.roots` and :func:`gearkit.distances.nearest`).
 
 Each command runs in a fresh interpreter (an import, once made, stays for the whole process).
 """

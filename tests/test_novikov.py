@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from gearkit.accuracy import distances_to_polyline
+from gearkit.distances import distances_to_polyline
 from gearkit.errors import SpecError
 from gearkit.families.novikov import NovikovGearSpec, NovikovPairSpec, tooth_profile
 from gearkit.families.novikov.presets import rack_system

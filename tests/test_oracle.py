@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from gearkit.accuracy import distances_to_polyline
+from gearkit.distances import distances_to_polyline
 from gearkit.families.involute import GearSpec, tooth_profile
 from gearkit.oracles.involute import swept_rack_gear, swept_shaper_gear, tooth_zone_points
 from gearkit.families.involute import ShaperCutter

@@ -14,8 +14,8 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from gearkit.accuracy import distances_to_polyline
 from gearkit.curves import polar_from_y
+from gearkit.distances import distances_to_polyline
 from gearkit.errors import SpecError
 
 #: examples per property: enough to roam the space, few enough to keep the file at seconds

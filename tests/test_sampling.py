@@ -13,8 +13,9 @@ import math
 import numpy as np
 import pytest
 
-from gearkit.accuracy import PLACE_AT, adaptive_sample, distances_to_polyline, place_by_curvature
+from gearkit.accuracy import PLACE_AT, adaptive_sample, place_by_curvature
 from gearkit.bench.vertices import VERTEX_TARGET, dense_exact, fewest_vertices
+from gearkit.distances import distances_to_polyline
 from gearkit.errors import GeometryError
 
 #: tolerances, in modules (or eccentricities), the families are sampled at

@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from gearkit.accuracy import distances_to_polyline
+from gearkit.distances import distances_to_polyline
 from gearkit.errors import GeometryError, SpecError
 from gearkit.families.involute import GearSpec, tooth_profile
 from gearkit.families.involute.rack import RackSpec, rack_profile

@@ -15,8 +15,8 @@ import zipfile
 import numpy as np
 import pytest
 
-from gearkit.accuracy import distances_to_polyline
 from gearkit.cli import main
+from gearkit.distances import distances_to_polyline
 from gearkit.errors import SpecError
 from gearkit.families.involute import GearSpec, tooth_profile
 from gearkit.solids import SolidSpec, gear_solid, write_mesh

@@ -15,8 +15,8 @@ import shutil
 import numpy as np
 import pytest
 
-from gearkit.accuracy import distances_to_polyline
 from gearkit.cli import main
+from gearkit.distances import distances_to_polyline
 from gearkit.errors import SpecError
 from gearkit.pair import PairSpec
 from gearkit.view import blocking_view, drive_view, pair_view, render, write_page

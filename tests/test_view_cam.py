@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from gearkit.accuracy import distances_to_polyline
+from gearkit.distances import distances_to_polyline
 from gearkit.families.cam import CamSpec, MotionProgram, cam_profile
 from gearkit.view.cam import cam_view
 

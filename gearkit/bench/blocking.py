@@ -141,7 +141,7 @@ def scan_gap(contour, scans: int = SCANS, samples: int = SCAN_SAMPLES):
     >>> d <= 1e-4
     True
     """
-    from gearkit.accuracy import distances_to_polyline
+    from gearkit.distances import distances_to_polyline
     from gearkit.blocking.arrays import evaluator
     from gearkit.blocking.brackets import segment_roots
 
@@ -182,7 +182,7 @@ def scan_gap(contour, scans: int = SCANS, samples: int = SCAN_SAMPLES):
 
 def _far(points, polylines) -> float:
     """Largest distance from ``points`` (n, 2) to the nearest of ``polylines`` (inf when there are none)."""
-    from gearkit.accuracy import distances_to_polyline
+    from gearkit.distances import distances_to_polyline
 
     if not len(points):
         return 0.0
@@ -200,7 +200,7 @@ def _probe_points(polylines):
 
 def _duplicates(polylines, tol: float) -> int:
     """Components most of whose vertices lie within ``2 tol`` of another component (traced twice)."""
-    from gearkit.accuracy import distances_to_polyline
+    from gearkit.distances import distances_to_polyline
 
     count = 0
     for i, q in enumerate(polylines):

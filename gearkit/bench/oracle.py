@@ -9,8 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from gearkit.accuracy import distances_to_polyline
 from gearkit.bench.timing import median_time
+from gearkit.distances import distances_to_polyline
 
 #: roll steps of the oracle, in modules
 STEPS_QUICK = (0.16, 0.08, 0.04)

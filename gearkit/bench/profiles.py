@@ -3,7 +3,7 @@
 The achieved deviation is measured **independently** of the sampler: every exact piece of
 tooth 1's boundary (``ToothProfile.half.pieces``, mirrored for the left flank, rotated to
 where tooth 1 sits) is evaluated at many parameters, and the largest distance from those
-exact points to the gear's output outline is taken (:func:`gearkit.accuracy.distances_to_polyline`).
+exact points to the gear's output outline is taken (:func:`gearkit.distances.distances_to_polyline`).
 The sampler's own number is not used.
 """
 from __future__ import annotations
@@ -12,8 +12,8 @@ import math
 
 import numpy as np
 
-from gearkit.accuracy import distances_to_polyline
 from gearkit.bench.timing import median_time
+from gearkit.distances import distances_to_polyline
 
 #: kernel overhead target: the z = 40 outline at tol 1e-6 m over numpy's closed form for as many points
 OVERHEAD_TARGET = 3.0

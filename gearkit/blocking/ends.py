@@ -236,7 +236,7 @@ def _collides(i, r, L, front, active, recs, joins, close) -> bool:
     """True when front ``i``'s next point ``r`` lies within ``close`` of a line of the same
     function traced already (another record): the front has run onto it. It joins that line's
     nearest open end within ``2 L`` (heading back), or stops."""
-    from gearkit.accuracy import distances_to_polyline
+    from gearkit.distances import distances_to_polyline
 
     f = front[i]
     k = recs[f[0]][0]

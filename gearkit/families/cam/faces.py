@@ -85,7 +85,7 @@ def face_depth(motion, tool, start: float, samples: int = 65536):
 def roller_depth(pitch_points, radius: float, start: float, samples: int = 65536):
     """How deep (mm) points lie inside the region the roller sweeps: ``R_p`` less their distance to
     the pitch curve (``pitch_points(phi)``, sampled at ``samples`` cam angles over one turn)."""
-    from gearkit.accuracy import distances_to_polyline
+    from gearkit.distances import distances_to_polyline
 
     pitch = pitch_points(start + np.linspace(0.0, 2.0 * math.pi, samples, endpoint=False))
     return lambda points: radius - distances_to_polyline(points, pitch, closed=True)

@@ -20,7 +20,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from gearkit.accuracy import nearest
+from gearkit.distances import nearest
 from gearkit.families.cycloidal.disc import disc_profile
 from gearkit.families.cycloidal.drive import DriveSpec, frame_phase, turn_polar
 from gearkit.values import frozen

@@ -23,7 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from gearkit.accuracy import distances_to_polyline
+from gearkit.distances import distances_to_polyline
 from gearkit.errors import GeometryError
 from gearkit.families.novikov.gear import tooth_profile
 from gearkit.families.novikov.pair import NovikovPairSpec, novikov_pair_geometry
