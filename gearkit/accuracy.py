@@ -13,7 +13,7 @@ import math
 import numpy as np
 
 from gearkit.chords import chord_distance as _chord_deviation
-from gearkit.chords import angle_parts, interval_bounds
+from gearkit.chords import angle_parts, interval_bounds, round_off
 from gearkit.errors import check_fields, is_real, require
 from gearkit.values import frozen
 
@@ -80,13 +80,15 @@ PROBE_MARGIN = 0.9
 UNEVEN = 2.5
 
 
-def _probe(evaluate, w, pts, tol):
-    """Quarter-point probes of every interval: (probes, probe points, chord deviation, uneven)."""
-    lo, hi = w[:-1], w[1:]
+def _probe(evaluate, w, pts, tol, rows=None):
+    """Quarter-point probes of the intervals ``rows`` (vertex ``i`` to ``i + 1``; default all): (probes,
+    probe points, chord deviation, uneven), each interval measured on its own."""
+    rows = np.arange(len(w) - 1) if rows is None else rows
+    lo, hi, a, b = w[rows], w[rows + 1], pts[rows, None, :], pts[rows + 1, None, :]
     probes = lo[:, None] + (hi - lo)[:, None] * _PROBES
     q = evaluate(probes.ravel()).reshape(len(lo), len(_PROBES), 2)
-    dev = _chord_deviation(pts[:-1, None, :], pts[1:, None, :], q).max(axis=1)
-    walk = np.concatenate([pts[:-1, None, :], q, pts[1:, None, :]], axis=1)
+    dev = _chord_deviation(a, b, q).max(axis=1)
+    walk = np.concatenate([a, q, b], axis=1)
     legs = np.linalg.norm(np.diff(walk, axis=1), axis=-1)
     length = legs.sum(axis=1)
     speed = legs / _WIDTHS  # mean speed of each leg, against the interval's mean speed (its length)
@@ -235,6 +237,17 @@ def place_by_curvature(w, points, tol: float) -> np.ndarray:
     return placed[np.concatenate([[True], np.diff(placed) > 0.0])]  # sorted already (np.unique imports numpy.ma)
 
 
+def _carry(n, rows, fresh, at, old):
+    """The measurements of ``n`` intervals: ``fresh`` ones of the intervals ``rows``, the ``old`` ones
+    of the intervals ``at`` (unchanged since they were measured)."""
+    out = []
+    for f, o in zip(fresh, old):
+        both = np.empty((n,) + f.shape[1:], dtype=f.dtype)
+        both[rows], both[at] = f, o
+        out.append(both)
+    return tuple(out)
+
+
 #: a parameter interval this short (relative) holds no curve points but its ends and probes
 ATOM = 1e-13
 
@@ -242,8 +255,9 @@ ATOM = 1e-13
 def refine_sample(evaluate, w, pts, tol: float, max_rounds: int = 60, max_split: int = 16, bound: bool = False):
     """Split the intervals of a sampling ``(w, pts)`` of an exact curve until every chord is within ``tol``.
 
-    Each round probes every interval at its quarter points and eighths at both ends. An interval
-    whose chord deviates by ``dev > PROBE_MARGIN tol`` is split into
+    Each round probes every interval at its quarter points and eighths at both ends (an interval no
+    point was added to keeps the probes and measures of the round before: they depend on its ends
+    alone). An interval whose chord deviates by ``dev > PROBE_MARGIN tol`` is split into
     ``k = ceil(1.1 sqrt(dev / (PROBE_MARGIN tol)))`` equal parameter parts (at most
     ``max_split``): a chord's deviation shrinks as the square of its length, so one round usually
     settles an interval and the rounds (each a call of ``evaluate``, the cost that dominates for
@@ -269,10 +283,18 @@ def refine_sample(evaluate, w, pts, tol: float, max_rounds: int = 60, max_split:
         margin = 1.0
     else:
         margin = PROBE_MARGIN
+    todo, kept = np.arange(len(w) - 1), None  # the intervals to probe: all, then the ones a round made
     for _ in range(max_rounds):
         lo, hi = w[:-1], w[1:]
+        if not len(todo):
+            measured = kept[1]
+        else:
+            measured = (interval_bounds(turning, w, pts, tan, parts, tol, _PROBES, todo) if bound
+                        else _probe(evaluate, w, pts, tol, todo))
+            measured = measured if kept is None else _carry(len(lo), todo, measured, *kept)
         if bound:
-            probes, q, tq, pq, dev = interval_bounds(turning, w, pts, tan, parts, tol, _PROBES)
+            probes, q, tq, pq, dev = measured
+            dev = dev + round_off(pts)
             uneven = ~np.isfinite(dev)
             # an interval below the parameter's resolution has no points but its ends and probes: a curve
             # that jumps there (an exact solution switching roots at the very end of its range) is
@@ -282,7 +304,7 @@ def refine_sample(evaluate, w, pts, tol: float, max_rounds: int = 60, max_split:
                 dev[atom] = _chord_deviation(pts[:-1][atom, None], pts[1:][atom, None], q[atom]).max(axis=1)
                 uneven &= ~atom
         else:
-            probes, q, dev, uneven = _probe(evaluate, w, pts, tol)
+            probes, q, dev, uneven = measured
         bad = (dev > margin * tol) & ~uneven
         if not (bad.any() or uneven.any()):
             return w, pts, float(dev.max(initial=0.0)), probes, q
@@ -310,14 +332,23 @@ def refine_sample(evaluate, w, pts, tol: float, max_rounds: int = 60, max_split:
                 new_a.append(ae)
             else:
                 new_p.append(evaluate(extra))
+        old = w
         w = np.concatenate([w] + new_w)
         pts = np.concatenate([pts] + new_p)
         w, first = np.unique(w, return_index=True)  # sorted; an interval too short to split stays whole
-        pts = pts[first]
+        pts = pts[first]  # an old vertex keeps its point (the first of equal parameters)
         if bound:
             tan, parts = np.concatenate([tan] + new_t)[first], np.concatenate([parts] + new_a)[first]
+        # an interval with the same two ends is measured the same: only the new ones are probed again
+        at = np.searchsorted(w, old)
+        same = np.diff(at) == 1
+        kept = at[:-1][same], tuple(m[same] for m in measured)
+        fresh = np.ones(len(w) - 1, dtype=bool)
+        fresh[kept[0]] = False
+        todo = np.flatnonzero(fresh)
     if bound:
         probes, q, _, _, dev = interval_bounds(turning, w, pts, tan, parts, tol, _PROBES)
+        dev = dev + round_off(pts)
         atom = ~np.isfinite(dev) & (np.diff(w) <= ATOM * np.maximum(np.abs(w[:-1]), np.abs(w[1:])).clip(1.0))
         dev[atom] = _chord_deviation(pts[:-1][atom, None], pts[1:][atom, None], q[atom]).max(axis=1)
     else:

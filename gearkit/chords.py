@@ -31,7 +31,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["angle_parts", "chord_distance", "interval_bounds", "leg_bound"]
+__all__ = ["angle_parts", "chord_distance", "interval_bounds", "leg_bound", "round_off"]
 
 #: a leg's parts must reproduce its exact end tangent to this angle (rad): round-off of the parts
 CONSISTENT = 1e-9
@@ -128,22 +128,30 @@ def _walk_bound(rows, pts, tan, parts, q, tq, pq):
                      pts[rows, None], pts[rows + 1, None]).max(axis=1)
 
 
-def interval_bounds(turning, w, pts, tan, parts, tol, fractions):
+def interval_bounds(turning, w, pts, tan, parts, tol, fractions, rows=None):
     """Probes of a sampling's intervals (at ``fractions`` of each) with their tangents and angle parts,
     and each interval's proven deviation bound: the largest :func:`leg_bound` of the legs between its ends
-    and probes (``inf``: not proven), plus ``ROUND_OFF`` of the largest coordinate. ``turning`` as
-    :func:`angle_parts` returns it; ``pts``, ``tan``, ``parts`` are its values at the vertices ``w``.
+    and probes (``inf``: not proven). ``turning`` as :func:`angle_parts` returns it; ``pts``, ``tan``,
+    ``parts`` are its values at the vertices ``w``; ``rows`` the intervals to bound (vertex ``i`` to
+    ``i + 1``; default all), each bounded on its own. The bound leaves out the round-off of the exact
+    points, :func:`round_off` of the sampling (it grows with the sampling's largest coordinate).
     Where the parts turn against each other (an inflection) a leg's range is wider than its turning:
     an interval bounded just above ``tol`` is bounded again on ``FINE`` legs (more proof, not more
     vertices)."""
-    lo, hi = w[:-1], w[1:]
+    rows = np.arange(len(w) - 1) if rows is None else rows
+    lo, hi = w[rows], w[rows + 1]
     probes = lo[:, None] + (hi - lo)[:, None] * fractions
     q, tq, pq = turning(probes.ravel())
-    bound = _walk_bound(np.arange(len(lo)), pts, tan, parts, q, tq, pq)
+    bound = _walk_bound(rows, pts, tan, parts, q, tq, pq)
     near = np.flatnonzero((bound > tol) & (bound < RETRY * tol))
     if len(near):
         fine = lo[near, None] + (hi - lo)[near, None] * np.linspace(0.0, 1.0, FINE + 1)[1:-1]
-        bound[near] = np.minimum(bound[near], _walk_bound(near, pts, tan, parts, *turning(fine.ravel())))
+        bound[near] = np.minimum(bound[near], _walk_bound(rows[near], pts, tan, parts, *turning(fine.ravel())))
     m, k = len(lo), parts.shape[-1]
-    shaped = q.reshape(m, -1, 2), tq.reshape(m, -1, 2), pq.reshape(m, -1, k)
-    return (probes,) + shaped + (bound + ROUND_OFF * float(np.abs(pts).max(initial=0.0)),)
+    return (probes, q.reshape(m, -1, 2), tq.reshape(m, -1, 2), pq.reshape(m, -1, k), bound)
+
+
+def round_off(pts) -> float:
+    """The allowance a proven bound adds for the round-off of the exact points ``pts``: ``ROUND_OFF``
+    of their largest coordinate."""
+    return ROUND_OFF * float(np.abs(pts).max(initial=0.0))

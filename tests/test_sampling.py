@@ -217,3 +217,47 @@ def test_leg_bound_holds_across_an_inflection_and_refuses_inconsistent_parts():
             assert abs(parts).sum() >= 0.5 * np.pi - 1e-12
         wrong = leg_bound(curve[i], curve[j], tan[i], tan[j], parts + np.array([0.1, 0.0]), curve[k], curve[m])
         assert not np.isfinite(wrong) or abs(parts).sum() < 1e-9
+
+
+def _bump(w):
+    """A bump of height 0.1 the parameter crosses within a few thousandths near w = 0.053."""
+    t = np.tanh((w - 0.053) / 0.001)
+    return np.stack([t + w, 0.1 * (1 - t * t)], -1)
+
+
+@pytest.mark.parametrize("bound", [False, True], ids=["probed", "proven"])
+def test_refinement_probes_each_interval_once_and_carries_what_a_fresh_probe_gives(monkeypatch, bound):
+    """A round probes only the intervals the round before made (an interval's probes and measures
+    depend on its two ends alone): over all rounds no interval is probed twice, and the probes the
+    sampling ends with are, to the last bit, those a fresh probe of its final intervals gives. The
+    proven path on a flank of the cycloid disc (its pin walk ends in a square root: many rounds),
+    the probed one on a narrow bump."""
+    import gearkit.accuracy as acc
+    from gearkit.chords import angle_parts
+    from gearkit.families import cycloidal as cyc
+
+    name, at = ("interval_bounds", 7) if bound else ("_probe", 4)  # the measure and its ``rows`` argument
+    measure = getattr(acc, name)
+    probed = []
+
+    def spy(*args, **kwargs):
+        w = args[1]
+        rows = args[at] if len(args) > at else kwargs.get("rows")
+        rows = np.arange(len(w) - 1) if rows is None else rows
+        probed.extend(zip(w[rows].tolist(), w[rows + 1].tolist()))
+        return measure(*args, **kwargs)
+
+    monkeypatch.setattr(acc, name, spy)
+    curve = cyc.disc_profile(cyc.DriveSpec(12, 11, 40.0, 3.0, 1.5)).half.pieces[0] if bound else _bump
+    tol = 1e-3 * (1.5 if bound else 1.0)
+    w0 = np.linspace(0.0, 1.0, 5)
+    w, pts, achieved, probes, q = acc.refine_sample(curve, w0, None if bound else curve(w0), tol, bound=bound)
+    assert bool(achieved <= tol)
+    distinct = len(set(probed))
+    assert len(probed) == distinct, f"{len(probed) - distinct} intervals probed again"
+    assert distinct > len(w) - 1  # several rounds: intervals of earlier rounds were split and left alone
+    if bound:
+        fresh = measure(angle_parts(curve.turning), w, *angle_parts(curve.turning)(w), tol, acc._PROBES)
+    else:
+        fresh = measure(curve, w, pts, tol)
+    assert np.array_equal(fresh[0], probes) and np.array_equal(fresh[1], q)
