@@ -22,7 +22,7 @@ import math
 import numpy as np
 
 from gearkit.accuracy import adaptive_sample
-from gearkit.curves import bracketed_root, polar_from_y, polyline_self_intersections
+from gearkit.curves import bracketed_root, polar_from_y, polyline_self_intersections, zoom_crossing
 from gearkit.errors import GeometryError
 from gearkit.values import frozen
 
@@ -67,12 +67,10 @@ class Piece:
 
 
 def _refine_crossing(fa, fb, wa, wb, bounds_a, bounds_b):
-    """Damped Newton on ``fa(wa) = fb(wb)`` (exact curves) within the given parameter windows.
-
-    Central differences over a fixed parameter step (a step scaled to a tiny window drowns the
-    derivative in rounding near a cusp); a step that does not reduce the gap is halved, so the
-    iteration cannot jump to the nearly coincident branch on the other side of a cusp.
-    """
+    """Damped Newton on ``fa(wa) = fb(wb)`` (exact curves) within the given windows; where it crept (a gap far
+    from linear: a small crossing angle next to a cusp), zooming polylines (:func:`~gearkit.curves.zoom_crossing`).
+    Central differences over a fixed step (one scaled to a tiny window drowns the derivative in rounding near a
+    cusp); a step that does not reduce the gap is halved, so it cannot jump to the branch past a cusp."""
     h = 1e-8
     x = np.array([wa, wb], dtype=float)
     lo = np.array([bounds_a[0], bounds_b[0]])
@@ -106,6 +104,8 @@ def _refine_crossing(fa, fb, wa, wb, bounds_a, bounds_b):
         scale = 1.0 + float(np.abs(on_a).max())
         if moved < 1e-16 or np.linalg.norm(f) <= 2e-16 * scale:
             break
+    if np.linalg.norm(f) > 1e-13 * (1.0 + float(np.abs(fa(x[:1])).max())):
+        x = np.array(zoom_crossing(fa, fb, x[0], x[1], bounds_a, bounds_b)[:2])
     return float(x[0]), float(x[1])
 
 
