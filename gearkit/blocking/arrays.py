@@ -49,17 +49,18 @@ def _form_roll(field, which, x, rho_l, rb):
     fit = field.form_interpolant(which) if field.x_ranges is not None else None
     idx = np.flatnonzero(under)
     xs = x[idx]
-    d = np.full(xs.shape, np.nan)
-    if fit is not None:
+    r = np.full(xs.shape, np.nan)
+    if fit is not None:  # the interpolant's roll length itself (read off d_F it loses 2e-7 mm near zero)
         inside = (xs >= fit[0]) & (xs <= field.x_min[which - 1])
-        d[inside] = fit[3](xs[inside])
+        r[inside] = fit[5](xs[inside])
         inside |= xs < fit[4]  # below the shifts where the generated gear has a tooth: NaN
+        r[xs < fit[4]] = np.nan
     else:
         inside = np.zeros(xs.shape, bool)
     for k in np.flatnonzero(~inside):  # outside the interpolant: the generated gear itself
-        d[k] = field.form_diameter(which, float(xs[k]), exact=True)
-    with np.errstate(invalid="ignore"):
-        rho[idx] = np.sqrt(np.maximum((d / 2) ** 2 - rb ** 2, 0.0))
+        d = field.form_diameter(which, float(xs[k]), exact=True)
+        r[k] = math.sqrt(max((d / 2) ** 2 - rb ** 2, 0.0)) if d is not None and not math.isnan(d) else math.nan
+    rho[idx] = r
     return rho
 
 

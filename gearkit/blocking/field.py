@@ -282,13 +282,14 @@ class PairField:
         return self._forms[key]
 
     def form_interpolant(self, which: int):
-        """(lo, hi, error, d_F(x), floor) interpolating the generated form circle of an undercut gear.
+        """(lo, hi, error, d_F(x), floor, rho_F(x)) interpolating the generated form circle of an undercut gear.
 
         Chebyshev interpolation, ``FORM_NODES`` nodes, of the roll length rho_F(x) over the undercut
         part ``[lo, hi]`` of ``x_ranges[which - 1]`` that ends ``FORM_GAP`` below the undercut onset
         (closer to it the generated form circle is not smooth); ``error`` is the largest deviation
         (mm) from the generated gears at ``FORM_CHECKS`` test shifts; below ``floor`` the generated gear
-        has no tooth (``-inf`` when it has one down to ``lo``). None without undercut.
+        has no tooth (``-inf`` when it has one down to ``lo``); ``rho_F(x)`` is the roll length itself (mm, arrays:
+        read off ``d_F`` it would lose ``sqrt(r_b ulp)``, 2e-7 mm, beside the onset). None without undercut.
         """
         if which in self._fits:
             return self._fits[which]
@@ -325,17 +326,19 @@ class PairField:
 
             r_hi = float(np.polynomial.chebyshev.chebval(1.0, coef))
 
-            def interp(x, _c=coef, _lo=lo, _hi=hi, _rb=rb, _x0=x_min, _r_hi=r_hi):
-                # float or array; the last FORM_GAP: straight to rho_F = 0 at the onset
+            def interp_roll(x, _c=coef, _lo=lo, _hi=hi, _x0=x_min, _r_hi=r_hi):
+                # array; the last FORM_GAP: straight to rho_F = 0 at the onset
                 xa = np.asarray(x, dtype=float)
-                r = np.where(xa > _hi, _r_hi * (_x0 - xa) / (_x0 - _hi),
-                             np.polynomial.chebyshev.chebval((2 * xa - _lo - _hi) / (_hi - _lo), _c))
-                d = 2.0 * np.hypot(_rb, r)
+                return np.where(xa > _hi, _r_hi * (_x0 - xa) / (_x0 - _hi),
+                                np.polynomial.chebyshev.chebval((2 * xa - _lo - _hi) / (_hi - _lo), _c))
+
+            def interp(x, _rb=rb):
+                d = 2.0 * np.hypot(_rb, interp_roll(x))
                 return float(d) if d.ndim == 0 else d
 
             tests = lo + (hi - lo) * (np.arange(FORM_CHECKS) + 0.5) / FORM_CHECKS
             err = max(abs(interp(x) - self.form_diameter(which, float(x))) / 2 for x in tests)
-            fit = (lo, hi, err, interp, floor)
+            fit = (lo, hi, err, interp, floor, interp_roll)
         self._fits[which] = fit
         return fit
 
