@@ -13,6 +13,7 @@ from scipy.optimize import brentq
 
 from gearkit.blocking import blocking_contour
 from gearkit.blocking.arrays import margins
+from gearkit.blocking.onsets import onset_vertices, undercut_onsets
 from gearkit.pair import PairSpec
 
 TOL = 1e-9  #: the finest row of the ladder, where the gap beside the onset showed (7.8e-9)
@@ -30,6 +31,15 @@ def _distance(q, poly) -> float:
     a, b = poly[:-1], poly[1:]
     t = np.clip(np.einsum("ij,ij->i", q - a, b - a) / np.einsum("ij,ij->i", b - a, b - a), 0.0, 1.0)
     return float(np.hypot(*(a + t[:, None] * (b - a) - q).T).min())
+
+
+def test_onsets_are_the_closed_form_x_min():
+    from gearkit.blocking.field import PairField
+
+    onsets = undercut_onsets(PairField(PairSpec(12, 30, 1.0)))
+    assert [a for a, _ in onsets] == [0, 1]
+    assert onsets[0][1] == pytest.approx(_x_min(12), abs=1e-12)
+    assert onsets[1][1] == pytest.approx(_x_min(30), abs=1e-12)
 
 
 def test_interference_2_within_twice_tol_across_the_undercut_onset():
@@ -71,3 +81,13 @@ def test_margin_is_smooth_on_each_side_of_the_onset():
                               xtol=ROOT_TOL) for v in x2])
         fit = np.polyfit(x2 - x_min2, x1, 1)
         assert np.abs(np.polyval(fit, x2 - x_min2) - x1).max() < 1e-12
+
+
+def test_onset_vertex_is_the_corner():
+    def F(p, k):
+        return p[:, 1] - np.abs(p[:, 0] - 0.3)  # a corner at x1 = 0.3
+    lines = [(0, np.array([[-1.0, 1.3], [0.0, 0.3], [1.0, 0.7]]), np.ones(3))]
+    out = onset_vertices(F, lines, [(0, 0.3)], {0}, 1e-13)
+    assert out[0][1][2] == pytest.approx([0.3, 0.0], abs=1e-12)
+    assert len(out[0][1]) == 4
+    assert onset_vertices(F, lines, [(0, 0.3)], set(), 1e-13)[0][1].shape == (3, 2)  # not a kinked curve

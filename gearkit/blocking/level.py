@@ -30,6 +30,7 @@ from gearkit.blocking.brackets import NearestBracket, segment_roots
 from gearkit.blocking.corners import corner_splits
 from gearkit.blocking.ends import extend_ends
 from gearkit.blocking.grid import bridge_pieces, edge_nodes
+from gearkit.blocking.onsets import onset_vertices
 
 __all__ = ["zero_lines", "densify"]
 
@@ -54,12 +55,13 @@ JUMP_FALL = 0.5  #: ... and |F| there above this fraction of the smaller |F| at 
 #: solver keeps the better end: a real zero is far below it at any tol, a pole or a jump is not)
 
 
-def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), kinked=()) -> list:
+def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), kinked=(), onsets=((), ())) -> list:
     """Every component of ``F_k = 0`` seen by the grids ``grids[k] = (xs, ys, values)`` (``values[j, i]``
     at ``(xs[i], ys[j])``, NaN where undefined): a list (one entry per ``k``) of ``(n, 2)`` polylines
     within about ``1.25 tol`` of the zero set; a closed one repeats its first vertex last. A piece of
     one grid cell that does not cross the grid's inner frame (the window of a grid padded by one ring)
-    is dropped: it ends on both sides beside undefined nodes."""
+    is dropped: it ends on both sides beside undefined nodes. ``onsets``: ``(((axis, x), ...), curves)``,
+    lines ``x_axis = x`` where the curves listed have a kink (:mod:`~gearkit.blocking.onsets`)."""
     import contourpy
 
     raw, owner, edges = [], [], []
@@ -113,9 +115,11 @@ def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), 
     lines = bridge_pieces(lines, grids, measure, BRIDGE_CELLS, BRIDGE_COS)
     # a run of one chord off the frame, bridged to none: a speck (see above)
     lines = [(k, q, g) for k, q, g in lines if len(q) >= 3 or k in measure or _on_frame(q, *grids[k][:2])]
-    lines = densify(F, lines, tol, max_step, measure, kinked, slopes=True)
+    vtol = VERTEX_FRACTION * tol
+    lines = densify(F, onset_vertices(F, lines, *onsets, vtol), tol, max_step, measure, kinked, slopes=True)
     # lines the grid cut short of their ends (a saddle): carried on to them (ends)
-    lines = densify(F, extend_ends(F, lines, grids, tol, measure), tol, max_step, measure, kinked)
+    lines = extend_ends(F, lines, grids, tol, measure)
+    lines = densify(F, onset_vertices(F, lines, *onsets, vtol), tol, max_step, measure, kinked)
     for k, q in (ln[:2] for ln in lines):
         out[k].append(q)
     return out

@@ -24,6 +24,7 @@ from gearkit.blocking.arrays import margins as array_margins
 from gearkit.blocking.field import PairField
 from gearkit.blocking.grid import refine_grid, sign_cells
 from gearkit.blocking.level import zero_lines
+from gearkit.blocking.onsets import undercut_onsets
 from gearkit.blocking.region import best_point, orient_loops, pad, padded_grid
 from gearkit.progress import Progress
 
@@ -94,7 +95,10 @@ def trace(field: PairField, window, names, tol: float, max_step: float | None = 
                 curves.append((px, py, np.full_like(rv, -1.0)))
         kinked = [k for k, n in enumerate(names) if n.partition("=")[0] == "contact_ratio"]
         bar.update(2)
-        traced = zero_lines(F, curves, tol, max_step, measure=(len(ids) - 1,) if region else (), kinked=kinked)
+        # the form circles break their slope where a gear starts to undercut: so do the lines reading them
+        onsets = (undercut_onsets(field), {k for k, n in enumerate(ids) if not n.startswith("undercut.")})
+        traced = zero_lines(F, curves, tol, max_step, measure=(len(ids) - 1,) if region else (), kinked=kinked,
+                            onsets=onsets)
         bar.update(3)
         polygons = None
         if region:
