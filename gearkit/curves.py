@@ -61,15 +61,18 @@ def inv(alpha):
     if _is_scalar(alpha):  # plain-float fast path (pair formulas call this per point)
         return _inv_scalar(float(alpha))
     a = np.asarray(alpha, dtype=float)
-    small = np.abs(a) < _SERIES_LIMIT
-    a2 = a * a
-    series = np.zeros_like(a)
-    for c in reversed(_INV_SERIES):
-        series = series * a2 + c
-    series = series * a2 * a
+    if a.ndim == 0:
+        return _inv_scalar(float(a))
     with np.errstate(invalid="ignore"):
-        direct = np.tan(a) - a
-    out = np.where(small, series, direct)
+        out = np.tan(a) - a
+        small = np.abs(a) < _SERIES_LIMIT
+    if small.any():  # the series only where it is used (most calls have no small angle)
+        s = a[small]
+        s2 = s * s
+        series = np.zeros_like(s)
+        for c in reversed(_INV_SERIES):
+            series = series * s2 + c
+        out[small] = series * s2 * s
     return out if out.ndim else float(out)
 
 

@@ -158,7 +158,14 @@ class _Pair:
         self._tips = None
 
     def tip_thickness(self, which):
-        """Normal tip thickness s_an (mm) of gear ``which``."""
+        """Normal tip thickness s_an (mm) of gear ``which`` (computed once per gear: several lines read it)."""
+        if self._tips is None:
+            self._tips = {}
+        if which not in self._tips:
+            self._tips[which] = self._tip_thickness(which)
+        return self._tips[which]
+
+    def _tip_thickness(self, which):
         sec = self.sec
         z, t, ra, r, rb = ((self.z1, self.t1, self.ra1, self.r1, self.rb1) if which == 1 else
                            (self.z2, self.t2, self.ra2, self.r2, self.rb2))
