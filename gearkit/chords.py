@@ -46,22 +46,27 @@ def chord_distance(a, b, q):
     >>> float(chord_distance(np.zeros(2), np.array([2.0, 0.0]), np.array([1.0, 0.5])))
     0.5
     """
-    d = b - a
-    dd = np.einsum("...i,...i->...", d, d)
+    a, b, q = np.asarray(a, dtype=float), np.asarray(b, dtype=float), np.asarray(q, dtype=float)
+    return _distance(a[..., 0], a[..., 1], b[..., 0] - a[..., 0], b[..., 1] - a[..., 1], q[..., 0], q[..., 1])
+
+
+def _distance(ax, ay, dx, dy, qx, qy):
+    """:func:`chord_distance` on coordinates: points ``(qx, qy)`` from the segments from ``(ax, ay)``
+    along ``(dx, dy)``."""
+    dd = dx * dx + dy * dy
     with np.errstate(divide="ignore", invalid="ignore"):
-        t = np.clip(np.einsum("...i,...i->...", q - a, d) / dd, 0.0, 1.0)
+        t = np.clip(((qx - ax) * dx + (qy - ay) * dy) / dd, 0.0, 1.0)
     t = np.where(dd > 0, t, 0.0)
-    foot = a + t[..., None] * d
-    return np.linalg.norm(q - foot, axis=-1)
+    fx, fy = qx - (ax + t * dx), qy - (ay + t * dy)
+    return np.sqrt(fx * fx + fy * fy)
 
 
-def _turn(v, angle):
-    c, s = np.cos(angle), np.sin(angle)
-    return np.stack([c * v[..., 0] - s * v[..., 1], s * v[..., 0] + c * v[..., 1]], -1)
-
-
-def _cross(u, v):
-    return u[..., 0] * v[..., 1] - u[..., 1] * v[..., 0]
+def _sum_parts(x):
+    """The sum over the last axis (the parts), added in order."""
+    total = x[..., 0]
+    for j in range(1, x.shape[-1]):
+        total = total + x[..., j]
+    return total
 
 
 def leg_bound(a, b, ta, tb, dparts, chord_a, chord_b):
@@ -72,31 +77,49 @@ def leg_bound(a, b, ta, tb, dparts, chord_a, chord_b):
     ``a`` to ``b``. Returns the largest distance of the leg's parallelogram's corners from the segment
     (see the module), or ``inf`` where the leg is not bounded so (to be split). All arrays broadcast.
     """
-    lo = np.minimum(dparts, 0.0).sum(axis=-1)
-    hi = np.maximum(dparts, 0.0).sum(axis=-1)
+    a, b, chord_a, chord_b = (np.asarray(v, dtype=float) for v in (a, b, chord_a, chord_b))
+    cx, cy = chord_a[..., 0], chord_a[..., 1]
+    dx, dy = chord_b[..., 0] - cx, chord_b[..., 1] - cy
+    ends = np.maximum(_distance(cx, cy, dx, dy, a[..., 0], a[..., 1]), _distance(cx, cy, dx, dy, b[..., 0], b[..., 1]))
+    return _legs(a[..., 0], a[..., 1], b[..., 0], b[..., 1], np.asarray(ta, dtype=float), np.asarray(tb, dtype=float),
+                 np.asarray(dparts, dtype=float), (cx, cy, dx, dy), ends)
+
+
+def _legs(ax, ay, bx, by, ta, tb, dparts, chord, ends):
+    """:func:`leg_bound` on coordinates, given the larger distance ``ends`` of each leg's two ends from
+    its chord ``(x, y, dx, dy)`` (a walk shares them between its legs)."""
+    lo = _sum_parts(np.minimum(dparts, 0.0))
+    hi = _sum_parts(np.maximum(dparts, 0.0))
     width = hi - lo
-    c = b - a
-    d_lo, d_hi = _turn(ta, lo), _turn(ta, hi)
-    mid = _turn(ta, 0.5 * (lo + hi))
-    sense = np.where(np.einsum("...i,...i->...", c, mid) < 0.0, -1.0, 1.0)[..., None]
-    d_lo, d_hi = sense * d_lo, sense * d_hi
+    tax, tay = ta[..., 0], ta[..., 1]
+    cx, cy = bx - ax, by - ay
+    cos, sin = np.cos(lo), np.sin(lo)
+    lox, loy = cos * tax - sin * tay, sin * tax + cos * tay
+    cos, sin = np.cos(hi), np.sin(hi)
+    hix, hiy = cos * tax - sin * tay, sin * tax + cos * tay
+    half = 0.5 * (lo + hi)
+    cos, sin = np.cos(half), np.sin(half)
+    along_mid = cx * (cos * tax - sin * tay) + cy * (sin * tax + cos * tay)  # the chord on the range's middle
+    sense = np.where(along_mid < 0.0, -1.0, 1.0)
+    lox, loy, hix, hiy = sense * lox, sense * loy, sense * hix, sense * hiy
     swing = np.sin(width)  # cross(d_lo, d_hi)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        along_lo = np.where(swing > 0, _cross(c, d_hi) / swing, 0.0)
-        along_hi = np.where(swing > 0, _cross(d_lo, c) / swing, 0.0)
-    length = np.linalg.norm(c, axis=-1)
+        along_lo = np.where(swing > 0, (cx * hiy - cy * hix) / swing, 0.0)
+        along_hi = np.where(swing > 0, (lox * cy - loy * cx) / swing, 0.0)
+    length = np.sqrt(cx * cx + cy * cy)
     slack = 1e-12 * length
-    ends = np.maximum(chord_distance(chord_a, chord_b, a), chord_distance(chord_a, chord_b, b))
-    corners = np.maximum(chord_distance(chord_a, chord_b, a + along_lo[..., None] * d_lo),
-                         chord_distance(chord_a, chord_b, a + along_hi[..., None] * d_hi))
+    corners = np.maximum(_distance(*chord, ax + along_lo * lox, ay + along_lo * loy),
+                         _distance(*chord, ax + along_hi * hix, ay + along_hi * hiy))
     narrow = ends + 0.5 * length * np.tan(0.5 * np.minimum(width, 3.0))
     bound = np.where(width < NARROW, narrow, np.maximum(ends, corners))
     # the parts must reproduce the end tangent, the range stay below a half turn, the chord lie in the cone
-    drift = np.abs(_cross(_turn(ta, dparts.sum(axis=-1)), tb))
-    same = np.einsum("...i,...i->...", _turn(ta, dparts.sum(axis=-1)), tb) > 0.0
-    ok = (drift <= CONSISTENT) & same & (width < 0.5 * np.pi)
+    total = _sum_parts(dparts)
+    cos, sin = np.cos(total), np.sin(total)
+    ex, ey = cos * tax - sin * tay, sin * tax + cos * tay
+    tbx, tby = tb[..., 0], tb[..., 1]
+    ok = (np.abs(ex * tby - ey * tbx) <= CONSISTENT) & (ex * tbx + ey * tby > 0.0) & (width < 0.5 * np.pi)
     ok &= (width < NARROW) | ((along_lo >= -slack) & (along_hi >= -slack))
-    ok &= (width < NARROW) | ~(length > 0) | (np.einsum("...i,...i->...", c, mid) != 0.0)
+    ok &= (width < NARROW) | ~(length > 0) | (along_mid != 0.0)
     return np.where(ok & np.isfinite(bound), bound, np.inf)
 
 
@@ -120,12 +143,17 @@ def _walk_bound(rows, pts, tan, parts, q, tq, pq):
     probes ``q``, ``tq``, ``pq`` (points, tangents, parts; flat, the same number per interval)."""
     n = len(rows)
 
-    def walk(at, inner, width):
-        return np.concatenate([at[rows, None], inner.reshape(n, -1, width), at[rows + 1, None]], axis=1)
+    def walk(at, inner, width):  # (width, n, probes + 2): each coordinate contiguous
+        return np.concatenate([at[rows, None], inner.reshape(n, -1, width), at[rows + 1, None]],
+                              axis=1).transpose(2, 0, 1).copy()
 
-    p, t, a = walk(pts, q, 2), walk(tan, tq, 2), walk(parts, pq, parts.shape[-1])
-    return leg_bound(p[:, :-1], p[:, 1:], t[:, :-1], t[:, 1:], np.diff(a, axis=1),
-                     pts[rows, None], pts[rows + 1, None]).max(axis=1)
+    (px, py), t = walk(pts, q, 2), walk(tan, tq, 2).transpose(1, 2, 0)
+    dparts = np.diff(walk(parts, pq, parts.shape[-1]), axis=-1).transpose(1, 2, 0)
+    cx, cy = pts[rows, 0, None], pts[rows, 1, None]
+    chord = (cx, cy, pts[rows + 1, 0, None] - cx, pts[rows + 1, 1, None] - cy)
+    dist = _distance(*chord, px, py)  # each probe's distance, shared by the two legs it ends
+    return _legs(px[:, :-1], py[:, :-1], px[:, 1:], py[:, 1:], t[:, :-1], t[:, 1:], dparts, chord,
+                 np.maximum(dist[:, :-1], dist[:, 1:])).max(axis=1)
 
 
 def interval_bounds(turning, w, pts, tan, parts, tol, fractions, rows=None):
