@@ -146,7 +146,7 @@ def adaptive_sample(evaluate, tol: float, n_init: int = 5, max_rounds: int = 60,
     w : (k,) float64
     points : (k, 2) float64, on the curve
     achieved : float, mm
-        With ``fewest=True`` on a curve with ``turning(w)`` (every tooth piece: :func:`provable`), a
+        With ``fewest=True`` on a curve whose ``turning(w)`` gives angle parts (not None: every tooth piece), a
         *proven upper bound* of every chord's deviation (:mod:`gearkit.chords`: it holds if each
         angle part the curve gives is monotone along it and the curve has no cusp inside; round-off
         of the exact points aside); otherwise the largest deviation measured at the probes.
@@ -185,14 +185,11 @@ def adaptive_sample(evaluate, tol: float, n_init: int = 5, max_rounds: int = 60,
     w, pts, _, probes, q = refine_sample(evaluate, w, evaluate(w), PILOT * tol, max_rounds, max_split)
     w = place_by_curvature(np.concatenate([w, probes.ravel()]), np.concatenate([pts, q.reshape(-1, 2)]),
                            PLACE_AT * tol)
-    bound = provable(evaluate)
-    return refine_sample(evaluate, w, None if bound else evaluate(w), tol, max_rounds, max_split, bound)[:3]
-
-
-def provable(curve) -> bool:
-    """Whether ``curve`` gives the tangent angle parts that :func:`refine_sample` proves a bound with."""
-    turning = getattr(curve, "turning", None)
-    return turning is not None and turning(np.array([0.0, 1.0])) is not None
+    turning = getattr(evaluate, "turning", None)
+    turned = None if turning is None else turning(w)  # None: no angle parts to prove a bound with
+    if turned is None:
+        return refine_sample(evaluate, w, evaluate(w), tol, max_rounds, max_split)[:3]
+    return refine_sample(evaluate, w, None, tol, max_rounds, max_split, True, turned)[:3]
 
 
 def place_by_curvature(w, points, tol: float) -> np.ndarray:
@@ -252,7 +249,8 @@ def _carry(n, rows, fresh, at, old):
 ATOM = 1e-13
 
 
-def refine_sample(evaluate, w, pts, tol: float, max_rounds: int = 60, max_split: int = 16, bound: bool = False):
+def refine_sample(evaluate, w, pts, tol: float, max_rounds: int = 60, max_split: int = 16, bound: bool = False,
+                  turned=None):
     """Split the intervals of a sampling ``(w, pts)`` of an exact curve until every chord is within ``tol``.
 
     Each round probes every interval at its quarter points and eighths at both ends (an interval no
@@ -270,7 +268,8 @@ def refine_sample(evaluate, w, pts, tol: float, max_rounds: int = 60, max_split:
 
     ``bound=True`` (the curve has ``turning(w)``, see :mod:`gearkit.chords`): ``dev`` is instead each
     interval's *proven bound* over the legs between its probes (no margin: ``dev <= tol`` accepts), an
-    interval whose bound is not established is split at its probes, and ``achieved`` is a bound.
+    interval whose bound is not established is split at its probes, and ``achieved`` is a bound;
+    ``turned`` is ``evaluate.turning(w)`` where the caller has it already.
 
     Returns
     -------
@@ -279,7 +278,7 @@ def refine_sample(evaluate, w, pts, tol: float, max_rounds: int = 60, max_split:
     """
     if bound:
         turning = angle_parts(evaluate.turning)
-        pts, tan, parts = turning(w)
+        pts, tan, parts = turning(w) if turned is None else angle_parts(lambda _: turned)(w)
         margin = 1.0
     else:
         margin = PROBE_MARGIN

@@ -90,6 +90,10 @@ class Segment:
         -------
         points, tangents, normals : (n, 2) float64
         """
+        return self._evaluate(u)[:3]
+
+    def _evaluate(self, u):
+        """:meth:`evaluate`, and the primitive's parameter and (unnormalised) tangent it came from."""
         u = np.asarray(u, dtype=float)
         if self.reverse:
             u = 1.0 - u
@@ -110,7 +114,7 @@ class Segment:
         n = np.empty(shape)
         n[..., 0] = -t[..., 1]
         n[..., 1] = t[..., 0]
-        return p, t, n
+        return p, t, n, u, (t0x, t0y)
 
     def __call__(self, u):
         """Points at ``u`` (a segment is an exact curve too: the basic rack's pieces)."""
@@ -135,9 +139,7 @@ class Segment:
         >>> bool(np.allclose(np.diff(ang), np.pi / 2, rtol=0, atol=1e-12))
         True
         """
-        u = np.asarray(u, dtype=float)
-        p, t, n = self.evaluate(u)
-        ue = 1.0 - u if self.reverse else u
+        p, t, _, ue, (t0x, t0y) = self._evaluate(u)
         d = self.data
         if self.kind == "arc":
             lin = d[3] + ue * (d[4] - d[3])
@@ -150,9 +152,9 @@ class Segment:
             lin = -(s0 + ue * (s1 - s0)) * (kb + 0.5 / a)
         else:
             lin = np.zeros_like(ue)
-        (_, _), (t0x, t0y) = self._primitive(ue)
-        t0x, t0y = np.broadcast_to(t0x, ue.shape), np.broadcast_to(t0y, ue.shape)
-        quarter = np.mod(np.round((np.arctan2(t0y, t0x) - lin) / (0.5 * math.pi)), 4.0)
+        # a line's tangent is one vector: its angle is taken once
+        turn = np.arctan2(t0y, t0x) if np.ndim(t0x) else np.full(ue.shape, np.arctan2(t0y, t0x))
+        quarter = np.mod(np.round((turn - lin) / (0.5 * math.pi)), 4.0)
         psi = lin + 0.5 * math.pi * quarter  # the primitive's tangent angle, continuous
         a11, a12, a21, a22 = self.affine[:4]
         if a11 * a22 - a12 * a21 < 0:  # a reflection: A e(psi) = (A diag(1, -1)) e(-psi)
@@ -160,6 +162,8 @@ class Segment:
         rho = math.atan2(a21 - a12, a11 + a22)  # the rotation of A's polar decomposition
         c, s = math.cos(rho), math.sin(rho)
         b11, b12, b21, b22 = c * a11 + s * a21, c * a12 + s * a22, -s * a11 + c * a21, -s * a12 + c * a22
+        if (b11, b12, b21, b22) == (1.0, 0.0, 0.0, 1.0):  # A a rotation: f = e, their angle exactly 0
+            return p, t, rho + psi + 0.0
         ex, ey = np.cos(psi), np.sin(psi)
         fx, fy = b11 * ex + b12 * ey, b21 * ex + b22 * ey  # symmetric positive definite: within 90 deg of e
         return p, t, rho + psi + np.arctan2(ex * fy - ey * fx, ex * fx + ey * fy)
