@@ -261,3 +261,26 @@ def test_refinement_probes_each_interval_once_and_carries_what_a_fresh_probe_giv
     else:
         fresh = measure(curve, w, pts, tol)
     assert np.array_equal(fresh[0], probes) and np.array_equal(fresh[1], q)
+
+
+def test_an_interval_bound_is_the_largest_bound_of_its_legs_bounded_one_by_one():
+    """The walk through an interval's probes shares each probe's distance between the two legs it ends;
+    oracle: :func:`leg_bound` of every leg on its own (points, tangents and parts of the walk, the
+    interval's chord), whose largest is the interval's bound to the last bit. On the flank and fillet
+    of a z = 12 gear (two angle parts each) and its tip arc (one)."""
+    from gearkit.accuracy import _PROBES
+    from gearkit.chords import angle_parts, interval_bounds, leg_bound
+    from gearkit.families.involute import GearSpec, tooth_profile
+
+    for piece in tooth_profile(GearSpec(12, 2.0)).half.pieces:
+        turning = angle_parts(piece.turning)
+        w = np.linspace(0.0, 1.0, 9)
+        pts, tan, parts = turning(w)
+        probes, q, tq, pq, bound = interval_bounds(turning, w, pts, tan, parts, 1e-9, _PROBES)
+        for i in range(len(w) - 1):
+            p = np.concatenate([pts[i:i + 1], q[i], pts[i + 1:i + 2]])
+            t = np.concatenate([tan[i:i + 1], tq[i], tan[i + 1:i + 2]])
+            a = np.concatenate([parts[i:i + 1], pq[i], parts[i + 1:i + 2]])
+            legs = [leg_bound(p[j], p[j + 1], t[j], t[j + 1], a[j + 1] - a[j], pts[i], pts[i + 1])
+                    for j in range(len(p) - 1)]
+            assert np.isfinite(bound[i]) and bound[i] == max(legs), (piece.label, i)
