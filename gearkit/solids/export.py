@@ -41,7 +41,7 @@ def _triangle_chunks(parts, chunk: int = CHUNK):
         v32 = v.astype(np.float32)
         normals = part.normals()
         for s in range(0, len(f), chunk):
-            yield v32[f[s:s + chunk]], normals[s:s + chunk]
+            yield v32.take(f[s:s + chunk], axis=0), normals[s:s + chunk]  # (take: a row gather's fast path)
 
 
 def _facets(parts) -> int:
@@ -60,11 +60,12 @@ def _stl_binary(parts, tmp):
     with open(tmp, "wb") as fh, Progress("STL", count, unit="facets") as bar:
         fh.write(header)
         fh.write(np.uint32(count).tobytes())
+        rec = np.zeros(min(count, CHUNK), dtype=_STL_RECORD)  # one buffer for every chunk (attribute 0)
         for tri, normals in _triangle_chunks(parts):
-            rec = np.zeros(len(tri), dtype=_STL_RECORD)
-            rec["normal"] = normals
-            rec["vertices"] = tri
-            fh.write(memoryview(rec).cast("B"))
+            out = rec[:len(tri)]
+            out["normal"] = normals
+            out["vertices"] = tri
+            fh.write(memoryview(out).cast("B"))
             bar.step(len(tri))
 
 

@@ -315,13 +315,22 @@ def mesh_measures(vertices, faces, what: str = "mesh") -> dict:
 
 
 def _measures(v, f, what: str, bar) -> dict:
-    a = f.astype(np.int64, copy=False).ravel()
-    b = f[:, (1, 2, 0)].astype(np.int64, copy=False).ravel()
-    key = np.minimum(a, b)  # each edge: its two ends and its way, one integer
-    key *= 2 * len(v)
-    key += 2 * np.maximum(a, b)
-    key += a > b
-    del a, b
+    corners = _columns(f)
+    m = len(f)
+    # each edge: its two ends and its way, one integer (the three edges of every facet, an edge slot
+    # at a time: the same keys as facet by facet, so the same sorted array)
+    key = np.empty(3 * m, dtype=np.int64)
+    high = np.empty(m, dtype=np.int64)
+    for slot, (a, b) in enumerate(((0, 1), (1, 2), (2, 0))):
+        ca, cb = corners[a], corners[b]
+        k = key[slot * m:(slot + 1) * m]
+        np.minimum(ca, cb, out=k)
+        k *= 2 * len(v)
+        np.maximum(ca, cb, out=high)
+        high += high
+        k += high
+        k += ca > cb
+    del high
     key.sort()
     if not ((key[0::2] & 1 == 0).all() and (key[1::2] == key[0::2] + 1).all()):
         raise RepairableMesh(f"{what}: the mesh is not a valid solid (an edge without exactly one opposite edge)")
@@ -331,17 +340,17 @@ def _measures(v, f, what: str, bar) -> dict:
     normals = np.empty((len(f), 3), dtype=np.float32)
     volume = area = 0.0
     for s in range(0, len(f), CHUNK):
-        corners = _columns(f[s:s + CHUNK])
-        p0, n = _cross(exact, corners)
+        chunk = tuple(c[s:s + CHUNK] for c in corners)
+        p0, n = _cross(exact, chunk)
         volume += sum(float(np.einsum("i,i->", p, c)) for p, c in zip(p0, n)) / 6.0
         area += 0.5 * float(np.sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sum())
-        n = _cross(single, corners)[1]
+        n = _cross(single, chunk)[1]
         length = np.sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2])
         if not (length > 0.0).all():
             raise RepairableMesh(f"{what}: the mesh has degenerate facets (zero area in single precision)")
         for k in range(3):
             normals[s:s + CHUNK, k] = n[k] / length
-        bar.step(len(corners[0]))
+        bar.step(len(chunk[0]))
     if not volume > 0.0:
         raise RepairableMesh(f"{what}: the solid is empty or inside out (volume {volume:.6g} mm^3)")
     return {"volume": volume, "area": area, "normals": normals}
