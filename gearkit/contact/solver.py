@@ -29,6 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from gearkit.contact.minimise import minimise
+from gearkit.contact.search import search
 from gearkit.progress import Progress
 
 __all__ = ["Bounds", "solve"]
@@ -291,64 +292,15 @@ def solve(mesh, phi, contact_tol: float, bounds=(0, 1)) -> Bounds:
 
 
 def _solve_chunk(mesh, phi, contact_tol, bounds) -> Bounds:
-    drv, mate = mesh.driver, mesh.mate
-    arm_scale = mesh.arm_scale
     teeth, theta = mesh.teeth(phi)
     n, kk = teeth.shape
     # only the driver halves with a sample inside the mate's tip circle are searched: the others
     # are free at every sample (their bounds infinite, as the search would find them)
-    mid, reach, size = mesh.half_reach
-    pts, chord = drv.points[:size], drv.chord[:size - 1]
+    mid, reach = mesh.half_reach[:2]
     near = np.abs(np.mod(theta[..., None] - mid + np.pi, 2 * np.pi) - np.pi) <= reach  # (n, K, 2)
-    rows = np.flatnonzero(near)
-    r_n, r_k, r_h = np.unravel_index(rows, near.shape)
-    frame = mesh.frames(theta[r_n, r_k], np.where(r_h == 0, 1.0, -1.0), phi[r_n])[:, :, None]
-    rho, u = mesh.mate_coords(pts[None, :, 0], pts[None, :, 1], frame)  # (A, M1)
-    at = mate.lookup(rho)
-    w = mate.coarse(rho, at)
-    sb = np.array([1.0, -1.0])
-    big_u = np.empty((len(rho), 2) + rho.shape[1:])  # (A, 2, M1): w - u, w + u
-    np.subtract(w, u, out=big_u[:, 0])
-    np.add(w, u, out=big_u[:, 1])
-    finite = np.isfinite(w)
-    # the intervals that cross the mate's tip circle (few): the bound at the crossing
-    c_a, c_m = np.nonzero(finite[..., :-1] != finite[..., 1:])
-    r0, r1, u0 = rho[c_a, c_m], rho[c_a, c_m + 1], u[c_a, c_m]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        frac = np.clip((mate.rho_tip - r0) / (r1 - r0), 0.0, 1.0)
-    du = np.mod(u[c_a, c_m + 1] - u0 + mesh.pitch2 / 2, mesh.pitch2) - mesh.pitch2 / 2  # across a wrap
-    u_c = np.mod(u0 + frac * du + mesh.pitch2 / 2, mesh.pitch2) - mesh.pitch2 / 2
-    big_c = mate.w_tip - sb[None, :] * u_c[:, None]  # (C, 2)
-    best = big_u.min(-1)  # (A, 2)
-    np.minimum.at(best, c_a, big_c)
-    # how far the exact function can dip below an interval's ends: the driver's chord deviation
-    # plus the mate's bending over the chord, as a normal distance over the arm scale
-    rho_mid = 0.5 * (rho[..., :-1] + rho[..., 1:])
-    at_mid = mate.lookup(rho_mid)
-    bend = mate.curvature(rho_mid, at_mid)
-    arm = mate.arm(rho, at)
-    arm = np.minimum(np.minimum(arm[..., :-1], arm[..., 1:]), mate.arm(rho_mid, at_mid))
-    dip = (mesh.tol + bend * chord ** 2 / 8.0) / np.maximum(arm, 1e-12 * arm_scale)  # (A, M)
-    if mate.crest:  # next to a rounded crest the bound falls like a square root: always look
-        dip[c_a, c_m] = np.inf
-    glob = np.full((n, 2), np.inf)
-    np.minimum.at(glob, r_n, best)
-    active = best - dip.max(-1)[:, None] <= glob[r_n] + contact_tol / arm_scale
-    active &= np.isin(np.arange(2), bounds)[None, :]
-    # the intervals of the active halves (and bounds) that come within their dip of the best
-    p_a, p_b = np.nonzero(active)
-    ends = big_u[p_a, p_b]
-    ends = np.minimum(ends[:, :-1], ends[:, 1:])
-    reach = best[p_a, p_b][:, None] + dip[p_a]
-    pick = ends <= reach
-    at_pick = np.full(active.shape, -1)
-    at_pick[p_a, p_b] = np.arange(len(p_a))
-    for b in range(2):  # an interval crossing the tip circle: its bound at the crossing
-        k = at_pick[c_a, b]
-        ok = np.flatnonzero(k >= 0)
-        pick[k[ok], c_m[ok]] |= big_c[ok, b] <= reach[k[ok], c_m[ok]]
-    k, i_m = np.nonzero(pick)
-    i_a, i_b = p_a[k], p_b[k]
+    r_n, r_k, r_h = np.unravel_index(np.flatnonzero(near), near.shape)
+    frame = mesh.frames(theta[r_n, r_k], np.where(r_h == 0, 1.0, -1.0), phi[r_n])
+    best, i_a, i_b, i_m, fa, fb = search(mesh, frame, r_n, n, contact_tol, bounds)
     i_n, i_k, i_h = r_n[i_a], r_k[i_a], r_h[i_a]
     shape = (n, kk, 2, 2)
     value = np.full(shape, np.inf)
@@ -364,8 +316,7 @@ def _solve_chunk(mesh, phi, contact_tol, bounds) -> Bounds:
     corner2 = np.zeros(shape, bool)
     if i_n.size:
         sigma = np.where(i_h == 0, 1.0, -1.0)
-        sel, res = _refine(mesh, phi[i_n], theta[i_n, i_k], sigma, sb[i_b], i_m, finite[i_a, i_m],
-                           finite[i_a, i_m + 1], i_a * 2 + i_b)
+        sel, res = _refine(mesh, phi[i_n], theta[i_n, i_k], sigma, np.array([1.0, -1.0])[i_b], i_m, fa, fb, i_a * 2 + i_b)
         at = (i_n[sel], i_k[sel], i_h[sel], i_b[sel])
         exact[at] = True
         value[at], point[at], normal[at], arm[at], piece1[at], piece2[at], rho2[at], corner1[at], corner2[at] = res
