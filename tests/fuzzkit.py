@@ -14,6 +14,9 @@ if it recorded any. ``GEARKIT_FUZZ_REPORT=FILE`` appends, per property, one JSON
 ``{"property", "tried", "valid", "spec_error", "defect", "defects": [{"spec", "error"}, ...]}``
 (the counts are what happened, defects included); while it runs, every 500 cases one line of
 counts to ``FILE.progress`` and every defect at once to ``FILE.defects``.
+
+:func:`true_deviation` is the properties' independent measure of a sampled curve's deviation (and
+the oracle of the regression tests of what they found).
 """
 import functools
 import json
@@ -28,6 +31,7 @@ import numpy as np
 from hypothesis import HealthCheck, settings
 from hypothesis import strategies as st
 
+from gearkit.distances import distances_to_polyline
 from gearkit.errors import SpecError
 
 #: specs per property (the long run: GEARKIT_FUZZ_EXAMPLES=10000)
@@ -36,6 +40,9 @@ LONG = EXAMPLES is not None
 REPORT = os.environ.get("GEARKIT_FUZZ_REPORT")
 #: defects listed in full per property in the report (the count is always exact)
 LISTED = 50
+
+#: dense re-evaluation points per exact piece (:func:`true_deviation`, the independent deviation measure)
+DENSE = 4001
 
 COUNTS: dict = {}
 DEFECTS: dict = {}
@@ -141,3 +148,53 @@ def maybe_hostile(draw, kwargs):
 
 
 modules = st.floats(0.01, 100.0).map(lambda m: float(f"{m:.5g}"))
+
+
+def _to_edges(points, polyline, upper):
+    """Exact distance of each point to a polyline, given an upper bound ``upper`` of it per point.
+
+    Every edge within ``upper`` of a point has one of its stations (points spaced at most ``h`` along
+    each edge) within ``upper + h/2`` of it: a tree over the stations lists the candidates, each
+    measured exactly. Memory is bounded by the candidate pairs (a chunk of points at a time)."""
+    from scipy.spatial import cKDTree
+
+    a, e = polyline[:-1], np.diff(polyline, axis=0)
+    length = np.hypot(e[:, 0], e[:, 1])
+    h = max(float(np.median(length)), 1e-300)
+    count = np.clip(np.ceil(length / h).astype(np.int64), 1, 10_000) + 1  # stations per edge, ends included
+    edge = np.repeat(np.arange(len(a)), count)
+    frac = (np.arange(len(edge)) - np.repeat(np.cumsum(count) - count, count)) / np.repeat(count - 1, count)
+    tree = cKDTree(a[edge] + frac[:, None] * e[edge])
+    step = float((length / (count - 1)).max())  # the widest station spacing
+    out = np.empty(len(points))
+    for lo in range(0, len(points), 512):
+        q = points[lo:lo + 512]
+        near = tree.query_ball_point(q, upper[lo:lo + 512] + 0.5 * step + 1e-12)
+        pt = np.repeat(np.arange(len(q)), [len(n) for n in near])
+        ed = np.unique(np.stack([pt, edge[np.concatenate(near).astype(np.int64)]]), axis=1)
+        pt, ed = ed
+        t = np.clip(np.einsum("ij,ij->i", q[pt] - a[ed], e[ed]) / np.maximum(length[ed] ** 2, 1e-300), 0.0, 1.0)
+        d = np.hypot(*(q[pt] - (a[ed] + t[:, None] * e[ed])).T)
+        best = np.full(len(q), np.inf)
+        np.minimum.at(best, pt, d)
+        out[lo:lo + 512] = np.minimum(best, upper[lo:lo + 512])
+    return out
+
+
+def true_deviation(pieces, polyline, dense=None):
+    """Largest distance of the exact pieces (``dense`` points each, default ``DENSE``) from a polyline:
+    the independent measure of a sampling's deviation. Nearest vertices'
+    edges first (an upper bound per point: it may overestimate where the curve folds back), then
+    points exactly against every edge within that bound, largest bound first, until no point left
+    can exceed the largest exact distance found."""
+    w = np.linspace(0.0, 1.0, dense or DENSE)
+    exact = np.concatenate([p(w) for p in pieces])
+    d = distances_to_polyline(exact, polyline)
+    order = np.argsort(d)[::-1]
+    best = 0.0
+    for lo in range(0, len(order), 4096):
+        chunk = order[lo:lo + 4096]
+        if d[chunk[0]] <= best:
+            break
+        best = max(best, float(_to_edges(exact[chunk], polyline, d[chunk]).max()))
+    return best

@@ -6,7 +6,7 @@ must give either
 
 - a valid result: finite; the profile sampled to ``tol`` reports an achieved deviation within
   ``tol`` and at least the real one (a proven bound; cams: not yet), and the real one is within
-  ``tol``, measured independently by dense re-evaluation of the exact pieces (``DENSE`` points per piece); the outline closes without
+  ``tol``, measured independently by dense re-evaluation of the exact pieces (``fuzzkit.true_deviation``); the outline closes without
   crossing itself (racks); a pointed tip has thickness 0, never a negative one; the summary is
   strict JSON; or
 - a ``SpecError`` that names a field and says why.
@@ -23,16 +23,14 @@ import math
 
 import numpy as np
 import pytest
-from fuzzkit import assert_clean, fuzz_settings, maybe_hostile, modules, run, strict_json, write_report
+from fuzzkit import (assert_clean, fuzz_settings, maybe_hostile, modules, run, strict_json, true_deviation,
+                     write_report)
 from hypothesis import given
 from hypothesis import strategies as st
 
 import gearkit as gk
 from gearkit.curves import polyline_self_intersections
-from gearkit.distances import distances_to_polyline
 
-#: dense re-evaluation points per exact piece (independent deviation measure)
-DENSE = 4001
 #: the dense measure is itself a polyline of the exact curve: it may read up to its own chord
 #: error below the true deviation, never above; allow that much plus round-off
 MEASURE_SLACK = 1e-3
@@ -57,55 +55,6 @@ def _tool(desc):
     return gk.ShaperCutter(*args) if kind == "shaper" else gk.BasicRack(*args)
 
 
-def _to_edges(points, polyline, upper):
-    """Exact distance of each point to a polyline, given an upper bound ``upper`` of it per point.
-
-    Every edge within ``upper`` of a point has one of its stations (points spaced at most ``h`` along
-    each edge) within ``upper + h/2`` of it: a tree over the stations lists the candidates, each
-    measured exactly. Memory is bounded by the candidate pairs (a chunk of points at a time)."""
-    from scipy.spatial import cKDTree
-
-    a, e = polyline[:-1], np.diff(polyline, axis=0)
-    length = np.hypot(e[:, 0], e[:, 1])
-    h = max(float(np.median(length)), 1e-300)
-    count = np.clip(np.ceil(length / h).astype(np.int64), 1, 10_000) + 1  # stations per edge, ends included
-    edge = np.repeat(np.arange(len(a)), count)
-    frac = (np.arange(len(edge)) - np.repeat(np.cumsum(count) - count, count)) / np.repeat(count - 1, count)
-    tree = cKDTree(a[edge] + frac[:, None] * e[edge])
-    step = float((length / (count - 1)).max())  # the widest station spacing
-    out = np.empty(len(points))
-    for lo in range(0, len(points), 512):
-        q = points[lo:lo + 512]
-        near = tree.query_ball_point(q, upper[lo:lo + 512] + 0.5 * step + 1e-12)
-        pt = np.repeat(np.arange(len(q)), [len(n) for n in near])
-        ed = np.unique(np.stack([pt, edge[np.concatenate(near).astype(np.int64)]]), axis=1)
-        pt, ed = ed
-        t = np.clip(np.einsum("ij,ij->i", q[pt] - a[ed], e[ed]) / np.maximum(length[ed] ** 2, 1e-300), 0.0, 1.0)
-        d = np.hypot(*(q[pt] - (a[ed] + t[:, None] * e[ed])).T)
-        best = np.full(len(q), np.inf)
-        np.minimum.at(best, pt, d)
-        out[lo:lo + 512] = np.minimum(best, upper[lo:lo + 512])
-    return out
-
-
-def _true_deviation(pieces, polyline):
-    """Largest distance of the exact pieces (``DENSE`` points each) from a polyline: nearest vertices'
-    edges first (an upper bound per point: it may overestimate where the curve folds back), then
-    points exactly against every edge within that bound, largest bound first, until no point left
-    can exceed the largest exact distance found."""
-    w = np.linspace(0.0, 1.0, DENSE)
-    exact = np.concatenate([p(w) for p in pieces])
-    d = distances_to_polyline(exact, polyline)
-    order = np.argsort(d)[::-1]
-    best = 0.0
-    for lo in range(0, len(order), 4096):
-        chunk = order[lo:lo + 4096]
-        if d[chunk[0]] <= best:
-            break
-        best = max(best, float(_to_edges(exact[chunk], polyline, d[chunk]).max()))
-    return best
-
-
 def _check_bound(polyline, achieved, true, tol, proven=False):
     """The sampling contract: the reported deviation and the real one are within tol, and (``proven``:
     every family but cams) the reported one bounds the real one (the dense measure reads at most the
@@ -118,7 +67,7 @@ def _check_bound(polyline, achieved, true, tol, proven=False):
 
 def _check_half(prof, tol):
     half, achieved = prof.half_points(tol)
-    _check_bound(half, achieved, _true_deviation(prof.half.pieces, half), tol, proven=True)
+    _check_bound(half, achieved, true_deviation(prof.half.pieces, half), tol, proven=True)
     return half
 
 
@@ -296,7 +245,7 @@ def _cam(drawn, tol_m):
         tol = tol_m * prof.spec.prime_radius
         out = prof.outline(tol)
         closed = np.concatenate([out[::-1], out[-1:]])  # the pieces' own order, closed
-        _check_bound(out, prof.achieved(tol), _true_deviation(prof.pieces, closed), tol)
+        _check_bound(out, prof.achieved(tol), true_deviation(prof.pieces, closed), tol)
     run("cam", (kw, motion, tol_m), build, check)
 
 

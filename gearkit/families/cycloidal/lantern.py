@@ -13,7 +13,8 @@ ahead along each point's outward normal ("front") gives the pin circle at the po
 bottom of the tooth space — and, past the pin's equator, the true contacts — the flank. Near
 the pitch circle the equidistant loops (the epicycloid's curvature radius falls to 0 at its
 cusp); the kernel cuts the loop away where the flank meets the space bottom, so the flank is
-trimmed there and the usable flank starts above it.
+trimmed there and the usable flank starts above it. The space bottom is then the whole pin at the
+pole (:class:`PoleCircle`), and the flank ends where it enters that pin.
 
 Frames: wheel centre at the origin, tooth 0 centred on +y.
 """
@@ -27,6 +28,7 @@ import numpy as np
 from gearkit.boundary import HalfTooth, Piece, trim_half_tooth
 from gearkit.profile import ToothProfile
 from gearkit.envelope import chain_branches
+from gearkit.curves import bracketed_root
 from gearkit.errors import GeometryError, SpecError, check_fields, is_int, is_real, require
 from gearkit.motion import RollingMotion
 from gearkit.segments import arc
@@ -154,6 +156,86 @@ def _pin_tool(spec: PinGearSpec):
     return (arc(centre, rho, a_down + 0.05, a_down - (0.5 * math.pi + 0.9), "flank"),)
 
 
+@frozen
+class PoleCircle:
+    """The pin at the pole in the wheel frame: the circle of radius ``radius`` about ``(cx, cy)``, its
+    polar angle (from +x, counter-clockwise) running from ``a0`` to ``a1``: the tooth space's bottom."""
+
+    cx: float
+    cy: float
+    radius: float
+    a0: float
+    a1: float
+    label: str = "root"
+
+    def __call__(self, w):
+        a = self.a0 + np.asarray(w, dtype=float) * (self.a1 - self.a0)
+        return np.stack([self.cx + self.radius * np.cos(a), self.cy + self.radius * np.sin(a)], -1)
+
+    def turning(self, w):  # points, unit tangents, the tangent's angle a + pi/2 (linear): as Piece.turning
+        a = self.a0 + np.asarray(w, dtype=float) * (self.a1 - self.a0)
+        return self(w), np.stack([-np.sin(a), np.cos(a)], -1), a[..., None]
+
+
+#: the pin at the pole's points lie on its circle to this (relative to the wheel's pitch radius): round-off
+ON_PIN = 1e-12
+
+
+def _pole_root(half: HalfTooth, spec: PinGearSpec) -> HalfTooth:
+    """The space bottom as the whole pin at the pole, met by the flank where the flank enters it.
+
+    Along the envelope branch from the space centre line, the branch is the pin at the pole (the
+    roll constant) up to the tool point where its two roots meet; past it the branch turns inside
+    that pin, by up to ~1e-7 m (cut: the pin at the pole sweeps it), and leaves it again as the
+    flank. Where the flank crosses the pole's part of the branch, the kernel cuts the loop at that
+    crossing; where the flank leaves the pin past the roots' meeting point, the two never cross
+    (the kernel took their nearest approach, ~1e-8 m apart and inside the pin, for a crossing), and
+    where the dip is too shallow for its loop search, the flank ran on through the dip. In every
+    case the boundary is the pin circle up to the point where the flank, coming from the tip,
+    enters it: solved on the flank (a scalar root of its distance from the pin centre, on steps
+    halving towards the roots' meeting point, so the dip is always sampled), the root piece
+    becomes the exact circle from it to the space centre line. A half tooth whose last piece is not
+    on the flank's branch, on the pin at the pole, is returned as it is.
+    """
+    pieces = list(half.pieces)
+    k = next((i for i, p in enumerate(pieces) if p.label == "flank"), None)
+    if k is None or pieces[-1].curve is not pieces[k].curve:
+        return half
+    branch, w_t, w_s = pieces[k].curve, pieces[k].w0, pieces[-1].w1
+    g0, rho = math.pi / spec.wheel_teeth, spec.pin_radius
+    cx, cy = spec.r2 * math.sin(g0), spec.r2 * math.cos(g0)  # the pin centre at the pole
+
+    def outside(w):  # distance from the pin circle (> 0 outside it) of the branch's points at w
+        q = branch(np.atleast_1d(w))
+        return np.hypot(q[:, 0] - cx, q[:, 1] - cy) - rho
+
+    ends = outside(np.array([w_s, w_t]))
+    if abs(ends[0]) > ON_PIN * spec.r2 or not ends[1] > 0.0:
+        return half
+
+    def roll(w):
+        return float(branch.solve(np.array([w]), normals=False)[2][0])
+
+    s_pole, lo, hi = roll(w_s), w_s, w_t  # the roots meet where the roll leaves the pole's
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if abs(roll(mid) - s_pole) <= 1e-9 * spec.r1 else (lo, mid)
+    ws = np.concatenate([[lo], lo + (w_t - lo) * 2.0 ** -np.arange(52.0, -1.0, -1.0)])
+    g = outside(ws)
+    inside = np.flatnonzero(g <= 0.0)
+    x = lo
+    if len(inside):
+        j = int(inside[-1])  # the last point inside the pin, coming from the tip
+        x = bracketed_root(lambda w: float(outside(w)[0]), float(ws[j]), float(ws[j + 1]), float(g[j]),
+                           float(g[j + 1]))
+    qx = branch(np.array([x]))[0]
+    a_s = math.atan2(-cy, -cx)  # the pin's point on the space centre line, facing the wheel centre
+    a_x = a_s + math.remainder(math.atan2(qx[1] - cy, qx[0] - cx) - a_s, 2.0 * math.pi)
+    kept = pieces[:k] + [Piece("flank", branch, w_t, x), Piece("root", PoleCircle(cx, cy, rho, a_x, a_s), 0.0, 1.0)]
+    joins = half.joins[:k] + ("trim" if x != lo else "smooth",)
+    return HalfTooth(tuple(kept), joins, half.pointed, half.half_pitch_angle)
+
+
 @lru_cache(maxsize=64)
 def pin_gear_wheel(spec: PinGearSpec) -> PinGearWheel:
     """Generate the wheel the pins leave.
@@ -179,7 +261,7 @@ def pin_gear_wheel(spec: PinGearSpec) -> PinGearWheel:
             if abs(s[1] - s[0]) <= 1e-9 * spec.r1:
                 pieces[k] = Piece("root", pc.curve, pc.w0, pc.w1)
     half = HalfTooth(tuple(pieces), half.joins, half.pointed, half.half_pitch_angle)
-    return PinGearWheel(half, spec, branches)
+    return PinGearWheel(_pole_root(half, spec), spec, branches)
 
 
 def pin_wheel_outline(spec: PinGearSpec, tol: float | None = None, angle: float = 0.0):
