@@ -66,3 +66,29 @@ def test_a_cycle_in_blocks_is_the_cycle_at_once(monkeypatch):
     assert blocks.contact_ratio == whole.contact_ratio
     assert np.array_equal(blocks.transmission_error, whole.transmission_error)
     assert np.array_equal(blocks.pairs_in_contact, whole.pairs_in_contact)
+
+
+@pytest.mark.parametrize("spec", [PairSpec(20, 40, 2.0), PairSpec(17, 1000, 1.0),
+                                  PairSpec(20, None, 1.0, 0.2, kind="rack")], ids=["z40", "z1000", "rack"])
+def test_the_offset_from_the_space_centre_is_fmods(spec):
+    """The mate's offset ``u`` (formed without fmod) against ``np.fmod`` on values where the division
+    rounds: every multiple of the pitch up to 3000 pitches either way and the three floats on each
+    side of it, random values, zeros, the pitch itself and its half, nan and inf."""
+    mesh = pair_mesh(spec)
+    pitch = mesh.pitch2
+    base = np.arange(-3000, 3001) * pitch
+    values = [base, np.random.default_rng(3).uniform(-3000 * pitch, 3000 * pitch, 20000),
+              np.array([0.0, -0.0, pitch, -pitch, pitch / 2, -pitch / 2, 5e-324, -5e-324, 1e-300])]
+    for way in (np.inf, -np.inf):
+        near = base
+        for _ in range(3):
+            near = np.nextafter(near, way)
+            values.append(near)
+    psi = np.concatenate(values)
+    r = np.fmod(psi, pitch)
+    expected = np.where(r < 0, r + pitch, r) - pitch / 2
+    assert np.array_equal(mesh.space_offset(psi), expected)
+    with np.errstate(invalid="ignore"):
+        odd = np.array([np.nan, np.inf, -np.inf, 1e300, -1e300, 1.0])
+        r = np.fmod(odd, pitch)
+        assert np.array_equal(mesh.space_offset(odd), np.where(r < 0, r + pitch, r) - pitch / 2, equal_nan=True)

@@ -30,6 +30,8 @@ __all__ = ["SortedIndex"]
 #: of possible starts holds no more
 _MAX_CANDIDATES = 3
 _MAX_BUCKETS = 1 << 16
+#: fewer values than this: the binary search (fewer array passes to set up)
+_FEW = 64
 
 
 class SortedIndex:
@@ -70,7 +72,7 @@ class SortedIndex:
     def __call__(self, x):
         """The index ``j`` (intp, the shape of ``x``) of the last start at or below each ``x``."""
         x = np.asarray(x, dtype=float)
-        if self._binary or x.ndim == 0:
+        if self._binary or x.size < _FEW:
             return np.clip(np.searchsorted(self._starts, x, side="right") - 1, 0, max(self.n - 1, 0))
         q = (x - self._origin) * self._inv
         # clamped into the grid; nan to the top (fmin passes the number over a nan)

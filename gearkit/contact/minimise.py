@@ -3,7 +3,8 @@
 The contact solver (:mod:`gearkit.contact.solver`) hands over a *task*: the bound function of each
 row, ``task.value(t, rows)`` (values only) and, where the teeth are evaluated on their tables,
 ``task.slope(t, rows)`` (value, first and second derivative in ``t``; ``task.smooth`` says so);
-``task.noise`` (optional) bounds the error of its values.
+``task.noise`` (optional) bounds the error of its values; ``task.grid_values(grid)`` (optional, with
+``task.interval``) gives the values of the probes below at once, ``(P, n)``.
 
 1. **Probes.** The function is sampled at the interval's ends and at ``_PROBES`` interior points.
    The best sample brackets the minimum with its neighbours; an end sample is the minimum when the
@@ -53,7 +54,10 @@ def minimise(task, a, b):
     frac = np.linspace(0.0, 1.0, _PROBES + 2)
     grid = a[None, :] + frac[:, None] * width[None, :]  # (P, n)
     if task.smooth:  # the one-sided slopes only where the best sample is an end (values alone on tables)
-        vg = task.value(grid.ravel(), np.tile(np.arange(n), len(frac)))[0].reshape(grid.shape)
+        if getattr(task, "grid_values", None) is not None and getattr(task, "interval", None) is not None:
+            vg = task.grid_values(grid)
+        else:
+            vg = task.value(grid.ravel(), np.tile(np.arange(n), len(frac)))[0].reshape(grid.shape)
         j = np.argmin(vg, axis=0)
         ea, eb = np.flatnonzero(j == 0), np.flatnonzero(j == len(frac) - 1)
         v = task.value(np.concatenate([a[ea] + h[ea], a[ea] + 2 * h[ea], b[eb] - h[eb], b[eb] - 2 * h[eb]]),

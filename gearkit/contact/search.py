@@ -22,8 +22,8 @@ import numpy as np
 
 __all__ = ["search"]
 
-#: elements (samples x halves) of one block's arrays: 32768 float64 are 256 KiB
-_BLOCK = 1 << 15
+#: elements (samples x halves) of one block's arrays: 16384 float64 are 128 KiB
+_BLOCK = 1 << 14
 _SB = np.array([1.0, -1.0])  # the sign of u in the bound: upper w - u, lower w + u
 
 

@@ -38,6 +38,8 @@ __all__ = ["Bounds", "solve"]
 _CROSS_ITER = 40
 #: search-array size per chunk of driver angles (memory ~ 40 bytes each)
 _CHUNK = 1_500_000
+#: table evaluations of one block of :meth:`_Task.grid_values` (64 KiB a float64 array)
+_PROBE_BLOCK = 1 << 13
 
 
 @dataclass
@@ -83,8 +85,9 @@ def _driver_xy(mesh, k, t, sigma, theta, exact=False):
 class _Task:
     """Exact bound function along one polyline interval per row."""
 
-    def __init__(self, mesh, phi, theta, sigma, sb, piece):
+    def __init__(self, mesh, phi, theta, sigma, sb, piece, interval=None):
         self.mesh, self.phi, self.theta, self.sigma, self.sb, self.piece = mesh, phi, theta, sigma, sb, piece
+        self.interval = interval  # the polyline interval of each row (for :meth:`grid_values`)
         self.k2 = np.full(len(phi), -1)  # the mate's last solution per row: the secant's first point
         self.t2 = np.zeros(len(phi))
         self.r2 = np.zeros(len(phi))
@@ -126,6 +129,28 @@ class _Task:
             return self.mesh.mate_coords(p[0], p[1], self.frame[:, rows])[0]
         x, y = _driver_xy(self.mesh, self.piece[rows], t, self.sigma[rows], self.theta[rows], self.exact)
         return self.mesh.to_mate_xy(x, y, self.phi[rows])[0]
+
+    def grid_values(self, grid):
+        """:meth:`value` at ``grid`` ``(P, n)`` (row ``i``'s parameters in column ``i``), on the tables: a row
+        probed over its whole polyline interval (``interval``) reads the driver's points off
+        :meth:`Boundary.probes`; in blocks of rows, so the arrays stay in the processor's caches."""
+        count, n = grid.shape
+        drv, mate = self.mesh.driver, self.mesh.mate
+        t_all, x_all, y_all = drv.probes(count)
+        out = np.empty(grid.shape)
+        step = max(1, _PROBE_BLOCK // count)
+        for s in range(0, n, step):
+            cols = slice(s, s + step)
+            g, m = grid[:, cols], self.interval[cols]
+            px, py = x_all[:, m], y_all[:, m]
+            own = np.flatnonzero(~(t_all[:, m] == g).all(axis=0))  # a row cut at the tip circle: its own
+            if own.size:
+                p = drv.table.evaluate_xy(np.broadcast_to(self.piece[cols][own], (count, own.size)).ravel(),
+                                          g[:, own].ravel())
+                px[:, own], py[:, own] = p[0].reshape(count, -1), p[1].reshape(count, -1)
+            rho, u = self.mesh.mate_coords(px, py, self.frame[:, None, cols])
+            out[:, cols] = mate.table.values(rho.ravel()).reshape(rho.shape) - self.sb[cols] * u
+        return out
 
     def value(self, t, rows=slice(None), tangent=False, exact=False):
         exact = exact or self.exact
@@ -178,7 +203,7 @@ def _refine(mesh, phi, theta, sigma, sb, m, fa, fb, half):
     per ``half`` (row indices ``sel``): on the tables, then the winners evaluated on the exact pieces."""
     drv = mesh.driver
     piece, a, b = drv.piece[m], drv.ta[m].copy(), drv.tb[m].copy()
-    task = _Task(mesh, phi, theta, sigma, sb, piece)
+    task = _Task(mesh, phi, theta, sigma, sb, piece, m)
     cross = fa != fb
     at_tip = np.zeros(len(m), bool)
     if cross.any():

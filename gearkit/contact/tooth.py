@@ -115,6 +115,17 @@ class Boundary:
             return self.table.evaluate(k, t)
         return evaluate_pieces(self.pieces, k, t)
 
+    def probes(self, count: int):
+        """Table points at ``count`` parameters evenly spaced over every polyline interval (its ends
+        included), as the minimiser spaces them: ``(t, x, y)``, each ``(count, M)``; made once per table."""
+        cache = self.__dict__.setdefault("_probes", {})
+        if (count, id(self.table)) not in cache:
+            frac = np.linspace(0.0, 1.0, count)
+            t = self.ta[None, :] + frac[:, None] * (self.tb - self.ta)[None, :]
+            x, y = self.table.evaluate_xy(np.broadcast_to(self.piece, t.shape).ravel(), t.ravel())
+            cache[count, id(self.table)] = (t, x.reshape(t.shape), y.reshape(t.shape))
+        return cache[count, id(self.table)]
+
 
 class HalfWidth:
     """Half width ``w(rho)`` of the mate's tooth space (see the module notes).
