@@ -69,6 +69,16 @@ def _sum_parts(x):
     return total
 
 
+def _cos_sin(angle):
+    """Cosine and sine of ``angle``, evaluated only where it is not 0 (there 1 and 0): a range that
+    starts or ends at the leg's own tangent, as it does wherever the parts turn one way."""
+    angle = np.asarray(angle)
+    turn = angle != 0.0
+    if turn.all():
+        return np.cos(angle), np.sin(angle)
+    return np.cos(angle, out=np.ones_like(angle), where=turn), np.sin(angle, out=np.zeros_like(angle), where=turn)
+
+
 def leg_bound(a, b, ta, tb, dparts, chord_a, chord_b):
     """Bound of the distance from the segment ``chord_a``-``chord_b`` of the curve's leg from ``a`` to ``b``.
 
@@ -93,16 +103,18 @@ def _legs(ax, ay, bx, by, ta, tb, dparts, chord, ends):
     width = hi - lo
     tax, tay = ta[..., 0], ta[..., 1]
     cx, cy = bx - ax, by - ay
-    cos, sin = np.cos(lo), np.sin(lo)
-    lox, loy = cos * tax - sin * tay, sin * tax + cos * tay
-    cos, sin = np.cos(hi), np.sin(hi)
-    hix, hiy = cos * tax - sin * tay, sin * tax + cos * tay
+    cos_lo, sin_lo = _cos_sin(lo)
+    lox, loy = cos_lo * tax - sin_lo * tay, sin_lo * tax + cos_lo * tay
+    cos_hi, sin_hi = _cos_sin(hi)
+    hix, hiy = cos_hi * tax - sin_hi * tay, sin_hi * tax + cos_hi * tay
     half = 0.5 * (lo + hi)
     cos, sin = np.cos(half), np.sin(half)
     along_mid = cx * (cos * tax - sin * tay) + cy * (sin * tax + cos * tay)  # the chord on the range's middle
     sense = np.where(along_mid < 0.0, -1.0, 1.0)
     lox, loy, hix, hiy = sense * lox, sense * loy, sense * hix, sense * hiy
-    swing = np.sin(width)  # cross(d_lo, d_hi)
+    # cross(d_lo, d_hi): sin(width), which is sin(hi) where the range starts at the leg's tangent
+    turned = lo != 0.0
+    swing = np.sin(width, out=np.array(sin_hi), where=turned) if turned.any() else sin_hi
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         along_lo = np.where(swing > 0, (cx * hiy - cy * hix) / swing, 0.0)
         along_hi = np.where(swing > 0, (lox * cy - loy * cx) / swing, 0.0)
@@ -110,16 +122,23 @@ def _legs(ax, ay, bx, by, ta, tb, dparts, chord, ends):
     slack = 1e-12 * length
     corners = np.maximum(_distance(*chord, ax + along_lo * lox, ay + along_lo * loy),
                          _distance(*chord, ax + along_hi * hix, ay + along_hi * hiy))
-    narrow = ends + 0.5 * length * np.tan(0.5 * np.minimum(width, 3.0))
-    bound = np.where(width < NARROW, narrow, np.maximum(ends, corners))
+    narrow = width < NARROW
+    bound = np.maximum(ends, corners)
+    if narrow.any():
+        bound = np.where(narrow, ends + 0.5 * length * np.tan(0.5 * np.minimum(width, 3.0)), bound)
     # the parts must reproduce the end tangent, the range stay below a half turn, the chord lie in the cone
-    total = _sum_parts(dparts)
-    cos, sin = np.cos(total), np.sin(total)
+    total = np.asarray(_sum_parts(dparts))
+    at_hi = total == hi  # parts turning one way: the total turn is an end of the range
+    cos, sin = np.where(at_hi, cos_hi, cos_lo), np.where(at_hi, sin_hi, sin_lo)
+    mixed = ~at_hi & (total != lo)
+    if mixed.any():
+        np.cos(total, out=cos, where=mixed)
+        np.sin(total, out=sin, where=mixed)
     ex, ey = cos * tax - sin * tay, sin * tax + cos * tay
     tbx, tby = tb[..., 0], tb[..., 1]
     ok = (np.abs(ex * tby - ey * tbx) <= CONSISTENT) & (ex * tbx + ey * tby > 0.0) & (width < 0.5 * np.pi)
-    ok &= (width < NARROW) | ((along_lo >= -slack) & (along_hi >= -slack))
-    ok &= (width < NARROW) | ~(length > 0) | (along_mid != 0.0)
+    ok &= narrow | ((along_lo >= -slack) & (along_hi >= -slack))
+    ok &= narrow | ~(length > 0) | (along_mid != 0.0)
     return np.where(ok & np.isfinite(bound), bound, np.inf)
 
 

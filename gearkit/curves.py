@@ -120,10 +120,24 @@ def rotation(angle):
     return np.stack([np.stack([c, -s], -1), np.stack([s, c], -1)], -2)
 
 
-def rotate(points, angle):
-    """Rotate ``(n, 2)`` points counter-clockwise about the origin by ``angle`` (scalar or ``(n,)``)."""
-    p = np.asarray(points, dtype=float)
+def rotate(points, angle, *more):
+    """Rotate ``(n, 2)`` points counter-clockwise about the origin by ``angle`` (scalar or ``(n,)``).
+
+    Further arrays ``more`` are rotated by the same angle (its sine and cosine taken once) and all
+    are returned as a tuple.
+
+    >>> a, b = rotate(np.array([[1.0, 0.0]]), np.pi / 2, np.array([[0.0, 2.0]]))
+    >>> np.round(a, 12).tolist(), np.round(b, 12).tolist()
+    ([[0.0, 1.0]], [[-2.0, 0.0]])
+    """
     c, s = np.cos(angle), np.sin(angle)
+    if more:
+        return tuple(_turn(v, c, s) for v in (points,) + more)
+    return _turn(points, c, s)
+
+
+def _turn(points, c, s):
+    p = np.asarray(points, dtype=float)
     x, y = c * p[..., 0] - s * p[..., 1], s * p[..., 0] + c * p[..., 1]
     out = np.empty(np.shape(x) + (2,), dtype=np.result_type(x, y))  # np.stack's result, without its overhead
     out[..., 0] = x

@@ -66,10 +66,10 @@ class Branch:
             s, valid = self.motion.contact(p, n, self.root)
         s0 = np.where(valid, s, 0.0)
         shift, angle, offset = self.motion.pose(s0)
-        q = rotate(p - shift, angle) + offset
         if not normals:
-            return q, None, s, valid
-        return q, -rotate(n, angle), s, valid
+            return rotate(p - shift, angle) + offset, None, s, valid
+        q, n = rotate(p - shift, angle, n)
+        return q + offset, -n, s, valid
 
     def __call__(self, w):
         """Blank-frame points at ``w`` (the exact curve)."""
@@ -98,7 +98,8 @@ class Branch:
         p, t, tool_angle = turned
         s, valid = self.motion.contact(p, np.stack([-t[..., 1], t[..., 0]], -1), self.root)
         shift, angle, offset = self.motion.pose(np.where(valid, s, 0.0))
-        return rotate(p - shift, angle) + offset, rotate(t, angle), np.stack([tool_angle, angle], -1)
+        q, t = rotate(p - shift, angle, t)
+        return q + offset, t, np.stack([tool_angle, angle], -1)
 
 
 def touching(segment: Segment, poles, root: str = "near"):
