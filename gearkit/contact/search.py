@@ -51,11 +51,12 @@ def search(mesh, frame, r_n, n, contact_tol, bounds):
     cuts = np.searchsorted(r_n, np.arange(0, n, max(1, per_block * n // max(len(r_n), 1))))
     cuts = np.unique(np.concatenate([cuts, [len(r_n)]]))
     best = np.empty((len(r_n), 2))
+    searched = np.isin(np.arange(2), bounds)[None, :]
     parts = []
     for lo, hi in zip(cuts[:-1], cuts[1:]):
         first = r_n[lo]
         b, i_a, *rest = _block(mesh, frame[:, lo:hi], r_n[lo:hi] - first, int(r_n[hi - 1] - first) + 1,
-                               contact_tol, bounds)
+                               contact_tol, searched)
         best[lo:hi] = b
         parts.append((i_a + lo, *rest))
     if not parts:
@@ -64,8 +65,8 @@ def search(mesh, frame, r_n, n, contact_tol, bounds):
     return (best, *(np.concatenate([p[i] for p in parts]) for i in range(5)))
 
 
-def _block(mesh, frame, r_n, n, contact_tol, bounds):
-    """:func:`search` of one block: arrays ``(samples, halves)``."""
+def _block(mesh, frame, r_n, n, contact_tol, searched):
+    """:func:`search` of one block: arrays ``(samples, halves)``; ``searched`` (1, 2) bool, the bounds searched."""
     drv, mate = mesh.driver, mesh.mate
     arm_scale, pitch = mesh.arm_scale, mesh.pitch2
     size = mesh.half_reach[2]
@@ -97,10 +98,11 @@ def _block(mesh, frame, r_n, n, contact_tol, bounds):
     dip = (mesh.tol + bend * chord[:, None] ** 2 / 8.0) / np.maximum(arm, 1e-12 * arm_scale)  # (M, A)
     if mate.crest:  # next to a rounded crest the bound falls like a square root: always look
         dip[c_m, c_a] = np.inf
-    glob = np.full((n, 2), np.inf)
-    np.minimum.at(glob, r_n, best)
+    glob = np.full((n, 2), np.inf)  # the best of each driver angle (its halves are consecutive)
+    first = np.flatnonzero(np.concatenate([[True], r_n[1:] != r_n[:-1]]))
+    glob[r_n[first]] = np.minimum.reduceat(best, first, axis=0)
     active = best - dip.max(axis=0)[:, None] <= glob[r_n] + contact_tol / arm_scale
-    active &= np.isin(np.arange(2), bounds)[None, :]
+    active &= searched
     # the intervals of the active halves (and bounds) that come within their dip of the best
     p_a, p_b = np.nonzero(active)
     ends = big_u[p_b, :, p_a]  # (P, M1)
