@@ -187,11 +187,16 @@ class _Mesh:
                 bases.append(self.add(_rotate(sec.outline, thetas[s + 1]), zs[s + 1]))
                 a, b = bases[s] + j, bases[s] + jn
                 c, d = bases[s + 1] + j, bases[s + 1] + jn
-                diag = np.tile(diagonals[1 if thetas[s + 1] >= thetas[s] else -1], sec.z).astype(bool)[:, None]
-                t1 = np.where(diag, np.stack([a, b, c], 1), np.stack([a, b, d], 1))
-                t2 = np.where(diag, np.stack([b, d, c], 1), np.stack([a, d, c], 1))
-                tris = np.concatenate([t1, t2])
-                self.faces.append(tris[:, ::-1] if sec.internal else tris)
+                diag = np.tile(diagonals[1 if thetas[s + 1] >= thetas[s] else -1], sec.z).astype(bool)
+                # each quad's two triangles, column by column into one array: (a, b, c) and (b, d, c) along
+                # diagonal 0, (a, b, d) and (a, d, c) along 1; a ring's reversed
+                tris = np.empty((2 * sec.count, 3), dtype=np.int64)
+                k0, k1, k2 = (2, 1, 0) if sec.internal else (0, 1, 2)
+                tris[:sec.count, k0], tris[:sec.count, k1] = a, b
+                tris[:sec.count, k2] = np.where(diag, c, d)
+                tris[sec.count:, k0] = np.where(diag, b, a)
+                tris[sec.count:, k1], tris[sec.count:, k2] = d, c
+                self.faces.append(tris)
                 bar.update(s + 2)
         return bases[0], bases[-1]
 

@@ -315,7 +315,7 @@ def mesh_measures(vertices, faces, what: str = "mesh") -> dict:
 
 
 def _measures(v, f, what: str, bar) -> dict:
-    corners = _columns(f)
+    corners = tuple(f[:, k] for k in range(3))  # the facets' corner columns (views: no copy)
     m = len(f)
     # each edge: its two ends and its way, one integer (the three edges of every facet, an edge slot
     # at a time: the same keys as facet by facet, so the same sorted array)
@@ -332,7 +332,7 @@ def _measures(v, f, what: str, bar) -> dict:
         k += ca > cb
     del high
     key.sort()
-    if not ((key[0::2] & 1 == 0).all() and (key[1::2] == key[0::2] + 1).all()):
+    if not _paired(key):
         raise RepairableMesh(f"{what}: the mesh is not a valid solid (an edge without exactly one opposite edge)")
     del key
     bar.step(len(f))
@@ -354,6 +354,16 @@ def _measures(v, f, what: str, bar) -> dict:
     if not volume > 0.0:
         raise RepairableMesh(f"{what}: the solid is empty or inside out (volume {volume:.6g} mm^3)")
     return {"volume": volume, "area": area, "normals": normals}
+
+
+def _paired(key) -> bool:
+    """Whether sorted edge keys pair up: every edge (an even key) followed by the same edge run the other
+    way (its key + 1), and nothing else; a chunk of pairs at a time (small temporaries)."""
+    if len(key) % 2:
+        return False
+    pairs = key.reshape(-1, 2)
+    return all((p[:, 0] & 1 == 0).all() and (p[:, 1] == p[:, 0] + 1).all()
+               for p in (pairs[s:s + CHUNK] for s in range(0, len(pairs), CHUNK)))
 
 
 def _columns(a):
