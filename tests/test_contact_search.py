@@ -1,47 +1,16 @@
-"""The contact solver's search in blocks and its table lookups: the same answers as the plain ways.
+"""The contact solver's search in blocks and its offset without fmod: the same answers as the plain ways.
 
-Oracles: numpy's binary search (``searchsorted``) for :class:`SortedIndex`, over tables shaped like
-the solver's (uniform, clustered towards an end, gaps spanning thirty octaves, pieces two apart) and
-values on, next to and beyond every start (``nan`` and ``inf`` included); and the search over the
-whole batch at once (one block) for the blocked search: the bounds must agree to the bit, since
-every value is made by the same operations on the same numbers.
+Oracles: the search over the whole batch at once (one block) for the blocked search (the bounds
+must agree to the bit: every value is made by the same operations on the same numbers), and
+``np.fmod`` for the mate's offset from its space centre.
 """
 import numpy as np
 import pytest
 
 from gearkit.contact import pair_mesh, simulate
 from gearkit.contact import search as search_module
-from gearkit.contact.lookup import SortedIndex
 from gearkit.contact.solver import solve
 from gearkit.pair import PairSpec
-
-
-def _binary(starts, x):
-    return np.clip(np.searchsorted(starts, x, side="right") - 1, 0, max(len(starts) - 1, 0))
-
-
-def _tables(rng):
-    for n in (1, 2, 3, 17, 83, 400):
-        yield np.sort(rng.random(n)) * 10.0 - 3.0
-        yield np.sort(rng.random(n) ** 8) * 40.0 + 30.0  # clustered at one end
-        yield 40.0 + np.cumsum(rng.random(n) * 2.0 ** -rng.integers(0, 30, n))  # gaps over 30 octaves
-        yield 2.0 * (np.arange(n) // 4) + np.tile([0.0, 0.25, 0.5, 0.75], n)[:n]  # pieces two apart
-    yield np.array([5.0, 5.0, 5.0, 6.0])  # repeated starts
-    yield np.array([1.0, 3.0, 2.0, 4.0])  # unsorted: the binary search's own answer
-    yield 1e6 + np.arange(5) * 1e-9  # too narrow beside its size for the grid
-
-
-def test_sorted_index_is_the_binary_search():
-    rng = np.random.default_rng(7)
-    for starts in _tables(rng):
-        x = np.concatenate([rng.uniform(starts.min() - 1, starts.max() + 1, 2000), starts,
-                            np.nextafter(starts, -np.inf), np.nextafter(starts, np.inf),
-                            [np.nan, np.inf, -np.inf, 1e300, -1e300, 0.0]])
-        index = SortedIndex(starts)
-        assert np.array_equal(index(x), _binary(starts, x)), starts
-        grid = x[:2 * (len(x) // 2)].reshape(-1, 2)
-        assert np.array_equal(index(grid), _binary(starts, grid))
-        assert index(x[0]) == _binary(starts, x[0])
 
 
 @pytest.mark.parametrize("spec", [PairSpec(20, 40, 2.0), PairSpec(20, None, 1.0, 0.2, kind="rack")],

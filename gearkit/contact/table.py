@@ -35,8 +35,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from gearkit.contact.lookup import SortedIndex
-
 __all__ = ["CurveTable", "DEGREE", "TABLE_TOL", "WidthTable"]
 
 #: degree of the interpolating polynomials
@@ -159,14 +157,14 @@ class CurveTable:
         self.achieved = float(err[~self._fallback].max(initial=0.0))
         self.intervals = len(k)
         self._key = 2.0 * k + a  # pieces two apart: t in [0, 1] never reaches the next piece's key
-        self._index = SortedIndex(self._key)
         self._a, self._inv = a, 2.0 / (b - a)
         self._coef, self._dcoef, self._d2coef = _derived(self._coef)
         #: every sub-interval within ``tol``: :meth:`derivatives` applies everywhere
         self.smooth = not self._fallback.any()
 
     def _locate(self, k, t):
-        j = self._index(2.0 * k + t)
+        j = np.searchsorted(self._key, 2.0 * k + t, side="right") - 1
+        j = np.clip(j, 0, len(self._key) - 1)
         return j, (t - self._a[j]) * self._inv[j] - 1.0
 
     def evaluate(self, k, t, derivative: bool = False, exact: bool = False):
@@ -253,7 +251,6 @@ class WidthTable:
         self._piece = half._k[rows]
         # sub-interval starts in rho, for the lookup (increasing, like the half width's table)
         self._r_start = np.where(self._grazing[rows], self._anchor[rows] + np.sign(a) * a * a, a)
-        self._index = SortedIndex(self._r_start)
         self._polar = polar
 
     def _x(self, rows, rho):
@@ -266,7 +263,7 @@ class WidthTable:
 
     def _locate(self, rho):
         """Sub-interval ``j``, its row, the coordinate ``x`` and the local ``s in [-1, 1]`` of flat ``rho``."""
-        j = self._index(rho)
+        j = np.clip(np.searchsorted(self._r_start, rho, side="right") - 1, 0, len(self._r_start) - 1)
         row = self._row[j]
         x = self._x(row, rho)
         return j, row, x, np.clip((x - self._a[j]) * self._inv[j] - 1.0, -1.0, 1.0)

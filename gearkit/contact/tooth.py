@@ -24,7 +24,6 @@ from __future__ import annotations
 import numpy as np
 
 from gearkit.accuracy import adaptive_sample
-from gearkit.contact.lookup import SortedIndex
 from gearkit.curves import polar_from_y
 from gearkit.errors import GeometryError
 
@@ -183,7 +182,6 @@ class HalfWidth:
         self._k, self._t0, self._t1, self._r0, self._r1 = k_i[keep], t0[keep], t1[keep], r0[keep], r1[keep]
         self._w0, self._w1 = w0[keep], w1[keep]
         self._grid_r = np.concatenate([self._r0, self._r1[-1:]])
-        self._index = SortedIndex(self._r0)
         self._grid_w = np.concatenate([self._w0, self._w1[-1:]])
         kap = np.concatenate([r[4] for r in rows])  # per interval, in chain order
         self._kappa = (kap[::-1] if self.outward > 0 else kap)[keep]
@@ -262,7 +260,7 @@ class HalfWidth:
     def lookup(self, rho):
         """The table interval of each ``rho`` and whether it is off the flank (beyond the tip or inside
         the root circle): shared by :meth:`coarse`, :meth:`arm` and :meth:`curvature`."""
-        j = self._index(rho)
+        j = np.clip(np.searchsorted(self._r0, rho, side="right") - 1, 0, len(self._r0) - 1)
         return j, self.free(rho) | self._body(rho)
 
     def exact(self, rho, guess=None, tangent=False):
@@ -299,7 +297,7 @@ class HalfWidth:
         tan = np.zeros(rho.shape + (2,)) if tangent else None
         if inside.size:
             r = rho[inside]
-            j = self._index(r)
+            j = np.clip(np.searchsorted(self._r0, r, side="right") - 1, 0, len(self._r0) - 1)
             k = self._k[j]
             lo, hi = self._t0[j].copy(), self._t1[j].copy()  # rho(lo) <= r <= rho(hi)
             anchor = self._anchor[j]

@@ -316,19 +316,12 @@ def mesh_measures(vertices, faces, what: str = "mesh") -> dict:
 
 def _measures(v, f, what: str, bar) -> dict:
     corners = tuple(f[:, k] for k in range(3))  # the facets' corner columns (views: no copy)
-    m = len(f)
-    # each edge: its two ends and its way, one integer (the three edges of every facet, an edge slot
-    # at a time: the same keys as facet by facet, so the same sorted array)
-    key = np.empty(3 * m, dtype=np.int64)
-    high = np.empty(m, dtype=np.int64)
-    for slot, (a, b) in enumerate(((0, 1), (1, 2), (2, 0))):
-        ca, cb = corners[a], corners[b]
-        k = key[slot * m:(slot + 1) * m]
-        np.minimum(ca, cb, out=k)
+    # each edge: its two ends and its way, one integer; an edge slot at a time (the same keys as facet by facet)
+    m, key, high = len(f), np.empty(3 * len(f), dtype=np.int64), np.empty(len(f), dtype=np.int64)
+    for slot, (ca, cb) in enumerate(zip(corners, corners[1:] + corners[:1])):
+        k = np.minimum(ca, cb, out=key[slot * m:(slot + 1) * m])
         k *= 2 * len(v)
-        np.maximum(ca, cb, out=high)
-        high += high
-        k += high
+        k += np.multiply(np.maximum(ca, cb, out=high), 2, out=high)
         k += ca > cb
     del high
     key.sort()
@@ -357,11 +350,8 @@ def _measures(v, f, what: str, bar) -> dict:
 
 
 def _paired(key) -> bool:
-    """Whether sorted edge keys pair up: every edge (an even key) followed by the same edge run the other
-    way (its key + 1), and nothing else; a chunk of pairs at a time (small temporaries)."""
-    if len(key) % 2:
-        return False
-    pairs = key.reshape(-1, 2)
+    """Sorted edge keys pair up: each edge (an even key), then itself run the other way (key + 1); by chunks."""
+    pairs = key.reshape(-1, 2) if len(key) % 2 == 0 else np.array([[1, 1]])
     return all((p[:, 0] & 1 == 0).all() and (p[:, 1] == p[:, 0] + 1).all()
                for p in (pairs[s:s + CHUNK] for s in range(0, len(pairs), CHUNK)))
 
