@@ -9,7 +9,9 @@ how the tests, the bench and the checks read an outline's accuracy:
   tree to build and no scipy import for the few thousand points of a tooth);
 * :func:`distances_to_polyline`: each point's distance to a polyline, through the edges at its
   nearest vertices (a k-d tree finds them above ``_DIRECT`` point pairs);
-* :func:`polyline_deviation`: the largest of those distances.
+* :func:`polyline_deviation`: the largest of those distances;
+* :func:`edge_distances`: each point's distance to the nearest of all the edges of a long polyline,
+  for points far from it compared with its own size (where a k-d tree visits most of it per point).
 
 Examples
 --------
@@ -27,7 +29,7 @@ import numpy as np
 
 from gearkit.chords import chord_distance as _chord_deviation
 
-__all__ = ["nearest", "distances_to_polyline", "polyline_deviation"]
+__all__ = ["nearest", "distances_to_polyline", "polyline_deviation", "edge_distances"]
 
 
 #: point pairs up to which :func:`distances_to_polyline` searches directly instead of through a k-d tree
@@ -106,3 +108,107 @@ def distances_to_polyline(points, polyline, closed: bool = False, neighbours: in
 def polyline_deviation(polyline, exact_points, closed: bool = False) -> float:
     """Largest distance from points on the exact curve to a polyline: an independent deviation measure."""
     return float(distances_to_polyline(exact_points, polyline, closed).max(initial=0.0))
+
+
+#: spans of edges per level of :func:`edge_distances` are powers of this
+_FAN = 4
+
+
+def _segment_distance(ax, ay, bx, by, qx, qy):
+    """Distance of the points ``(qx, qy)`` from the segments ``(ax, ay)``-``(bx, by)`` (coordinates as
+    separate arrays)."""
+    dx, dy = bx - ax, by - ay
+    dd = dx * dx + dy * dy
+    px, py = qx - ax, qy - ay
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = np.where(dd > 0.0, np.clip((px * dx + py * dy) / dd, 0.0, 1.0), 0.0)
+    return np.hypot(px - t * dx, py - t * dy)
+
+
+def _spans(x, y, length, size):
+    """Spans of ``size`` edges of the polyline ``(x, y)`` (``length`` along it at each vertex): their
+    end vertices' indices, half lengths, and how far their vertices stray from their chords (the
+    segments between their ends; 0 for single edges)."""
+    edges = len(x) - 1
+    ends = np.append(np.arange(0, edges, size), edges)
+    dev = np.zeros(len(ends) - 1)
+    if size > 1:
+        owner = np.minimum(np.arange(len(x)) // size, len(ends) - 2)
+        i, j = ends[owner], ends[owner + 1]
+        np.maximum.at(dev, owner, _segment_distance(x[i], y[i], x[j], y[j], x, y))
+    return ends, 0.5 * np.diff(length[ends]), dev
+
+
+def edge_distances(points, polyline, closed: bool = False, block: int = 1024):
+    """Distance of each point to the nearest of all the edges of a polyline, by spans of edges.
+
+    The edges are grouped in spans of ``4^k`` edges, ``4^(k-1)``, ... down to single edges. A
+    point is no farther from the polyline than from any vertex (``upper``: the nearest span end seen
+    so far), and no nearer to a span than its distance to the span's end vertices less half the
+    span's length, nor than its distance to the span's chord (the segment between its ends) less
+    how far the span's vertices stray from it (the span lies in that neighbourhood of the chord, a
+    convex set). Level by level, a span that either bound puts beyond ``upper`` is dropped and the
+    rest are split; the single edges left are measured. The result is the distance to the nearest of
+    all the edges (a span dropped holds none nearer; the bounds allow ``1e-12`` of the largest
+    coordinate for round-off). For points far from the polyline compared with its size (a roller's envelope
+    against its own pitch curve: points inside a ring of vertices that hugs the circle of their
+    distance about them), where a k-d tree visits most of the vertices for each point, a few spans
+    per level are measured.
+
+    Parameters
+    ----------
+    points : (k, 2) float64
+    polyline : (n, 2) float64
+    closed : bool, the last vertex joins the first
+
+    Returns
+    -------
+    (k,) float64, mm
+
+    Examples
+    --------
+    A regular 1000-gon of circumradius 1: from its centre, the apothem; from outside, the vertex.
+
+    >>> t = np.linspace(0.0, 2.0 * np.pi, 1000, endpoint=False)
+    >>> ring = np.stack([np.cos(t), np.sin(t)], -1)
+    >>> d = edge_distances([[0.0, 0.0], [2.0, 0.0]], ring, closed=True)
+    >>> bool(np.allclose(d, [np.cos(np.pi / 1000), 1.0], rtol=0, atol=1e-12))
+    True
+    """
+    a = np.asarray(polyline, dtype=float)
+    q = np.asarray(points, dtype=float).reshape(-1, 2)
+    if closed:
+        a = np.concatenate([a, a[:1]])
+    edges = len(a) - 1
+    if edges < 1:
+        return np.hypot(q[:, 0] - a[0, 0], q[:, 1] - a[0, 1])
+    x, y = a[:, 0].copy(), a[:, 1].copy()
+    length = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(x), np.diff(y)))])
+    sizes = [_FAN ** k for k in range(int(np.log(edges) / np.log(_FAN) + 1e-9), -1, -1)]
+    levels = [_spans(x, y, length, size) for size in sizes]
+    margin = 1e-12 * max(float(np.abs(a).max()), float(np.abs(q).max(initial=0.0)))  # round-off of a distance
+    out = np.empty(len(q))
+    for s in range(0, len(q), block):
+        qx, qy = q[s:s + block, 0], q[s:s + block, 1]
+        n = len(qx)
+        first = len(levels[0][0]) - 1
+        pi, k = np.repeat(np.arange(n), first), np.tile(np.arange(first), n)  # every top span, by point
+        upper = np.full(n, np.inf)
+        for level, (ends, half, dev) in enumerate(levels):
+            if level:  # split the spans left into the next level's (grouped by point still)
+                fan = sizes[level - 1] // sizes[level]
+                k = (k[:, None] * fan + np.arange(fan)).ravel()
+                pi = np.repeat(pi, fan)
+                inside = k < len(ends) - 1
+                pi, k = pi[inside], k[inside]
+            px, py, i, j = qx[pi], qy[pi], ends[k], ends[k + 1]
+            near = np.minimum(np.hypot(px - x[i], py - y[i]), np.hypot(px - x[j], py - y[j]))
+            group = np.flatnonzero(np.diff(pi, prepend=-1))
+            upper = np.minimum(upper, np.minimum.reduceat(near, group) + margin)
+            chord = _segment_distance(x[i], y[i], x[j], y[j], px, py)
+            if level == len(levels) - 1:  # single edges: the chord is the edge
+                out[s:s + block] = np.minimum.reduceat(chord, group)
+                break
+            keep = (near - half[k] - margin <= upper[pi]) & (chord - dev[k] - margin <= upper[pi])
+            pi, k = pi[keep], k[keep]
+    return out

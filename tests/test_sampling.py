@@ -284,3 +284,29 @@ def test_an_interval_bound_is_the_largest_bound_of_its_legs_bounded_one_by_one()
             legs = [leg_bound(p[j], p[j + 1], t[j], t[j + 1], a[j + 1] - a[j], pts[i], pts[i + 1])
                     for j in range(len(p) - 1)]
             assert np.isfinite(bound[i]) and bound[i] == max(legs), (piece.label, i)
+
+
+def test_edge_distances_are_the_nearest_of_all_the_edges():
+    """Oracle: every edge measured (brute force). Points inside rings whose edges hug the circle of
+    their distance about them (a roller's envelope against its pitch curve: the pruning by spans is
+    at its weakest there), outside them, near them and on vertices; open and closed; a few edges to
+    tens of thousands; coordinates from 1e-3 to 1e3."""
+    from gearkit.chords import chord_distance
+    from gearkit.distances import edge_distances
+
+    rng = np.random.default_rng(20)
+    for n in (1, 2, 3, 17, 1000, 20000):
+        t = np.sort(rng.uniform(0.0, 2.0 * np.pi, n))
+        r = 1.0 + 0.3 * np.sin(3.0 * t) * rng.uniform()
+        scale = 10.0 ** rng.uniform(-3.0, 3.0)
+        ring = scale * np.stack([r * np.cos(t), r * np.sin(t)], -1) + rng.normal(size=2)
+        hug = scale * 0.999 * np.stack([np.cos(rng.uniform(0, 7, 200)), np.sin(rng.uniform(0, 7, 200))], -1)
+        q = np.concatenate([0.05 * hug, ring[rng.integers(0, n, 50)], 3.0 * hug,
+                            ring[rng.integers(0, n, 50)] + 1e-9 * scale * rng.normal(size=(50, 2))])
+        for closed in (False, True):
+            a = np.concatenate([ring, ring[:1]]) if closed else ring
+            if len(a) < 2:
+                continue
+            brute = chord_distance(a[:-1][None], a[1:][None], q[:, None]).min(axis=1)
+            fast = edge_distances(q, ring, closed=closed)
+            assert np.allclose(fast, brute, rtol=1e-13, atol=1e-13 * scale), (n, closed)

@@ -84,11 +84,15 @@ def face_depth(motion, tool, start: float, samples: int = 65536):
 
 def roller_depth(pitch_points, radius: float, start: float, samples: int = 65536):
     """How deep (mm) points lie inside the region the roller sweeps: ``R_p`` less their distance to
-    the pitch curve (``pitch_points(phi)``, sampled at ``samples`` cam angles over one turn)."""
-    from gearkit.distances import distances_to_polyline
+    the pitch curve (``pitch_points(phi)``, sampled at ``samples`` cam angles over one turn). The
+    envelope's points lie a roller radius from the pitch curve, hugging that circle about them for a
+    long stretch of it: the distances are measured by spans of edges
+    (:func:`~gearkit.distances.edge_distances`), not through a k-d tree's nearest vertices (which
+    visited most of the pitch curve for each point: 18 s for one cam)."""
+    from gearkit.distances import edge_distances
 
     pitch = pitch_points(start + np.linspace(0.0, 2.0 * math.pi, samples, endpoint=False))
-    return lambda points: radius - distances_to_polyline(points, pitch, closed=True)
+    return lambda points: radius - edge_distances(points, pitch, closed=True)
 
 
 def kept_runs(curve, depth, slack: float, samples: int = 16385):
