@@ -173,7 +173,9 @@ class _Mesh:
 
     def add(self, points2d, z) -> int:
         base = self.size
-        self.vertices.append(np.column_stack([points2d, np.full(len(points2d), float(z))]))
+        v = np.empty((len(points2d), 3))
+        v[:, :2], v[:, 2] = points2d, float(z)
+        self.vertices.append(v)
         self.size += len(points2d)
         return base
 

@@ -329,7 +329,7 @@ def _measures(v, f, what: str, bar) -> dict:
         raise RepairableMesh(f"{what}: the mesh is not a valid solid (an edge without exactly one opposite edge)")
     del key
     bar.step(len(f))
-    exact, single = _columns(v), _columns(v.astype(np.float32))
+    exact, single = tuple(v[:, k] for k in range(3)), _columns(v.astype(np.float32))  # (exact: views)
     normals = np.empty((len(f), 3), dtype=np.float32)
     volume = area = 0.0
     for s in range(0, len(f), CHUNK):
