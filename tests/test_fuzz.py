@@ -80,14 +80,50 @@ def _check_gear(prof, tol):
 
 
 # -- families -------------------------------------------------------------------------------------
+#: the least tip land (module units) of a drawn shaper cutter's tooth
+CUTTER_LAND = 0.02
+
+
+def _cutter_tip_land(z0, alpha_deg, x0, addendum=1.25):
+    """Half the tooth thickness (module units) of a shaper cutter at its tip circle (textbook: the
+    arc thickness ``s_a = d_a (s / d + inv a - inv a_a)`` with ``s = m (pi/2 + 2 x0 tan a)``)."""
+    a = math.radians(alpha_deg)
+    ra = z0 / 2 + x0 + addendum
+    a_tip = math.acos(min(1.0, z0 * math.cos(a) / (2 * ra)))
+    return ra * ((math.pi / 2 + 2 * x0 * math.tan(a)) / z0 + math.tan(a) - a - math.tan(a_tip) + a_tip)
+
+
+def _cutter_top_shift(z0, alpha_deg):
+    """The largest cutter shift in [-1, 0.5] that leaves the tooth ``CUTTER_LAND`` at its tip (bisection:
+    the land narrows as the shift grows), or -1."""
+    lo, hi = -1.0, 0.5
+    if _cutter_tip_land(z0, alpha_deg, hi) >= CUTTER_LAND or _cutter_tip_land(z0, alpha_deg, lo) < CUTTER_LAND:
+        return hi if _cutter_tip_land(z0, alpha_deg, hi) >= CUTTER_LAND else lo
+    for _ in range(50):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if _cutter_tip_land(z0, alpha_deg, mid) >= CUTTER_LAND else (lo, mid)
+    return lo
+
+
+@st.composite
+def shaper_for_internal(draw, alpha):
+    """A shaper cutter (description) that cuts internal gears: its tooth not pointed (a 30 degree
+    cutter needs a negative shift), one draw in ten over the whole range (the refusals)."""
+    z0 = draw(st.integers(8, 40))
+    if 45 <= draw(st.integers(0, 99)) < 55:  # a band inside the range: hypothesis favours its ends
+        return ("shaper", z0, alpha, draw(st.floats(-0.3, 0.5)))
+    top = _cutter_top_shift(z0, alpha)
+    return ("shaper", z0, alpha, draw(st.floats(max(-1.0, min(-0.3, top - 0.3)), top)))
+
+
 @st.composite
 def involute_kwargs(draw, kind):
     alpha = draw(st.sampled_from([14.5, 20.0, 25.0, 30.0]))
+    thinning = draw(st.sampled_from([0.0, 0.0, 0.05]))
     if kind == "internal":
-        z0 = draw(st.integers(8, 40))
-        tool = ("shaper", z0, alpha, draw(st.floats(-0.3, 0.5)))
-        z = z0 + draw(st.integers(4, 400))
-        beta = 0.0
+        tool = draw(shaper_for_internal(alpha))
+        z = tool[1] + draw(st.integers(4, 400))
+        beta, thinning = 0.0, 0.0  # a shaper-cut gear is thinned by the cutter's setting, not by a thinning
     else:
         tool = ("rack", alpha, 1.0, draw(st.sampled_from([1.1, 1.25, 1.4])), None,
                 draw(st.sampled_from([0.0, 0.0, 0.0, 0.05, 0.1])))
@@ -95,7 +131,7 @@ def involute_kwargs(draw, kind):
         beta = draw(st.floats(-40.0, 40.0)) if kind == "helical" else 0.0
     return draw(maybe_hostile(dict(teeth=z, module=draw(modules), shift=draw(st.floats(-1.5, 2.5)),
                                    helix_angle_deg=beta, internal=kind == "internal", tool=tool,
-                                   thinning=draw(st.sampled_from([0.0, 0.0, 0.05])))))
+                                   thinning=thinning)))
 
 
 def _involute(kind):
