@@ -61,3 +61,15 @@ def test_the_offset_from_the_space_centre_is_fmods(spec):
         odd = np.array([np.nan, np.inf, -np.inf, 1e300, -1e300, 1.0])
         r = np.fmod(odd, pitch)
         assert np.array_equal(mesh.space_offset(odd), np.where(r < 0, r + pitch, r) - pitch / 2, equal_nan=True)
+
+
+def test_the_driver_probes_are_the_table_at_the_minimisers_parameters():
+    """``Boundary.probes``: each polyline interval's parameters spaced as the minimiser spaces them
+    (``a + f (b - a)``, ``f`` from 0 to 1) and the table's points there, read afresh."""
+    mesh = pair_mesh(PairSpec(18, 41, 1.0, 0.3, -0.1))
+    drv = mesh.driver
+    t, x, y = drv.probes(7)
+    frac = np.linspace(0.0, 1.0, 7)
+    assert np.array_equal(t, drv.ta + frac[:, None] * (drv.tb - drv.ta))
+    p = drv.table.evaluate(np.broadcast_to(drv.piece, t.shape), t)
+    assert np.array_equal(x, p[..., 0]) and np.array_equal(y, p[..., 1])

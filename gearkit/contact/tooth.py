@@ -118,12 +118,12 @@ class Boundary:
         """Table points at ``count`` parameters evenly spaced over every polyline interval (its ends
         included), as the minimiser spaces them: ``(t, x, y)``, each ``(count, M)``; made once per table."""
         cache = self.__dict__.setdefault("_probes", {})
-        if (count, id(self.table)) not in cache:
+        if count not in cache or cache[count][0] is not self.table:  # (kept with the table it was read off)
             frac = np.linspace(0.0, 1.0, count)
             t = self.ta[None, :] + frac[:, None] * (self.tb - self.ta)[None, :]
             x, y = self.table.evaluate_xy(np.broadcast_to(self.piece, t.shape).ravel(), t.ravel())
-            cache[count, id(self.table)] = (t, x.reshape(t.shape), y.reshape(t.shape))
-        return cache[count, id(self.table)]
+            cache[count] = (self.table, t, x.reshape(t.shape), y.reshape(t.shape))
+        return cache[count][1:]
 
 
 class HalfWidth:
