@@ -21,7 +21,7 @@ import math
 
 import numpy as np
 
-from gearkit.accuracy import adaptive_sample
+from gearkit.accuracy import adaptive_sample, refine_sample
 from gearkit.curves import bracketed_root, polar_from_y, polyline_self_intersections, zoom_crossing
 from gearkit.errors import GeometryError
 from gearkit.values import frozen
@@ -76,13 +76,12 @@ def _refine_crossing(fa, fb, wa, wb, bounds_a, bounds_b):
     lo = np.array([bounds_a[0], bounds_b[0]])
     hi = np.array([bounds_a[1], bounds_b[1]])
 
-    def gap(v):  # the gap, and the point on curve a (the convergence test's scale)
-        return (on_a := fa(np.array([v[0]]))[0]) - fb(np.array([v[1]]))[0], on_a
+    def gap(v):  # the gap, the point on curve a (the convergence test's scale), and both curves at v -+ h
+        pa, pb = fa(np.array([v[0], v[0] - h, v[0] + h])), fb(np.array([v[1], v[1] - h, v[1] + h]))
+        return pa[0] - pb[0], pa[0], (pa[1:], pb[1:])  # the differences a step from v will need
 
-    f, _ = gap(x)
+    f, _, (pa, pb) = gap(x)
     for _ in range(60):
-        pa = fa(np.array([x[0] - h, x[0] + h]))
-        pb = fb(np.array([x[1] - h, x[1] + h]))
         jac = np.column_stack([(pa[1] - pa[0]) / (2 * h), -(pb[1] - pb[0]) / (2 * h)])
         try:
             step = np.linalg.solve(jac, f)
@@ -93,14 +92,14 @@ def _refine_crossing(fa, fb, wa, wb, bounds_a, bounds_b):
         norm = np.linalg.norm(f)
         for _ in range(40):
             trial = np.clip(x - step, lo, hi)
-            f_trial, on_a = gap(trial)
+            f_trial, on_a, near = gap(trial)
             if np.linalg.norm(f_trial) < norm or not np.any(step):
                 break
             step = 0.5 * step
         else:
             break
         moved = np.abs(trial - x).max()
-        x, f = trial, f_trial
+        x, f, (pa, pb) = trial, f_trial, near
         scale = 1.0 + float(np.abs(on_a).max())
         if moved < 1e-16 or np.linalg.norm(f) <= 2e-16 * scale:
             break
@@ -151,17 +150,18 @@ def _drop_coincident(pts, rel=1e-13):
 
 
 # Parameters graded geometrically towards both ends of every branch: a loop much smaller than the sampling
-# tolerance sits next to a branch junction, so grading the ends resolves loops down to ~1e-13 of the range.
+# tolerance sits next to a branch junction, so grading the ends resolves loops down to ~1e-13 of the range;
+# evaluated with the 17 uniform samples each branch's detection polyline is refined from.
 _GRADED = np.geomspace(1e-13, 0.05, 90)
+_START, _ENDS = np.linspace(0.0, 1.0, 17), np.concatenate([_GRADED, 1.0 - _GRADED])
 
 
 def _sample_chain(branches, tol):
     pts, owner, ws = [], [], []
     for k, br in enumerate(branches):
-        w, p, _ = adaptive_sample(br, tol, n_init=17)
-        extra = np.concatenate([_GRADED, 1.0 - _GRADED])
-        w = np.concatenate([w, extra])
-        p = np.concatenate([p, br(extra)])
+        both = br(np.concatenate([_START, _ENDS]))
+        w, p = refine_sample(br, _START, both[:len(_START)], tol)[:2]
+        w, p = np.concatenate([w, _ENDS]), np.concatenate([p, both[len(_START):]])
         order = np.argsort(w, kind="stable")
         w, p = w[order], p[order]
         pts.append(p)
