@@ -185,11 +185,8 @@ def adaptive_sample(evaluate, tol: float, n_init: int = 5, max_rounds: int = 60,
     w, pts, _, probes, q = refine_sample(evaluate, w, evaluate(w), PILOT * tol, max_rounds, max_split)
     w = place_by_curvature(np.concatenate([w, probes.ravel()]), np.concatenate([pts, q.reshape(-1, 2)]),
                            PLACE_AT * tol)
-    turning = getattr(evaluate, "turning", None)
-    turned = None if turning is None else turning(w)  # None: no angle parts to prove a bound with
-    if turned is None:
-        return refine_sample(evaluate, w, evaluate(w), tol, max_rounds, max_split)[:3]
-    return refine_sample(evaluate, w, None, tol, max_rounds, max_split, True, turned)[:3]
+    bound = getattr(evaluate, "turning", None) is not None
+    return refine_sample(evaluate, w, None if bound else evaluate(w), tol, max_rounds, max_split, bound)[:3]
 
 
 def place_by_curvature(w, points, tol: float) -> np.ndarray:
@@ -249,8 +246,7 @@ def _carry(n, rows, fresh, at, old):
 ATOM = 1e-13
 
 
-def refine_sample(evaluate, w, pts, tol: float, max_rounds: int = 60, max_split: int = 16, bound: bool = False,
-                  turned=None):
+def refine_sample(evaluate, w, pts, tol: float, max_rounds: int = 60, max_split: int = 16, bound: bool = False):
     """Split the intervals of a sampling ``(w, pts)`` of an exact curve until every chord is within ``tol``.
 
     Each round probes every interval at its quarter points and eighths at both ends (an interval no
@@ -268,28 +264,37 @@ def refine_sample(evaluate, w, pts, tol: float, max_rounds: int = 60, max_split:
 
     ``bound=True`` (the curve has ``turning(w)``, see :mod:`gearkit.chords`): ``dev`` is instead each
     interval's *proven bound* over the legs between its probes (no margin: ``dev <= tol`` accepts), an
-    interval whose bound is not established is split at its probes, and ``achieved`` is a bound;
-    ``turned`` is ``evaluate.turning(w)`` where the caller has it already.
+    interval whose bound is not established is split at its probes, and ``achieved`` is a bound. The
+    vertices and the first round's probes are evaluated in one call of ``turning``; where it gives no
+    angle parts (None) the sampling is probed as with ``bound=False`` (``pts`` may be None: evaluated).
 
     Returns
     -------
     w, points, achieved (as :func:`adaptive_sample`), and the final probes' parameters
     ``(k - 1, 5)`` and points ``(k - 1, 5, 2)``.
     """
-    if bound:
+    turned = probed = None
+    if bound:  # the vertices and the probes of the first round
+        first = w[:-1, None] + np.diff(w)[:, None] * _PROBES
+        turned = evaluate.turning(np.concatenate([w, first.ravel()]))
+    if turned is not None:
         turning = angle_parts(evaluate.turning)
-        pts, tan, parts = turning(w) if turned is None else angle_parts(lambda _: turned)(w)
-        margin = 1.0
+        every = angle_parts(lambda _: turned)(None)
+        pts, tan, parts = (v[:len(w)] for v in every)
+        probed = tuple(v[len(w):] for v in every)  # handed to the first round's bounds
+        margin, bound = 1.0, True
     else:
-        margin = PROBE_MARGIN
+        pts = evaluate(w) if pts is None else pts
+        margin, bound = PROBE_MARGIN, False
     todo, kept = np.arange(len(w) - 1), None  # the intervals to probe: all, then the ones a round made
     for _ in range(max_rounds):
         lo, hi = w[:-1], w[1:]
         if not len(todo):
             measured = kept[1]
         else:
-            measured = (interval_bounds(turning, w, pts, tan, parts, tol, _PROBES, todo) if bound
+            measured = (interval_bounds(turning, w, pts, tan, parts, tol, _PROBES, todo, probed) if bound
                         else _probe(evaluate, w, pts, tol, todo))
+            probed = None
             measured = measured if kept is None else _carry(len(lo), todo, measured, *kept)
         if bound:
             probes, q, tq, pq, dev = measured

@@ -175,7 +175,7 @@ def _walk_bound(rows, pts, tan, parts, q, tq, pq):
                  np.maximum(dist[:, :-1], dist[:, 1:])).max(axis=1)
 
 
-def interval_bounds(turning, w, pts, tan, parts, tol, fractions, rows=None):
+def interval_bounds(turning, w, pts, tan, parts, tol, fractions, rows=None, probed=None):
     """Probes of a sampling's intervals (at ``fractions`` of each) with their tangents and angle parts,
     and each interval's proven deviation bound: the largest :func:`leg_bound` of the legs between its ends
     and probes (``inf``: not proven). ``turning`` as :func:`angle_parts` returns it; ``pts``, ``tan``,
@@ -184,11 +184,11 @@ def interval_bounds(turning, w, pts, tan, parts, tol, fractions, rows=None):
     points, :func:`round_off` of the sampling (it grows with the sampling's largest coordinate).
     Where the parts turn against each other (an inflection) a leg's range is wider than its turning:
     an interval bounded just above ``tol`` is bounded again on ``FINE`` legs (more proof, not more
-    vertices)."""
+    vertices). ``probed``: ``turning`` at the probes (flat), where the caller evaluated them already."""
     rows = np.arange(len(w) - 1) if rows is None else rows
     lo, hi = w[rows], w[rows + 1]
     probes = lo[:, None] + (hi - lo)[:, None] * fractions
-    q, tq, pq = turning(probes.ravel())
+    q, tq, pq = turning(probes.ravel()) if probed is None else probed
     bound = _walk_bound(rows, pts, tan, parts, q, tq, pq)
     near = np.flatnonzero((bound > tol) & (bound < RETRY * tol))
     if len(near):
