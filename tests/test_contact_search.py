@@ -57,6 +57,8 @@ def test_the_offset_from_the_space_centre_is_fmods(spec):
     r = np.fmod(psi, pitch)
     expected = np.where(r < 0, r + pitch, r) - pitch / 2
     assert np.array_equal(mesh.space_offset(psi), expected)
+    angle = np.abs(psi) <= np.pi  # an angle of arctan2: the quotient's range is known beforehand
+    assert np.array_equal(mesh.space_offset(psi[angle], polar=True), expected[angle])
     with np.errstate(invalid="ignore"):
         odd = np.array([np.nan, np.inf, -np.inf, 1e300, -1e300, 1.0])
         r = np.fmod(odd, pitch)

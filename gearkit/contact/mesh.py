@@ -170,9 +170,9 @@ class Mesh:
             x, y = x - self.centre2[0], y - self.centre2[1]
             qx, qy = c * x + s * y, c * y - s * x
             rho, psi = np.hypot(qx, qy), np.arctan2(qx, qy)
-        return rho, self.space_offset(psi)
+        return rho, self.space_offset(psi, self.kind != "rack")
 
-    def space_offset(self, psi):
+    def space_offset(self, psi, polar: bool = False):
         """The offset ``u`` of a periodic coordinate ``psi`` (mate units) from the space centre: ``fmod(psi,
         P)``, moved into ``[0, P)`` when negative, ``- P / 2``, to the bit, without fmod (whose exact
         division costs tens of nanoseconds a value).
@@ -182,10 +182,11 @@ class Mesh:
         ``psi - q P_hi`` is exact (Sterbenz: the two lie within a factor 2) and so is the last
         difference, whose exact value is fmod's. The rounded quotient may be one too large (never too
         small); the remainder then has the other sign, ``P`` away from fmod's, and moving it into
-        ``[0, P)`` adds the same ``P`` to the same value as after fmod. Larger quotients: fmod."""
+        ``[0, P)`` adds the same ``P`` to the same value as after fmod. Larger quotients: fmod (``polar``:
+        ``psi`` is an angle of ``arctan2``, within ``pi``, so ``|q| <= pi / P + 1``; a nan passes either way)."""
         pitch, hi, lo = self.pitch2, self._pitch_hi, self._pitch_lo
         q = np.trunc(psi / pitch)
-        if not np.abs(q).max(initial=0.0) < 2.0 ** 26:  # (nan too)
+        if not (polar and math.pi / pitch + 1.0 < 2.0 ** 26) and not np.abs(q).max(initial=0.0) < 2.0 ** 26:
             r = np.fmod(psi, pitch)
             return np.where(r < 0, r + pitch, r) - pitch / 2.0
         r = psi - q * hi
@@ -222,7 +223,7 @@ class Mesh:
         x, y = a * px - b * py - ox, c * px + d * py - oy
         if self.kind == "rack":
             return self.a - y, self.space_offset(shift - x)
-        return np.sqrt(x * x + y * y), self.space_offset(np.arctan2(x, y))  # (hypot's scaling not needed here)
+        return np.sqrt(x * x + y * y), self.space_offset(np.arctan2(x, y), True)  # (hypot's scaling not needed)
 
     def mate_derivatives(self, p, d1, d2, frame):
         """:meth:`mate_coords` along a driver curve, with the first and second derivatives in its
@@ -240,7 +241,7 @@ class Mesh:
         rho_2 = (dx * dx + dy * dy + x * ex + y * ey - rho_1 * rho_1) / rho
         u_1 = (y * dx - x * dy) / r2  # psi = atan2(x, y): psi' = (y x' - x y') / rho^2
         u_2 = (y * ex - x * ey) / r2 - 2.0 * u_1 * rho_1 / rho
-        return rho, rho_1, rho_2, self.space_offset(np.arctan2(x, y)), u_1, u_2
+        return rho, rho_1, rho_2, self.space_offset(np.arctan2(x, y), True), u_1, u_2
 
     def mate_velocity(self, points):
         """Velocity of mate points at fixed-frame ``points`` per unit ``delta`` (mm/rad or 1 for a rack)."""

@@ -85,14 +85,15 @@ def _driver_xy(mesh, k, t, sigma, theta, exact=False):
 class _Task:
     """Exact bound function along one polyline interval per row."""
 
-    def __init__(self, mesh, phi, theta, sigma, sb, piece, interval=None):
+    def __init__(self, mesh, phi, theta, sigma, sb, piece, interval=None, frame=None):
         self.mesh, self.phi, self.theta, self.sigma, self.sb, self.piece = mesh, phi, theta, sigma, sb, piece
         self.interval = interval  # the polyline interval of each row (for :meth:`grid_values`)
         self.k2 = np.full(len(phi), -1)  # the mate's last solution per row: the secant's first point
         self.t2 = np.zeros(len(phi))
         self.r2 = np.zeros(len(phi))
         self.exact = False  # True: on the exact pieces even where the mesh has tables
-        self.frame = mesh.frames(theta, sigma, phi)  # the driver half's own coordinates -> the mate's
+        # the driver half's own coordinates -> the mate's (``frame``: these rows' frames, made already)
+        self.frame = mesh.frames(theta, sigma, phi) if frame is None else frame
 
     @property
     def noise(self):
@@ -244,7 +245,7 @@ def _refine(mesh, phi, theta, sigma, sb, m, fa, fb, half):
             sel = _winners(value, half)
     phi, theta, sigma, sb, m, fa, fb = phi[sel], theta[sel], sigma[sel], sb[sel], m[sel], fa[sel], fb[sel]
     piece, a, b, t, at_tip = piece[sel], a[sel], b[sel], t[sel], at_tip[sel]
-    task = _Task(mesh, phi, theta, sigma, sb, piece)
+    task = _Task(mesh, phi, theta, sigma, sb, piece, frame=task.frame[:, sel])
     corner2 = at_tip & (((t == b) & fa) | ((t == a) & fb))
     # contact value (exact), point, normal and arm
     exact, q, rho, k2, tan2 = task.value(t, tangent=True, exact=True)
