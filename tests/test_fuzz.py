@@ -119,7 +119,8 @@ def shaper_for_internal(draw, alpha):
 @st.composite
 def involute_kwargs(draw, kind):
     alpha = draw(st.sampled_from([14.5, 20.0, 25.0, 30.0]))
-    thinning = draw(st.sampled_from([0.0, 0.0, 0.05]))
+    m = draw(modules)
+    thinning = draw(st.sampled_from([0.0, 0.0, 0.05])) * m  # mm: a share of the tooth, whatever the module
     if kind == "internal":
         tool = draw(shaper_for_internal(alpha))
         z = tool[1] + draw(st.integers(4, 400))
@@ -129,7 +130,7 @@ def involute_kwargs(draw, kind):
                 draw(st.sampled_from([0.0, 0.0, 0.0, 0.05, 0.1])))
         z = draw(st.one_of(st.integers(3, 80), st.integers(80, 5000)))
         beta = draw(st.floats(-40.0, 40.0)) if kind == "helical" else 0.0
-    return draw(maybe_hostile(dict(teeth=z, module=draw(modules), shift=draw(st.floats(-1.5, 2.5)),
+    return draw(maybe_hostile(dict(teeth=z, module=m, shift=draw(st.floats(-1.5, 2.5)),
                                    helix_angle_deg=beta, internal=kind == "internal", tool=tool,
                                    thinning=thinning)))
 
