@@ -149,17 +149,17 @@ def touching(segment: Segment, poles, root: str = "near"):
 def _valid_runs(branch: Branch, n: int = 65):
     """Sub-ranges of ``[0, 1]`` where the meshing equation has a solution, ends bisected."""
     w = np.linspace(0.0, 1.0, n)
-    valid = branch.solve(w)[3]
+    valid = branch.solve(w, normals=False)[3]
     if valid.all():
         return [(0.0, 1.0)]
     runs = []
     edges = np.flatnonzero(np.diff(valid.astype(int)))
 
     def bisect(a, b):  # valid(a) != valid(b)
-        va = bool(branch.solve([a])[3][0])
+        va = bool(branch.solve([a], normals=False)[3][0])
         for _ in range(60):
             m = 0.5 * (a + b)
-            if bool(branch.solve([m])[3][0]) == va:
+            if bool(branch.solve([m], normals=False)[3][0]) == va:
                 a = m
             else:
                 b = m
