@@ -194,12 +194,13 @@ def _pole_root(half: HalfTooth, spec: PinGearSpec) -> HalfTooth:
     case the boundary is the pin circle up to the point where the flank, coming from the tip,
     enters it: solved on the flank (a scalar root of its distance from the pin centre, on steps
     halving towards the roots' meeting point, so the dip is always sampled), the root piece
-    becomes the exact circle from it to the space centre line. A half tooth whose last piece is not
-    on the flank's branch, on the pin at the pole, is returned as it is.
+    becomes the exact circle from it to the space centre line. Only the last flank piece and the root
+    after it change; a half tooth that does not end on the flank's branch, on the pin at the pole,
+    is returned as it is.
     """
     pieces = list(half.pieces)
-    k = next((i for i, p in enumerate(pieces) if p.label == "flank"), None)
-    if k is None or pieces[-1].curve is not pieces[k].curve:
+    k = len(pieces) - (2 if pieces[-1].label == "root" else 1)  # the last flank piece (and the root after it)
+    if k < 0 or pieces[k].label != "flank" or pieces[-1].curve is not pieces[k].curve:
         return half
     branch, w_t, w_s = pieces[k].curve, pieces[k].w0, pieces[-1].w1
     g0, rho = math.pi / spec.wheel_teeth, spec.pin_radius
