@@ -189,26 +189,38 @@ def edge_distances(points, polyline, closed: bool = False, block: int = 1024):
     margin = 1e-12 * max(float(np.abs(a).max()), float(np.abs(q).max(initial=0.0)))  # round-off of a distance
     out = np.empty(len(q))
     for s in range(0, len(q), block):
-        qx, qy = q[s:s + block, 0], q[s:s + block, 1]
-        n = len(qx)
-        first = len(levels[0][0]) - 1
-        pi, k = np.repeat(np.arange(n), first), np.tile(np.arange(first), n)  # every top span, by point
-        upper = np.full(n, np.inf)
-        for level, (ends, half, dev) in enumerate(levels):
-            if level:  # split the spans left into the next level's (grouped by point still)
-                fan = sizes[level - 1] // sizes[level]
-                k = (k[:, None] * fan + np.arange(fan)).ravel()
-                pi = np.repeat(pi, fan)
-                inside = k < len(ends) - 1
-                pi, k = pi[inside], k[inside]
-            px, py, i, j = qx[pi], qy[pi], ends[k], ends[k + 1]
-            near = np.minimum(np.hypot(px - x[i], py - y[i]), np.hypot(px - x[j], py - y[j]))
-            group = np.flatnonzero(np.diff(pi, prepend=-1))
-            upper = np.minimum(upper, np.minimum.reduceat(near, group) + margin)
-            chord = _segment_distance(x[i], y[i], x[j], y[j], px, py)
-            if level == len(levels) - 1:  # single edges: the chord is the edge
-                out[s:s + block] = np.minimum.reduceat(chord, group)
-                break
-            keep = (near - half[k] - margin <= upper[pi]) & (chord - dev[k] - margin <= upper[pi])
-            pi, k = pi[keep], k[keep]
+        out[s:s + block] = _nearest_edges(q[s:s + block, 0], q[s:s + block, 1], x, y, sizes, levels, margin)
     return out
+
+
+#: most (point, span) pairs :func:`edge_distances` holds at once: a block of points that keeps more
+#: (points at the centre of a circular stretch: every span stays) is split in two
+_PAIRS = 1 << 19
+
+
+def _nearest_edges(qx, qy, x, y, sizes, levels, margin):
+    """:func:`edge_distances` of one block of points ``(qx, qy)``, the spans' ``levels`` made."""
+    n = len(qx)
+    first = len(levels[0][0]) - 1
+    pi, k = np.repeat(np.arange(n), first), np.tile(np.arange(first), n)  # every top span, by point
+    upper = np.full(n, np.inf)
+    for level, (ends, half, dev) in enumerate(levels):
+        if level:  # split the spans left into the next level's (grouped by point still)
+            fan = sizes[level - 1] // sizes[level]
+            if n > 1 and len(k) * fan > _PAIRS:
+                h = n // 2
+                return np.concatenate([_nearest_edges(qx[:h], qy[:h], x, y, sizes, levels, margin),
+                                       _nearest_edges(qx[h:], qy[h:], x, y, sizes, levels, margin)])
+            k = (k[:, None] * fan + np.arange(fan)).ravel()
+            pi = np.repeat(pi, fan)
+            inside = k < len(ends) - 1
+            pi, k = pi[inside], k[inside]
+        px, py, i, j = qx[pi], qy[pi], ends[k], ends[k + 1]
+        near = np.minimum(np.hypot(px - x[i], py - y[i]), np.hypot(px - x[j], py - y[j]))
+        group = np.flatnonzero(np.diff(pi, prepend=-1))
+        upper = np.minimum(upper, np.minimum.reduceat(near, group) + margin)
+        chord = _segment_distance(x[i], y[i], x[j], y[j], px, py)
+        if level == len(levels) - 1:  # single edges: the chord is the edge
+            return np.minimum.reduceat(chord, group)
+        keep = (near - half[k] - margin <= upper[pi]) & (chord - dev[k] - margin <= upper[pi])
+        pi, k = pi[keep], k[keep]

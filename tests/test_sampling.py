@@ -286,13 +286,19 @@ def test_an_interval_bound_is_the_largest_bound_of_its_legs_bounded_one_by_one()
             assert np.isfinite(bound[i]) and bound[i] == max(legs), (piece.label, i)
 
 
-def test_edge_distances_are_the_nearest_of_all_the_edges():
+@pytest.mark.parametrize("pairs", [None, 64])
+def test_edge_distances_are_the_nearest_of_all_the_edges(monkeypatch, pairs):
     """Oracle: every edge measured (brute force). Points inside rings whose edges hug the circle of
     their distance about them (a roller's envelope against its pitch curve: the pruning by spans is
     at its weakest there), outside them, near them and on vertices; open and closed; a few edges to
-    tens of thousands; coordinates from 1e-3 to 1e3."""
+    tens of thousands; coordinates from 1e-3 to 1e3. Also with blocks of points split whenever they
+    hold more than 64 (point, span) pairs (the bound on the memory a block takes)."""
+    from gearkit import distances
     from gearkit.chords import chord_distance
     from gearkit.distances import edge_distances
+
+    if pairs:
+        monkeypatch.setattr(distances, "_PAIRS", pairs)
 
     rng = np.random.default_rng(20)
     for n in (1, 2, 3, 17, 1000, 20000):
