@@ -232,6 +232,14 @@ def test_sigterm_during_an_export_exits_143_and_leaves_nothing(capsys, tmp_path,
     assert signal.getsignal(signal.SIGTERM) is before  # the handler is put back
 
 
+def _signals_at_default():
+    """In the child before it runs: SIGINT and SIGTERM at their defaults. A suite started as a background
+    job inherits SIGINT ignored, and Python (rightly) leaves an inherited ignore in place, so the child
+    would never see the signal this test sends."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+
+
 @pytest.mark.parametrize("sig, code, word", [(signal.SIGINT, 130, "interrupted"), (signal.SIGTERM, 143, "terminated")])
 def test_a_real_signal_during_a_long_export_leaves_no_part_file(tmp_path, sig, code, word):
     """A real process, signalled while its ``.part`` file is being written (a z = 2000 DXF at tol 1e-5
@@ -248,7 +256,8 @@ def test_a_real_signal_during_a_long_export_leaves_no_part_file(tmp_path, sig, c
     for _attempt in range(5):
         proc = subprocess.Popen([sys.executable, "-m", "gearkit", "gear", "-z", "2000", "-m", "1", "--tol", "1e-5",
                                  "-o", str(out)],
-                                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, env=env)
+                                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, env=env,
+                                preexec_fn=_signals_at_default)
         deadline = time.monotonic() + 300
         while not [p for p in leftovers(tmp_path) if p.startswith(".g.dxf.")]:
             assert proc.poll() is None, "the export ended before its .part file was seen"
