@@ -187,6 +187,23 @@ def test_topology_sees_a_missing_piece_and_a_duplicate():
     assert topology(c2, c)["duplicates"] == 2
 
 
+def test_the_two_sides_of_a_sliver_are_no_duplicate():
+    """The bench's duplicate count: the two sides of a sliver narrower than 2 tol (F of one sign between
+    them, of the other beyond) are two lines; one line given twice, offset by less than the vertices'
+    accuracy, is a duplicate."""
+    from gearkit.bench.topology import duplicates
+
+    tol, width = 1e-3, 5e-4  # the sliver 0 < y < width, narrower than 2 tol
+    F = lambda p, k: p[:, 1] * (width - p[:, 1])  # noqa: E731  positive inside the sliver
+    x = np.linspace(0.0, 1.0, 11)
+    low = np.column_stack([x, np.zeros_like(x)])
+    high = np.column_stack([x, np.full_like(x, width)])
+    assert duplicates([low, high], tol) == 2  # distance alone: both flagged
+    assert duplicates([low, high], tol, F, 0) == 0
+    twice = low + [0.0, 0.1 * tol]
+    assert duplicates([low, twice], tol, F, 0) == 2
+
+
 def test_vectorised_margins_are_the_pair_formulas():
     """The array margins equal the scalar ones (pair_geometry and the check functions) to round-off
     wherever both exist, for an external, a helical and an internal pair."""

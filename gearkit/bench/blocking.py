@@ -22,6 +22,7 @@ import time
 
 import numpy as np
 
+from gearkit.bench.topology import topology
 from gearkit.export import text_number
 
 __all__ = ["ladder_rows", "target_rows", "atlas_rows", "deviation", "scan_gap", "format_section"]
@@ -178,68 +179,6 @@ def scan_gap(contour, scans: int = SCANS, samples: int = SCAN_SAMPLES):
         if best[m] > worst[0]:
             worst = (float(best[m]), ln.name, (float(root[m, 0]), float(root[m, 1])))
     return worst
-
-
-def _far(points, polylines) -> float:
-    """Largest distance from ``points`` (n, 2) to the nearest of ``polylines`` (inf when there are none)."""
-    from gearkit.distances import distances_to_polyline
-
-    if not len(points):
-        return 0.0
-    best = np.full(len(points), np.inf)
-    for q in polylines:
-        best = np.minimum(best, distances_to_polyline(points, q))
-    return float(best.max())
-
-
-def _probe_points(polylines):
-    """Vertices and chord middles of ``polylines``."""
-    pts = [p for q in polylines for p in (q, 0.5 * (q[:-1] + q[1:]))]
-    return np.concatenate(pts) if pts else np.zeros((0, 2))
-
-
-def _duplicates(polylines, tol: float) -> int:
-    """Components most of whose vertices lie within ``2 tol`` of another component (traced twice)."""
-    from gearkit.distances import distances_to_polyline
-
-    count = 0
-    for i, q in enumerate(polylines):
-        inner = q[1:-1] if len(q) > 2 else q
-        for j, r in enumerate(polylines):
-            if i != j and np.mean(distances_to_polyline(inner, r) <= 2 * tol) > 0.5:
-                count += 1
-                break
-    return count
-
-
-def topology(contour, reference) -> dict:
-    """The traced lines and region of ``contour`` against a much finer trace ``reference`` (the same
-    pair and window): ``gap`` (largest distance of a reference point from the traced lines: a piece
-    missing), ``extra`` (largest distance of a traced vertex or chord middle from the reference: a
-    spurious piece), ``loops`` (closed components: traced, reference), ``duplicates`` (components traced
-    twice). The contract: gap and extra within ``2 tol``, the same number of loops, no duplicate.
-
-    Examples
-    --------
-    >>> from gearkit.blocking import blocking_contour
-    >>> from gearkit.pair import PairSpec
-    >>> ref = blocking_contour(PairSpec(13, 16, 1.0), tol=1e-7, lines=["pointing.1"])
-    >>> t = topology(blocking_contour(PairSpec(13, 16, 1.0), tol=1e-3, lines=["pointing.1"]), ref)
-    >>> t["gap"] <= 2e-3 and t["extra"] <= 2e-3, t["loops"], t["duplicates"]
-    (True, (1, 1), 0)
-    """
-    pairs = [(ln.components, reference.line(ln.name).components) for ln in contour.lines]
-    pairs.append((contour.region, reference.region))
-    gap = extra = 0.0
-    loops, loops_ref, dup = 0, 0, 0
-    for mine, ref in pairs:
-        mine, ref = list(mine), list(ref)
-        gap = max(gap, _far(_probe_points(ref), mine))
-        extra = max(extra, _far(_probe_points(mine), ref))
-        loops += sum(1 for q in mine if len(q) > 2 and np.array_equal(q[0], q[-1]))
-        loops_ref += sum(1 for q in ref if len(q) > 2 and np.array_equal(q[0], q[-1]))
-        dup += _duplicates(mine, contour.tol)
-    return {"gap": gap, "extra": extra, "loops": (loops, loops_ref), "duplicates": dup}
 
 
 def ladder_rows(quick: bool):

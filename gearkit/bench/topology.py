@@ -1,0 +1,111 @@
+"""The topology of a traced blocking contour against a much finer trace: gaps, spurious pieces,
+loops and duplicate traces (the ladder of :mod:`gearkit.bench.blocking`)."""
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["topology", "duplicates"]
+
+
+def _far(points, polylines) -> float:
+    """Largest distance from ``points`` (n, 2) to the nearest of ``polylines`` (inf when there are none)."""
+    from gearkit.distances import distances_to_polyline
+
+    if not len(points):
+        return 0.0
+    best = np.full(len(points), np.inf)
+    for q in polylines:
+        best = np.minimum(best, distances_to_polyline(points, q))
+    return float(best.max())
+
+
+def _probe_points(polylines):
+    """Vertices and chord middles of ``polylines``."""
+    pts = [p for q in polylines for p in (q, 0.5 * (q[:-1] + q[1:]))]
+    return np.concatenate(pts) if pts else np.zeros((0, 2))
+
+
+def _nearest_points(points, polyline):
+    """The nearest point of ``polyline`` (m, 2) to each of ``points`` (n, 2) (in blocks of points)."""
+    a, b = polyline[:-1], polyline[1:]
+    d = b - a
+    out = np.empty_like(points)
+    for lo in range(0, len(points), 256):
+        p = points[lo:lo + 256]
+        with np.errstate(invalid="ignore", divide="ignore"):
+            t = np.clip(np.nan_to_num(np.einsum("nmk,mk->nm", p[:, None, :] - a[None], d) / np.einsum("mk,mk->m", d, d)),
+                        0.0, 1.0)
+        c = a[None] + t[:, :, None] * d[None]
+        k = np.argmin(np.hypot(*(c - p[:, None, :]).transpose(2, 0, 1)), axis=1)
+        out[lo:lo + 256] = c[np.arange(len(p)), k]
+    return out
+
+
+def _sides_of_a_sliver(F, k, v, w, tol):
+    """True where the zeros ``v`` and their nearest points ``w`` on another polyline bound a sliver
+    (``F`` of one sign between them and of the other just beyond both, or beyond one where the other
+    borders the no-pair area: two lines, not one traced twice); points closer than ``tol / 4`` (the
+    vertices' accuracy) are one zero."""
+    out = v + (v - w)
+    beyond = w + (w - v)
+    vals = F(np.concatenate([0.5 * (v + w), out, beyond]), np.full(3 * len(v), k)).reshape(3, -1)
+    with np.errstate(invalid="ignore"):
+        apart = np.hypot(*(v - w).T) > 0.25 * tol
+        flips = [np.isnan(vals[i]) | ((vals[0] > 0) != (vals[i] > 0)) for i in (1, 2)]
+        return apart & np.isfinite(vals[0]) & (np.isfinite(vals[1]) | np.isfinite(vals[2])) & flips[0] & flips[1]
+
+
+def duplicates(polylines, tol: float, F=None, k: int = 0) -> int:
+    """Components most of whose vertices lie within ``2 tol`` of another component on the same zeros
+    (traced twice); with ``F`` (function ``k`` of an evaluator), vertices that lie on the other side of
+    a sliver from their nearest points (:func:`_sides_of_a_sliver`) do not count: a sliver narrower
+    than ``2 tol`` has two lines."""
+    from gearkit.distances import distances_to_polyline
+
+    count = 0
+    for i, q in enumerate(polylines):
+        inner = q[1:-1] if len(q) > 2 else q
+        for j, r in enumerate(polylines):
+            if i == j:
+                continue
+            close = distances_to_polyline(inner, r) <= 2 * tol
+            if F is not None and np.mean(close) > 0.5 and len(r) > 1:
+                close[close] &= ~_sides_of_a_sliver(F, k, inner[close], _nearest_points(inner[close], r), tol)
+            if np.mean(close) > 0.5:
+                count += 1
+                break
+    return count
+
+
+def topology(contour, reference) -> dict:
+    """The traced lines and region of ``contour`` against a much finer trace ``reference`` (the same
+    pair and window): ``gap`` (largest distance of a reference point from the traced lines: a piece
+    missing), ``extra`` (largest distance of a traced vertex or chord middle from the reference: a
+    spurious piece), ``loops`` (closed components: traced, reference), ``duplicates`` (components traced
+    twice: the two sides of a sliver narrower than ``2 tol`` are two lines, see :func:`duplicates`).
+    The contract: gap and extra within ``2 tol``, the same number of loops, no duplicate.
+
+    Examples
+    --------
+    >>> from gearkit.blocking import blocking_contour
+    >>> from gearkit.pair import PairSpec
+    >>> ref = blocking_contour(PairSpec(13, 16, 1.0), tol=1e-7, lines=["pointing.1"])
+    >>> t = topology(blocking_contour(PairSpec(13, 16, 1.0), tol=1e-3, lines=["pointing.1"]), ref)
+    >>> t["gap"] <= 2e-3 and t["extra"] <= 2e-3, t["loops"], t["duplicates"]
+    (True, (1, 1), 0)
+    """
+    from gearkit.blocking.arrays import evaluator
+
+    pairs = [(ln.components, reference.line(ln.name).components) for ln in contour.lines]
+    pairs.append((contour.region, reference.region))
+    F = evaluator(contour.field, [ln.name for ln in contour.lines] + ["region"], contour.window)
+    gap = extra = 0.0
+    loops, loops_ref, dup = 0, 0, 0
+    for k, (mine, ref) in enumerate(pairs):
+        mine, ref = list(mine), list(ref)
+        gap = max(gap, _far(_probe_points(ref), mine))
+        extra = max(extra, _far(_probe_points(mine), ref))
+        loops += sum(1 for q in mine if len(q) > 2 and np.array_equal(q[0], q[-1]))
+        loops_ref += sum(1 for q in ref if len(q) > 2 and np.array_equal(q[0], q[-1]))
+        dup += duplicates(mine, contour.tol, F, k)
+    return {"gap": gap, "extra": extra, "loops": (loops, loops_ref), "duplicates": dup}
