@@ -305,6 +305,39 @@ def test_cam_two_velocity_jumps_at_one_angle_build_a_profile():
     assert np.hypot(*prof.pitch_points(np.linspace(0, 2 * np.pi, 7201)).T).max() == pytest.approx(7.5, rel=1e-6)
 
 
+def test_flat_rocker_cam_runs_straight_along_the_face_line_at_a_velocity_jump():
+    # a flat-faced rocker turning back relative to the cam (|psi'| > 1, constant velocity): the lines
+    # of the return are all cut away and the face line at the return's end (a velocity jump) bounds
+    # the cam from its touching point on the base circle to the crossing with the rise's envelope.
+    # The kept arcs did not cross there; the outline closed with a chord 0.416 mm inside the cam.
+    from gearkit.families.cam import CamSpec, MotionProgram, cam_profile
+    from gearkit.families.cam.faces import face_lines
+
+    kw = dict(prime_radius=29.920755273305605, follower="rocker", contact="flat", roller_radius=0.0,
+              pivot_distance=35.90490632796673, arm_length=17.952453163983364)
+    motion = MotionProgram.rise_dwell_return(14.960377636652803, 29.920755273305605, 29.920755273305605, 20.0,
+                                             "constant_velocity")
+    prof = cam_profile(CamSpec(motion=motion, **kw))
+    tol = 1e-4 * prof.spec.prime_radius
+    out = prof.outline(tol)
+    closed = np.concatenate([out[::-1], out[-1:]])
+    # the fuzz property's independent measure: the exact pieces against the sampled outline
+    assert true_deviation(prof.pieces, closed) <= tol * (1 + 1e-3)
+    # and the cam as the intersection of the face's half-planes n . x <= h (textbook: the flat face's
+    # cam is the region it never sweeps), from the face's poses alone: every vertex on its boundary
+    # (the most violated line touches it), every chord's midpoint within tol inside it
+    lines = 1 << 16
+    n, h = face_lines(prof.motion, prof.tool, np.linspace(0.0, 2 * np.pi, lines, endpoint=False))
+    mids = 0.5 * (closed[1:] + closed[:-1])
+    # a vertex between two sampled lines reads below 0 by rho (k delta)^2 / 8: the line step delta,
+    # the face turning relative to the cam at most k = 1 + |psi'| < 4 times as fast as the cam (the
+    # arm's |psi'| = stroke / (arm phase) is 1.6 on the rise, 2.4 on the return), rho at most the
+    # cam's diameter 2 (r0 + stroke)
+    between = 2 * (29.92 + 14.97) * (4 * 2 * np.pi / lines) ** 2 / 8
+    assert np.abs((out @ n.T - h).max(axis=1)).max() <= between
+    assert (mids @ n.T - h).max(axis=1).min() >= -tol
+
+
 def test_cam_roller_that_reaches_the_centre_is_refused():
     from gearkit.families.cam import CamSpec, MotionProgram
 

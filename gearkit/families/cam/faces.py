@@ -31,7 +31,7 @@ import numpy as np
 
 from gearkit.errors import GeometryError
 
-__all__ = ["face_lines", "face_depth", "roller_depth", "kept_runs"]
+__all__ = ["face_lines", "face_depth", "roller_depth", "kept_runs", "FaceEdge", "corner_lines", "bridge_cuts"]
 
 
 def face_lines(motion, tool, phi):
@@ -164,3 +164,92 @@ def _newton(curve, wa, wb, h):
         if done:
             break
     return float(np.mod(x[0], 1.0)), float(np.mod(x[1], 1.0))
+
+
+class FaceEdge:
+    """A straight stretch of the cam along one face line, from ``p0`` to ``p1``: an exact curve of
+    ``w`` in [0, 1]."""
+
+    def __init__(self, p0, p1):
+        self.p0 = np.asarray(p0, dtype=float)
+        self.p1 = np.asarray(p1, dtype=float)
+
+    def __call__(self, w):
+        w = np.atleast_1d(np.asarray(w, dtype=float))
+        return self.p0[None, :] + w[:, None] * (self.p1 - self.p0)[None, :]
+
+
+def _on_line(curve, n, h, w, step):
+    """The ``w`` within ``8 step`` of ``w`` nearest to it where the curve crosses the line
+    ``n . x = h`` (bisection on a bracketing pair of 65 samples), or None."""
+    ws = np.mod(w + np.linspace(-8.0, 8.0, 65) * step, 1.0)
+    g = curve(ws) @ n - h
+    flips = np.flatnonzero(np.sign(g[:-1]) != np.sign(g[1:]))
+    if len(flips) == 0:
+        return None
+    k = int(flips[np.argmin(np.abs(flips - 31.5))])
+    lo, hi, glo = w + (k - 32) * step / 4.0, w + (k - 31) * step / 4.0, g[k]
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        gm = float(curve(np.array([mid % 1.0]))[0] @ n - h)
+        lo, hi, glo = (mid, hi, gm) if np.sign(gm) == np.sign(glo) else (lo, mid, glo)
+    return float((0.5 * (lo + hi)) % 1.0)
+
+
+def corner_lines(curve, motion, tool):
+    """``(n, h, e0, e1)`` of each corner section of the envelope ``curve`` (a velocity jump): the face
+    line at its cam angle and the section's ``w`` range."""
+    out = []
+    for k, sec in enumerate(curve.sections):
+        if sec[0] == "corner":
+            n, h = face_lines(motion, tool, sec[1])
+            out.append((n[0], float(h[0]), float(curve.edges[k]), float(curve.edges[k + 1])))
+    return out
+
+
+def bridge_cuts(curve, cuts, corners, scale: float, step: float = 1.0 / 16384):
+    """Every cut through :func:`_bridge`: the cuts ``[(wa, wb), ...]`` and the straight stretches
+    ``{wa: FaceEdge}`` that run from a cut's ``wa`` to its ``wb``."""
+    out, straight = [], {}
+    for cut in cuts:
+        wa, wb, edge = _bridge(curve, cut, corners, scale, step)
+        out.append((wa, wb))
+        if edge is not None:
+            straight[wa] = edge
+    return out, straight
+
+
+def _bridge(curve, cut, corners, scale: float, step: float):
+    """A cut ``(wa, wb)`` of :func:`kept_runs` whose ends do not meet (no self-crossing of the
+    envelope there): the straight stretch of the cam between them along a corner's face line.
+
+    ``corners`` are ``(n, h, e0, e1)``: the face line at each velocity jump and the ``w`` range of
+    its corner section. An end within the section's reach snaps to the section's nearer end (the
+    face's slide at the jump runs along the same line), any other end to the envelope's crossing
+    with the line. Returns ``(wa, wb, edge)``; ``edge`` is None when the cut's ends meet (within
+    ``1e-6 scale``); the step is :func:`kept_runs` sampling step.
+
+    Raises
+    ------
+    GeometryError
+        When the ends meet no corner's line (the half-plane model has no other straight stretch).
+    """
+    wa, wb = cut
+    pa, pb = curve(np.array([wa, wb]))
+    if np.hypot(*(pa - pb)) <= 1e-6 * scale:
+        return wa, wb, None
+    off = [abs(pa @ n - h) + abs(pb @ n - h) for n, h, _, _ in corners]
+    if not off or min(off) > 1e-2 * scale:
+        raise GeometryError("a cut of the flat face's envelope meets neither a crossing nor a corner's face line")
+    n, h, e0, e1 = corners[int(np.argmin(off))]
+    ends = []
+    for w in (wa, wb):
+        if e0 - 8 * step <= w <= e1 + 8 * step:
+            ends.append(float(e0 if abs(w - e0) <= abs(w - e1) else e1))
+            continue
+        on = _on_line(curve, n, h, w, step)
+        if on is None:
+            raise GeometryError("the flat face's envelope does not reach a corner's face line at a cut")
+        ends.append(on)
+    pa, pb = curve(np.array(ends))
+    return ends[0], ends[1], FaceEdge(pa, pb)

@@ -20,7 +20,7 @@ from gearkit.accuracy import adaptive_sample
 from gearkit.boundary import Piece, next_crossing
 from gearkit.curves import cross2, polyline_self_intersections
 from gearkit.envelope import Branch, touching
-from gearkit.families.cam.faces import face_depth, kept_runs, roller_depth
+from gearkit.families.cam.faces import bridge_cuts, corner_lines, face_depth, kept_runs, roller_depth
 from gearkit.families.cam.follower import follower_motion, follower_tool, lift_direction, reference_point
 
 __all__ = ["CamProfile", "cam_profile"]
@@ -189,6 +189,7 @@ class CamProfile:
     def _trim(self):
         """The kept pieces (split where the curve has a break: a section's end, a motion join) and
         the loops cut away, ``(phi_a, phi_b)``."""
+        straight = {}
         if self.spec.contact != "knife":
             scale = self.spec.prime_radius + self.spec.stroke
             if self.spec.contact == "flat":
@@ -196,6 +197,8 @@ class CamProfile:
             else:
                 depth = roller_depth(self.pitch_points, self.spec.roller_radius, self.start)
             cuts = sorted(kept_runs(self.branch, depth, 1e-7 * scale))
+            if self.spec.contact == "flat":  # a cut whose ends do not cross runs along a corner's face line
+                cuts, straight = bridge_cuts(self.branch, cuts, corner_lines(self.branch, self.motion, self.tool), scale)
             loops = tuple((self._phi(wa), self._phi(wb)) for wa, wb in cuts)
             if not cuts:
                 spans = [(0.0, 1.0)]
@@ -213,6 +216,7 @@ class CamProfile:
             inner = breaks[(breaks > w0 + 1e-12) & (breaks < w1 - 1e-12)]
             edges = [w0, *inner.tolist(), w1]
             out += [Piece(self.spec.contact, self.branch, a, b) for a, b in zip(edges[:-1], edges[1:])]
+            out += [Piece(self.spec.contact, straight[w1], 0.0, 1.0)] if w1 in straight else []
         return tuple(out), tuple(loops)
 
     def _trim_loops(self):
