@@ -171,6 +171,24 @@ def rack_scaling(quick: bool, repeats: int):
     return rows
 
 
+def _cpu_per_call(fn, calls: int) -> float:
+    """CPU seconds per call of ``fn``, from batches of ``calls`` calls repeated until the CPU clock has
+    advanced by at least half a batch's planned time (the batch was sized on the wall clock: on a loaded
+    machine it can pass within one tick of a coarse CPU clock, which read 0 s)."""
+    import time
+
+    from gearkit.bench.timing import BATCH
+
+    t0, done = time.process_time(), 0
+    while True:
+        for _ in range(calls):
+            fn()
+        done += calls
+        spent = time.process_time() - t0
+        if spent >= 0.5 * BATCH:
+            return spent / done
+
+
 def overhead(repeats: int = 21):
     """Kernel time for the z = 40 involute outline at tol 1e-6 m over numpy's time for the same
     number of closed-form involute points, both in CPU time (medians; the calls interleaved so a
@@ -199,16 +217,13 @@ def overhead(repeats: int = 21):
     runs = {"kernel": lambda: _generate_and_sample(spec, tol), "sampling": sample_only,
             "baseline": lambda: closed_form_involute(n, r_b, roll_max)}
     # a CPU clock may tick coarsely (every 4 ms while an interval timer runs, 15.6 ms on some systems): each
-    # time is of a batch of calls lasting about BATCH seconds, divided by the calls
+    # time is of batches of calls lasting about BATCH seconds, divided by the calls
     batch = {k: batch_calls(fn, BATCH) for k, fn in runs.items()}
     times = {k: [] for k in runs}
     start = time.perf_counter()
     for i in range(max(3, repeats)):
         for key, fn in runs.items():
-            t0 = time.process_time()
-            for _ in range(batch[key]):
-                fn()
-            times[key].append((time.process_time() - t0) / batch[key])
+            times[key].append(_cpu_per_call(fn, batch[key]))
         if i >= 2 and time.perf_counter() - start > 6.0:
             break
     kernel, sampling, base = (float(np.median(times[k])) for k in ("kernel", "sampling", "baseline"))
