@@ -338,6 +338,21 @@ def test_flat_rocker_cam_runs_straight_along_the_face_line_at_a_velocity_jump():
     assert (mids @ n.T - h).max(axis=1).min() >= -tol
 
 
+def test_flat_rocker_cam_with_a_short_rise_and_return_is_bridged_at_the_jump():
+    # the long fuzz run's second flat-faced rocker with |psi'| > 1 (20 deg rise and return, constant
+    # velocity): its outline closed 3.16 mm inside the cam at tol 0.0806 before the jump's face line
+    # was bridged; the fuzz property's independent measure holds it within tol
+    from gearkit.families.cam import CamSpec, MotionProgram, cam_profile
+
+    kw = dict(prime_radius=80.57346728673313, follower="rocker", contact="flat", roller_radius=0.0,
+              pivot_distance=96.68816074407975, arm_length=48.344080372039876)
+    motion = MotionProgram.rise_dwell_return(20.143366821683284, 20.0, 20.0, 20.0, "constant_velocity")
+    prof = cam_profile(CamSpec(motion=motion, **kw))
+    tol = 1e-3 * prof.spec.prime_radius
+    out = prof.outline(tol)
+    assert true_deviation(prof.pieces, np.concatenate([out[::-1], out[-1:]])) <= tol * (1 + 1e-3)
+
+
 def test_cam_roller_that_reaches_the_centre_is_refused():
     from gearkit.families.cam import CamSpec, MotionProgram
 
