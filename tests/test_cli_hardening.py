@@ -375,8 +375,8 @@ def test_version_and_python_dash_m(capsys):
 
 
 @pytest.mark.parametrize("argv, field", [
-    (["gear", "-z", "20", "-m", "2", "--cutter-teeth", "0"], "cutter.teeth"),
-    (["rack", "-m", "2", "--cutter-teeth", "0"], "cutter.teeth"),
+    (["gear", "-z", "20", "-m", "2", "--cutter-teeth", "0"], "--cutter-teeth"),
+    (["rack", "-m", "2", "--cutter-teeth", "0"], "--cutter-teeth"),
     (["gear", "-z", "20", "-m", "2", "--herringbone", "--width", "20", "-o", "{t}/h.stl"], "herringbone"),
     (["pair", "--z1", "20", "--z2", "40", "-m", "2", "--width", "10", "--herringbone"], "herringbone"),
 ])

@@ -321,6 +321,33 @@ def test_an_out_of_range_value_is_refused_alike_by_every_command(capsys, tmp_pat
     assert tried >= 1
 
 
+
+@pytest.mark.parametrize("flag, value, needle", [
+    ("--cutter-teeth", "3", ""), ("--pinion-cutter-teeth", "3", "[6, 1000]"),
+    ("--cutter-shift", "0.3", "applies to a shaper cutter"), ("--cutter-addendum", "1.1", "applies to a shaper cutter"),
+])
+def test_a_refused_cutter_value_names_the_flag_typed(capsys, tmp_path, flag, value, needle):
+    """A shaper cutter's value is refused naming the flag the user typed (not the API's ``cutter.teeth``), and a
+    cutter flag where no shaper cuts the gears is refused rather than ignored (every command's first example
+    is rack-cut)."""
+    tried = 0
+    for name, parser in parsers():
+        if flag not in flag_actions(parser):
+            continue
+        base = next(a for a in EXAMPLES[name.split()[0]] if " ".join(a[:len(name.split())]) == name)
+        assert "--cutter-teeth" not in base and "--internal" not in base, (name, base)
+        code, out, err = run(capsys, base + [flag, value], tmp_path)
+        lines = err.strip().splitlines()
+        assert code == 2 and len(lines) == 1 and f"error: {flag}: " in lines[0] and needle in lines[0], (name, err)
+        tried += 1
+    assert tried >= 2
+
+
+def test_the_centre_distance_split_is_refused_naming_its_flag(capsys, tmp_path):
+    """A centre distance no balanced split reaches (Σx beyond both ends of the line of action) names --split."""
+    code, out, err = run(capsys, ["check", "--z1", "20", "--z2", "40", "-m", "1", "--center-distance", "40"], tmp_path)
+    assert code == 2 and err.count("\n") == 1 and "error: --split: " in err, err
+
 # ----------------------------------------------------------------------------- design files
 
 PAIR_TOML = """module = 2.0

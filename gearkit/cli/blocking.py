@@ -13,7 +13,7 @@ import argparse
 import sys
 
 from gearkit.cli.common import (QUANTITIES, add_json_flag, add_module_flag, add_output_flag, add_rack_flag, add_tol_flag, print_json,
-                                rack_from_args)
+                                rack_from_args, refuse_unused_cutter_flags, shaper_from_args)
 from gearkit.cli.design import add_design_argument, require_flags
 from gearkit.errors import SpecError
 
@@ -114,20 +114,22 @@ def template_spec(args, z1: int, z2: int):
     if template is not None:
         return replace(template, teeth1=z1, teeth2=z2)
     from gearkit.pair import PairSpec
-    from gearkit.families.involute import ShaperCutter
 
     alpha = args.pressure_angle_deg
     rack = rack_from_args(args)
     tool1 = rack
     if args.pinion_cutter_teeth is not None:
-        tool1 = ShaperCutter(args.pinion_cutter_teeth, rack.pressure_angle_deg, 0.0, args.cutter_addendum)
+        tool1 = shaper_from_args(args.pinion_cutter_teeth, rack.pressure_angle_deg, 0.0, args.cutter_addendum,
+                                 "--pinion-cutter-teeth")
     tool2 = rack
     if args.internal:
         if args.cutter_teeth is None:
             raise SpecError("--cutter-teeth", "an internal gear is cut by a shaper: give its tooth number z0")
-        tool2 = ShaperCutter(args.cutter_teeth, rack.pressure_angle_deg, 0.0, args.cutter_addendum)
+        tool2 = shaper_from_args(args.cutter_teeth, rack.pressure_angle_deg, 0.0, args.cutter_addendum)
     elif args.cutter_teeth is not None:
         raise SpecError("--cutter-teeth", "applies to internal pairs (use --pinion-cutter-teeth)")
+    if tool1 is rack and tool2 is rack:
+        refuse_unused_cutter_flags(args)
     return PairSpec(z1, z2, args.module, kind="internal" if args.internal else "external",
                     pressure_angle_deg=alpha, helix_angle_deg=args.helix_angle_deg, tool1=tool1, tool2=tool2,
                     addendum=args.addendum)

@@ -25,8 +25,9 @@ Q = QUANTITIES
 
 __all__ = ["QUANTITIES", "RACKS", "RACK_HELP", "SIGN_NOTE", "TIP_RULES", "RenamedFlag", "add_gear_flags",
            "add_json_flag", "add_keyway_flag", "add_module_flag", "add_output_flag", "add_pair_arguments",
-           "add_progress_flag", "add_rack_flag", "add_renamed_flag", "add_tol_flag", "add_tool_flags", "keyway_from_arg", "output_kind",
-           "pair_spec_from_args", "print_json", "rack_from_args", "tol_from", "tool_from_args"]
+           "add_progress_flag", "add_rack_flag", "add_renamed_flag", "add_tol_flag", "add_tool_flags",
+           "keyway_from_arg", "output_kind", "pair_spec_from_args", "print_json", "rack_from_args",
+           "refuse_unused_cutter_flags", "shaper_from_args", "tol_from", "tool_from_args"]
 
 #: how a pair's (or a gear's) tip diameters follow (``--tip-rule``)
 TIP_RULES = ("shortened", "standard")
@@ -152,12 +153,46 @@ def keyway_from_arg(text):
     return (w, d)
 
 
-def tool_from_args(args, internal: bool):
+#: a shaper cutter's field -> the flag that sets it (the teeth flag is the caller's)
+_SHAPER_FLAGS = {"cutter.shift": "--cutter-shift", "cutter.addendum": "--cutter-addendum",
+                 "cutter.pressure_angle_deg": "--pressure-angle-deg"}
+
+
+def shaper_from_args(teeth, alpha, shift, addendum, teeth_flag: str = "--cutter-teeth"):
+    """The :class:`~gearkit.families.involute.ShaperCutter` of the cutter flags; a refused value names its flag.
+
+    >>> shaper_from_args(4, 20.0, 0.0, 1.25)
+    Traceback (most recent call last):
+    gearkit.errors.SpecError: --cutter-teeth: 4 must be an integer in [6, 1000]
+    """
     from gearkit.families.involute import ShaperCutter
 
+    try:
+        return ShaperCutter(teeth, alpha, shift, addendum)
+    except SpecError as exc:
+        flag = teeth_flag if exc.field == "cutter.teeth" else _SHAPER_FLAGS.get(exc.field)
+        if flag is None:  # a derived limit (dedendum, tip radius): the API's own name says what it is
+            raise
+        raise SpecError(flag, str(exc).split(": ", 1)[1]) from None
+
+
+def refuse_unused_cutter_flags(args) -> None:
+    """``--cutter-shift``/``--cutter-addendum`` typed where no shaper cuts: say so rather than ignore them."""
+    from gearkit.cli.design import given
+
+    shapers = ("--pinion-cutter-teeth or --internal with --cutter-teeth" if hasattr(args, "pinion_cutter_teeth")
+               else "--cutter-teeth or --internal")
+    for dest, flag in (("cutter_shift", "--cutter-shift"), ("cutter_addendum", "--cutter-addendum")):
+        if given(args, dest):
+            raise SpecError(flag, f"applies to a shaper cutter, and none cuts these gears (give {shapers})")
+
+
+def tool_from_args(args, internal: bool):
     alpha = 20.0 if args.pressure_angle_deg is None else args.pressure_angle_deg
     if args.cutter_teeth is not None or internal:
-        return ShaperCutter(20 if args.cutter_teeth is None else args.cutter_teeth, alpha, args.cutter_shift, args.cutter_addendum)
+        return shaper_from_args(20 if args.cutter_teeth is None else args.cutter_teeth, alpha, args.cutter_shift,
+                                args.cutter_addendum)
+    refuse_unused_cutter_flags(args)
     return rack_from_args(args)
 
 
@@ -265,9 +300,9 @@ def override_pair_spec(spec, args):
     a = 20.0 if alpha is None else alpha
     shaper = (getattr(args, "cutter_shift", 0.0), getattr(args, "cutter_addendum", 1.25))
     if given(args, "pinion_cutter_teeth"):
-        tools[0] = ShaperCutter(args.pinion_cutter_teeth, a, *shaper)
+        tools[0] = shaper_from_args(args.pinion_cutter_teeth, a, *shaper, "--pinion-cutter-teeth")
     if given(args, "cutter_teeth"):
-        tools[1] = ShaperCutter(args.cutter_teeth, a, *shaper)
+        tools[1] = shaper_from_args(args.cutter_teeth, a, *shaper)
     spec = replace(spec, tool1=tools[0], tool2=None if changes.get("kind") == "rack" else tools[1], **changes)
     if given(args, "center_distance"):
         x1 = args.x1 if given(args, "x1") else None
@@ -275,7 +310,7 @@ def override_pair_spec(spec, args):
         return _apply_center_distance(replace(spec, center_distance=None), args.center_distance, x1, x2,
                                       args.split if given(args, "split") else None)
     if given(args, "split"):
-        raise SpecError("split", "applies only with a centre distance (--center-distance)")
+        raise SpecError("--split", "applies only with a centre distance (--center-distance)")
     return spec
 
 
@@ -298,7 +333,6 @@ def _override_limits(limits, args):
 def _spec_from_flags(args):
     from gearkit.checks import CheckLimits
     from gearkit.pair import PairSpec
-    from gearkit.families.involute import ShaperCutter
 
     kind = "internal" if args.internal else "rack" if args.rack_pair else "external"
     for name, flag in (("z1", "--z1"), ("module", "-m/--module")):
@@ -313,14 +347,17 @@ def _spec_from_flags(args):
     rack = rack_from_args(args)
     tool1 = rack
     if args.pinion_cutter_teeth is not None:
-        tool1 = ShaperCutter(args.pinion_cutter_teeth, rack.pressure_angle_deg, args.cutter_shift, args.cutter_addendum)
+        tool1 = shaper_from_args(args.pinion_cutter_teeth, rack.pressure_angle_deg, args.cutter_shift,
+                                 args.cutter_addendum, "--pinion-cutter-teeth")
     tool2 = rack
     if kind == "internal":
         if args.cutter_teeth is None:
             raise SpecError("--cutter-teeth", "an internal gear is cut by a shaper: give its tooth number z0")
-        tool2 = ShaperCutter(args.cutter_teeth, rack.pressure_angle_deg, args.cutter_shift, args.cutter_addendum)
+        tool2 = shaper_from_args(args.cutter_teeth, rack.pressure_angle_deg, args.cutter_shift, args.cutter_addendum)
     elif args.cutter_teeth is not None:
         raise SpecError("--cutter-teeth", "applies to internal pairs (use --pinion-cutter-teeth, or a design file)")
+    if tool1 is rack and tool2 is rack:
+        refuse_unused_cutter_flags(args)
     spec = PairSpec(args.z1, args.z2, args.module, args.x1 or 0.0, args.x2 or 0.0, kind, alpha,
                     args.helix_angle_deg, args.width, tool1, tool2, args.addendum, args.tip_rule, args.da1, args.da2,
                     None, args.thinning1, args.thinning2, args.ring_shift)
@@ -338,15 +375,21 @@ def _apply_center_distance(spec, a_w, x1, x2, split):
 
     if a_w is None:
         if split is not None:
-            raise SpecError("split", "applies only with a centre distance")
+            raise SpecError("--split", "applies only with a centre distance (--center-distance)")
         return spec
     if x1 is not None and x2 is not None:
         if split is not None:
-            raise SpecError("split", "both shifts are given: nothing to split")
+            raise SpecError("--split", "both shifts are given: nothing to split")
         return replace(spec, center_distance=a_w)
     if x2 is not None:
-        raise SpecError("x2", "with a centre distance give x1 (x2 follows), both shifts, or neither")
+        raise SpecError("--x2", "with a centre distance give --x1 (x2 follows), both shifts, or neither")
     if x1 is not None and split not in (None, "x1"):
-        raise SpecError("split", f"x1 is given, so the split is 'x1', not {split!r}")
+        raise SpecError("--split", f"--x1 is given, so the split is 'x1', not {split!r}")
     rule = "x1" if x1 is not None else (split or "balanced")
-    return shifts_for_center_distance(spec, a_w, rule)
+    try:
+        return shifts_for_center_distance(spec, a_w, rule)
+    except SpecError as exc:  # the API names its argument; the command line names the flag
+        flag = {"split": "--split", "center_distance": "--center-distance"}.get(exc.field)
+        if flag is None:
+            raise
+        raise SpecError(flag, str(exc).split(": ", 1)[1]) from None
