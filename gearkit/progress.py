@@ -37,7 +37,7 @@ from __future__ import annotations
 import sys
 import time
 
-__all__ = ["Progress"]
+__all__ = ["Progress", "line_break"]
 
 
 class Progress:
@@ -69,6 +69,7 @@ class Progress:
     width = 30
     _depth = 0  # bars open in this process: only the outermost draws
     _drawing = None  # the outermost bar, while it is open and enabled
+    _closed = None  # the stream whose line the last bar drawn has ended (its cursor is at a line's start)
 
     def __init__(self, label: str, total: int, *, unit: str = "", enabled: bool | None = None, stream=None,
                  delay: float | None = None):
@@ -105,6 +106,7 @@ class Progress:
                     self._draw(time.monotonic())
             self.stream.write("\n")
             self.stream.flush()
+            Progress._closed = self.stream
         return False
 
     def update(self, done: int) -> None:
@@ -132,6 +134,7 @@ class Progress:
     def _draw(self, now: float) -> None:
         self._next = now + self.interval
         self.drawn, self._shown = True, self.done
+        Progress._closed = None
         frac = min(max((self.done + self._within) / self.total, 0.0), 1.0)
         k = int(self.width * frac)
         count = f"{self.done}/{self.total} {self.unit}" if self.unit else f"{100 * frac:3.0f}%"
@@ -142,6 +145,19 @@ class Progress:
         self.stream.write(f"\r{self.label} [{'#' * k}{' ' * (self.width - k)}] {count}, {elapsed:.1f} s{eta}{note}"
                           f"{clear}")
         self.stream.flush()
+
+
+def line_break(stream=None) -> str:
+    """What a last message on ``stream`` (default ``sys.stderr``) starts with after a Ctrl-C: ``"\\n"`` on a
+    terminal, where the echoed ``^C`` (or a bar) holds the line, unless a bar has just ended it; ``""`` on a
+    pipe or file, which has no echo (a blank line there is noise).
+
+    >>> import io
+    >>> line_break(io.StringIO())
+    ''
+    """
+    stream = sys.stderr if stream is None else stream
+    return "\n" if _is_terminal(stream) and Progress._closed is not stream else ""
 
 
 def _is_terminal(stream) -> bool:

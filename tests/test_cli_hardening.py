@@ -223,6 +223,44 @@ def test_ctrl_c_during_an_export_exits_130_and_leaves_nothing(capsys, tmp_path, 
     assert list(tmp_path.iterdir()) == []
 
 
+def test_ctrl_c_after_a_progress_bar_on_a_pipe_leaves_no_blank_line(capsys, tmp_path, monkeypatch):
+    """The bar ends its own line when interrupted; the message follows at once (a pipe has no ``^C`` echo to
+    step over, so a second line break would be an empty line in the log)."""
+    from gearkit.progress import Progress
+
+    def bar_then_ctrl_c():
+        with Progress("export", 4, delay=0.0) as bar:
+            bar.update(1)
+            raise KeyboardInterrupt
+
+    _interrupt_while_writing(monkeypatch, bar_then_ctrl_c)
+    code, _, err = run(capsys, "--progress", "gear", "-z", "20", "-m", "2", "-o", str(tmp_path / "g.svg"))
+    lines = err.split("\n")
+    assert code == 130 and lines[0].startswith("\rexport [") and lines[1:] == ["gearkit gear: interrupted", ""]
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_terminal_gets_the_line_break_that_steps_over_the_echoed_ctrl_c():
+    """On a terminal the ``^C`` echo holds the line: the message starts a new one, unless a bar just did."""
+    import io
+
+    from gearkit.progress import Progress, line_break
+
+    class Terminal(io.StringIO):
+        def isatty(self):
+            return True
+
+    tty = Terminal()
+    assert line_break(tty) == "\n" and line_break(io.StringIO()) == ""
+    try:
+        with Progress("work", 2, enabled=True, stream=tty, delay=0.0) as bar:
+            bar.update(1)
+            raise KeyboardInterrupt
+    except KeyboardInterrupt:
+        pass
+    assert tty.getvalue().endswith("\n") and line_break(tty) == ""
+
+
 def test_sigterm_during_an_export_exits_143_and_leaves_nothing(capsys, tmp_path, monkeypatch):
     _interrupt_while_writing(monkeypatch, lambda: os.kill(os.getpid(), signal.SIGTERM))
     before = signal.getsignal(signal.SIGTERM)

@@ -166,7 +166,7 @@ def main(argv: list[str] | None = None) -> int:
 
 def _main(argv, held: bool) -> int:
     from gearkit.cli.shell import MAX_POINTS, run_guarded
-    from gearkit.progress import Progress
+    from gearkit.progress import Progress, line_break
 
     argv = list(sys.argv[1:] if argv is None else argv)
     debug = "--debug" in argv
@@ -182,7 +182,7 @@ def _main(argv, held: bool) -> int:
     except SystemExit as exc:  # argparse reports bad flags itself and exits 2 (0 for --help/--version)
         return int(exc.code or 0)
     except KeyboardInterrupt:  # Ctrl-C while the command's modules load: no traceback either
-        print("\ngearkit: interrupted", file=sys.stderr)
+        print(f"{line_break()}gearkit: interrupted", file=sys.stderr)
         return 130
     if held:
         release_collector()
@@ -191,7 +191,8 @@ def _main(argv, held: bool) -> int:
     try:
         return run_guarded(args, debug=debug)
     except KeyboardInterrupt:  # an interrupt while run_guarded reports or cleans up: still one line
-        print(f"\ngearkit {getattr(args, 'command', '')}: interrupted".replace(" :", ":"), file=sys.stderr)
+        name = f"gearkit {getattr(args, 'command', '')}".rstrip()
+        print(f"{line_break()}{name}: interrupted", file=sys.stderr)
         return 130
     finally:
         Progress.mode = "off"

@@ -21,6 +21,7 @@ import signal
 import sys
 
 from gearkit.errors import GearkitError, SpecError
+from gearkit.progress import line_break
 
 EXIT_OK, EXIT_FAILS, EXIT_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED, EXIT_TERMINATED = 0, 1, 2, 70, 130, 143
 
@@ -149,7 +150,7 @@ def run_guarded(args, debug: bool = False) -> int:
         print(f"{prefix}: error: {describe_os_error(exc)}", file=sys.stderr)
         return EXIT_INPUT
     except KeyboardInterrupt:
-        print(f"\n{prefix}: interrupted", file=sys.stderr)
+        print(f"{line_break()}{prefix}: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
     except Terminated:
         print(f"{prefix}: terminated", file=sys.stderr)
