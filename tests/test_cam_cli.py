@@ -132,3 +132,38 @@ def test_plot_is_written(tmp_path, capsys):
     assert main(BASE + ["--efficiency", "0.9", "--plot", str(path)]) == 1
     assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and path.stat().st_size > 20_000
     assert main(BASE + ["--plot", str(tmp_path / "cam.jpg")]) == 2
+
+
+
+FLAT = [a for a in BASE if a not in ("--roller-radius", "10")] + ["--contact", "flat", "--prime-radius", "30"]
+
+
+@pytest.mark.parametrize("argv", [BASE, BASE + ["--rocker", "--pivot-distance", "90", "--arm-length", "70",
+                                                "--friction", "0.2"], FLAT], ids=["roller", "rocker", "flat"])
+def test_plot_legends_cover_no_line_and_no_other_panel(argv):
+    """Every legend sits where no plotted point of its panel falls and overlaps no other panel; it stays inside
+    the picture (a legend drawn over the cam once hid its pitch curve)."""
+    from gearkit.cli import build_parser
+    from gearkit.cli.cam import spec_from_args
+    from gearkit.families.cam import cam_profile
+    from gearkit.families.cam.plot import figure
+
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    fig = figure(cam_profile(spec_from_args(build_parser("cam").parse_args(argv))))
+    canvas = FigureCanvasAgg(fig)
+    canvas.draw()
+    renderer = canvas.get_renderer()
+    frame = fig.bbox
+    legends = [(ax, ax.get_legend()) for ax in fig.axes if ax.get_legend() is not None]
+    assert len(legends) == 2
+    for ax, legend in legends:
+        box = legend.get_window_extent(renderer)
+        assert frame.x0 <= box.x0 and box.x1 <= frame.x1 and frame.y0 <= box.y0 and box.y1 <= frame.y1
+        pts = np.vstack([ax.transData.transform(line.get_xydata()) for line in ax.get_lines()]
+                        + [ax.transData.transform(p.get_path().vertices) for p in ax.patches])
+        inside = (pts[:, 0] > box.x0) & (pts[:, 0] < box.x1) & (pts[:, 1] > box.y0) & (pts[:, 1] < box.y1)
+        assert not inside.any(), f"{inside.sum()} plotted points under the legend"
+        for other in fig.axes:
+            if other is not ax:
+                assert not box.overlaps(other.get_tightbbox(renderer)), "a legend over another panel"

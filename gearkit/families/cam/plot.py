@@ -71,20 +71,24 @@ def figure(prof, tol: float | None = None):
             ax.set_xlabel("cam angle φ [deg]", fontsize=9)
         if k == 0:
             ax.set_title("follower motion: displacement, velocity, acceleration, jerk (per cam angle)", fontsize=10)
-    ax = fig.add_subplot(right[0])
+    top = right[0].subgridspec(1, 2, width_ratios=(1.0, 0.45), wspace=0.04)
+    ax = fig.add_subplot(top[0])
     out = prof.outline(tol)
     pitch = prof.pitch_outline(tol)[0] if spec.contact != "flat" else None
     ax.fill(out[:, 0], out[:, 1], color="#d6eaf8", ec="#1b4f72", lw=1.2, label="cam profile")
     if pitch is not None and spec.contact == "roller":
         ax.plot(*np.vstack([pitch, pitch[:1]]).T, color="#7f8c8d", lw=0.8, ls="--", label="pitch curve")
     foll = _follower_outline(prof)
-    ax.plot(foll[:, 0], foll[:, 1], color="#922b21", lw=1.4, label=f"{spec.follower} {spec.contact} at φ = 0")
-    ax.plot([0.0], [0.0], marker="+", color="black", ms=8)
+    ax.plot(foll[:, 0], foll[:, 1], color="#922b21", lw=1.4, label=f"{spec.follower} {spec.contact}\nat φ = 0")
+    ax.plot([0.0], [0.0], marker="+", color="black", ms=8, label="cam axis")
     ax.set_aspect("equal")
+    ax.set_anchor("E")  # the plot against its legend's column: the legend is beside it, where no line runs
     ax.tick_params(labelsize=8)
-    ax.legend(fontsize=8, loc="lower left", framealpha=0.85)
+    key = fig.add_subplot(top[1])
+    key.axis("off")
+    key.legend(*ax.get_legend_handles_labels(), fontsize=8, loc="upper left", borderaxespad=0.0, frameon=False)
     ax.set_title(f"cam, r0 = {spec.prime_radius:g} mm, stroke {spec.stroke:g} mm"
-                 + (" — undercut (loop cut away)" if prof.undercut else ""), fontsize=10)
+                 + ("\nundercut (loop cut away)" if prof.undercut else ""), fontsize=10)
     ax = fig.add_subplot(right[1])
     alpha = np.degrees(prof.pressure_angle(phi))
     ax.plot(deg, alpha, color="#1b4f72", lw=1.4, label="without friction")
@@ -102,7 +106,7 @@ def figure(prof, tol: float | None = None):
     ax.set_ylabel("pressure angle [deg]", fontsize=9)
     ax.tick_params(labelsize=8)
     ax.grid(True, lw=0.3, alpha=0.6)
-    ax.legend(fontsize=8, loc="lower left", framealpha=0.85)
+    ax.legend(fontsize=8, loc="lower left", bbox_to_anchor=(0.0, 1.01), borderaxespad=0.0, ncol=3, frameon=False)
     return fig
 
 
