@@ -157,11 +157,11 @@ def test_plot_legends_cover_no_line_and_no_other_panel(argv):
     frame = fig.bbox
     legends = [(ax, ax.get_legend()) for ax in fig.axes if ax.get_legend() is not None]
     assert len(legends) == 2
+    pts = np.vstack([a.transData.transform(line.get_xydata()) for a in fig.axes for line in a.get_lines()]
+                    + [p.get_transform().transform(p.get_path().vertices) for a in fig.axes for p in a.patches])
     for ax, legend in legends:
         box = legend.get_window_extent(renderer)
         assert frame.x0 <= box.x0 and box.x1 <= frame.x1 and frame.y0 <= box.y0 and box.y1 <= frame.y1
-        pts = np.vstack([ax.transData.transform(line.get_xydata()) for line in ax.get_lines()]
-                        + [ax.transData.transform(p.get_path().vertices) for p in ax.patches])
         inside = (pts[:, 0] > box.x0) & (pts[:, 0] < box.x1) & (pts[:, 1] > box.y0) & (pts[:, 1] < box.y1)
         assert not inside.any(), f"{inside.sum()} plotted points under the legend"
         for other in fig.axes:
