@@ -12,16 +12,10 @@ import math
 
 import numpy as np
 
-from gearkit.chords import chord_distance as _chord_deviation
-from gearkit.chords import angle_parts, interval_bounds, round_off
+from gearkit.refine import first_turning, refine_sample, refine_samples
 from gearkit.errors import check_fields, is_real, require
 from gearkit.values import frozen
 
-#: probe fractions of every interval: quarter points, and eighths at both ends (where a square-root
-#: end, x ~ sqrt(w), puts the chord's largest deviation)
-_PROBES = np.array([0.125, 0.25, 0.5, 0.75, 0.875])
-_MID = 2
-_WIDTHS = np.diff(np.concatenate([[0.0], _PROBES, [1.0]]))
 
 
 @frozen
@@ -71,29 +65,6 @@ def default_tol(module: float) -> float:
     return 1e-3 * module
 
 
-#: an interval is accepted when its probed deviation is within this fraction of tol: between the
-#: probes a chord's deviation can run above the largest probed one (by ~5 % where the curvature
-#: grows from 0 to its largest across the interval), so the accepted chords keep that margin
-PROBE_MARGIN = 0.9
-#: an interval whose fastest leg between probes (chord / parameter width) exceeds this multiple of its
-#: mean speed moves unevenly in its parameter: a narrow feature (a fast, bent stretch) may sit between probes
-UNEVEN = 2.5
-
-
-def _probe(evaluate, w, pts, tol, rows=None):
-    """Quarter-point probes of the intervals ``rows`` (vertex ``i`` to ``i + 1``; default all): (probes,
-    probe points, chord deviation, uneven), each interval measured on its own."""
-    rows = np.arange(len(w) - 1) if rows is None else rows
-    lo, hi, a, b = w[rows], w[rows + 1], pts[rows, None, :], pts[rows + 1, None, :]
-    probes = lo[:, None] + (hi - lo)[:, None] * _PROBES
-    q = evaluate(probes.ravel()).reshape(len(lo), len(_PROBES), 2)
-    dev = _chord_deviation(a, b, q).max(axis=1)
-    walk = np.concatenate([a, q, b], axis=1)
-    legs = np.linalg.norm(np.diff(walk, axis=1), axis=-1)
-    length = legs.sum(axis=1)
-    speed = legs / _WIDTHS  # mean speed of each leg, against the interval's mean speed (its length)
-    uneven = (speed.max(axis=1) > UNEVEN * length) & (length > tol)
-    return probes, q, dev, uneven
 
 
 #: the pilot sampling that the vertices are placed from runs at this multiple of tol (its points
@@ -178,15 +149,49 @@ def adaptive_sample(evaluate, tol: float, n_init: int = 5, max_rounds: int = 60,
     >>> bool(polyline_deviation(p, dense) <= 1e-3), bool(achieved <= 1e-3)
     (True, True)
     """
-    w = np.linspace(0.0, 1.0, n_init)
     if not fewest:
+        w = np.linspace(0.0, 1.0, n_init)
         return refine_sample(evaluate, w, evaluate(w), tol, max_rounds, max_split)[:3]
-    w = np.linspace(0.0, 1.0, max(n_init, PILOT_START))
-    w, pts, _, probes, q = refine_sample(evaluate, w, evaluate(w), PILOT * tol, max_rounds, max_split)
-    w = place_by_curvature(np.concatenate([w, probes.ravel()]), np.concatenate([pts, q.reshape(-1, 2)]),
-                           PLACE_AT * tol)
-    bound = getattr(evaluate, "turning", None) is not None
-    return refine_sample(evaluate, w, None if bound else evaluate(w), tol, max_rounds, max_split, bound)[:3]
+    return sample_curves([evaluate], tol, n_init, max_rounds, max_split)[0]
+
+
+def sample_curves(curves, tol: float, n_init: int = 5, max_rounds: int = 60, max_split: int = 16):
+    """:func:`adaptive_sample` with ``fewest=True`` of several curves at once (a tooth's pieces): ``[(w,
+    points, achieved)]``, one per curve, each to the last bit what the curve gets alone.
+
+    The pilot samplings and the acceptance run as one refinement of all the curves
+    (:func:`~gearkit.refine.refine_samples`: each round's bookkeeping one pass over every curve);
+    the curves are evaluated one by one, each on its own parameters.
+
+    Examples
+    --------
+    A quarter circle and a straight line, together and alone:
+
+    >>> arc = lambda w: np.stack([np.cos(np.pi / 2 * w), np.sin(np.pi / 2 * w)], -1)
+    >>> line = lambda w: np.stack([w, 1.0 + 0.0 * w], -1)
+    >>> both = sample_curves([arc, line], 1e-3)
+    >>> [len(p) for _, p, _ in both], all(np.array_equal(p, adaptive_sample(c, 1e-3, fewest=True)[1])
+    ...                                   for c, (_, p, _) in zip([arc, line], both))
+    ([20, 2], True)
+    """
+    w0 = np.linspace(0.0, 1.0, max(n_init, PILOT_START))
+    pilot = refine_samples(curves, [w0] * len(curves), [c(w0) for c in curves], PILOT * tol, max_rounds, max_split)
+    placed = [place_by_curvature(np.concatenate([w, probes.ravel()]), np.concatenate([pts, q.reshape(-1, 2)]),
+                                 PLACE_AT * tol) for w, pts, _, probes, q in pilot]
+    turned = [first_turning(c, w) for c, w in zip(curves, placed)]
+    out = [None] * len(curves)
+    for proven in (True, False):  # the curves bounded by their turning, then the ones probed
+        which = [i for i, t in enumerate(turned) if (t is not None) == proven]
+        if not which:
+            continue
+        ws = [placed[i] for i in which]
+        done = (refine_samples([curves[i] for i in which], ws, None, tol, max_rounds, max_split,
+                               turned=[turned[i] for i in which]) if proven else
+                refine_samples([curves[i] for i in which], ws, [curves[i](placed[i]) for i in which], tol,
+                               max_rounds, max_split))
+        for i, res in zip(which, done):
+            out[i] = res[:3]
+    return out
 
 
 def place_by_curvature(w, points, tol: float) -> np.ndarray:
@@ -229,132 +234,3 @@ def place_by_curvature(w, points, tol: float) -> np.ndarray:
     placed = np.interp(np.linspace(0.0, n_of_s[-1], chords + 1), n_of_s, w)
     placed[0], placed[-1] = 0.0, 1.0
     return placed[np.concatenate([[True], np.diff(placed) > 0.0])]  # sorted already (np.unique imports numpy.ma)
-
-
-def _carry(n, rows, fresh, at, old):
-    """The measurements of ``n`` intervals: ``fresh`` ones of the intervals ``rows``, the ``old`` ones
-    of the intervals ``at`` (unchanged since they were measured)."""
-    out = []
-    for f, o in zip(fresh, old):
-        both = np.empty((n,) + f.shape[1:], dtype=f.dtype)
-        both[rows], both[at] = f, o
-        out.append(both)
-    return tuple(out)
-
-
-#: a parameter interval this short (relative) holds no curve points but its ends and probes
-ATOM = 1e-13
-
-
-def refine_sample(evaluate, w, pts, tol: float, max_rounds: int = 60, max_split: int = 16, bound: bool = False):
-    """Split the intervals of a sampling ``(w, pts)`` of an exact curve until every chord is within ``tol``.
-
-    Each round probes every interval at its quarter points and eighths at both ends (an interval no
-    point was added to keeps the probes and measures of the round before: they depend on its ends
-    alone). An interval whose chord deviates by ``dev > PROBE_MARGIN tol`` is split into
-    ``k = ceil(1.1 sqrt(dev / (PROBE_MARGIN tol)))`` equal parameter parts (at most
-    ``max_split``): a chord's deviation shrinks as the square of its length, so one round usually
-    settles an interval and the rounds (each a call of ``evaluate``, the cost that dominates for
-    short chains) stay few. An interval that moves *unevenly* in its parameter (the walk through
-    its probes is ``UNEVEN`` times faster on one leg than on average, and longer than ``tol``) is
-    split at its probes however small its probed deviation: that is where a narrow
-    feature (a short, sharply bent stretch the parameter runs through fast) hides between
-    probes, and the quadratic model behind the probes only holds once the speed is even.
-    Intervals still too coarse split again.
-
-    ``bound=True`` (the curve has ``turning(w)``, see :mod:`gearkit.chords`): ``dev`` is instead each
-    interval's *proven bound* over the legs between its probes (no margin: ``dev <= tol`` accepts), an
-    interval whose bound is not established is split at its probes, and ``achieved`` is a bound. The
-    vertices and the first round's probes are evaluated in one call of ``turning``; where it gives no
-    angle parts (None) the sampling is probed as with ``bound=False`` (``pts`` may be None: evaluated).
-
-    Returns
-    -------
-    w, points, achieved (as :func:`adaptive_sample`), and the final probes' parameters
-    ``(k - 1, 5)`` and points ``(k - 1, 5, 2)``.
-    """
-    turned = probed = None
-    if bound:  # the vertices and the probes of the first round
-        first = w[:-1, None] + np.diff(w)[:, None] * _PROBES
-        turned = evaluate.turning(np.concatenate([w, first.ravel()]))
-    if turned is not None:
-        turning = angle_parts(evaluate.turning)
-        every = angle_parts(lambda _: turned)(None)
-        pts, tan, parts = (v[:len(w)] for v in every)
-        probed = tuple(v[len(w):] for v in every)  # handed to the first round's bounds
-        margin, bound = 1.0, True
-    else:
-        pts = evaluate(w) if pts is None else pts
-        margin, bound = PROBE_MARGIN, False
-    todo, kept = np.arange(len(w) - 1), None  # the intervals to probe: all, then the ones a round made
-    for _ in range(max_rounds):
-        lo, hi = w[:-1], w[1:]
-        if not len(todo):
-            measured = kept[1]
-        else:
-            measured = (interval_bounds(turning, w, pts, tan, parts, tol, _PROBES, todo, probed) if bound
-                        else _probe(evaluate, w, pts, tol, todo))
-            probed = None
-            measured = measured if kept is None else _carry(len(lo), todo, measured, *kept)
-        if bound:
-            probes, q, tq, pq, dev = measured
-            dev = dev + round_off(pts)
-            uneven = ~np.isfinite(dev)
-            # an interval below the parameter's resolution has no points but its ends and probes: a curve
-            # that jumps there (an exact solution switching roots at the very end of its range) is
-            # measured at them
-            atom = uneven & (hi - lo <= ATOM * np.maximum(np.abs(lo), np.abs(hi)).clip(1.0))
-            if atom.any():
-                dev[atom] = _chord_deviation(pts[:-1][atom, None], pts[1:][atom, None], q[atom]).max(axis=1)
-                uneven &= ~atom
-        else:
-            probes, q, dev, uneven = measured
-        bad = (dev > margin * tol) & ~uneven
-        if not (bad.any() or uneven.any()):
-            return w, pts, float(dev.max(initial=0.0)), probes, q
-        k = np.clip(np.ceil(1.1 * np.sqrt(dev[bad] / (margin * tol))), 2, max(2, max_split)).astype(int)
-        quarters = uneven & ~bad  # split at the probes already evaluated
-        new_w = [probes[bad, _MID], probes[quarters].ravel()]
-        new_p = [q[bad, _MID], q[quarters].reshape(-1, 2)]
-        if bound:
-            new_t = [tq[bad, _MID], tq[quarters].reshape(-1, 2)]
-            new_a = [pq[bad, _MID], pq[quarters].reshape(-1, parts.shape[-1])]
-        if (k > 2).any():  # the midpoint is already evaluated; other split points are new
-            many = k > 2
-            kk = k[many]
-            rows = np.repeat(np.arange(len(kk)), kk - 1)
-            j = np.arange(len(rows)) - np.repeat(np.cumsum(kk - 1) - (kk - 1), kk - 1) + 1
-            frac = j / kk[rows]
-            keep = np.abs(frac - 0.5) > 1e-12
-            a, h = lo[bad][many][rows][keep], (hi - lo)[bad][many][rows][keep]
-            extra = a + h * frac[keep]
-            new_w.append(extra)
-            if bound:
-                pe, te, ae = turning(extra)
-                new_p.append(pe)
-                new_t.append(te)
-                new_a.append(ae)
-            else:
-                new_p.append(evaluate(extra))
-        old = w
-        w = np.concatenate([w] + new_w)
-        pts = np.concatenate([pts] + new_p)
-        w, first = np.unique(w, return_index=True)  # sorted; an interval too short to split stays whole
-        pts = pts[first]  # an old vertex keeps its point (the first of equal parameters)
-        if bound:
-            tan, parts = np.concatenate([tan] + new_t)[first], np.concatenate([parts] + new_a)[first]
-        # an interval with the same two ends is measured the same: only the new ones are probed again
-        at = np.searchsorted(w, old)
-        same = np.diff(at) == 1
-        kept = at[:-1][same], tuple(m[same] for m in measured)
-        fresh = np.ones(len(w) - 1, dtype=bool)
-        fresh[kept[0]] = False
-        todo = np.flatnonzero(fresh)
-    if bound:
-        probes, q, _, _, dev = interval_bounds(turning, w, pts, tan, parts, tol, _PROBES)
-        dev = dev + round_off(pts)
-        atom = ~np.isfinite(dev) & (np.diff(w) <= ATOM * np.maximum(np.abs(w[:-1]), np.abs(w[1:])).clip(1.0))
-        dev[atom] = _chord_deviation(pts[:-1][atom, None], pts[1:][atom, None], q[atom]).max(axis=1)
-    else:
-        probes, q, dev, _ = _probe(evaluate, w, pts, tol)
-    return w, pts, float(dev.max(initial=0.0)), probes, q

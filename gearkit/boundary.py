@@ -21,7 +21,7 @@ import math
 
 import numpy as np
 
-from gearkit.accuracy import adaptive_sample, refine_sample
+from gearkit.accuracy import refine_sample, sample_curves
 from gearkit.curves import bracketed_root, polar_from_y, polyline_self_intersections, zoom_crossing
 from gearkit.errors import GeometryError
 from gearkit.values import frozen
@@ -124,8 +124,7 @@ class HalfTooth:
     def sample(self, tol: float):
         """Points from tip to space centre with every chord within ``tol``; and the achieved deviation."""
         chunks, worst = [], 0.0
-        for k, piece in enumerate(self.pieces):
-            _, pts, dev = adaptive_sample(piece, tol, fewest=True)
+        for k, (_, pts, dev) in enumerate(sample_curves(self.pieces, tol)):
             chunks.append(pts if k == 0 else pts[1:])
             worst = max(worst, dev)
         return _drop_coincident(np.concatenate(chunks)), worst

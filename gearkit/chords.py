@@ -150,9 +150,11 @@ ROUND_OFF = 1e-14
 
 
 def angle_parts(turning):
-    """``turning`` with its angle parts as ``(n, k)`` (a single part may come as ``(n,)``)."""
-    def call(w):
-        p, t, a = turning(w)
+    """``turning`` with its angle parts as ``(n, k)`` (a single part may come as ``(n,)``), called as
+    :func:`interval_bounds` calls it: on parameters of any shape (flattened) and the intervals they
+    belong to (one curve: not read)."""
+    def call(w, rows=None):
+        p, t, a = turning(np.ravel(w))
         return p, t, np.asarray(a, dtype=float).reshape(len(p), -1)
     return call
 
@@ -178,7 +180,9 @@ def _walk_bound(rows, pts, tan, parts, q, tq, pq):
 def interval_bounds(turning, w, pts, tan, parts, tol, fractions, rows=None, probed=None):
     """Probes of a sampling's intervals (at ``fractions`` of each) with their tangents and angle parts,
     and each interval's proven deviation bound: the largest :func:`leg_bound` of the legs between its ends
-    and probes (``inf``: not proven). ``turning`` as :func:`angle_parts` returns it; ``pts``, ``tan``,
+    and probes (``inf``: not proven). ``turning`` as :func:`angle_parts` returns it (called with the
+    parameters ``(m, j)`` of ``m`` intervals and their indices ``(m,)``: a sampling of several curves
+    tells its curves apart by them); ``pts``, ``tan``,
     ``parts`` are its values at the vertices ``w``; ``rows`` the intervals to bound (vertex ``i`` to
     ``i + 1``; default all), each bounded on its own. The bound leaves out the round-off of the exact
     points, :func:`round_off` of the sampling (it grows with the sampling's largest coordinate).
@@ -188,12 +192,12 @@ def interval_bounds(turning, w, pts, tan, parts, tol, fractions, rows=None, prob
     rows = np.arange(len(w) - 1) if rows is None else rows
     lo, hi = w[rows], w[rows + 1]
     probes = lo[:, None] + (hi - lo)[:, None] * fractions
-    q, tq, pq = turning(probes.ravel()) if probed is None else probed
+    q, tq, pq = turning(probes, rows) if probed is None else probed
     bound = _walk_bound(rows, pts, tan, parts, q, tq, pq)
     near = np.flatnonzero((bound > tol) & (bound < RETRY * tol))
     if len(near):
         fine = lo[near, None] + (hi - lo)[near, None] * np.linspace(0.0, 1.0, FINE + 1)[1:-1]
-        bound[near] = np.minimum(bound[near], _walk_bound(rows[near], pts, tan, parts, *turning(fine.ravel())))
+        bound[near] = np.minimum(bound[near], _walk_bound(rows[near], pts, tan, parts, *turning(fine, rows[near])))
     m, k = len(lo), parts.shape[-1]
     return (probes, q.reshape(m, -1, 2), tq.reshape(m, -1, 2), pq.reshape(m, -1, k), bound)
 

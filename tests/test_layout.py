@@ -50,7 +50,7 @@ PACKAGE = Path(__file__).resolve().parent.parent / "gearkit"
 #: the layers, bottom first: a module may import only from its own layer or a lower one
 LAYERS = (
     ("base", ("gearkit", "gearkit.errors", "gearkit.accuracy", "gearkit.distances", "gearkit.chords", "gearkit.curves",
-              "gearkit.export", "gearkit.roots", "gearkit.progress", "gearkit.values")),
+              "gearkit.export", "gearkit.refine", "gearkit.roots", "gearkit.progress", "gearkit.values")),
     ("kernel", ("gearkit.segments", "gearkit.motion", "gearkit.envelope", "gearkit.boundary", "gearkit.profile")),
     ("families", ("gearkit.families", "gearkit.oracles")),  # every family package, and their oracles
     ("pair", ("gearkit.pair",)),

@@ -232,7 +232,7 @@ def test_refinement_probes_each_interval_once_and_carries_what_a_fresh_probe_giv
     sampling ends with are, to the last bit, those a fresh probe of its final intervals gives. The
     proven path on a flank of the cycloid disc (its pin walk ends in a square root: many rounds),
     the probed one on a narrow bump."""
-    import gearkit.accuracy as acc
+    import gearkit.refine as acc
     from gearkit.chords import angle_parts
     from gearkit.families import cycloidal as cyc
 
@@ -259,7 +259,7 @@ def test_refinement_probes_each_interval_once_and_carries_what_a_fresh_probe_giv
     if bound:
         fresh = measure(angle_parts(curve.turning), w, *angle_parts(curve.turning)(w), tol, acc._PROBES)
     else:
-        fresh = measure(curve, w, pts, tol)
+        fresh = measure(lambda x, rows: curve(np.ravel(x)), w, pts, tol)
     assert np.array_equal(fresh[0], probes) and np.array_equal(fresh[1], q)
 
 
@@ -268,7 +268,7 @@ def test_an_interval_bound_is_the_largest_bound_of_its_legs_bounded_one_by_one()
     oracle: :func:`leg_bound` of every leg on its own (points, tangents and parts of the walk, the
     interval's chord), whose largest is the interval's bound to the last bit. On the flank and fillet
     of a z = 12 gear (two angle parts each) and its tip arc (one)."""
-    from gearkit.accuracy import _PROBES
+    from gearkit.refine import _PROBES
     from gearkit.chords import angle_parts, interval_bounds, leg_bound
     from gearkit.families.involute import GearSpec, tooth_profile
 
@@ -316,3 +316,35 @@ def test_edge_distances_are_the_nearest_of_all_the_edges(monkeypatch, pairs):
             brute = chord_distance(a[:-1][None], a[1:][None], q[:, None]).min(axis=1)
             fast = edge_distances(q, ring, closed=closed)
             assert np.allclose(fast, brute, rtol=1e-13, atol=1e-13 * scale), (n, closed)
+
+
+class _Probed:
+    """A curve with a ``turning`` that gives no angle parts (as a trochoid's): sampled on its probes."""
+
+    def __call__(self, w):
+        return _bump(np.asarray(w))
+
+    def turning(self, w):
+        return None
+
+
+def test_curves_sampled_together_get_what_each_gets_alone_and_stay_within_tol():
+    """:func:`gearkit.accuracy.sample_curves` refines several curves as one (one pass of bookkeeping per
+    round); every interval is measured on its own, so each curve keeps the vertices and the achieved
+    deviation it gets alone, to the last bit. The mix: a tooth's pieces (a tip arc with one angle part,
+    envelope branches with two), a cycloid disc's pin envelope (many rounds), a curve with no
+    ``turning`` and one whose ``turning`` gives none (both probed). Each is also measured against its
+    exact curve evaluated densely (the independent measure): within tol."""
+    from gearkit.accuracy import sample_curves
+    from gearkit.families import cycloidal as cyc
+    from gearkit.families.involute import GearSpec, tooth_profile
+
+    tol = 1e-4
+    curves = list(tooth_profile(GearSpec(8, 1.0)).half.pieces) + [_bump, _Probed()]
+    curves += list(cyc.disc_profile(cyc.DriveSpec(12, 11, 40.0, 3.0, 1.5)).half.pieces)
+    together = sample_curves(curves, tol)
+    for curve, (w, pts, achieved) in zip(curves, together):
+        alone = adaptive_sample(curve, tol, fewest=True)
+        assert np.array_equal(w, alone[0]) and np.array_equal(pts, alone[1]) and achieved == alone[2]
+        dense = curve(np.linspace(0.0, 1.0, 200_001))
+        assert distances_to_polyline(dense, pts).max() <= tol and achieved <= tol

@@ -1,0 +1,286 @@
+"""Refinement of samplings of exact curves until every chord is within a tolerance, several curves at once.
+
+A curve is known exactly as a function ``w -> points`` on ``[0, 1]``. :func:`refine_samples` takes a
+sampling of each of several curves and splits their intervals, round by round, until every chord is
+within ``tol`` of its curve; every interval is measured on its own (its probes, its deviation and its
+splits depend on its two ends alone), so refining the curves together gives each the vertices, probes
+and achieved deviation it gets alone (:func:`refine_sample`), to the last bit, while each round's
+bookkeeping is one pass over all of them (a tooth's pieces: a handful of short chains whose cost is the
+number of calls, not their length). Only the curves are called one by one, each on its own parameters.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from gearkit.chords import angle_parts, interval_bounds, round_off
+from gearkit.chords import chord_distance as _chord_deviation
+
+__all__ = ["ATOM", "PROBE_MARGIN", "UNEVEN", "refine_sample", "refine_samples"]
+
+#: probe fractions of every interval: quarter points, and eighths at both ends (where a square-root
+#: end, x ~ sqrt(w), puts the chord's largest deviation)
+_PROBES = np.array([0.125, 0.25, 0.5, 0.75, 0.875])
+_MID = 2
+_WIDTHS = np.diff(np.concatenate([[0.0], _PROBES, [1.0]]))
+
+#: an interval is accepted when its probed deviation is within this fraction of tol: between the
+#: probes a chord's deviation can run above the largest probed one (by ~5 % where the curvature
+#: grows from 0 to its largest across the interval), so the accepted chords keep that margin
+PROBE_MARGIN = 0.9
+#: an interval whose fastest leg between probes (chord / parameter width) exceeds this multiple of its
+#: mean speed moves unevenly in its parameter: a narrow feature (a fast, bent stretch) may sit between probes
+UNEVEN = 2.5
+#: a parameter interval this short (relative) holds no curve points but its ends and probes
+ATOM = 1e-13
+
+
+def _probe(evaluate, w, pts, tol, rows=None):
+    """Quarter-point probes of the intervals ``rows`` (vertex ``i`` to ``i + 1``; default all): (probes,
+    probe points, chord deviation, uneven), each interval measured on its own. ``evaluate(x, rows)``
+    gives the points at parameters ``x`` ``(m, j)`` of the intervals ``rows``."""
+    rows = np.arange(len(w) - 1) if rows is None else rows
+    lo, hi, a, b = w[rows], w[rows + 1], pts[rows, None, :], pts[rows + 1, None, :]
+    probes = lo[:, None] + (hi - lo)[:, None] * _PROBES
+    q = evaluate(probes, rows).reshape(len(lo), len(_PROBES), 2)
+    dev = _chord_deviation(a, b, q).max(axis=1)
+    walk = np.concatenate([a, q, b], axis=1)
+    legs = np.linalg.norm(np.diff(walk, axis=1), axis=-1)
+    length = legs.sum(axis=1)
+    speed = legs / _WIDTHS  # mean speed of each leg, against the interval's mean speed (its length)
+    uneven = (speed.max(axis=1) > UNEVEN * length) & (length > tol)
+    return probes, q, dev, uneven
+
+
+def _scatter(n, rows, fresh, at=None, old=None):
+    """The measurements of ``n`` intervals: ``fresh`` ones of the intervals ``rows``, the ``old`` ones
+    of the intervals ``at`` (unchanged since they were measured), zero elsewhere (between two curves)."""
+    out = []
+    for j, f in enumerate(fresh):
+        both = np.zeros((n,) + f.shape[1:], dtype=f.dtype)
+        both[rows] = f
+        if at is not None:
+            both[at] = old[j]
+        out.append(both)
+    return tuple(out)
+
+
+class _Curves:
+    """Several curves called as one on parameters grouped by curve: ``owner[i]`` is the curve of
+    interval ``i``; each curve is called once per run of its intervals, on its own parameters."""
+
+    def __init__(self, curves, owner, parts: int = 0):
+        self.curves, self.owner, self.parts = curves, owner, parts
+
+    def _runs(self, rows):
+        own = self.owner[rows]
+        cuts = np.flatnonzero(own[1:] != own[:-1]) + 1
+        return zip(np.concatenate([[0], cuts]).tolist(), np.concatenate([cuts, [len(rows)]]).tolist(),
+                   own[np.concatenate([[0], cuts])].tolist())
+
+    def points(self, x, rows):
+        """Points at ``x`` ``(m, ...)``, parameters of the intervals ``rows`` ``(m,)``: ``(size, 2)``."""
+        runs = list(self._runs(rows))
+        if len(runs) == 1:
+            return self.curves[runs[0][2]](np.ravel(x))
+        return np.concatenate([self.curves[c](np.ravel(x[a:b])) for a, b, c in runs])
+
+    def turning(self, x, rows):
+        """Points, unit tangents and angle parts (zero parts added up to ``parts``) at ``x``, as ``points``."""
+        out = [angle_parts(self.curves[c].turning)(x[a:b]) for a, b, c in self._runs(rows)]
+        if len(out) == 1 and out[0][2].shape[1] == self.parts:
+            return out[0]
+        return _joined(out, self.parts)
+
+
+def _joined(turned, width: int):
+    """Points, tangents and angle parts of several curves one after another, the parts padded with zero
+    parts to ``width`` (a zero part adds nothing to a leg's range)."""
+    p, t = (np.concatenate([o[j] for o in turned]) for j in (0, 1))
+    parts = np.zeros((len(p), width))
+    at = 0
+    for o in turned:
+        parts[at:at + len(o[2]), :o[2].shape[1]] = o[2]
+        at += len(o[2])
+    return p, t, parts
+
+
+def refine_sample(evaluate, w, pts, tol: float, max_rounds: int = 60, max_split: int = 16, bound: bool = False):
+    """Split the intervals of a sampling ``(w, pts)`` of an exact curve until every chord is within ``tol``.
+
+    Each round probes every interval at its quarter points and eighths at both ends (an interval no
+    point was added to keeps the probes and measures of the round before: they depend on its ends
+    alone). An interval whose chord deviates by ``dev > PROBE_MARGIN tol`` is split into
+    ``k = ceil(1.1 sqrt(dev / (PROBE_MARGIN tol)))`` equal parameter parts (at most
+    ``max_split``): a chord's deviation shrinks as the square of its length, so one round usually
+    settles an interval and the rounds (each a call of ``evaluate``, the cost that dominates for
+    short chains) stay few. An interval that moves *unevenly* in its parameter (the walk through
+    its probes is ``UNEVEN`` times faster on one leg than on average, and longer than ``tol``) is
+    split at its probes however small its probed deviation: that is where a narrow
+    feature (a short, sharply bent stretch the parameter runs through fast) hides between
+    probes, and the quadratic model behind the probes only holds once the speed is even.
+    Intervals still too coarse split again.
+
+    ``bound=True`` (the curve has ``turning(w)``, see :mod:`gearkit.chords`): ``dev`` is instead each
+    interval's *proven bound* over the legs between its probes (no margin: ``dev <= tol`` accepts), an
+    interval whose bound is not established is split at its probes, and ``achieved`` is a bound. The
+    vertices and the first round's probes are evaluated in one call of ``turning``; where it gives no
+    angle parts (None) the sampling is probed as with ``bound=False`` (``pts`` may be None: evaluated).
+
+    Returns
+    -------
+    w, points, achieved (as :func:`gearkit.accuracy.adaptive_sample`), and the final probes' parameters
+    ``(k - 1, 5)`` and points ``(k - 1, 5, 2)``.
+    """
+    turned = first_turning(evaluate, w) if bound else None
+    if turned is None:
+        pts = evaluate(w) if pts is None else pts
+        return refine_samples([evaluate], [w], [pts], tol, max_rounds, max_split)[0]
+    return refine_samples([evaluate], [w], None, tol, max_rounds, max_split, turned=[turned])[0]
+
+
+def first_turning(curve, w):
+    """``curve.turning`` at the vertices ``w`` and the first round's probes of their intervals (one call),
+    with its angle parts as ``(n, k)``; None where the curve gives none."""
+    turning = getattr(curve, "turning", None)
+    if turning is None:
+        return None
+    first = w[:-1, None] + np.diff(w)[:, None] * _PROBES
+    turned = turning(np.concatenate([w, first.ravel()]))
+    if turned is None:
+        return None
+    p, t, a = turned
+    return p, t, np.asarray(a, dtype=float).reshape(len(p), -1)
+
+
+def refine_samples(curves, ws, ptss, tol: float, max_rounds: int = 60, max_split: int = 16, turned=None):
+    """:func:`refine_sample` of several curves at once: ``[(w, points, achieved, probes, q)]``, one per curve,
+    each to the last bit what the curve gets alone.
+
+    ``ws`` are the curves' starting parameters (sorted, each curve's own); ``ptss`` their points (probed
+    sampling), or None with ``turned`` given: each curve's :func:`first_turning` at its ``w`` (proven
+    bounds; every curve must give angle parts).
+    """
+    bound = turned is not None
+    sizes = [len(w) for w in ws]
+    owner = np.repeat(np.arange(len(ws)), sizes)
+    w = np.concatenate(ws)
+    if bound:
+        width = max(t[2].shape[1] for t in turned)
+        curves = _Curves(curves, owner[:-1], width)
+        if len(turned) == 1:
+            (p, t, a), n = turned[0], sizes[0]
+            (pts, tan, parts), probed = (p[:n], t[:n], a[:n]), (p[n:], t[n:], a[n:])
+        else:  # the vertices of every curve, then the probes of every curve
+            pts, tan, parts = _joined([tuple(v[:n] for v in t) for t, n in zip(turned, sizes)], width)
+            probed = _joined([tuple(v[n:] for v in t) for t, n in zip(turned, sizes)], width)
+        margin = 1.0
+    else:
+        curves = _Curves(curves, owner[:-1])
+        pts, probed, margin = np.concatenate(ptss), None, PROBE_MARGIN
+    todo, kept = np.flatnonzero(owner[:-1] == owner[1:]), None  # the intervals to probe: within a curve
+    for _ in range(max_rounds):
+        curves.owner = owner[:-1]
+        lo, hi = w[:-1], w[1:]
+        starts = np.flatnonzero(np.concatenate([[True], owner[1:] != owner[:-1]]))
+        inside = owner[:-1] == owner[1:]
+        if not len(todo):
+            measured = kept[1]
+        else:
+            measured = (interval_bounds(curves.turning, w, pts, tan, parts, tol, _PROBES, todo, probed) if bound
+                        else _probe(curves.points, w, pts, tol, todo))
+            probed = None
+            measured = _scatter(len(lo), todo, measured, *(kept or (None, None)))
+        if bound:
+            probes, q, tq, pq, dev = measured
+            dev = np.where(inside, dev + _round_offs(pts, starts, owner), 0.0)
+            uneven = ~np.isfinite(dev)
+            # an interval below the parameter's resolution has no points but its ends and probes: a curve
+            # that jumps there (an exact solution switching roots at the very end of its range) is
+            # measured at them
+            atom = uneven & (hi - lo <= ATOM * np.maximum(np.abs(lo), np.abs(hi)).clip(1.0))
+            if atom.any():
+                dev[atom] = _chord_deviation(pts[:-1][atom, None], pts[1:][atom, None], q[atom]).max(axis=1)
+                uneven &= ~atom
+        else:
+            probes, q, dev, uneven = measured
+        bad = (dev > margin * tol) & ~uneven
+        if not (bad.any() or uneven.any()):
+            return _split_up(w, pts, dev, probes, q, starts)
+        k = np.clip(np.ceil(1.1 * np.sqrt(dev[bad] / (margin * tol))), 2, max(2, max_split)).astype(int)
+        quarters = uneven & ~bad  # split at the probes already evaluated
+        new_w = [probes[bad, _MID], probes[quarters].ravel()]
+        new_p = [q[bad, _MID], q[quarters].reshape(-1, 2)]
+        new_o = [owner[:-1][bad], np.repeat(owner[:-1][quarters], len(_PROBES))]
+        if bound:
+            new_t = [tq[bad, _MID], tq[quarters].reshape(-1, 2)]
+            new_a = [pq[bad, _MID], pq[quarters].reshape(-1, parts.shape[-1])]
+        if (k > 2).any():  # the midpoint is already evaluated; other split points are new
+            many = k > 2
+            kk = k[many]
+            rows = np.repeat(np.arange(len(kk)), kk - 1)
+            j = np.arange(len(rows)) - np.repeat(np.cumsum(kk - 1) - (kk - 1), kk - 1) + 1
+            frac = j / kk[rows]
+            keep = np.abs(frac - 0.5) > 1e-12
+            a, h = lo[bad][many][rows][keep], (hi - lo)[bad][many][rows][keep]
+            extra = a + h * frac[keep]
+            at = np.flatnonzero(bad)[many][rows][keep]  # the interval each new point splits
+            new_w.append(extra)
+            new_o.append(owner[:-1][at])
+            if bound:
+                pe, te, ae = curves.turning(extra[:, None], at)
+                new_p.append(pe)
+                new_t.append(te)
+                new_a.append(ae)
+            else:
+                new_p.append(curves.points(extra[:, None], at))
+        n_old = len(w)
+        w, owner = np.concatenate([w] + new_w), np.concatenate([owner] + new_o)
+        pts = np.concatenate([pts] + new_p)
+        # sorted by curve, then parameter; an interval too short to split stays whole, and an old vertex
+        # keeps its point (the first of equal parameters: the sort is stable)
+        order = np.lexsort((w, owner))
+        w, owner = w[order], owner[order]
+        first = np.concatenate([[True], (w[1:] != w[:-1]) | (owner[1:] != owner[:-1])])
+        order, w, owner = order[first], w[first], owner[first]
+        pts = pts[order]
+        if bound:
+            tan, parts = np.concatenate([tan] + new_t)[order], np.concatenate([parts] + new_a)[order]
+        # an interval with the same two ends is measured the same: only the new ones are probed again
+        where = np.empty(len(first), dtype=int)
+        where[order] = np.arange(len(order))
+        at = where[:n_old]  # the old vertices (all kept) in the new sampling
+        same = np.diff(at) == 1
+        kept = at[:-1][same], tuple(m[same] for m in measured)
+        fresh = owner[:-1] == owner[1:]
+        fresh[kept[0]] = False
+        todo = np.flatnonzero(fresh)
+    curves.owner = owner[:-1]
+    starts = np.flatnonzero(np.concatenate([[True], owner[1:] != owner[:-1]]))
+    inside = owner[:-1] == owner[1:]
+    rows = np.flatnonzero(inside)
+    if bound:
+        probes, q, _, _, dev = _scatter(len(w) - 1, rows,
+                                        interval_bounds(curves.turning, w, pts, tan, parts, tol, _PROBES, rows))
+        dev = np.where(inside, dev + _round_offs(pts, starts, owner), 0.0)
+        atom = ~np.isfinite(dev) & (np.diff(w) <= ATOM * np.maximum(np.abs(w[:-1]), np.abs(w[1:])).clip(1.0))
+        dev[atom] = _chord_deviation(pts[:-1][atom, None], pts[1:][atom, None], q[atom]).max(axis=1)
+    else:
+        probes, q, dev, _ = _scatter(len(w) - 1, rows, _probe(curves.points, w, pts, tol, rows))
+    return _split_up(w, pts, dev, probes, q, starts)
+
+
+def _round_offs(pts, starts, owner):
+    """:func:`~gearkit.chords.round_off` of each curve's points, at each interval (of its first vertex)."""
+    if len(starts) == 1:
+        return round_off(pts)
+    ends = np.append(starts[1:], len(pts))
+    each = np.array([round_off(pts[a:b]) for a, b in zip(starts, ends)])
+    return each[owner[:-1]]
+
+
+def _split_up(w, pts, dev, probes, q, starts):
+    """Each curve's ``(w, points, achieved, probes, q)`` out of the joint sampling."""
+    out = []
+    for a, b in zip(starts, np.append(starts[1:], len(w))):
+        out.append((w[a:b], pts[a:b], float(dev[a:b - 1].max(initial=0.0)), probes[a:b - 1], q[a:b - 1]))
+    return out
