@@ -57,7 +57,7 @@ def _form_roll(field, which, x, rho_l, rb):
         r[xs < fit[4]] = np.nan
     else:
         inside = np.zeros(xs.shape, bool)
-    for k in np.flatnonzero(~inside):  # outside the interpolant: the generated gear itself
+    for k in ([] if inside.all() else np.flatnonzero(~inside)):  # outside the interpolant: the generated gear
         d = field.form_diameter(which, float(xs[k]), exact=True)
         r[k] = math.sqrt(max((d / 2) ** 2 - rb ** 2, 0.0)) if d is not None and not math.isnan(d) else math.nan
     rho[idx] = r
@@ -84,10 +84,13 @@ class _Pair:
         # the thickness allowance feeds the tool in (generating shift x_E) for roots and form circles
         x2c = ring_settings(sec, t, x2) if internal and t.shift_convention == "iso" else x2
         k_e = 2 * mn * math.tan(sec.alpha_n)
-        d1, _, _, _ = gear_forms(sec, z1, x1, tool1, False)
-        _, rf1, rho_l1, _ = gear_forms(sec, z1, x1 - t.thinning1 / k_e, tool1, False)
-        d2, _, _, a02 = gear_forms(sec, z2, x2c, tool2, internal)
-        _, rf2, rho_l2, _ = gear_forms(sec, z2, x2c - t.thinning2 / k_e, tool2, internal)
+        xe1, xe2 = x1 - t.thinning1 / k_e, x2c - t.thinning2 / k_e  # generating shifts (x itself without thinning)
+        d1, rf1, rho_l1, _ = gear_forms(sec, z1, x1, tool1, False)
+        if t.thinning1:
+            _, rf1, rho_l1, _ = gear_forms(sec, z1, xe1, tool1, False)
+        d2, rf2, rho_l2, a02 = gear_forms(sec, z2, x2c, tool2, internal)
+        if t.thinning2:
+            _, rf2, rho_l2, _ = gear_forms(sec, z2, xe2, tool2, internal)
         self.a02 = a02
         with np.errstate(invalid="ignore", divide="ignore"):
             if internal:
@@ -107,8 +110,8 @@ class _Pair:
             cut = dy if t.tip_rule == "shortened" else 0.0
             ha = t.addendum
             # the tips the check grades: the blank's, cut down to what the tools leave (one function)
-            ra1 = graded_tip_radius(sec, z1, x1 - t.thinning1 / k_e, tool1, False, r1 + mn * (ha + x1 - cut))
-            ra2 = graded_tip_radius(sec, z2, x2c - t.thinning2 / k_e, tool2, internal,
+            ra1 = graded_tip_radius(sec, z1, xe1, tool1, False, r1 + mn * (ha + x1 - cut))
+            ra2 = graded_tip_radius(sec, z2, xe2, tool2, internal,
                                     r2 - mn * (ha - x2 - cut) if internal else r2 + mn * (ha + x2 - cut))
             bad |= ~(ra1 > rb1)
             bad |= ~(ra2 < rf2) if internal else ~(ra2 > rb2)
@@ -144,18 +147,23 @@ class _Pair:
                 self.clear = (a_w - ra1 - rf2, a_w - ra2 - rf1)
             t1 = d1 - t.thinning1 / mn
             t2 = d2 - t.thinning2 / mn
-            rw1 = rb1 / np.cos(alpha_w)
-            k = 2 * (inv(at) - inv(alpha_w))
-            psi1 = (math.pi + 2 * t1) / z1 + k
-            if internal:
-                eta2 = (math.pi - 2 * t2) / z2 + k
-                self.backlash = rw1 * (z2 / z1 * eta2 - psi1)
-            else:
-                psi2 = (math.pi + 2 * t2) / z2 + k
-                self.backlash = rw1 * (2 * math.pi / z1 - psi1 - z2 / z1 * psi2)
         self.a_w, self.alpha_w, self.ra1, self.ra2, self.rf1, self.rf2 = a_w, alpha_w, ra1, ra2, rf1, rf2
         self.t1, self.t2 = t1, t2
         self._tips = None
+
+    @property
+    def backlash(self):
+        """Circumferential backlash on the operating pitch circle of gear 1 (mm; ~0 at the tight mesh)."""
+        z1, z2, t1, t2, alpha_w = self.z1, self.z2, self.t1, self.t2, self.alpha_w
+        with np.errstate(invalid="ignore", divide="ignore"):
+            rw1 = self.rb1 / np.cos(alpha_w)
+            k = 2 * (inv(self.sec.alpha_t) - inv(alpha_w))
+            psi1 = (math.pi + 2 * t1) / z1 + k
+            if self.internal:
+                eta2 = (math.pi - 2 * t2) / z2 + k
+                return rw1 * (z2 / z1 * eta2 - psi1)
+            psi2 = (math.pi + 2 * t2) / z2 + k
+            return rw1 * (2 * math.pi / z1 - psi1 - z2 / z1 * psi2)
 
     def tip_thickness(self, which):
         """Normal tip thickness s_an (mm) of gear ``which`` (computed once per gear: several lines read it)."""
@@ -173,6 +181,8 @@ class _Pair:
         with np.errstate(invalid="ignore"):
             rr = np.maximum(ra, rb)
             s_at = 2 * rr * half_angle(sec, z, t, rr, internal)
+            if not sec.beta:  # spur: the normal section is the transverse one
+                return s_at
             beta_a = np.arctan(math.tan(sec.beta) * ra / r)
             return s_at * np.cos(beta_a)
 
@@ -257,50 +267,61 @@ class _Pair:
 
     def margin(self, name, sel=None):
         """Margin ``name`` (see :func:`margins`) at the points ``sel`` (indices; None: all)."""
+        if name.startswith("undercut."):
+            i = int(name[-1])
+            v = (self.x1, self.x2)[i - 1] - self.field.x_min[i - 1]
+            return v if sel is None else v[sel]
+        return np.where(self.bad if sel is None else self.bad[sel], np.nan, self._value(name, sel))
+
+    def smallest(self, names, sel):
+        """The smallest of the margins ``names`` at the points ``sel``: NaN where no pair exists."""
+        with np.errstate(invalid="ignore"):
+            m = np.minimum.reduce([self._value(n, sel) for n in names])
+        return np.where(self.bad[sel], np.nan, m)
+
+    def _value(self, name, sel):
+        """Margin ``name`` at the points ``sel`` (None: all), read where a pair exists."""
         field = self.field
         mn = field.module
         tol = 1e-9 * mn
         base, _, level = name.partition("=")
-        pick = (lambda a: a) if sel is None else (lambda a: np.asarray(a)[sel])
+        at = (lambda a: a) if sel is None else (lambda a: np.asarray(a)[sel])
         if base.startswith("undercut."):
             i = int(base[-1])
-            return pick((self.x1, self.x2)[i - 1] - field.x_min[i - 1])
+            return at((self.x1, self.x2)[i - 1]) - field.x_min[i - 1]
         if base == "interference.1":
-            v = (self.u_a - self.rhoF1 + tol) / mn
-        elif base == "interference.2":
-            v = (self.u_hi - self.u_e + tol) / mn
-        elif base in ("pointing.1", "pointing.2"):
-            s = self.tip_thickness(int(base[-1]))
-            v = np.where(s == 0, -5e-324, s) / mn
-        elif base in ("tip_clearance.1", "tip_clearance.2"):
-            v = self.clear[int(base[-1]) - 1] / mn
-        elif name == "contact_ratio=1":
-            v = self.eps - 1.0
-        elif base == "contact_ratio":
-            v = self.eps - float(level)
-        elif base == "contact_ratio_tip":
-            v = self.eps_nominal - float(level)
-        elif base.startswith("tip_thickness."):
-            v = self.tip_thickness(int(base[-1])) / mn - float(level)
-        elif base == "sliding":
-            v = self.sliding()
-        elif base == "exit_jamming":
-            v = self.exit_jamming()
-        elif base == "trimming.plunge":
+            return (at(self.u_a) - at(self.rhoF1) + tol) / mn
+        if base == "interference.2":
+            return (at(self.u_hi) - at(self.u_e) + tol) / mn
+        if base in ("pointing.1", "pointing.2"):
+            s = at(self.tip_thickness(int(base[-1])))
+            return np.where(s == 0, -5e-324, s) / mn
+        if base in ("tip_clearance.1", "tip_clearance.2"):
+            return at(self.clear[int(base[-1]) - 1]) / mn
+        if name == "contact_ratio=1":
+            return at(self.eps) - 1.0
+        if base == "contact_ratio":
+            return at(self.eps) - float(level)
+        if base == "contact_ratio_tip":
+            return at(self.eps_nominal) - float(level)
+        if base.startswith("tip_thickness."):
+            return at(self.tip_thickness(int(base[-1]))) / mn - float(level)
+        if base == "sliding":
+            return at(self.sliding())
+        if base == "exit_jamming":
+            return at(self.exit_jamming())
+        if base == "trimming.plunge":
             gap = self.plunge_gap(sel) / mn
-            v = np.where(gap > 0, gap, np.minimum(gap, -5e-324))
-            return np.where(pick(self.bad), np.nan, v)
-        elif base == "tip_interference":
-            return np.where(pick(self.bad), np.nan, self.tip_clearance_margin(sel))
-        elif base == "trimming.nu":
-            v = (self.ra2 - self.nu) / mn
-        elif base == "center_distance":
-            v = (self.a_w - float(level)) / mn
-        elif base == "backlash":
-            v = (self.backlash + tol) / mn
-        else:
-            raise KeyError(name)
-        return np.where(pick(self.bad), np.nan, pick(v))
+            return np.where(gap > 0, gap, np.minimum(gap, -5e-324))
+        if base == "tip_interference":
+            return self.tip_clearance_margin(sel)
+        if base == "trimming.nu":
+            return (at(self.ra2) - at(self.nu)) / mn
+        if base == "center_distance":
+            return (at(self.a_w) - float(level)) / mn
+        if base == "backlash":
+            return (at(self.backlash) + tol) / mn
+        raise KeyError(name)
 
 
 def _points(x1, x2):
@@ -346,8 +367,8 @@ def evaluator(field, names, window):
             if name != "region":
                 out[sel] = g.margin(name, sel)
                 continue
+            m = g.smallest(cheap, sel)
             with np.errstate(invalid="ignore"):
-                m = np.minimum.reduce([g.margin(n, sel) for n in cheap])
                 if sweep:  # the tip sweep only where the others pass (elsewhere the region fails anyway)
                     at = np.flatnonzero(m >= 0)
                     m[at] = np.minimum(m[at], g.margin("tip_interference", sel[at]))

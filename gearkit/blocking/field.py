@@ -39,8 +39,19 @@ FORM_MARGIN = 0.5  #: the interpolant reaches this far below the window (the pro
 #: window's edge reach past it: each point left outside would generate a gear of its own)
 FORM_TIPS = (0.0, 1.0, -0.5)  #: blank tips tried (m_n above the blank's own) for a gear with a flank
 FORM_BISECTIONS = 12  #: bisections for the smallest shift at which the generated gear has a tooth
+FEW_SHIFTS = 16  #: the form-circle interpolant sums the series on floats for at most this many shifts (numpy's
+#: cost per call outweighs the arithmetic)
 GENERATED_CACHE = 4096  #: generated form circles kept per process (an atlas meets each gear in many cells)
 _GENERATED: OrderedDict = OrderedDict()
+
+
+def _clenshaw(u: float, c: list) -> float:
+    """The Chebyshev series ``c`` at one ``u``: numpy's ``chebval`` recurrence, step for step, on floats
+    (the same roundings: each step one IEEE operation either way)."""
+    c0, c1, x2 = c[-2], c[-1], 2 * u
+    for ci in c[-3::-1]:
+        c0, c1 = ci - c1, c0 + c1 * x2
+    return c0 + c1 * u
 
 
 def forget_generated() -> None:
@@ -322,13 +333,17 @@ class PairField:
             n = FORM_NODES
             nodes = np.cos(math.pi * (np.arange(n) + 0.5) / n)
             xs = (lo + hi) / 2 + (hi - lo) / 2 * nodes
-            coef = np.polynomial.chebyshev.chebfit(nodes, [roll(x) for x in xs], n - 1)
+            coef = np.polynomial.chebyshev.chebfit(nodes, [roll(x) for x in xs], n - 1).tolist()
 
             r_hi = float(np.polynomial.chebyshev.chebval(1.0, coef))
 
             def interp_roll(x, _c=coef, _lo=lo, _hi=hi, _x0=x_min, _r_hi=r_hi):
                 # array; the last FORM_GAP: straight to rho_F = 0 at the onset
                 xa = np.asarray(x, dtype=float)
+                if xa.size <= FEW_SHIFTS:
+                    return np.array([_r_hi * (_x0 - v) / (_x0 - _hi) if v > _hi else
+                                     _clenshaw((2 * v - _lo - _hi) / (_hi - _lo), _c)
+                                     for v in xa.ravel().tolist()]).reshape(xa.shape)
                 return np.where(xa > _hi, _r_hi * (_x0 - xa) / (_x0 - _hi),
                                 np.polynomial.chebyshev.chebval((2 * xa - _lo - _hi) / (_hi - _lo), _c))
 

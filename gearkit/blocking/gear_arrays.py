@@ -23,19 +23,42 @@ from gearkit.pair.tooling import cutter_radii
 __all__ = ["inv_inverse", "gear_forms", "ring_settings"]
 
 NEWTON = 12  #: most Newton steps of the inverse involute (quadratic from the start: 4 to 6 suffice)
+SERIES_BELOW = 0.1  #: angles (rad) whose ``inv`` is left to :func:`~gearkit.curves.inv` (its series below
+#: 0.05); above, ``inv a`` is ``tan a - a`` there too, read off the tangent the Newton step has anyway
+_INV_SERIES_BELOW = inv(SERIES_BELOW)
+HEIGHTS_KEPT = 64  #: racks whose straight-flank height is remembered (each kept alive: its id stays its own)
+_HEIGHTS: dict = {}
 
 
 def inv_inverse(v):
     """The angle ``a`` with ``inv a = v`` (v > 0), arrays: Newton from the right of the root, where
     ``inv`` is convex (the iterates fall monotonically), stopping at round-off."""
     a = np.minimum(np.cbrt(3.0 * v), np.arctan(v + np.pi / 2.0))
+    # the iterates fall to the root from the right: none falls below SERIES_BELOW where every value is above its inv
+    series = bool((v < _INV_SERIES_BELOW).any())
     for _ in range(NEWTON):
         t = np.tan(a)
-        step = (inv(a) - v) / (t * t)
+        f = t - a
+        if series:
+            small = a < SERIES_BELOW
+            if small.any():
+                f = np.where(small, inv(a), f)
+        step = (f - v) / (t * t)
         a = a - step
-        if not np.any(np.abs(step) > 4e-15 * a):
+        if not (np.abs(step) > 4e-15 * a).any():
             break
     return a
+
+
+def _straight_height(tool) -> float:
+    """The rack's straight-flank height (module units; a property worked out afresh on every read),
+    remembered by the rack object itself (an equal rack made anew is compared field by field)."""
+    hit = _HEIGHTS.get(id(tool))
+    if hit is None or hit[0] is not tool:
+        if len(_HEIGHTS) >= HEIGHTS_KEPT:
+            _HEIGHTS.clear()
+        hit = _HEIGHTS[id(tool)] = (tool, tool.straight_height)
+    return hit[1]
 
 
 def gear_forms(sec, z, x, tool, internal):
@@ -46,7 +69,7 @@ def gear_forms(sec, z, x, tool, internal):
         s = math.sin(sec.alpha_t)
         delta = 2 * x * math.tan(sec.alpha_n)
         rf = r + (x - tool.dedendum) * mn
-        rho = r * s - (tool.straight_height - x) * mn / s
+        rho = r * s - (_straight_height(tool) - x) * mn / s
         return delta, rf, rho, None
     z0 = tool.teeth
     sign = -1 if internal else 1
