@@ -21,9 +21,10 @@ import math
 
 import numpy as np
 
-from gearkit.accuracy import refine_sample, sample_curves
+from gearkit.accuracy import sample_curves
 from gearkit.curves import bracketed_root, polar_from_y, polyline_self_intersections, zoom_crossing
 from gearkit.errors import GeometryError
+from gearkit.refine import refine_samples
 from gearkit.values import frozen
 
 
@@ -80,7 +81,7 @@ def _refine_crossing(fa, fb, wa, wb, bounds_a, bounds_b):
         pa, pb = fa(np.array([v[0], v[0] - h, v[0] + h])), fb(np.array([v[1], v[1] - h, v[1] + h]))
         return pa[0] - pb[0], pa[0], (pa[1:], pb[1:])  # the differences a step from v will need
 
-    f, _, (pa, pb) = gap(x)
+    f, at_x, (pa, pb) = gap(x)  # at_x: curve a at x (the last convergence test's scale)
     for _ in range(60):
         jac = np.column_stack([(pa[1] - pa[0]) / (2 * h), -(pb[1] - pb[0]) / (2 * h)])
         try:
@@ -99,11 +100,11 @@ def _refine_crossing(fa, fb, wa, wb, bounds_a, bounds_b):
         else:
             break
         moved = np.abs(trial - x).max()
-        x, f, (pa, pb) = trial, f_trial, near
-        scale = 1.0 + float(np.abs(on_a).max())
+        x, f, (pa, pb), at_x = trial, f_trial, near, on_a
+        scale = 1.0 + float(np.abs(at_x).max())
         if moved < 1e-16 or np.linalg.norm(f) <= 2e-16 * scale:
             break
-    if np.linalg.norm(f) > 1e-13 * (1.0 + float(np.abs(fa(x[:1])).max())):
+    if np.linalg.norm(f) > 1e-13 * (1.0 + float(np.abs(at_x).max())):
         x = np.array(zoom_crossing(fa, fb, x[0], x[1], bounds_a, bounds_b)[:2])
     return float(x[0]), float(x[1])
 
@@ -156,11 +157,11 @@ _START, _ENDS = np.linspace(0.0, 1.0, 17), np.concatenate([_GRADED, 1.0 - _GRADE
 
 
 def _sample_chain(branches, tol):
+    both = [br(np.concatenate([_START, _ENDS])) for br in branches]
+    refined = refine_samples(branches, [_START] * len(branches), [b[:len(_START)] for b in both], tol)
     pts, owner, ws = [], [], []
-    for k, br in enumerate(branches):
-        both = br(np.concatenate([_START, _ENDS]))
-        w, p = refine_sample(br, _START, both[:len(_START)], tol)[:2]
-        w, p = np.concatenate([w, _ENDS]), np.concatenate([p, both[len(_START):]])
+    for k, ((w, p, *_), b) in enumerate(zip(refined, both)):
+        w, p = np.concatenate([w, _ENDS]), np.concatenate([p, b[len(_START):]])
         order = np.argsort(w, kind="stable")
         w, p = w[order], p[order]
         pts.append(p)
