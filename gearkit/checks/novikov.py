@@ -253,12 +253,12 @@ def check_novikov(spec: NovikovPairSpec, limits: NovikovLimits = NovikovLimits()
         for k in range(len(racks.zones)):
             try:
                 contacts.append(mesh_contact(spec, k, tol=tol))
-            except NoContact:
-                missing.append(k)
+            except NoContact as exc:
+                missing.append((k, exc))
     contacts = tuple(contacts)
     findings += _mesh_findings(g, contacts, limits)
     findings += [Finding(f"mesh.contact.{k}", "fail", g.center_distance, None,
                          f"zone {k}: the working flanks of the generated gears do not meet at a_w = "
-                         f"{g.center_distance:.6g} mm (no contact solution): the pair does not mesh there")
-                 for k in missing]
+                         f"{g.center_distance:.6g} mm ({exc}): the pair does not mesh there")
+                 for k, exc in missing]
     return NovikovCheck(g, CheckReport(tuple(findings)), profiles, contacts)

@@ -4,10 +4,12 @@ A Novikov pair has no transverse overlap: two transverse sections touch only at 
 contact point passes through them, and it is that instant that fixes the contact. In the plane,
 with gear 1 turned by phi_1 and gear 2 by its nominal angle plus a play rotation delta, the
 contact of one zone solves four equations in ``(w_1, w_2, phi_1, delta)``: the working flanks meet
-(two), their normals are parallel (one), and the common normal passes through the pole (one: the
+(two), their outward normals are opposite (one), and the common normal passes through the pole (one: the
 instantaneous ratio equals z_1/z_2, the phase at which the travelling 3-D contact point crosses
 this section). The flanks are the exact envelope branches of the generated gears, so the solution
-is exact; the interference check then samples both outlines around the mesh and measures the
+is exact. It is the contact nearest the design point: a bounded, damped Newton iteration from there
+keeps both flank parameters inside their arcs and the phase within half a pitch; where no such
+contact exists the pair does not mesh (:class:`NoContact`); the interference check then samples both outlines around the mesh and measures the
 clearance everywhere else.
 
 Frames: gear 1's centre at the origin, gear 2's at ``(0, a_w)``, the pole at
@@ -23,6 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gearkit.curves import cross2, rotate
 from gearkit.distances import distances_to_polyline
 from gearkit.errors import GeometryError
 from gearkit.families.novikov.gear import tooth_profile
@@ -42,6 +45,8 @@ class MeshContact:
     says whether the point lies on the working arcs that survive on both generated teeth.
     ``clearance`` is the smallest signed distance between the two outlines away from the contact
     (negative: interference), ``touches`` the number of separate places where they touch.
+    ``flank_params`` are the contact's parameters (w_1, w_2) on the two working branches
+    (:meth:`~gearkit.families.novikov.gear.NovikovProfile.working_branch`), each in [0, 1].
     """
 
     zone: int
@@ -57,6 +62,7 @@ class MeshContact:
     clearance: float
     touches: int
     tol: float
+    flank_params: tuple
 
 
 class NoContact(GeometryError):
@@ -83,39 +89,90 @@ def _setup(spec: NovikovPairSpec, zone: int, a_w: float):
     return geo, zn, profiles, which, branches, theta2_0, ratio, pole
 
 
-def _state(x, branches, theta2_0, ratio, a_w):
-    w1, w2, phi1, delta = x
-    q1, n1, _, _ = branches[0].solve(np.array([w1]))
-    q2, n2, _, _ = branches[1].solve(np.array([w2]))
-    r1m, r2m = _rot(phi1), _rot(theta2_0 - ratio * phi1 + delta)
-    p1, m1 = r1m @ q1[0], r1m @ n1[0]
-    p2, m2 = r2m @ q2[0] + np.array([0.0, a_w]), r2m @ n2[0]
-    return p1, m1, p2, m2
+def _states(x, branches, theta2_0, ratio, a_w):
+    """Placed points and outward unit normals of both flanks at the rows of ``x`` ((k, 4): w1, w2, phi1,
+    delta), one batched evaluation per branch; rows where a branch has no envelope point come back NaN."""
+    x = np.atleast_2d(x)
+    out = []
+    for k, ang in ((0, x[:, 2]), (1, theta2_0 - ratio * x[:, 2] + x[:, 3])):
+        q, n, _, valid = branches[k].solve(x[:, k])
+        q = np.where(valid[:, None], q, np.nan)
+        p, m = rotate(q, ang, n)
+        out += [p + np.array([0.0, a_w]) if k else p, m]
+    return out
 
 
-def _residual(x, branches, theta2_0, ratio, a_w, pole):
-    p1, m1, p2, m2 = _state(x, branches, theta2_0, ratio, a_w)
+def _residuals(x, branches, theta2_0, ratio, a_w, pole):
+    """The four contact equations at the rows of ``x``: the flanks meet (two, mm), the normals are opposite
+    (one: the angle, rad, from -m2 to m1 -- zero only for opposite normals, never for parallel ones), the
+    common normal passes through the pole (one, mm)."""
+    p1, m1, p2, m2 = _states(x, branches, theta2_0, ratio, a_w)
     d = p1 - p2
-    return np.array([d[0], d[1], m1[0] * m2[1] - m1[1] * m2[0],
-                     (p1[0] - pole[0]) * m1[1] - (p1[1] - pole[1]) * m1[0]])
+    turn = np.arctan2(cross2(m1, -m2), -np.einsum("ij,ij->i", m1, m2))
+    return np.stack([d[:, 0], d[:, 1], turn, cross2(p1 - pole, m1)], -1)
 
 
-def _solve(x0, args, scale):
+#: Newton step bounds: the flank parameters move at most this much per step (the branches span [0, 1]),
+#: the rotations at most this fraction of their angular pitch
+_W_STEP, _PITCH_STEP = 0.25, 0.125
+#: a step below this (w and rad) that no longer halves is at the round-off floor
+_FLOOR = 1e-11
+_ARMIJO, _HALVINGS, _ITERATIONS = 1e-4, 30, 60
+_DIFF = 1e-7  # central-difference step of the Jacobian (w and rad)
+
+
+def _solve(x0, args, scale, pitches):
+    """Damped, bounded Newton iteration for the contact nearest ``x0``.
+
+    Each step solves the linearised system (Jacobian by central differences, its nine rows in one
+    batched evaluation), is shortened to the step bounds, projected onto the branches' domains
+    ``0 <= w <= 1``, and halved until the residual norm (lengths in units of ``scale``) decreases
+    sufficiently. It stops when no shortened step decreases the residual, or at the round-off floor
+    (a step below ``_FLOOR`` no larger than half the previous one). The root is accepted only with
+    opposite outward normals, both points inside the domains and the phase within half a pitch of
+    the start; otherwise :class:`NoContact`.
+    """
+    units = np.array([scale, scale, 1.0, scale])
+
+    def res(x):
+        return _residuals(x, *args) / units
+
     x = np.array(x0, dtype=float)
-    h = np.array([1e-7, 1e-7, 1e-7, 1e-7])
-    for _ in range(60):
-        f = _residual(x, *args)
-        jac = np.empty((4, 4))
-        for k in range(4):
-            e = np.zeros(4)
-            e[k] = h[k]
-            jac[:, k] = (_residual(x + e, *args) - _residual(x - e, *args)) / (2 * h[k])
-        step = np.linalg.solve(jac, f)
-        x = x - step
-        if np.abs(step).max() < 1e-15 and np.abs(f[:2]).max() < 1e-12 * scale:
+    f = res(x)[0]
+    if not np.all(np.isfinite(f)):
+        raise NoContact("the working flanks have no envelope point at the design point")
+    norm = float(np.linalg.norm(f))
+    eye = _DIFF * np.eye(4)
+    limit = np.array([_W_STEP, _W_STEP, _PITCH_STEP * pitches[0], _PITCH_STEP * pitches[1]])
+    last = np.inf
+    for _ in range(_ITERATIONS):
+        fd = res(np.concatenate([x + eye, x - eye]))
+        jac = (fd[:4] - fd[4:]).T / (2 * _DIFF)
+        if not np.all(np.isfinite(jac)):
             break
-    if np.abs(_residual(x, *args)[:2]).max() > 1e-9 * scale:
-        raise NoContact("the contact of the working flanks could not be solved")
+        step = -np.linalg.lstsq(jac, f, rcond=None)[0]
+        step *= min(1.0, float(np.min(limit / np.maximum(np.abs(step), 1e-300))))
+        trial = x + (0.5 ** np.arange(_HALVINGS))[:, None] * step
+        trial[:, :2] = np.clip(trial[:, :2], 0.0, 1.0)
+        norms = np.linalg.norm(res(trial), axis=1)
+        ok = np.flatnonzero(norms <= norm * (1.0 - _ARMIJO * 0.5 ** np.arange(_HALVINGS)))
+        if not len(ok):
+            break
+        moved = float(np.abs(trial[ok[0]] - x).max())
+        x, norm = trial[ok[0]], float(norms[ok[0]])
+        f = res(x)[0]
+        if moved < _FLOOR and moved > 0.5 * last or moved == 0.0:
+            break
+        last = moved
+    p1, m1, p2, m2 = (v[0] for v in _states(x, *args[:4]))
+    f = res(x)[0]
+    if not (np.abs(f).max() <= 1e-9 and float(m1 @ m2) < 0):
+        if np.any((x[:2] == 0.0) | (x[:2] == 1.0)):
+            raise NoContact("the contact runs off the end of a working arc: the arcs would touch beyond it")
+        raise NoContact("no point near the design point where the working arcs touch with opposite normals "
+                        "and the common normal passes through the pole")
+    if abs(x[2] - x0[2]) > 0.5 * pitches[0] or abs(x[3] - x0[3]) > 0.5 * pitches[1]:
+        raise NoContact("the nearest contact of the working flanks is on another tooth pair")
     return x
 
 
@@ -203,11 +260,11 @@ def mesh_contact(spec: NovikovPairSpec, zone: int = 0, center_distance: float | 
     x0 = np.array([w1, w2, s1 / geo.pitch_radii[0], 0.0])
     args = (branches, theta2_0, ratio, a_w, pole)
     # close the play first with the flanks held at their design points, then solve the full system
-    p1, _, p2, _ = _state(x0, branches, theta2_0, ratio, a_w)
+    p1, _, p2, _ = (v[0] for v in _states(x0, branches, theta2_0, ratio, a_w))
     o2 = np.array([0.0, a_w])
     x0[3] = math.atan2(*(p1 - o2)[::-1]) - math.atan2(*(p2 - o2)[::-1])
-    x = _solve(x0, args, spec.module)
-    p1, m1, _, _ = _state(x, branches, theta2_0, ratio, a_w)
+    x = _solve(x0, args, spec.module, (2 * math.pi / spec.teeth1, 2 * math.pi / spec.teeth2))
+    p1, m1, _, _ = (v[0] for v in _states(x, branches, theta2_0, ratio, a_w))
     at = math.atan2(abs(m1[1]), abs(m1[0]))
     ak = math.atan(math.tan(at) * math.cos(spec.beta))
     on = True
@@ -222,7 +279,8 @@ def mesh_contact(spec: NovikovPairSpec, zone: int = 0, center_distance: float | 
         window = 3.0 * math.pi * geo.transverse_module
         clearance, touches = _interference(profiles, rotations, a_w, tol, window)
     radii = (float(np.hypot(*p1)), float(np.hypot(*(p1 - np.array([0.0, a_w])))))
-    return MeshContact(zone, a_w, p1, m1, rotations, float(x[3]), at, ak, radii, bool(on), clearance, touches, tol)
+    return MeshContact(zone, a_w, p1, m1, rotations, float(x[3]), at, ak, radii, bool(on), clearance, touches, tol,
+                       (float(x[0]), float(x[1])))
 
 
 def contact_trace(spec: NovikovPairSpec, contact: MeshContact, rotation: float = 0.0):
