@@ -82,7 +82,27 @@ def _novikov_pair_check(data):
         a = gk.novikov_pair_geometry(spec).reference_center_distance
         return gk.check_novikov(replace(spec, center_distance=a + off * spec.module))
 
-    run("novikov_pair_check", (kw, off), build, lambda res: strict_json(res.report.to_dict()))
+    def check(res):
+        strict_json(res.report.to_dict())
+        spec = res.geometry.spec
+        for c in res.contacts:  # a true contact: on both flanks, outward normals opposite, normal through the pole
+            zone = spec.racks.zones[c.zone]
+            which = "concave" if zone.convex_gear == 1 else "convex"
+            assert all(0.0 <= w <= 1.0 for w in c.flank_params), "contact off the working branches"
+            q, n, _, _ = res.profiles[1].working_branch(which).solve(np.array([c.flank_params[1]]))
+            cs, sn = math.cos(c.rotations[1]), math.sin(c.rotations[1])
+            turn = np.array([[cs, -sn], [sn, cs]])
+            p2, m2 = turn @ q[0] + np.array([0.0, c.center_distance]), turn @ n[0]
+            assert np.abs(p2 - c.point).max() <= 1e-9 * spec.module, "the flanks do not meet"
+            assert float(c.normal @ m2) < -1 + 1e-9, "normals not opposite: interpenetrating flanks"
+            pole_y = c.center_distance * spec.teeth1 / (spec.teeth1 + spec.teeth2)
+            arm = c.point - np.array([0.0, pole_y])
+            assert abs(arm[0] * c.normal[1] - arm[1] * c.normal[0]) <= 1e-9 * spec.module, "normal misses the pole"
+        solved = {c.zone for c in res.contacts}
+        for k in range(len(spec.racks.zones)):
+            assert k in solved or res.report[f"mesh.contact.{k}"].status == "fail", "unmeshed zone not failed"
+
+    run("novikov_pair_check", (kw, off), build, check)
 
 
 @fuzz_settings(8)
