@@ -1,17 +1,15 @@
 """From envelope branches to the uncut tooth.
 
-The branches of a tool's half tooth join into one continuous curve in the blank frame.
-What the cutter leaves is found in two steps, the same for every family:
+The branches of a tool's half tooth join into one continuous curve in the blank frame. What the cutter leaves is
+found in two steps, the same for every family:
 
-1. **Loops are cut away.** Where the curve crosses itself (the tip rounding's trochoid
-   cutting into the flank: undercut; a cutter flank passing its limit point: trimming),
-   the loop between the crossing points lies inside the swept tool and is removed. The
-   crossing is refined to machine precision on the exact branches.
-2. **Clip to the half-tooth wedge.** For a tooth centred on +y, its right half lies between
-   the centre line (psi = 0) and the space centre line (psi = pi/z), inside the tip circle
-   (outside it for an internal gear). The part of the curve joining the space centre line
-   to the tip circle or the centre line is the flank of the half tooth; reaching the centre
-   line below the tip circle at an angle means a pointed tooth.
+1. **Loops are cut away.** Where the curve crosses itself (the tip rounding's trochoid cutting into the flank:
+   undercut; a cutter flank passing its limit point: trimming), the loop between the crossing points lies inside
+   the swept tool and is removed. The crossing is refined to machine precision on the exact branches.
+2. **Clip to the half-tooth wedge.** For a tooth centred on +y, its right half lies between the centre line
+   (psi = 0) and the space centre line (psi = pi/z), inside the tip circle (outside it for an internal gear). The
+   part of the curve joining the space centre line to the tip circle or the centre line is the flank of the half
+   tooth; reaching the centre line below the tip circle at an angle means a pointed tooth.
 
 Undercut, trimming and pointing are not special cases: they are read off these steps.
 """
@@ -59,9 +57,11 @@ class Piece:
         return self.curve(self.w0 + np.asarray(t, dtype=float) * (self.w1 - self.w0))
 
     def turning(self, t):
-        """Points, unit tangents and monotone angle parts of the curve (its ``turning``), or None."""
+        """Points, unit tangents and angle parts of the curve (its ``turning``; see ``span``), or None."""
         turning = getattr(self.curve, "turning", None)
         return None if turning is None else turning(self.w0 + np.asarray(t, dtype=float) * (self.w1 - self.w0))
+
+    span = property(lambda self: getattr(self.curve, "span", None))  # a leg's turn from its parts (gearkit.chords)
 
     def reversed(self) -> "Piece":
         return Piece(self.label, self.curve, self.w1, self.w0)

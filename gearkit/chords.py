@@ -31,7 +31,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["angle_parts", "chord_distance", "interval_bounds", "leg_bound", "round_off"]
+__all__ = ["angle_parts", "chord_distance", "interval_bounds", "leg_bound", "monotone_range", "round_off"]
 
 #: a leg's parts must reproduce its exact end tangent to this angle (rad): round-off of the parts
 CONSISTENT = 1e-9
@@ -92,14 +92,21 @@ def leg_bound(a, b, ta, tb, dparts, chord_a, chord_b):
     dx, dy = chord_b[..., 0] - cx, chord_b[..., 1] - cy
     ends = np.maximum(_distance(cx, cy, dx, dy, a[..., 0], a[..., 1]), _distance(cx, cy, dx, dy, b[..., 0], b[..., 1]))
     return _legs(a[..., 0], a[..., 1], b[..., 0], b[..., 1], np.asarray(ta, dtype=float), np.asarray(tb, dtype=float),
-                 np.asarray(dparts, dtype=float), (cx, cy, dx, dy), ends)
+                 monotone_range(np.asarray(dparts, dtype=float)), (cx, cy, dx, dy), ends)
 
 
-def _legs(ax, ay, bx, by, ta, tb, dparts, chord, ends):
-    """:func:`leg_bound` on coordinates, given the larger distance ``ends`` of each leg's two ends from
-    its chord ``(x, y, dx, dy)`` (a walk shares them between its legs)."""
-    lo = _sum_parts(np.minimum(dparts, 0.0))
-    hi = _sum_parts(np.maximum(dparts, 0.0))
+def monotone_range(dparts):
+    """The range ``(lo, hi)`` of a leg's tangent angle (from its angle at the leg's start) and its total
+    turn, from the changes ``dparts`` ``(..., k)`` of monotone parts: the sums of their least and largest
+    changes, and of the changes."""
+    return _sum_parts(np.minimum(dparts, 0.0)), _sum_parts(np.maximum(dparts, 0.0)), _sum_parts(dparts)
+
+
+def _legs(ax, ay, bx, by, ta, tb, turn, chord, ends):
+    """:func:`leg_bound` on coordinates, given the range ``turn = (lo, hi, total)`` of each leg's tangent
+    angle and its total turn, and the larger distance ``ends`` of each leg's two ends from its chord
+    ``(x, y, dx, dy)`` (a walk shares them between its legs)."""
+    lo, hi, total = turn
     width = hi - lo
     tax, tay = ta[..., 0], ta[..., 1]
     cx, cy = bx - ax, by - ay
@@ -127,7 +134,7 @@ def _legs(ax, ay, bx, by, ta, tb, dparts, chord, ends):
     if narrow.any():
         bound = np.where(narrow, ends + 0.5 * length * np.tan(0.5 * np.minimum(width, 3.0)), bound)
     # the parts must reproduce the end tangent, the range stay below a half turn, the chord lie in the cone
-    total = np.asarray(_sum_parts(dparts))
+    total = np.asarray(total)
     at_hi = total == hi  # parts turning one way: the total turn is an end of the range
     cos, sin = np.where(at_hi, cos_hi, cos_lo), np.where(at_hi, sin_hi, sin_lo)
     mixed = ~at_hi & (total != lo)
@@ -159,9 +166,10 @@ def angle_parts(turning):
     return call
 
 
-def _walk_bound(rows, pts, tan, parts, q, tq, pq):
+def _walk_bound(rows, pts, tan, parts, q, tq, pq, span=None):
     """Bound of the intervals ``rows`` (vertex ``rows`` to ``rows + 1``) over the legs through their
-    probes ``q``, ``tq``, ``pq`` (points, tangents, parts; flat, the same number per interval)."""
+    probes ``q``, ``tq``, ``pq`` (points, tangents, parts; flat, the same number per interval); ``span``
+    as :func:`interval_bounds`."""
     n = len(rows)
 
     def walk(at, inner, width):  # (width, n, probes + 2): each coordinate contiguous
@@ -169,15 +177,20 @@ def _walk_bound(rows, pts, tan, parts, q, tq, pq):
                               axis=1).transpose(2, 0, 1).copy()
 
     (px, py), t = walk(pts, q, 2), walk(tan, tq, 2).transpose(1, 2, 0)
-    dparts = np.diff(walk(parts, pq, parts.shape[-1]), axis=-1).transpose(1, 2, 0)
+    walked = walk(parts, pq, parts.shape[-1])
+    if span is None:
+        turn = monotone_range(np.diff(walked, axis=-1).transpose(1, 2, 0))
+    else:
+        walked = walked.transpose(1, 2, 0)
+        turn = span(walked[:, :-1], walked[:, 1:], rows)
     cx, cy = pts[rows, 0, None], pts[rows, 1, None]
     chord = (cx, cy, pts[rows + 1, 0, None] - cx, pts[rows + 1, 1, None] - cy)
     dist = _distance(*chord, px, py)  # each probe's distance, shared by the two legs it ends
-    return _legs(px[:, :-1], py[:, :-1], px[:, 1:], py[:, 1:], t[:, :-1], t[:, 1:], dparts, chord,
+    return _legs(px[:, :-1], py[:, :-1], px[:, 1:], py[:, 1:], t[:, :-1], t[:, 1:], turn, chord,
                  np.maximum(dist[:, :-1], dist[:, 1:])).max(axis=1)
 
 
-def interval_bounds(turning, w, pts, tan, parts, tol, fractions, rows=None, probed=None):
+def interval_bounds(turning, w, pts, tan, parts, tol, fractions, rows=None, probed=None, span=None):
     """Probes of a sampling's intervals (at ``fractions`` of each) with their tangents and angle parts,
     and each interval's proven deviation bound: the largest :func:`leg_bound` of the legs between its ends
     and probes (``inf``: not proven). ``turning`` as :func:`angle_parts` returns it (called with the
@@ -188,16 +201,21 @@ def interval_bounds(turning, w, pts, tan, parts, tol, fractions, rows=None, prob
     points, :func:`round_off` of the sampling (it grows with the sampling's largest coordinate).
     Where the parts turn against each other (an inflection) a leg's range is wider than its turning:
     an interval bounded just above ``tol`` is bounded again on ``FINE`` legs (more proof, not more
-    vertices). ``probed``: ``turning`` at the probes (flat), where the caller evaluated them already."""
+    vertices). ``probed``: ``turning`` at the probes (flat), where the caller evaluated them already.
+    ``span``: where the parts are not monotone, the curve's own range of each leg's tangent angle,
+    ``span(parts_a, parts_b, rows) -> (lo, hi, total)`` from the parts at the legs' ends (``(m, legs, k)``
+    each, of the intervals ``rows``; see :func:`monotone_range`), proven by the curve (e.g. from bounds of
+    its tangent's rate)."""
     rows = np.arange(len(w) - 1) if rows is None else rows
     lo, hi = w[rows], w[rows + 1]
     probes = lo[:, None] + (hi - lo)[:, None] * fractions
     q, tq, pq = turning(probes, rows) if probed is None else probed
-    bound = _walk_bound(rows, pts, tan, parts, q, tq, pq)
+    bound = _walk_bound(rows, pts, tan, parts, q, tq, pq, span)
     near = np.flatnonzero((bound > tol) & (bound < RETRY * tol))
     if len(near):
         fine = lo[near, None] + (hi - lo)[near, None] * np.linspace(0.0, 1.0, FINE + 1)[1:-1]
-        bound[near] = np.minimum(bound[near], _walk_bound(rows[near], pts, tan, parts, *turning(fine, rows[near])))
+        bound[near] = np.minimum(bound[near], _walk_bound(rows[near], pts, tan, parts, *turning(fine, rows[near]),
+                                                          span))
     m, k = len(lo), parts.shape[-1]
     return (probes, q.reshape(m, -1, 2), tq.reshape(m, -1, 2), pq.reshape(m, -1, k), bound)
 

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from gearkit.chords import angle_parts, interval_bounds, round_off
+from gearkit.chords import angle_parts, interval_bounds, monotone_range, round_off
 from gearkit.chords import chord_distance as _chord_deviation
 
 __all__ = ["ATOM", "PROBE_MARGIN", "UNEVEN", "refine_sample", "refine_samples"]
@@ -70,6 +70,8 @@ class _Curves:
 
     def __init__(self, curves, owner, parts: int = 0):
         self.curves, self.owner, self.parts = curves, owner, parts
+        self.spans = [getattr(c, "span", None) for c in curves]
+        self.span = self._span if any(s is not None for s in self.spans) else None
 
     def _runs(self, rows):
         own = self.owner[rows]
@@ -83,6 +85,15 @@ class _Curves:
         if len(runs) == 1:
             return self.curves[runs[0][2]](np.ravel(x))
         return np.concatenate([self.curves[c](np.ravel(x[a:b])) for a, b, c in runs])
+
+    def _span(self, pa, pb, rows):
+        """Each leg's turn range (:func:`~gearkit.chords.interval_bounds`' ``span``): its curve's own ``span``,
+        or the range of its monotone parts."""
+        turns = []
+        for a, b, c in self._runs(rows):
+            span = self.spans[c]
+            turns.append(monotone_range(pb[a:b] - pa[a:b]) if span is None else span(pa[a:b], pb[a:b]))
+        return tuple(np.concatenate([t[j] for t in turns]) for j in range(3))
 
     def turning(self, x, rows):
         """Points, unit tangents and angle parts (zero parts added up to ``parts``) at ``x``, as ``points``."""
@@ -186,8 +197,8 @@ def refine_samples(curves, ws, ptss, tol: float, max_rounds: int = 60, max_split
         if not len(todo):
             measured = kept[1]
         else:
-            measured = (interval_bounds(curves.turning, w, pts, tan, parts, tol, _PROBES, todo, probed) if bound
-                        else _probe(curves.points, w, pts, tol, todo))
+            measured = (interval_bounds(curves.turning, w, pts, tan, parts, tol, _PROBES, todo, probed, curves.span)
+                        if bound else _probe(curves.points, w, pts, tol, todo))
             probed = None
             measured = _scatter(len(lo), todo, measured, *(kept or (None, None)))
         if bound:
@@ -260,7 +271,8 @@ def refine_samples(curves, ws, ptss, tol: float, max_rounds: int = 60, max_split
     rows = np.flatnonzero(inside)
     if bound:
         probes, q, _, _, dev = _scatter(len(w) - 1, rows,
-                                        interval_bounds(curves.turning, w, pts, tan, parts, tol, _PROBES, rows))
+                                        interval_bounds(curves.turning, w, pts, tan, parts, tol, _PROBES, rows,
+                                                        span=curves.span))
         dev = np.where(inside, dev + _round_offs(pts, starts, owner), 0.0)
         atom = ~np.isfinite(dev) & (np.diff(w) <= ATOM * np.maximum(np.abs(w[:-1]), np.abs(w[1:])).clip(1.0))
         dev[atom] = _chord_deviation(pts[:-1][atom, None], pts[1:][atom, None], q[atom]).max(axis=1)

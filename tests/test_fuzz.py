@@ -5,7 +5,7 @@ field (inf, nan, 1e300, 1e-300, 0, a negative, a string, None, a bool, a numpy s
 must give either
 
 - a valid result: finite; the profile sampled to ``tol`` reports an achieved deviation within
-  ``tol`` and at least the real one (a proven bound; cams: not yet), and the real one is within
+  ``tol`` and at least the real one (a proven bound, every family), and the real one is within
   ``tol``, measured independently by dense re-evaluation of the exact pieces (``fuzzkit.true_deviation``); the outline closes without
   crossing itself (racks); a pointed tip has thickness 0, never a negative one; the summary is
   strict JSON; or
@@ -55,19 +55,18 @@ def _tool(desc):
     return gk.ShaperCutter(*args) if kind == "shaper" else gk.BasicRack(*args)
 
 
-def _check_bound(polyline, achieved, true, tol, proven=False):
-    """The sampling contract: the reported deviation and the real one are within tol, and (``proven``:
-    every family but cams) the reported one bounds the real one (the dense measure reads at most the
-    real deviation, so it may not exceed the bound beyond round-off)."""
+def _check_bound(polyline, achieved, true, tol):
+    """The sampling contract: the reported deviation and the real one are within tol, and the reported
+    one bounds the real one (a proven bound in every family: the dense measure reads at most the real
+    deviation, so it may not exceed the bound beyond round-off)."""
     assert np.isfinite(polyline).all() and achieved <= tol, f"reported {achieved:.3g} above tol {tol:.3g}"
     assert true <= tol * (1 + MEASURE_SLACK), f"sampled curve is {true:.3g} off at tol {tol:.3g}"
-    if proven:
-        assert true <= achieved * (1 + BOUND_SLACK), f"reported {achieved:.3g} below the real {true:.3g}"
+    assert true <= achieved * (1 + BOUND_SLACK), f"reported {achieved:.3g} below the real {true:.3g}"
 
 
 def _check_half(prof, tol):
     half, achieved = prof.half_points(tol)
-    _check_bound(half, achieved, true_deviation(prof.half.pieces, half), tol, proven=True)
+    _check_bound(half, achieved, true_deviation(prof.half.pieces, half), tol)
     return half
 
 

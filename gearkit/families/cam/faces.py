@@ -178,6 +178,13 @@ class FaceEdge:
         w = np.atleast_1d(np.asarray(w, dtype=float))
         return self.p0[None, :] + w[:, None] * (self.p1 - self.p0)[None, :]
 
+    def turning(self, w):
+        """Points, the unit tangent (one direction: a straight edge turns by nothing) and one constant part."""
+        pts, d = self(w), self.p1 - self.p0
+        length = float(np.hypot(*d))
+        tangent = d / length if length > 0 else np.array([1.0, 0.0])
+        return pts, np.broadcast_to(tangent, pts.shape).copy(), np.zeros((len(pts), 1))
+
 
 def _on_line(curve, n, h, w, step):
     """The ``w`` within ``8 step`` of ``w`` nearest to it where the curve crosses the line

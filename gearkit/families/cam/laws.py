@@ -30,6 +30,7 @@ Examples
 """
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -37,7 +38,7 @@ import numpy as np
 
 from gearkit.errors import SpecError, check_fields, is_real, require
 
-__all__ = ["LAWS", "MotionSegment", "MotionProgram", "law_shape"]
+__all__ = ["LAWS", "MotionSegment", "MotionProgram", "jerk_bound", "law_shape"]
 
 #: names of the rise/return laws
 LAWS = ("constant_velocity", "harmonic", "cycloidal", "polynomial_345", "polynomial_4567",
@@ -130,6 +131,40 @@ def law_shape(law: str, x, table=None):
     if law == "table":
         spl = _table_spline(table)
         return spl(x), spl(x, 1), spl(x, 2), spl(x, 3)
+    raise SpecError("law", f"{law!r} is not one of {', '.join(LAWS)}")
+
+
+@functools.lru_cache(maxsize=64)
+def jerk_bound(law: str, table=None) -> float:
+    """An upper bound of the normalised law's jerk ``|f3(x)|`` on [0, 1]: its largest value, at the ends
+    or where its derivative vanishes (a polynomial's or a spline piece's roots, found exactly), or the
+    amplitude of each sine piece.
+
+    Examples
+    --------
+    >>> jerk_bound("cycloidal") == 4 * math.pi ** 2, round(jerk_bound("polynomial_345"), 9)
+    (True, 60.0)
+    """
+    if law == "constant_velocity":
+        return 0.0
+    if law == "harmonic":
+        return math.pi ** 3 / 2
+    if law == "cycloidal":
+        return 4 * math.pi ** 2
+    if law in _SINE_PIECES:
+        return _SINE_CONST[law][2] * max(abs(amp * om) for _, _, _, amp, om, _ in _SINE_PIECES[law])
+    if law in _POLY:
+        jerk = np.polynomial.Polynomial(_POLY[law]).deriv(3)
+        roots = jerk.deriv().roots()
+        x = np.concatenate([[0.0, 1.0], roots[(roots.imag == 0) & (roots.real > 0) & (roots.real < 1)].real])
+        return float(np.abs(jerk(x)).max()) * (1 + 1e-12)
+    if law == "table":
+        from scipy.interpolate import PPoly
+
+        jerk = PPoly.from_spline(_table_spline(table).derivative(3))  # a quadratic on each knot span
+        x = np.concatenate([jerk.x, jerk.derivative().roots(extrapolate=False)])
+        x = x[np.isfinite(x) & (x >= 0.0) & (x <= 1.0)]
+        return float(np.abs(jerk(x)).max()) * (1 + 1e-12)
     raise SpecError("law", f"{law!r} is not one of {', '.join(LAWS)}")
 
 

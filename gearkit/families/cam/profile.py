@@ -20,8 +20,10 @@ from gearkit.accuracy import adaptive_sample
 from gearkit.boundary import Piece, next_crossing
 from gearkit.curves import cross2, polyline_self_intersections
 from gearkit.envelope import Branch, touching
+from gearkit.families.cam.curve import AngleBranch, CamCurve, PitchCurve
 from gearkit.families.cam.faces import bridge_cuts, corner_lines, face_depth, kept_runs, roller_depth
 from gearkit.families.cam.follower import follower_motion, follower_tool, lift_direction, reference_point
+from gearkit.families.cam.turns import CamTurns
 
 __all__ = ["CamProfile", "cam_profile"]
 
@@ -51,94 +53,6 @@ def _refine(f, wa, wb, lo_a, hi_a, lo_b, hi_b):
     return float(x[0]), float(x[1])
 
 
-class CamCurve:
-    """The whole envelope over one turn as one exact curve of ``w`` in [0, 1].
-
-    Between the joins where the follower's velocity jumps (a constant-velocity law) it is the
-    kernel's branch solved along the cam angle. At such a join the relative motion's instant
-    centre jumps while the cam angle stands still; the follower's contact sweeps from the old
-    pole's contact to the new one's (a roller turns about the pitch curve's corner: an arc of the
-    roller; a flat face slides: a piece of the face) — inserted here as a section of its own with
-    the pole moving on the straight line between the two.
-    """
-
-    def __init__(self, branch: Branch, start: float, corners):
-        self.branch = branch
-        self.start = start
-        # sections: ("motion", phi0, phi1) and ("corner", phi, pole0, pole1), each with a weight in w
-        sections, phi = [], start
-        for phi_c, p0, p1, weight in sorted(((((c - start) % _TWO_PI) + start, p0, p1, wt)
-                                             for c, p0, p1, wt in corners), key=lambda corner: corner[0]):
-            if phi_c > phi:
-                sections.append(("motion", phi, phi_c, phi_c - phi))
-            sections.append(("corner", phi_c, p0, p1, weight))
-            phi = phi_c
-        sections.append(("motion", phi, start + _TWO_PI, start + _TWO_PI - phi))
-        total = sum(sec[-1] for sec in sections)
-        self.sections = sections
-        self._before_corner = np.array([sec[0] == "motion" and k + 1 < len(sections) and sections[k + 1][0] == "corner"
-                                        for k, sec in enumerate(sections)])
-        self.edges = np.concatenate([[0.0], np.cumsum([sec[-1] for sec in sections]) / total])
-        self.edges[-1] = 1.0
-
-    def locate(self, w):
-        """Section index and local parameter in [0, 1] of each ``w``."""
-        w = np.atleast_1d(np.asarray(w, dtype=float))
-        k = np.clip(np.searchsorted(self.edges, w, side="right") - 1, 0, len(self.sections) - 1)
-        lo, hi = self.edges[k], self.edges[k + 1]
-        return k, np.clip((w - lo) / (hi - lo), 0.0, 1.0)
-
-    def breaks(self, program):
-        """Sorted ``w`` of every section end and every join of the motion program inside a motion
-        section: where the curve may turn at once (a velocity jump's corner) or its curvature jumps,
-        so that each piece between them is smooth for the sampler."""
-        out = list(self.edges)
-        joins = [phi % _TWO_PI for phi, _, _ in program.joins()]
-        for k, sec in enumerate(self.sections):
-            if sec[0] != "motion":
-                continue
-            for phi in joins:
-                for p in (phi + _TWO_PI * j for j in (-1, 0, 1, 2)):
-                    if sec[1] < p < sec[2]:
-                        out.append(self.edges[k] + (p - sec[1]) / (sec[2] - sec[1]) * (self.edges[k + 1] - self.edges[k]))
-        return np.unique(np.asarray(out, dtype=float))
-
-    def phi(self, w):
-        """Cam angle (rad, from ``start``) at ``w``."""
-        k, t = self.locate(w)
-        out = np.empty(len(k))
-        for i, sec in enumerate(self.sections):
-            m = k == i
-            out[m] = sec[1] + t[m] * (sec[2] - sec[1]) if sec[0] == "motion" else sec[1]
-        return out
-
-    def __call__(self, w):
-        k, t = self.locate(w)
-        # a motion section's end at a corner is the left limit, the corner's start (the law itself
-        # gives the velocity after the jump there)
-        ends = (t >= 1.0) & self._before_corner[k]
-        k, t = np.where(ends, k + 1, k), np.where(ends, 0.0, t)
-        out = np.empty((len(k), 2))
-        br = self.branch
-        for i, sec in enumerate(self.sections):
-            m = k == i
-            if not m.any():
-                continue
-            if sec[0] == "motion":
-                out[m] = br(sec[1] + t[m] * (sec[2] - sec[1]))
-                continue
-            if br.segment.kind == "arc":  # a roller turns about the corner: its contact angle, the short way
-                ua, ub = touching(br.segment, np.stack([sec[2], sec[3]]), br.root)[0]
-                du = (ub - ua) - np.round(ub - ua)  # the whole circle is u in [0, 1]
-                u = np.mod(ua + t[m] * du, 1.0)
-            else:  # a face slides: its foot point moves with the pole
-                poles = sec[2][None, :] * (1.0 - t[m, None]) + sec[3][None, :] * t[m, None]
-                u, _ = touching(br.segment, poles, br.root)
-            pts = br.segment.evaluate(u)[0]
-            out[m] = br.motion.to_blank(pts, np.full(int(m.sum()), sec[1]))
-        return out
-
-
 class CamProfile:
     """A generated disc cam. Lengths in mm, cam frame (the cam at angle 0).
 
@@ -160,7 +74,7 @@ class CamProfile:
         scale = spec.prime_radius + spec.stroke
         corners = self._corners(scale)
         self.corner_angles = tuple(phi % _TWO_PI for phi, _, _, _ in corners)
-        self.branch = CamCurve(_AngleBranch(self.envelope), start, corners)
+        self.branch = CamCurve(AngleBranch(self.envelope), start, corners, CamTurns(spec))
         self.pieces, self.loops = self._trim()
 
     # -- construction ---------------------------------------------------------------------
@@ -342,13 +256,20 @@ class CamProfile:
         return self._sample(tol)[0]
 
     def achieved(self, tol: float = 1e-3) -> float:
-        """Largest chord deviation (mm) of :meth:`outline` at ``tol``, measured at every chord's quarter points."""
+        """A proven bound (mm) of the largest chord deviation of :meth:`outline` at ``tol`` from the exact
+        pieces (:mod:`gearkit.families.cam.turns`: the tangent's turn over every leg, bounded by the law)."""
         return self._sample(tol)[1]
 
     def pitch_outline(self, tol: float = 1e-3):
-        """Closed pitch curve, counter-clockwise, and its achieved deviation."""
-        _, pts, dev = adaptive_sample(lambda w: self.pitch_points(_TWO_PI * np.asarray(w)), tol, n_init=33)
-        return np.ascontiguousarray(pts[:-1][::-1]), dev
+        """Closed pitch curve, counter-clockwise, and a proven bound of its chords' deviation (each phase
+        of the program sampled as its own piece: the curve has a corner where the velocity jumps)."""
+        turns, chunks, worst = CamTurns(self.spec, pitch=True), [], 0.0
+        for _, p0, p1, _, _ in self.spec.motion.phases():
+            curve = PitchCurve(self.motion, self.reference, turns, p0, p1)
+            _, pts, dev = adaptive_sample(curve, tol, n_init=33, fewest=True)
+            chunks.append(pts if not chunks else pts[1:])
+            worst = max(worst, dev)
+        return np.ascontiguousarray(np.concatenate(chunks)[:-1][::-1]), worst
 
     def radii(self):
         """(smallest, largest) radius of the generated (trimmed) profile, mm: a dense scan of every
@@ -368,17 +289,6 @@ def _within(phi, loop) -> bool:
     """``phi`` lies in the loop's cam-angle interval (which may wrap through 0)."""
     a, b = loop
     return (phi - a) % _TWO_PI <= (b - a) % _TWO_PI
-
-
-class _AngleBranch:
-    """A branch evaluated at cam angles directly (its parameter runs over ``[0, 1]`` = one radian)."""
-
-    def __init__(self, branch):
-        self.segment, self.motion, self.root = branch.segment, branch.motion, branch.root
-        self._branch = branch
-
-    def __call__(self, phi):
-        return self._branch(np.asarray(phi, dtype=float))
 
 
 @functools.lru_cache(maxsize=32)
