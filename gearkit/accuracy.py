@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-from gearkit.refine import first_turning, refine_sample, refine_samples
+from gearkit.refine import evaluate_curves, first_turnings, refine_sample, refine_samples
 from gearkit.errors import check_fields, is_real, require
 from gearkit.values import frozen
 
@@ -175,20 +175,19 @@ def sample_curves(curves, tol: float, n_init: int = 5, max_rounds: int = 60, max
     ([20, 2], True)
     """
     w0 = np.linspace(0.0, 1.0, max(n_init, PILOT_START))
-    pilot = refine_samples(curves, [w0] * len(curves), [c(w0) for c in curves], PILOT * tol, max_rounds, max_split)
+    pilot = refine_samples(curves, [w0] * len(curves), evaluate_curves(curves, [w0] * len(curves)), PILOT * tol,
+                           max_rounds, max_split)
     placed = [place_by_curvature(np.concatenate([w, probes.ravel()]), np.concatenate([pts, q.reshape(-1, 2)]),
                                  PLACE_AT * tol) for w, pts, _, probes, q in pilot]
-    turned = [first_turning(c, w) for c, w in zip(curves, placed)]
+    turned = first_turnings(curves, placed)
     out = [None] * len(curves)
     for proven in (True, False):  # the curves bounded by their turning, then the ones probed
         which = [i for i, t in enumerate(turned) if (t is not None) == proven]
         if not which:
             continue
-        ws = [placed[i] for i in which]
-        done = (refine_samples([curves[i] for i in which], ws, None, tol, max_rounds, max_split,
-                               turned=[turned[i] for i in which]) if proven else
-                refine_samples([curves[i] for i in which], ws, [curves[i](placed[i]) for i in which], tol,
-                               max_rounds, max_split))
+        group, ws = [curves[i] for i in which], [placed[i] for i in which]
+        done = (refine_samples(group, ws, None, tol, max_rounds, max_split, turned=[turned[i] for i in which])
+                if proven else refine_samples(group, ws, evaluate_curves(group, ws), tol, max_rounds, max_split))
         for i, res in zip(which, done):
             out[i] = res[:3]
     return out

@@ -20,51 +20,11 @@ import math
 import numpy as np
 
 from gearkit.accuracy import sample_curves
-from gearkit.curves import bracketed_root, polar_from_y, polyline_self_intersections, zoom_crossing
+from gearkit.curves import polar_from_y, polyline_self_intersections, zoom_crossing
 from gearkit.errors import GeometryError
-from gearkit.refine import refine_samples
+from gearkit.pieces import CircleArc, Piece, TipLine, crossings_many, linear_coords
+from gearkit.refine import evaluate_curves, refine_samples
 from gearkit.values import frozen
-
-
-@frozen
-class CircleArc:
-    """Arc of radius ``radius`` about the blank centre, polar angle from +y (towards +x)."""
-
-    radius: float
-    psi0: float
-    psi1: float
-    label: str = "tip"
-
-    def __call__(self, w):
-        psi = self.psi0 + np.asarray(w, dtype=float) * (self.psi1 - self.psi0)
-        return np.stack([self.radius * np.sin(psi), self.radius * np.cos(psi)], -1)
-
-    def turning(self, w):  # points, unit tangents, the tangent's angle -psi (linear): as Piece.turning
-        psi = self.psi0 + np.asarray(w, dtype=float) * (self.psi1 - self.psi0)
-        return self(w), np.stack([np.cos(psi), -np.sin(psi)], -1), -psi[..., None]
-
-
-@frozen
-class Piece:
-    """A labelled piece of a tooth boundary: ``curve`` (a Branch or CircleArc) on ``[w0, w1]``."""
-
-    label: str
-    curve: object
-    w0: float
-    w1: float
-
-    def __call__(self, t):
-        return self.curve(self.w0 + np.asarray(t, dtype=float) * (self.w1 - self.w0))
-
-    def turning(self, t):
-        """Points, unit tangents and angle parts of the curve (its ``turning``; see ``span``), or None."""
-        turning = getattr(self.curve, "turning", None)
-        return None if turning is None else turning(self.w0 + np.asarray(t, dtype=float) * (self.w1 - self.w0))
-
-    span = property(lambda self: getattr(self.curve, "span", None))  # a leg's turn from its parts (gearkit.chords)
-
-    def reversed(self) -> "Piece":
-        return Piece(self.label, self.curve, self.w1, self.w0)
 
 
 def _refine_crossing(fa, fb, wa, wb, bounds_a, bounds_b):
@@ -78,7 +38,7 @@ def _refine_crossing(fa, fb, wa, wb, bounds_a, bounds_b):
     hi = np.array([bounds_a[1], bounds_b[1]])
 
     def gap(v):  # the gap, the point on curve a (the convergence test's scale), and both curves at v -+ h
-        pa, pb = fa(np.array([v[0], v[0] - h, v[0] + h])), fb(np.array([v[1], v[1] - h, v[1] + h]))
+        pa, pb = evaluate_curves([fa, fb], [np.array([v[0], v[0] - h, v[0] + h]), np.array([v[1], v[1] - h, v[1] + h])])
         return pa[0] - pb[0], pa[0], (pa[1:], pb[1:])  # the differences a step from v will need
 
     f, at_x, (pa, pb) = gap(x)  # at_x: curve a at x (the last convergence test's scale)
@@ -157,7 +117,7 @@ _START, _ENDS = np.linspace(0.0, 1.0, 17), np.concatenate([_GRADED, 1.0 - _GRADE
 
 
 def _sample_chain(branches, tol):
-    both = [br(np.concatenate([_START, _ENDS])) for br in branches]
+    both = evaluate_curves(branches, [np.concatenate([_START, _ENDS])] * len(branches))
     refined = refine_samples(branches, [_START] * len(branches), [b[:len(_START)] for b in both], tol)
     pts, owner, ws = [], [], []
     for k, ((w, p, *_), b) in enumerate(zip(refined, both)):
@@ -250,65 +210,6 @@ def _pieces_of(branches, sections):
     return pieces, joins
 
 
-def _grids(pieces, n=48):
-    """Each piece sampled at ``n`` parameters in its own direction (so junctions line up): [(w, points)]."""
-    out = []
-    for pc in pieces:
-        w = np.linspace(pc.w0, pc.w1, n)
-        out.append((w, pc.curve(w) if pc.w0 != pc.w1 else None))
-    return out
-
-
-def crossings(pieces, func, target, n=48, grids=None):
-    """Refined parameters where ``func(points) = target`` along the pieces: [(piece index, w)].
-
-    ``func`` maps ``(n, 2)`` points to ``(n,)`` values (a polar angle, a radius, a coordinate); every
-    sign change on a grid of ``n`` parameters per piece is refined to a root. ``grids`` (one
-    sampling of the pieces, as this module builds it) lets several searches share the sampling.
-    """
-    grids = _grids(pieces, n) if grids is None else grids
-    out = []
-    last = 0.0
-    for k, (pc, (w, pts)) in enumerate(zip(pieces, grids)):
-        if pts is None:
-            continue
-        g = func(pts) - target
-        if last * g[0] < 0:  # the sign flips exactly at the junction with the previous piece
-            out.append((k, float(w[0])))
-        last = float(g[-1])
-        sgn = np.sign(g)
-        for i in np.flatnonzero(sgn[:-1] * sgn[1:] < 0):
-            def gw(x, _c=pc.curve):
-                return float(func(_c(np.array([x])))[0] - target)
-            out.append((k, bracketed_root(gw, float(w[i]), float(w[i + 1]), float(g[i]), float(g[i + 1]))))
-        for i in np.flatnonzero(g == 0):
-            out.append((k, float(w[i])))
-    return out
-
-
-def linear_coords(points):
-    """Rack frame counterpart of :func:`polar_from_y`: "radius" y (height) and "angle" x."""
-    p = np.asarray(points, dtype=float)
-    return p[..., 1], p[..., 0]
-
-
-@frozen
-class TipLine:
-    """Tip of a rack tooth: the line y = ``height`` from x = ``x0`` to ``x1``."""
-
-    height: float
-    x0: float
-    x1: float
-    label: str = "tip"
-
-    def __call__(self, w):
-        x = self.x0 + np.asarray(w, dtype=float) * (self.x1 - self.x0)
-        return np.stack([x, np.full_like(x, self.height)], -1)
-
-    def turning(self, w):  # a line: a constant tangent
-        return self(w), np.broadcast_to(np.array([1.0, 0.0]), np.shape(w) + (2,)), np.zeros(np.shape(w) + (1,))
-
-
 def trim_half_tooth(branches, teeth_or_angle, tip_radius: float, internal: bool, detect_tol: float,
                     pitch: float | None = None) -> HalfTooth:
     """Uncut right half-tooth from the envelope branches of the cutter's facing half tooth.
@@ -340,10 +241,8 @@ def trim_half_tooth(branches, teeth_or_angle, tip_radius: float, internal: bool,
     def rho(p):
         return coords(p)[0]
 
-    grids = _grids(pieces)
-    marks = [(k, w, "S") for k, w in crossings(pieces, psi, half, grids=grids)]
-    marks += [(k, w, "C") for k, w in crossings(pieces, psi, 0.0, grids=grids)]
-    marks += [(k, w, "R") for k, w in crossings(pieces, rho, tip_radius, grids=grids)]
+    found = crossings_many(pieces, [(psi, half), (psi, 0.0), (rho, tip_radius)])
+    marks = [(k, w, kind) for kind, hits in zip("SCR", found) for k, w in hits]
     marks.sort(key=lambda m: (m[0], m[1]))
 
     def inside(k, w):

@@ -9,6 +9,8 @@ import math
 
 import numpy as np
 
+from gearkit.roots import bracketed_root  # noqa: F401  (its home before the root finders were gathered)
+
 # Taylor coefficients of tan(a) - a = sum c_k a^(2k+1), k >= 1 (odd Bernoulli-type series).
 _INV_SERIES = (
     1.0 / 3.0,
@@ -254,59 +256,6 @@ def zoom_crossing(fa, fb, wa: float, wb: float, window_a, window_b, n: int = 33,
                 stack.append((max(la, ca[k] - 2 * step_a), min(ha, ca[k] + 2 * step_a),
                               max(lb, cb[k] - 2 * step_b), min(hb, cb[k] + 2 * step_b)))
     return best
-
-
-def bracketed_root(f, a: float, b: float, fa: float | None = None, fb: float | None = None,
-                   xtol: float = 1e-15, maxiter: int = 200) -> float:
-    """Root of a scalar function with a sign change on ``[a, b]``.
-
-    Regula falsi with the Illinois modification (superlinear), safeguarded by bisection
-    whenever a step fails to halve the bracket. Stops when the bracket is within
-    ``xtol * (1 + |x|)`` or ``f`` is exactly zero.
-    """
-    fa = f(a) if fa is None else fa
-    fb = f(b) if fb is None else fb
-    if fa == 0.0:
-        return a
-    if fb == 0.0:
-        return b
-    if (fa > 0) == (fb > 0):
-        raise ValueError("bracketed_root: no sign change on the bracket")
-    side = 0
-    width = abs(b - a)
-    for _ in range(maxiter):
-        c = (a * fb - b * fa) / (fb - fa)
-        if not (min(a, b) < c < max(a, b)):
-            c = 0.5 * (a + b)
-        fc = f(c)
-        if fc == 0.0:
-            return c
-        if (fc > 0) == (fb > 0):
-            b, fb = c, fc
-            if side == -1:
-                fa *= 0.5
-            side = -1
-        else:
-            a, fa = c, fc
-            if side == 1:
-                fb *= 0.5
-            side = 1
-        new_width = abs(b - a)
-        if new_width > 0.5 * width:  # slow progress: bisect once
-            m = 0.5 * (a + b)
-            fm = f(m)
-            if fm == 0.0:
-                return m
-            if (fm > 0) == (fa > 0):
-                a, fa = m, fm
-            else:
-                b, fb = m, fm
-            side = 0
-            new_width = abs(b - a)
-        width = new_width
-        if width <= xtol * (1.0 + abs(a)):
-            break
-    return a if abs(fa) < abs(fb) else b
 
 
 def roulette(s, base_curvature: float, a: float, ratio: float = 1.0, side: float = 1.0):

@@ -75,6 +75,23 @@ class Branch:
         """Blank-frame points at ``w`` (the exact curve)."""
         return self.solve(w, normals=False)[0]
 
+    @property
+    def joint(self):
+        """Branches with one key are evaluated in one call (:meth:`together`): one motion and root, along the
+        tool; None along the motion (each on its own)."""
+        return (self.motion, self.root) if self.along == "tool" else None
+
+    def together(self, branches, ws):
+        """Points of several branches of this one's :attr:`joint` key, each at its parameters ``ws``: the tool
+        points of each evaluated on their own, the meshing equation solved and the contacts carried into the
+        blank frame once for all (point by point: each branch's points to the last bit as it gives them alone)."""
+        return [q for q, _, _ in solve_together(branches, ws)]
+
+    def turning_together(self, branches, ws):
+        """:meth:`turning` of several branches of this one's :attr:`joint` key, as :meth:`together` (None for
+        a branch whose segment gives no monotone angle)."""
+        return turning_together(branches, ws)
+
     def turning(self, w):
         """Points, unit tangents and the tangent's angle in two monotone parts, or None (see below).
 
@@ -90,16 +107,54 @@ class Branch:
         """
         if self.along != "tool":
             return None
-        w = np.atleast_1d(np.asarray(w, dtype=float))
-        u = self.u0 * (1.0 - w) + self.u1 * w
-        turned = self.segment.turning(u)
-        if turned is None:
-            return None
-        p, t, tool_angle = turned
-        s, valid = self.motion.contact(p, np.stack([-t[..., 1], t[..., 0]], -1), self.root)
-        shift, angle, offset = self.motion.pose(np.where(valid, s, 0.0))
-        q, t = rotate(p - shift, angle, t)
-        return q + offset, t, np.stack([tool_angle, angle], -1)
+        return turning_together([self], [w])[0]
+
+
+def _tool_parameters(branch, w):
+    w = np.atleast_1d(np.asarray(w, dtype=float))
+    return branch.u0 * (1.0 - w) + branch.u1 * w  # exact at both ends (u0 > u1 walks backwards)
+
+
+def _joined(arrays):
+    return arrays[0] if len(arrays) == 1 else np.concatenate(arrays)
+
+
+def _parted(sizes, *arrays):
+    """The arrays cut into consecutive parts of ``sizes``: one tuple per part."""
+    if len(sizes) == 1:
+        return [arrays]
+    cuts = np.cumsum(sizes)[:-1]
+    return list(zip(*(np.split(a, cuts) for a in arrays)))
+
+
+def solve_together(branches, ws):
+    """``(points, s, valid)`` of each branch (one motion and root, along the tool) at its parameters ``ws``,
+    as :meth:`Branch.solve` gives them without normals: contact, pose and turn into the blank once for all."""
+    first = branches[0]
+    tool = [br.segment.evaluate(_tool_parameters(br, w)) for br, w in zip(branches, ws)]
+    p, n = _joined([t[0] for t in tool]), _joined([t[2] for t in tool])
+    s, valid = first.motion.contact(p, n, first.root)
+    shift, angle, offset = first.motion.pose(np.where(valid, s, 0.0))
+    return _parted([len(t[0]) for t in tool], rotate(p - shift, angle) + offset, s, valid)
+
+
+def turning_together(branches, ws):
+    """:meth:`Branch.turning` of each branch (one motion and root, along the tool) at its parameters ``ws``:
+    contact, pose and turn into the blank once for all; None for a branch whose segment gives no angle."""
+    turned = [br.segment.turning(_tool_parameters(br, w)) for br, w in zip(branches, ws)]
+    have = [i for i, t in enumerate(turned) if t is not None]
+    out = [None] * len(branches)
+    if not have:
+        return out
+    first = branches[have[0]]
+    p, t, tool_angle = (_joined([turned[i][j] for i in have]) for j in range(3))
+    s, valid = first.motion.contact(p, np.stack([-t[..., 1], t[..., 0]], -1), first.root)
+    shift, angle, offset = first.motion.pose(np.where(valid, s, 0.0))
+    q, t = rotate(p - shift, angle, t)
+    for i, part in zip(have, _parted([len(turned[i][0]) for i in have], q + offset, t,
+                                     np.stack([tool_angle, angle], -1))):
+        out[i] = part
+    return out
 
 
 def touching(segment: Segment, poles, root: str = "near"):
@@ -146,10 +201,14 @@ def touching(segment: Segment, poles, root: str = "near"):
     return np.clip(np.where(np.isfinite(u), u, 0.0), 0.0, 1.0), valid
 
 
-def _valid_runs(branch: Branch, n: int = 65):
-    """Sub-ranges of ``[0, 1]`` where the meshing equation has a solution, ends bisected."""
-    w = np.linspace(0.0, 1.0, n)
-    valid = branch.solve(w, normals=False)[3]
+#: parameters a whole tool segment is first solved at, to find where the meshing equation has a solution
+_RUN_GRID = np.linspace(0.0, 1.0, 65)
+
+
+def _valid_runs(branch: Branch, valid):
+    """Sub-ranges of ``[0, 1]`` where the meshing equation has a solution (``valid`` on ``_RUN_GRID``), ends
+    bisected."""
+    w = _RUN_GRID
     if valid.all():
         return [(0.0, 1.0)]
     runs = []
@@ -186,9 +245,10 @@ def chain_branches(chain, motion: RollingMotion, root: str = "near", return_root
     is tangent to the tool centrode, which must be an end of the chain.
     """
     out = []
-    for seg in chain:
-        whole = Branch(seg, motion, root=root)
-        for a, b in _valid_runs(whole):
+    wholes = [Branch(seg, motion, root=root) for seg in chain]
+    solved = solve_together(wholes, [_RUN_GRID] * len(wholes)) if wholes else []
+    for seg, whole, (_, _, valid) in zip(chain, wholes, solved):
+        for a, b in _valid_runs(whole, valid):
             out.append(Branch(seg, motion, a, b, root))
     if return_root is None:
         return tuple(out)

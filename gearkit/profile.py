@@ -11,7 +11,8 @@ from __future__ import annotations
 import numpy as np
 
 from gearkit.accuracy import check_tol
-from gearkit.boundary import CircleArc, HalfTooth, TipLine, crossings
+from gearkit.boundary import CircleArc, HalfTooth, TipLine
+from gearkit.pieces import crossings
 from gearkit.curves import polar_from_y
 
 

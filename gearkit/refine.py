@@ -15,7 +15,8 @@ import numpy as np
 from gearkit.chords import angle_parts, interval_bounds, monotone_range, round_off
 from gearkit.chords import chord_distance as _chord_deviation
 
-__all__ = ["ATOM", "PROBE_MARGIN", "UNEVEN", "refine_sample", "refine_samples"]
+__all__ = ["ATOM", "PROBE_MARGIN", "UNEVEN", "evaluate_curves", "first_turning", "first_turnings", "refine_sample",
+           "refine_samples", "turn_curves"]
 
 #: probe fractions of every interval: quarter points, and eighths at both ends (where a square-root
 #: end, x ~ sqrt(w), puts the chord's largest deviation)
@@ -64,6 +65,49 @@ def _scatter(n, rows, fresh, at=None, old=None):
     return tuple(out)
 
 
+def _groups(curves):
+    """Indices of the curves evaluated in one call: one list per ``joint`` key (a curve without one, alone)."""
+    groups, keyed = [], {}
+    for i, curve in enumerate(curves):
+        key = getattr(curve, "joint", None)
+        if key is None:
+            groups.append([i])
+        elif key in keyed:
+            keyed[key].append(i)
+        else:
+            keyed[key] = [i]
+            groups.append(keyed[key])
+    return groups
+
+
+def evaluate_curves(curves, params):
+    """Points of each curve at its parameters ``params[i]``: curves of one ``joint`` key in one call of their
+    ``together(curves, params)`` (each curve's points as it gives them alone), any other on its own."""
+    out = [None] * len(curves)
+    for group in _groups(curves):
+        if len(group) == 1:
+            out[group[0]] = curves[group[0]](params[group[0]])
+            continue
+        for i, points in zip(group, curves[group[0]].together([curves[i] for i in group], [params[i] for i in group])):
+            out[i] = points
+    return out
+
+
+def turn_curves(curves, params):
+    """Each curve's ``turning`` at its parameters (points, tangents, angle parts ``(n, k)``), or None where it
+    gives none; curves of one ``joint`` key in one call of their ``turning_together``."""
+    out = [None] * len(curves)
+    for group in _groups(curves):
+        if len(group) == 1:
+            turning = getattr(curves[group[0]], "turning", None)
+            turned = [None if turning is None else turning(params[group[0]])]
+        else:
+            turned = curves[group[0]].turning_together([curves[i] for i in group], [params[i] for i in group])
+        for i, t in zip(group, turned):
+            out[i] = None if t is None else (t[0], t[1], np.asarray(t[2], dtype=float).reshape(len(t[0]), -1))
+    return out
+
+
 class _Curves:
     """Several curves called as one on parameters grouped by curve: ``owner[i]`` is the curve of
     interval ``i``; each curve is called once per run of its intervals, on its own parameters."""
@@ -84,7 +128,8 @@ class _Curves:
         runs = list(self._runs(rows))
         if len(runs) == 1:
             return self.curves[runs[0][2]](np.ravel(x))
-        return np.concatenate([self.curves[c](np.ravel(x[a:b])) for a, b, c in runs])
+        out = evaluate_curves([self.curves[c] for _, _, c in runs], [np.ravel(x[a:b]) for a, b, _ in runs])
+        return np.concatenate(out)
 
     def _span(self, pa, pb, rows):
         """Each leg's turn range (:func:`~gearkit.chords.interval_bounds`' ``span``): its curve's own ``span``,
@@ -97,7 +142,8 @@ class _Curves:
 
     def turning(self, x, rows):
         """Points, unit tangents and angle parts (zero parts added up to ``parts``) at ``x``, as ``points``."""
-        out = [angle_parts(self.curves[c].turning)(x[a:b]) for a, b, c in self._runs(rows)]
+        runs = list(self._runs(rows))
+        out = turn_curves([self.curves[c] for _, _, c in runs], [np.ravel(x[a:b]) for a, b, _ in runs])
         if len(out) == 1 and out[0][2].shape[1] == self.parts:
             return out[0]
         return _joined(out, self.parts)
@@ -152,15 +198,13 @@ def refine_sample(evaluate, w, pts, tol: float, max_rounds: int = 60, max_split:
 def first_turning(curve, w):
     """``curve.turning`` at the vertices ``w`` and the first round's probes of their intervals (one call),
     with its angle parts as ``(n, k)``; None where the curve gives none."""
-    turning = getattr(curve, "turning", None)
-    if turning is None:
-        return None
-    first = w[:-1, None] + np.diff(w)[:, None] * _PROBES
-    turned = turning(np.concatenate([w, first.ravel()]))
-    if turned is None:
-        return None
-    p, t, a = turned
-    return p, t, np.asarray(a, dtype=float).reshape(len(p), -1)
+    return first_turnings([curve], [w])[0]
+
+
+def first_turnings(curves, ws):
+    """:func:`first_turning` of several curves (those of one ``joint`` key in one call)."""
+    return turn_curves(curves, [np.concatenate([w, (w[:-1, None] + np.diff(w)[:, None] * _PROBES).ravel()])
+                                for w in ws])
 
 
 def refine_samples(curves, ws, ptss, tol: float, max_rounds: int = 60, max_split: int = 16, turned=None):

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 
-__all__ = ["brentq", "fminbound"]
+__all__ = ["bracketed_root", "bracketed_roots", "brentq", "fminbound"]
 
 _EPS = 2.220446049250313e-16
 _GOLDEN = 0.5 * (3.0 - math.sqrt(5.0))
@@ -130,3 +130,101 @@ def fminbound(f, lo: float, hi: float, xatol: float = 1e-5, maxiter: int = 500) 
             elif fu <= fv or v == x or v == w:
                 v, fv = u, fu
     return x, fx
+
+
+def bracketed_root(f, a: float, b: float, fa: float | None = None, fb: float | None = None,
+                   xtol: float = 1e-15, maxiter: int = 200) -> float:
+    """Root of a scalar function with a sign change on ``[a, b]``.
+
+    Regula falsi with the Illinois modification (superlinear), safeguarded by bisection
+    whenever a step fails to halve the bracket. Stops when the bracket is within
+    ``xtol * (1 + |x|)`` or ``f`` is exactly zero.
+
+    >>> round(bracketed_root(lambda x: x * x - 2.0, 0.0, 2.0), 15)
+    1.414213562373095
+    """
+    steps = _illinois(a, b, f(a) if fa is None else fa, f(b) if fb is None else fb, xtol, maxiter)
+    try:
+        x = next(steps)
+        while True:
+            x = steps.send(f(x))
+    except StopIteration as done:
+        return done.value
+
+
+def bracketed_roots(evaluate, brackets, xtol: float = 1e-15, maxiter: int = 200) -> list:
+    """Roots of several scalar functions, each with a sign change on its bracket ``(a, b, f(a), f(b))``.
+
+    Each root is found by the steps :func:`bracketed_root` takes (the same root, to the last bit); the
+    steps of all of them are taken side by side, so one call ``evaluate(which, points)`` (the indices of
+    the brackets asking, and the point each asks at) gives every value a round needs: the calls are as
+    many as the most steps one root takes, not their sum.
+
+    >>> funcs = [lambda x: x * x - 2.0, lambda x: x ** 3 - 0.5]
+    >>> roots = bracketed_roots(lambda which, xs: [funcs[i](x) for i, x in zip(which, xs)],
+    ...                         [(0.0, 2.0, -2.0, 2.0), (0.0, 1.0, -0.5, 0.5)])
+    >>> roots == [bracketed_root(f, a, b) for f, (a, b) in zip(funcs, [(0.0, 2.0), (0.0, 1.0)])]
+    True
+    """
+    steps = [_illinois(a, b, fa, fb, xtol, maxiter) for a, b, fa, fb in brackets]
+    roots, asked = [None] * len(steps), {}
+    for i, s in enumerate(steps):
+        try:
+            asked[i] = next(s)
+        except StopIteration as done:
+            roots[i] = done.value
+    while asked:
+        which = list(asked)
+        values = evaluate(which, [asked[i] for i in which])
+        asked = {}
+        for i, v in zip(which, values):
+            try:
+                asked[i] = steps[i].send(v)
+            except StopIteration as done:
+                roots[i] = done.value
+    return roots
+
+
+def _illinois(a, b, fa, fb, xtol, maxiter):
+    """:func:`bracketed_root`'s steps: yields each point it needs ``f`` at and is sent the value; returns the root."""
+    if fa == 0.0:
+        return a
+    if fb == 0.0:
+        return b
+    if (fa > 0) == (fb > 0):
+        raise ValueError("bracketed_root: no sign change on the bracket")
+    side = 0
+    width = abs(b - a)
+    for _ in range(maxiter):
+        c = (a * fb - b * fa) / (fb - fa)
+        if not (min(a, b) < c < max(a, b)):
+            c = 0.5 * (a + b)
+        fc = yield c
+        if fc == 0.0:
+            return c
+        if (fc > 0) == (fb > 0):
+            b, fb = c, fc
+            if side == -1:
+                fa *= 0.5
+            side = -1
+        else:
+            a, fa = c, fc
+            if side == 1:
+                fb *= 0.5
+            side = 1
+        new_width = abs(b - a)
+        if new_width > 0.5 * width:  # slow progress: bisect once
+            m = 0.5 * (a + b)
+            fm = yield m
+            if fm == 0.0:
+                return m
+            if (fm > 0) == (fa > 0):
+                a, fa = m, fm
+            else:
+                b, fb = m, fm
+            side = 0
+            new_width = abs(b - a)
+        width = new_width
+        if width <= xtol * (1.0 + abs(a)):
+            break
+    return a if abs(fa) < abs(fb) else b

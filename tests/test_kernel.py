@@ -117,3 +117,55 @@ def test_bad_racks_name_the_field(kwargs, field):
         BasicRack(**kwargs)
     assert exc.value.field == field
     assert str(exc.value).startswith(field + ": ") and len(str(exc.value)) > len(field) + 20
+
+
+def test_roots_found_side_by_side_are_each_found_alone_in_as_many_calls_as_the_longest():
+    """:func:`gearkit.roots.bracketed_roots` takes each root's own steps side by side: every root equals
+    :func:`bracketed_root`'s to the last bit (oracle for the value: the closed-form root), and the calls are
+    as many as the most steps one root takes (one root here converges in one step, another needs several)."""
+    from gearkit.roots import bracketed_roots
+
+    funcs = [lambda x: math.cos(x) - x, lambda x: x * x - 2.0, lambda x: 2.0 * x - 1.0, lambda x: x ** 3 - 0.001]
+    brackets = [(0.0, 1.0), (0.0, 2.0), (0.0, 1.0), (0.0, 1.0)]
+    alone, steps = [], []
+    for f, (a, b) in zip(funcs, brackets):
+        count = [0]
+
+        def counted(x, f=f, count=count):
+            count[0] += 1
+            return f(x)
+        alone.append(bracketed_root(counted, a, b, f(a), f(b)))
+        steps.append(count[0])
+    calls = []
+
+    def evaluate(which, xs):
+        calls.append(len(which))
+        return [funcs[i](x) for i, x in zip(which, xs)]
+    together = bracketed_roots(evaluate, [(a, b, f(a), f(b)) for f, (a, b) in zip(funcs, brackets)])
+    assert together == alone and len(calls) == max(steps) and sum(calls) == sum(steps) and min(steps) == 1
+    exact = [None, math.sqrt(2.0), 0.5, 0.1]
+    assert all(abs(r - e) <= 1e-15 for r, e in zip(together, exact) if e is not None)
+
+
+@pytest.mark.parametrize("tool", [BasicRack(20.0), ShaperCutter(18)], ids=["rack", "shaper"])
+def test_branches_evaluated_together_give_each_branch_as_it_gives_itself(tool):
+    """The branches of one motion are solved in one call (:func:`gearkit.envelope.solve_together`, and
+    their turning): each branch's points, rolls, tangents and angle parts are those it gives alone, to
+    the last bit; and the envelope points satisfy the meshing equation (the normal through the pole,
+    checked on the tool side by :meth:`RollingMotion.contact_newton`, an independent solver)."""
+    from gearkit.envelope import chain_branches, solve_together, turning_together
+    from gearkit.families.involute import GearSpec
+    from gearkit.families.involute.gear import _tool_chain_and_motion
+
+    chain, motion = _tool_chain_and_motion(GearSpec(17, 1.0, 0.1, tool=tool))
+    branches = chain_branches(chain, motion)
+    ws = [np.linspace(0.0, 1.0, 7 + 3 * k) ** (1 + k % 2) for k in range(len(branches))]
+    for br, w, (q, s, valid), turned in zip(branches, ws, solve_together(branches, ws), turning_together(branches, ws)):
+        q1, _, s1, v1 = br.solve(w, normals=False)
+        assert np.array_equal(q, q1) and np.array_equal(s, s1, equal_nan=True) and np.array_equal(valid, v1)
+        alone = br.turning(w)
+        assert all(np.array_equal(a, b) for a, b in zip(turned, alone))
+        u = br.u0 * (1.0 - w) + br.u1 * w
+        p, _, n = br.segment.evaluate(u)
+        newton = motion.contact_newton(p[valid], n[valid], s0=s[valid])
+        assert np.allclose(newton, s[valid], rtol=0, atol=1e-9)

@@ -51,7 +51,8 @@ PACKAGE = Path(__file__).resolve().parent.parent / "gearkit"
 LAYERS = (
     ("base", ("gearkit", "gearkit.errors", "gearkit.accuracy", "gearkit.distances", "gearkit.chords", "gearkit.curves",
               "gearkit.export", "gearkit.refine", "gearkit.roots", "gearkit.progress", "gearkit.values")),
-    ("kernel", ("gearkit.segments", "gearkit.motion", "gearkit.envelope", "gearkit.boundary", "gearkit.profile")),
+    ("kernel", ("gearkit.segments", "gearkit.motion", "gearkit.envelope", "gearkit.pieces", "gearkit.boundary",
+                "gearkit.profile")),
     ("families", ("gearkit.families", "gearkit.oracles")),  # every family package, and their oracles
     ("pair", ("gearkit.pair",)),
     ("checks/contact", ("gearkit.checks", "gearkit.contact")),
@@ -59,7 +60,8 @@ LAYERS = (
     ("cli/bench/view", ("gearkit.cli", "gearkit.bench", "gearkit.view", "gearkit.__main__")),
 )
 #: the envelope path, which the oracles must not import (they are its independent check)
-ENVELOPE_PATH = ("gearkit.segments", "gearkit.motion", "gearkit.envelope", "gearkit.boundary", "gearkit.profile")
+ENVELOPE_PATH = ("gearkit.segments", "gearkit.motion", "gearkit.envelope", "gearkit.pieces", "gearkit.boundary",
+                 "gearkit.profile")
 
 
 def _module_name(path: Path) -> str:

@@ -17,7 +17,8 @@ from functools import lru_cache
 
 import numpy as np
 
-from gearkit.boundary import HalfTooth, Piece, crossings, linear_coords, trim_half_tooth
+from gearkit.boundary import HalfTooth, Piece, linear_coords, trim_half_tooth
+from gearkit.pieces import crossings
 from gearkit.profile import HalfToothProfile
 from gearkit.envelope import chain_branches
 from gearkit.errors import GeometryError, SpecError, check_count, check_fields, require, require_cut_inputs
