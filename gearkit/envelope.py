@@ -79,7 +79,7 @@ class Branch:
     def joint(self):
         """Branches with one key are evaluated in one call (:meth:`together`): one motion and root, along the
         tool; None along the motion (each on its own)."""
-        return (self.motion, self.root) if self.along == "tool" else None
+        return (id(self.motion), self.root) if self.along == "tool" else None  # the motion itself, not its equal
 
     def together(self, branches, ws):
         """Points of several branches of this one's :attr:`joint` key, each at its parameters ``ws``: the tool
@@ -123,8 +123,8 @@ def _parted(sizes, *arrays):
     """The arrays cut into consecutive parts of ``sizes``: one tuple per part."""
     if len(sizes) == 1:
         return [arrays]
-    cuts = np.cumsum(sizes)[:-1]
-    return list(zip(*(np.split(a, cuts) for a in arrays)))
+    ends = np.cumsum(sizes).tolist()
+    return [tuple(a[i - n:i] for a in arrays) for n, i in zip(sizes, ends)]
 
 
 def solve_together(branches, ws):
