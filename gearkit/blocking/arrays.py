@@ -361,9 +361,11 @@ def evaluator(field, names, window):
         which = np.asarray(which)
         g = _Pair(field, p[:, 0].copy(), p[:, 1].copy())
         out = np.empty(len(p))
-        for u in np.unique(which):
-            sel = np.flatnonzero(which == u)
-            name = names[u]
+        order = np.argsort(which, kind="stable")  # each function's points, in their order
+        ends = np.flatnonzero(np.diff(which[order])).tolist() + [len(p) - 1]
+        for lo, hi in zip([-1] + ends, ends if len(p) else []):
+            sel = order[lo + 1:hi + 1]
+            name = names[which[sel[0]]]
             if name != "region":
                 out[sel] = g.margin(name, sel)
                 continue

@@ -207,7 +207,7 @@ def half_angle(sec: Section, z: int, delta: float, radius, internal: bool):
     if isinstance(radius, (float, int)):  # one radius: plain floats (called per point by the pair formulas)
         ay = math.acos(min(max(rb / radius, -1.0), 1.0))
     else:
-        ay = np.arccos(np.clip(rb / np.asarray(radius, dtype=float), -1.0, 1.0))
+        ay = np.arccos(np.minimum(np.maximum(rb / np.asarray(radius, dtype=float), -1.0), 1.0))  # (np.clip: slower)
     sign = -1.0 if internal else 1.0
     return (math.pi / 2 + delta) / z + sign * (inv(sec.alpha_t) - inv(ay))
 
