@@ -46,6 +46,22 @@ def test_bad_input_exits_2_with_a_reason(capsys):
     assert "center_distance" in capsys.readouterr().err
 
 
+@pytest.mark.parametrize("name", ["pair.stl", "pair.svg"])
+def test_a_pair_that_does_not_mesh_is_not_written_and_fails(tmp_path, capsys, name):
+    """Placing the gears in mesh needs their contact: where it does not exist (a_w beyond the working
+    arcs' reach) the report fails and no file is written (exit 1, a failing design, not bad input)."""
+    path = tmp_path / name
+    argv = ["novikov", "--z1", "20", "--z2", "60", "-m", "1", "--helix-angle-deg", "15", "--width", "20",
+            "--center-distance", "41.7", "-o", str(path)]
+    assert main(argv) == 1
+    cap = capsys.readouterr()
+    assert "mesh.contact.0" in cap.out and "not written: the gears cannot be placed in mesh" in cap.err
+    assert not path.exists() and list(tmp_path.iterdir()) == []
+    assert main(argv + ["--json"]) == 1
+    out = json.loads(capsys.readouterr().out)
+    assert out["output"]["written"] is False and out["status"] == "fail"
+
+
 def test_rack_file(tmp_path, capsys):
     text = PRESETS_FILE.read_text()
     body = text[text.index("[dca24.rack]"):text.index("[single-arc]")].replace("[dca24.rack]", "[rack]")

@@ -108,15 +108,27 @@ def run(args) -> int:
     spec = _spec(args)
     limits = NovikovLimits() if args.min_overlap_ratio is None else NovikovLimits(args.min_overlap_ratio)
     tol_from(args.tol, None)  # a bad --tol fails before the check runs
+    from gearkit.families.novikov.mesh import NoContact
+
     result = check_novikov(spec, limits, simulate=not args.no_mesh)
     info = result.to_dict()
+    unmeshed = None
     if args.output:
-        written = _write(spec, args, {k: info[k] for k in ("center_distance", "overlap_ratio", "contact_radii")})
-        info["output"] = {"path": args.output, **(written if isinstance(written, dict) else {})}
+        try:
+            written = _write(spec, args, {k: info[k] for k in ("center_distance", "overlap_ratio", "contact_radii")})
+            info["output"] = {"path": args.output, **(written if isinstance(written, dict) else {})}
+        except NoContact as exc:  # a pair that does not mesh cannot be placed in mesh: a failing design, not bad input
+            unmeshed = (f"{args.output} not written: the gears cannot be placed in mesh at a_w = "
+                        f"{spec.reference_center_distance if spec.center_distance is None else spec.center_distance:.6g}"
+                        f" mm ({exc})")
+            info["output"] = {"path": args.output, "written": False, "reason": unmeshed}
     if args.json:
         print_json(info)
     else:
         print(format_report(result))
+    if unmeshed is not None:
+        print(f"gearkit novikov: {unmeshed}", file=sys.stderr)
+        return 1
     if args.output and not args.json:
         extra = info["output"].get("interference_volume")
         print(f"wrote {args.output}" + ("" if extra is None else
