@@ -25,8 +25,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gearkit.chords import chord_distance
 from gearkit.curves import cross2, rotate
-from gearkit.distances import distances_to_polyline
 from gearkit.errors import GeometryError
 from gearkit.families.novikov.gear import tooth_profile
 from gearkit.families.novikov.pair import NovikovPairSpec, novikov_pair_geometry
@@ -179,31 +179,28 @@ def _solve(x0, args, scale, pitches):
 def signed_clearance(points, polygon):
     """Signed distance (mm) of ``points`` from a closed counter-clockwise ``polygon``: negative inside.
 
-    The sign comes from the side of the nearest edge (a sampled smooth outline has no reflex
-    vertex that could mislead it at the sampling tolerance).
+    The distance is that of :func:`gearkit.distances.distances_to_polyline` (the edges at the six
+    nearest vertices), its sign the side of the nearest of those edges (a sampled smooth outline has
+    no reflex vertex that could mislead it at the sampling tolerance); one neighbour search serves both.
     """
     from scipy.spatial import cKDTree
 
     poly = np.asarray(polygon, dtype=float)
     pts = np.asarray(points, dtype=float)
     n = len(poly)
-    dist = distances_to_polyline(pts, poly, closed=True)
-    _, idx = cKDTree(poly).query(pts, k=min(4, n))
+    _, idx = cKDTree(poly).query(pts, k=min(6, n))
+    idx = idx.reshape(len(pts), -1)
     best = np.full(len(pts), np.inf)
     side = np.zeros(len(pts))
     for col in range(idx.shape[1]):
         for off in (0, -1):
             i = (idx[:, col] + off) % n
             a, b = poly[i], poly[(i + 1) % n]
-            d = b - a
-            t = np.clip(np.einsum("ij,ij->i", pts - a, d) / np.einsum("ij,ij->i", d, d), 0.0, 1.0)
-            foot = a + t[:, None] * d
-            dd = np.linalg.norm(pts - foot, axis=1)
-            cr = d[:, 0] * (pts - a)[:, 1] - d[:, 1] * (pts - a)[:, 0]
-            better = dd < best - 1e-15
+            dd = chord_distance(a, b, pts)
+            better = dd < best
             best = np.where(better, dd, best)
-            side = np.where(better, cr, side)
-    return np.where(side > 0, -dist, dist)
+            side = np.where(better, cross2(b - a, pts - a), side)
+    return np.where(side > 0, -best, best)
 
 
 def _runs(mask):
