@@ -16,10 +16,12 @@ import math
 
 import numpy as np
 
-from gearkit.accuracy import adaptive_sample
+from gearkit.accuracy import PRECISION, sample_curves
+from gearkit.chords import ROUND_OFF
 from gearkit.boundary import Piece, next_crossing
 from gearkit.curves import cross2, polyline_self_intersections
 from gearkit.envelope import Branch, touching
+from gearkit.errors import is_real, require
 from gearkit.families.cam.curve import AngleBranch, CamCurve, PitchCurve
 from gearkit.families.cam.faces import bridge_cuts, corner_lines, face_depth, kept_runs, roller_depth
 from gearkit.families.cam.follower import follower_motion, follower_tool, lift_direction, reference_point
@@ -238,21 +240,30 @@ class CamProfile:
         return len(self.loops) > len(self.corner_loops)
 
     # -- sampled geometry ----------------------------------------------------------------
+    def _tol(self, tol) -> tuple:
+        """``tol`` checked against the cam's size ``r0 + stroke`` (``SpecError`` below ``PRECISION`` of it, the
+        geometry's own precision, or above it), and the round-off allowance of the cam's exact points: they
+        are computed through the follower's pose, whose lengths reach the pivot (``ROUND_OFF`` of those)."""
+        spec = self.spec
+        size = spec.prime_radius + spec.stroke
+        require(is_real(tol) and PRECISION * size <= tol <= size, "tol", f"{tol!r} mm is outside [{PRECISION * size:.6g}, "
+                f"{size:.6g}] mm (the cam's own precision 1e-9 (r0 + stroke) up to r0 + stroke)")
+        reach = size + abs(spec.offset) + (spec.pivot_distance or 0.0) + (spec.arm_length or 0.0)
+        return float(tol), ROUND_OFF * reach
+
     def _sample(self, tol: float):
-        key = ("outline", float(tol))
+        tol, slack = self._tol(tol)
+        key = ("outline", tol)
         if key not in self._cache:
-            chunks, worst = [], 0.0
-            for pc in self.pieces:
-                _, pts, dev = adaptive_sample(pc, tol, n_init=33, fewest=True)
-                chunks.append(pts if not chunks else pts[1:])
-                worst = max(worst, dev)
-            pts = np.concatenate(chunks)[:-1][::-1]  # closed: drop the repeated start; counter-clockwise
-            self._cache[key] = (np.ascontiguousarray(pts), worst)
+            done = sample_curves(list(self.pieces), tol - slack, n_init=33)
+            pts = np.concatenate([pts if k == 0 else pts[1:] for k, (_, pts, _) in enumerate(done)])
+            pts = pts[:-1][::-1]  # closed: drop the repeated start; counter-clockwise
+            self._cache[key] = (np.ascontiguousarray(pts), max(dev for _, _, dev in done) + slack)
         return self._cache[key]
 
     def outline(self, tol: float = 1e-3):
         """Closed profile, ``(n, 2)`` float64, counter-clockwise, no repeated end point; every chord
-        within ``tol`` (mm) of the exact envelope."""
+        within ``tol`` (mm, in ``[1e-9, 1] (r0 + stroke)``) of the exact envelope."""
         return self._sample(tol)[0]
 
     def achieved(self, tol: float = 1e-3) -> float:
@@ -263,13 +274,12 @@ class CamProfile:
     def pitch_outline(self, tol: float = 1e-3):
         """Closed pitch curve, counter-clockwise, and a proven bound of its chords' deviation (each phase
         of the program sampled as its own piece: the curve has a corner where the velocity jumps)."""
-        turns, chunks, worst = CamTurns(self.spec, pitch=True), [], 0.0
-        for _, p0, p1, _, _ in self.spec.motion.phases():
-            curve = PitchCurve(self.motion, self.reference, turns, p0, p1)
-            _, pts, dev = adaptive_sample(curve, tol, n_init=33, fewest=True)
-            chunks.append(pts if not chunks else pts[1:])
-            worst = max(worst, dev)
-        return np.ascontiguousarray(np.concatenate(chunks)[:-1][::-1]), worst
+        tol, slack = self._tol(tol)
+        turns = CamTurns(self.spec, pitch=True)
+        done = sample_curves([PitchCurve(self.motion, self.reference, turns, p0, p1)
+                              for _, p0, p1, _, _ in self.spec.motion.phases()], tol - slack, n_init=33)
+        pts = np.concatenate([pts if k == 0 else pts[1:] for k, (_, pts, _) in enumerate(done)])
+        return np.ascontiguousarray(pts[:-1][::-1]), max(dev for _, _, dev in done) + slack
 
     def radii(self):
         """(smallest, largest) radius of the generated (trimmed) profile, mm: a dense scan of every
