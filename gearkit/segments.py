@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
+from functools import cached_property
 
 import numpy as np
 
@@ -48,6 +49,12 @@ class Segment:
     label: str
     affine: tuple = _IDENTITY
     reverse: bool = False
+
+    @cached_property
+    def _shifted(self) -> bool:
+        """The affine map only shifts (its linear part the identity, its offset no -0)."""
+        a11, a12, a21, a22, b1, b2 = self.affine
+        return (a11, a12, a21, a22) == (1.0, 0.0, 0.0, 1.0) and math.copysign(1.0, b1) + math.copysign(1.0, b2) == 2.0
 
     def _primitive(self, u):
         """Points and (unnormalised) tangents of the primitive at ``u``: ``(x, y)`` pairs of arrays
@@ -101,18 +108,22 @@ class Segment:
         a11, a12, a21, a22, b1, b2 = self.affine
         shape = u.shape + (2,)
         p = np.empty(shape)
-        p[..., 0] = a11 * px + a12 * py + b1
-        p[..., 1] = a21 * px + a22 * py + b2
+        if self._shifted:  # x + b is (1 x + 0 y) + b to the bit (b is not -0: the sum's zero keeps its sign)
+            np.add(px, b1, out=p[..., 0])
+            np.add(py, b2, out=p[..., 1])
+        else:
+            p[..., 0] = a11 * px + a12 * py + b1
+            p[..., 1] = a21 * px + a22 * py + b2
         tx = a11 * t0x + a12 * t0y
         ty = a21 * t0x + a22 * t0y
         norm = np.hypot(tx, ty)
         if self.reverse:
             norm = -norm
         t = np.empty(shape)
-        t[..., 0] = tx / norm
-        t[..., 1] = ty / norm
+        np.divide(tx, norm, out=t[..., 0])
+        np.divide(ty, norm, out=t[..., 1])
         n = np.empty(shape)
-        n[..., 0] = -t[..., 1]
+        np.negative(t[..., 1], out=n[..., 0])
         n[..., 1] = t[..., 0]
         return p, t, n, u, (t0x, t0y)
 
