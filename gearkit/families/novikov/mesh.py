@@ -119,6 +119,7 @@ _W_STEP, _PITCH_STEP = 0.25, 0.125
 _FLOOR = 1e-11
 _ARMIJO, _HALVINGS, _ITERATIONS = 1e-4, 30, 60
 _DIFF = 1e-7  # central-difference step of the Jacobian (w and rad)
+_AT_END = 1e-6  # a flank parameter this near 0 or 1 where the iteration stalls: held at an arc's end
 
 
 def _solve(x0, args, scale, pitches):
@@ -167,7 +168,7 @@ def _solve(x0, args, scale, pitches):
     p1, m1, p2, m2 = (v[0] for v in _states(x, *args[:4]))
     f = res(x)[0]
     if not (np.abs(f).max() <= 1e-9 and float(m1 @ m2) < 0):
-        if np.any((x[:2] == 0.0) | (x[:2] == 1.0)):
+        if np.min(np.minimum(x[:2], 1.0 - x[:2])) < _AT_END:
             raise NoContact("the contact runs off the end of a working arc: the arcs would touch beyond it")
         raise NoContact("no point near the design point where the working arcs touch with opposite normals "
                         "and the common normal passes through the pole")
