@@ -265,6 +265,8 @@ def test_contact_over_random_pairs_and_centre_distances(z1, dz, m, beta, racks, 
     _assert_a_contact(spec, c)
     assert abs(math.sin(c.contact_angle) - s) <= slack
     _assert_touching(spec, c, 1e-4 * m)
+    nudged = mesh_contact(spec, zone, a_w + math.ulp(a_w), interference=False)  # the last bit picks no other root
+    assert np.abs(nudged.point - c.point).max() <= SOLVED * m and abs(nudged.contact_angle - c.contact_angle) <= ANGLE
 
 
 def _assert_touching(spec, c, tol):
