@@ -353,6 +353,34 @@ def test_flat_rocker_cam_with_a_short_rise_and_return_is_bridged_at_the_jump():
     assert true_deviation(prof.pieces, np.concatenate([out[::-1], out[-1:]])) <= tol * (1 + 1e-3)
 
 
+def test_cam_roller_corner_past_a_turn_starts_after_the_jump():
+    # a constant-velocity return ending at 1.4695929635480176 rad, the curve started 0.362 rad on: the
+    # corner shifted by that start and back landed an ulp before the join, where the law still gives the
+    # return's velocity, so the curve past the corner started at the old pole's contact and the outline
+    # ran back across the roller's arc and out again (its proven bound read 0.979 mm at tol 0.00315 mm)
+    from gearkit.families.cam import CamSpec, MotionProgram, cam_profile
+    from gearkit.distances import distances_to_polyline
+
+    kw = dict(prime_radius=31.5, follower="translating", contact="roller", roller_radius=17.970193095431824,
+              offset=4.9370394017351126e-206)
+    motion = MotionProgram.rise_dwell_return(12.111001733293092, 20.0, 20.262197192103496, 43.93927722132095,
+                                             "constant_velocity")
+    prof = cam_profile(CamSpec(motion=motion, **kw))
+    tol = 1e-4 * prof.spec.prime_radius
+    out, achieved = prof.outline(tol), prof.achieved(tol)
+    closed = np.concatenate([out[::-1], out[-1:]])
+    assert achieved <= tol
+    # the fuzz property's independent measure: the exact pieces against the sampled outline
+    assert true_deviation(prof.pieces, closed) <= achieved * (1 + 1e-6)
+    # and the roller never cuts into the cam (textbook: the cam is what the roller circle about the pitch
+    # curve leaves): every chord's midpoint at least r - tol from the pitch curve, the roller centre's
+    # path from the law alone (a dense polyline of it, off the curve by step^2 / (8 rho) < 3e-6 mm at
+    # 2^16 points over a turn of 48 mm radius: within the margin)
+    r = kw["roller_radius"]
+    pitch = prof.pitch_points(np.linspace(0.0, 2 * np.pi, 1 << 16))
+    assert distances_to_polyline(0.5 * (closed[1:] + closed[:-1]), pitch).min() >= r - tol * (1 + 1e-3)
+
+
 def test_cam_roller_that_reaches_the_centre_is_refused():
     from gearkit.families.cam import CamSpec, MotionProgram
 

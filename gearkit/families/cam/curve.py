@@ -41,7 +41,9 @@ class CamCurve:
     centre jumps while the cam angle stands still; the follower's contact sweeps from the old
     pole's contact to the new one's (a roller turns about the pitch curve's corner: an arc of the
     roller; a flat face slides: a piece of the face) — inserted here as a section of its own with
-    the pole moving on the straight line between the two.
+    the pole moving on the straight line between the two. ``corners`` are ``(phi, pole before, pole
+    after, weight)``, ``phi`` in ``[start, start + 2 pi)`` the first cam angle the law reads after the
+    jump: the motion before it is solved at the angles below it, the motion after it from it on.
     """
 
     def __init__(self, branch: AngleBranch, start: float, corners, turns: CamTurns):
@@ -50,8 +52,7 @@ class CamCurve:
         self.span = turns.span
         # sections: ("motion", phi0, phi1) and ("corner", phi, pole0, pole1), each with a weight in w
         sections, phi = [], start
-        for phi_c, p0, p1, weight in sorted(((((c - start) % _TWO_PI) + start, p0, p1, wt)
-                                             for c, p0, p1, wt in corners), key=lambda corner: corner[0]):
+        for phi_c, p0, p1, weight in sorted(corners, key=lambda corner: corner[0]):
             if phi_c > phi:
                 sections.append(("motion", phi, phi_c, phi_c - phi))
             sections.append(("corner", phi_c, p0, p1, weight))
@@ -76,7 +77,9 @@ class CamCurve:
         section: where the curve may turn at once (a velocity jump's corner) or its curvature jumps,
         so that each piece between them is smooth for the sampler."""
         out = list(self.edges)
-        joins = [phi % _TWO_PI for phi, _, _ in program.joins()]
+        corners = [sec[1] for sec in self.sections if sec[0] == "corner"]  # edges already (an ulp past the join)
+        joins = [phi % _TWO_PI for phi, _, _ in program.joins()
+                 if not any(abs((c - phi + math.pi) % _TWO_PI - math.pi) < 1e-9 for c in corners)]
         for k, sec in enumerate(self.sections):
             if sec[0] != "motion":
                 continue
@@ -120,6 +123,8 @@ class CamCurve:
                 continue
             if sec[0] == "motion":
                 ph = sec[1] + t[m] * (sec[2] - sec[1])
+                if self._before_corner[i]:  # below the corner's angle: the law before the jump
+                    ph = np.minimum(ph, np.nextafter(sec[2], -np.inf))
                 u, _ = touching(seg, motion.tool_pole(ph), br.root)
             elif seg.kind == "arc":  # a roller turns about the corner: its contact angle, the short way
                 ph = np.full(int(m.sum()), sec[1])

@@ -21,7 +21,7 @@ from gearkit.chords import ROUND_OFF
 from gearkit.boundary import Piece, next_crossing
 from gearkit.curves import cross2, polyline_self_intersections
 from gearkit.envelope import Branch, touching
-from gearkit.errors import is_real, require
+from gearkit.errors import GeometryError, is_real, require
 from gearkit.families.cam.curve import AngleBranch, CamCurve, PitchCurve
 from gearkit.families.cam.faces import bridge_cuts, corner_lines, face_depth, kept_runs, roller_depth
 from gearkit.families.cam.follower import follower_motion, follower_tool, lift_direction, reference_point
@@ -75,7 +75,7 @@ class CamProfile:
         self.envelope = Branch(self.tool, self.motion, 0.0, 1.0, "near", along="motion")
         scale = spec.prime_radius + spec.stroke
         corners = self._corners(scale)
-        self.corner_angles = tuple(phi % _TWO_PI for phi, _, _, _ in corners)
+        self.corner_angles = tuple(phi for phi, dv, _, _ in spec.motion.jumps() if abs(dv) > 1e-12 * scale)
         self.branch = CamCurve(AngleBranch(self.envelope), start, corners, CamTurns(spec))
         self.pieces, self.loops = self._trim()
 
@@ -84,6 +84,10 @@ class CamProfile:
         """A cam angle where the envelope is regular and outermost (no loop can cover it): where
         the pitch curve is least convex relative to the roller."""
         phi = np.linspace(0.0, _TWO_PI, _SCAN, endpoint=False)
+        jumps = [c for c, dv, _, _ in self.spec.motion.jumps() if dv != 0.0]
+        if jumps:  # not at a velocity jump: the curve's start and end would be its two sides
+            gap = np.abs((phi[:, None] - np.array(jumps)[None, :] + math.pi) % _TWO_PI - math.pi).min(axis=1)
+            phi = phi[gap > 1e-9]
         if self.spec.contact == "flat":
             s, _, a, _ = self.spec.motion.evaluate(phi)
             return float(phi[np.argmax(s + a)])
@@ -91,7 +95,8 @@ class CamProfile:
         return float(phi[np.argmin(k)])
 
     def _corners(self, scale):
-        """Joins where the velocity jumps: ``(phi, pole before, pole after, weight)`` (tool frame)."""
+        """Joins where the velocity jumps: ``(phi, pole before, pole after, weight)`` (tool frame), ``phi``
+        in ``[start, start + 2 pi)``: the first cam angle the law reads after the jump (:func:`_after_jump`)."""
         out = []
         for phi, dv, _, _ in self.spec.motion.jumps():
             if abs(dv) <= 1e-12 * scale:
@@ -99,7 +104,8 @@ class CamProfile:
             before = self.motion.tool_pole(np.array([phi - 1e-9]))[0]  # the law is linear there (constant velocity)
             after = self.motion.tool_pole(np.array([phi]))[0]
             before = before + (before - self.motion.tool_pole(np.array([phi - 2e-9]))[0])  # extrapolated to phi
-            out.append((phi, before, after, float(np.linalg.norm(after - before)) / scale))
+            at = _after_jump(self.spec.motion, phi + (_TWO_PI if phi < self.start else 0.0), phi)
+            out.append((at, before, after, float(np.linalg.norm(after - before)) / scale))
         return out
 
     def _trim(self):
@@ -293,6 +299,36 @@ class CamProfile:
             hi = max(hi, phase_extreme(rad, 0.0, 1.0, 1025))
             lo = min(lo, -phase_extreme(lambda w: -rad(w), 0.0, 1.0, 1025))
         return lo, hi
+
+
+def _after_jump(program, phi: float, join: float) -> float:
+    """The first float from ``phi`` (the velocity jump at ``join``, perhaps a turn later) that the law
+    evaluates after the jump: ``phi`` shifted by a turn may land an ulp or two before the join, where the
+    law still gives the velocity before it (the curve past the corner would start at the old pole).
+
+    >>> from gearkit.families.cam.laws import MotionProgram
+    >>> prog = MotionProgram.rise_dwell_return(10.0, 20.0, 20.0, 40.0, "constant_velocity")
+    >>> join = prog.jumps()[2][0]
+    >>> at = _after_jump(prog, join + _TWO_PI, join)
+    >>> v = lambda x: float(prog.evaluate(np.array([x]))[1][0])
+    >>> v(at) == v(join), v(np.nextafter(at, -np.inf)) == v(join - 1e-9)
+    (True, True)
+    """
+    v_before, v_after = program.evaluate(np.array([join - 1e-9, join + 1e-9]))[1]
+
+    def after(x):
+        v = program.evaluate(np.array([x]))[1][0]
+        return abs(v - v_after) < abs(v - v_before)
+
+    x = float(phi)
+    for _ in range(64):  # the turn's round-off is a few ulps
+        if after(x) and after(np.nextafter(x, -np.inf)):
+            x = float(np.nextafter(x, -np.inf))
+        elif not after(x):
+            x = float(np.nextafter(x, np.inf))
+        else:
+            return x
+    raise GeometryError(f"the velocity jump at {join!r} rad was not found within 64 ulps of {phi!r}")
 
 
 def _within(phi, loop) -> bool:
