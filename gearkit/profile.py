@@ -169,6 +169,9 @@ class ToothProfile(HalfToothProfile):
 
 #: points a block of :func:`turn_copies` writes at once (its temporaries stay in cache)
 _BLOCK = 8192
+#: points of a tooth, and of the outline, from which :func:`turn_copies` turns one copy a call (measured: z = 40
+#: at tol 1e-6 m, 1342 points a tooth, about 0.4 -> 0.25 ms; z = 12, 22 k points in all, stays in blocks)
+_LONG, _LARGE = 512, 32768
 
 
 def turn_copies(tooth, teeth: int):
@@ -176,8 +179,8 @@ def turn_copies(tooth, teeth: int):
     ``(teeth n, 2)`` float64.
 
     Copy ``k`` is ``cos a_k (x, y) + sin a_k (-y, x)``: the same products and sums as the rotation
-    ``(c x - s y, s x + c y)``, written a block of copies at a time straight into the result (no
-    whole-outline temporaries).
+    ``(c x - s y, s x + c y)``, written straight into the result a copy at a time (a long tooth) or a block
+    of copies at a time (no whole-outline temporaries).
 
     >>> ring = turn_copies(np.array([[0.0, 1.0], [0.5, 2.0]]), 3)
     >>> c, s = np.cos(2 * np.pi / 3), np.sin(2 * np.pi / 3)
@@ -192,6 +195,14 @@ def turn_copies(tooth, teeth: int):
     normal[:, 1] = tooth[:, 0]
     n = len(tooth)
     out = np.empty((teeth, n, 2))
+    if n >= _LONG and teeth * n >= _LARGE:  # each copy by its own two numbers (a block's factors, broadcast
+        # over its points, cost more than the calls on a large outline)
+        part = np.empty((n, 2))
+        for k, (ck, sk) in enumerate(zip(np.cos(ang).tolist(), np.sin(ang).tolist())):
+            np.multiply(ck, tooth, out=out[k])
+            np.multiply(sk, normal, out=part)
+            out[k] += part
+        return out.reshape(-1, 2)
     step = max(1, _BLOCK // max(n, 1))
     part = np.empty((min(step, teeth), n, 2))
     for k in range(0, teeth, step):

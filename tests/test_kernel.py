@@ -169,3 +169,22 @@ def test_branches_evaluated_together_give_each_branch_as_it_gives_itself(tool):
         p, _, n = br.segment.evaluate(u)
         newton = motion.contact_newton(p[valid], n[valid], s0=s[valid])
         assert np.allclose(newton, s[valid], rtol=0, atol=1e-9)
+
+
+@pytest.mark.parametrize("points, teeth", [(3, 5), (600, 7), (1342, 40)], ids=["blocks", "short ring", "one a call"])
+def test_turned_copies_are_the_rotation_formula_to_the_byte(points, teeth):
+    """:func:`gearkit.profile.turn_copies` writes ``cos a (x, y) + sin a (-y, x)`` a block of copies or one copy
+    at a time: byte for byte the rotation ``(c x - s y, s x + c y)`` written out plainly, and each copy at the
+    radii of the tooth, turned by ``2 pi k / teeth`` (oracle: the polar angles)."""
+    from gearkit.profile import turn_copies
+
+    tooth = np.random.default_rng(points).normal(size=(points, 2)) * 20.0
+    ang = 2.0 * np.pi * np.arange(teeth) / teeth
+    c, s = np.cos(ang)[:, None], np.sin(ang)[:, None]
+    plain = np.stack([c * tooth[None, :, 0] - s * tooth[None, :, 1], s * tooth[None, :, 0] + c * tooth[None, :, 1]], -1)
+    ring = turn_copies(tooth, teeth)
+    assert ring.tobytes() == plain.reshape(-1, 2).tobytes()
+    copies = ring.reshape(teeth, points, 2)
+    assert np.allclose(np.hypot(*copies.T).T, np.hypot(*tooth.T), rtol=1e-14)
+    turn = np.arctan2(copies[..., 1], copies[..., 0]) - np.arctan2(tooth[:, 1], tooth[:, 0])
+    assert np.allclose(np.exp(1j * turn), np.exp(1j * ang)[:, None], rtol=0, atol=1e-12)
