@@ -102,7 +102,7 @@ class Branch:
         an involute (tangent to its base circle) or a cycloid (through its rolling point) meets the tool
         centrode once on the side taken, in the order of the segment. Returns ``parts`` ``(n, 2)``:
         each monotone in ``w``, their sum the tangent's angle up to a constant -- what
-        :func:`gearkit.accuracy.refine_sample` bounds a chord's deviation by. None along the motion
+        :func:`gearkit.refine.refine_sample` bounds a chord's deviation by. None along the motion
         (a cam's follower: its contact turns both ways with the pressure angle).
         """
         if self.along != "tool":

@@ -1,7 +1,7 @@
 """Vertex placement: near the fewest vertices, never less accurate; and the mesh check behind every solid.
 
 The sampler places vertices by curvature (:func:`gearkit.accuracy.place_by_curvature`) and then
-probes every chord (:func:`gearkit.accuracy.refine_sample`). Its deviation is measured here
+probes every chord (:func:`gearkit.refine.refine_sample`). Its deviation is measured here
 independently -- the exact pieces evaluated densely and uniformly in their parameters
 (:func:`gearkit.bench.vertices.dense_exact`), their distance to the sampled polyline -- for every
 family at several tolerances; its vertex count is held against the fewest a chord-at-tol polyline
