@@ -31,7 +31,6 @@ import numpy as np
 from hypothesis import HealthCheck, settings
 from hypothesis import strategies as st
 
-from gearkit.distances import distances_to_polyline
 from gearkit.errors import SpecError
 
 #: specs per property (the long run: GEARKIT_FUZZ_EXAMPLES=10000)
@@ -150,51 +149,65 @@ def maybe_hostile(draw, kwargs):
 modules = st.floats(0.01, 100.0).map(lambda m: float(f"{m:.5g}"))
 
 
-def _to_edges(points, polyline, upper):
-    """Exact distance of each point to a polyline, given an upper bound ``upper`` of it per point.
+class _Stations:
+    """A polyline's edges and their *stations*: points spaced at most ``step`` along each edge (ends
+    included), in a k-d tree. An edge within ``r`` of a point has a station within ``r + step / 2`` of it,
+    so a ball query lists every edge that can be a point's nearest; each is then measured exactly."""
 
-    Every edge within ``upper`` of a point has one of its stations (points spaced at most ``h`` along
-    each edge) within ``upper + h/2`` of it: a tree over the stations lists the candidates, each
-    measured exactly. Memory is bounded by the candidate pairs (a chunk of points at a time)."""
-    from scipy.spatial import cKDTree
+    def __init__(self, polyline):
+        from scipy.spatial import cKDTree
 
-    a, e = polyline[:-1], np.diff(polyline, axis=0)
-    length = np.hypot(e[:, 0], e[:, 1])
-    h = max(float(np.median(length)), 1e-300)
-    count = np.clip(np.ceil(length / h).astype(np.int64), 1, 10_000) + 1  # stations per edge, ends included
-    edge = np.repeat(np.arange(len(a)), count)
-    frac = (np.arange(len(edge)) - np.repeat(np.cumsum(count) - count, count)) / np.repeat(count - 1, count)
-    tree = cKDTree(a[edge] + frac[:, None] * e[edge])
-    step = float((length / (count - 1)).max())  # the widest station spacing
-    out = np.empty(len(points))
-    for lo in range(0, len(points), 512):
-        q = points[lo:lo + 512]
-        near = tree.query_ball_point(q, upper[lo:lo + 512] + 0.5 * step + 1e-12)
-        pt = np.repeat(np.arange(len(q)), [len(n) for n in near])
-        ed = np.unique(np.stack([pt, edge[np.concatenate(near).astype(np.int64)]]), axis=1)
-        pt, ed = ed
-        t = np.clip(np.einsum("ij,ij->i", q[pt] - a[ed], e[ed]) / np.maximum(length[ed] ** 2, 1e-300), 0.0, 1.0)
-        d = np.hypot(*(q[pt] - (a[ed] + t[:, None] * e[ed])).T)
-        best = np.full(len(q), np.inf)
-        np.minimum.at(best, pt, d)
-        out[lo:lo + 512] = np.minimum(best, upper[lo:lo + 512])
-    return out
+        self.a, self.e = polyline[:-1], np.diff(polyline, axis=0)
+        self.length = np.hypot(self.e[:, 0], self.e[:, 1])
+        positive = self.length[self.length > 0]
+        h = float(np.median(positive)) if len(positive) else 1.0
+        count = np.clip(np.ceil(self.length / h).astype(np.int64), 1, 10_000) + 1  # stations per edge, ends included
+        self.edge = np.repeat(np.arange(len(self.a)), count)
+        frac = (np.arange(len(self.edge)) - np.repeat(np.cumsum(count) - count, count)) / np.repeat(count - 1, count)
+        self.tree = cKDTree(self.a[self.edge] + frac[:, None] * self.e[self.edge])
+        self.step = float((self.length / (count - 1)).max())  # the widest station spacing
+
+    def distance(self, q, ed):
+        """Exact distances of the points ``q`` from the edges ``ed`` (the same shape, ``ed`` without the 2)."""
+        a, e, length = self.a[ed], self.e[ed], self.length[ed]
+        t = np.clip(np.einsum("...i,...i->...", q - a, e) / np.maximum(length * length, 1e-300), 0.0, 1.0)
+        return np.hypot(*np.moveaxis(q - (a + t[..., None] * e), -1, 0))
+
+    def upper(self, points, k: int = 4):
+        """An upper bound of each point's distance to the polyline: its exact distance to the edges of its
+        ``k`` nearest stations (at most its true distance plus half a station spacing)."""
+        k = min(k, len(self.edge))
+        _, idx = self.tree.query(points, k=k)
+        idx = np.asarray(idx).reshape(len(points), k)
+        return self.distance(points[:, None, :], self.edge[idx]).min(axis=1)
+
+    def exact(self, points, upper):
+        """Exact distance of each point to the polyline, given an upper bound ``upper`` of it: the least
+        distance to the edges of every station within ``upper + step / 2`` (one of them is the nearest)."""
+        near = self.tree.query_ball_point(points, upper + 0.5 * self.step + 1e-12)
+        counts = np.array([len(n) for n in near])
+        pt = np.repeat(np.arange(len(points)), counts)
+        d = self.distance(points[pt], self.edge[np.concatenate(near).astype(np.int64)])
+        out = np.array(upper, dtype=float)
+        has = counts > 0
+        out[has] = np.minimum(out[has], np.minimum.reduceat(d, (np.cumsum(counts) - counts)[has]))
+        return out
 
 
 def true_deviation(pieces, polyline, dense=None):
     """Largest distance of the exact pieces (``dense`` points each, default ``DENSE``) from a polyline:
-    the independent measure of a sampling's deviation. Nearest vertices'
-    edges first (an upper bound per point: it may overestimate where the curve folds back), then
-    points exactly against every edge within that bound, largest bound first, until no point left
-    can exceed the largest exact distance found."""
+    the independent measure of a sampling's deviation. Each point's distance is bounded from above by the
+    edges of its nearest stations (:class:`_Stations`), then measured exactly against every edge within
+    that bound, largest bound first, until no point left can exceed the largest exact distance found."""
     w = np.linspace(0.0, 1.0, dense or DENSE)
     exact = np.concatenate([p(w) for p in pieces])
-    d = distances_to_polyline(exact, polyline)
+    stations = _Stations(np.asarray(polyline, dtype=float))
+    d = stations.upper(exact)
     order = np.argsort(d)[::-1]
     best = 0.0
     for lo in range(0, len(order), 4096):
         chunk = order[lo:lo + 4096]
         if d[chunk[0]] <= best:
             break
-        best = max(best, float(_to_edges(exact[chunk], polyline, d[chunk]).max()))
+        best = max(best, float(stations.exact(exact[chunk], d[chunk]).max()))
     return best
