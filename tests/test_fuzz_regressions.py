@@ -381,6 +381,28 @@ def test_cam_roller_corner_past_a_turn_starts_after_the_jump():
     assert distances_to_polyline(0.5 * (closed[1:] + closed[:-1]), pitch).min() >= r - tol * (1 + 1e-3)
 
 
+@pytest.mark.parametrize("field, value", [("pivot_distance", 1e300), ("arm_length", 1e300)])
+def test_cam_rocker_pivot_beyond_its_reach_is_refused(field, value):
+    # a flat rocker's pivot 1e300 mm from a 5 mm cam divided by zero in its pose (numpy errors raised);
+    # the cam's points are computed through the pivot, whose round-off (1e-14 of it) must stay below
+    # the cam's finest tol 1e-9 (r0 + stroke): the range ends at 1e4 (r0 + stroke)
+    from gearkit.families.cam import CamSpec, MotionProgram, cam_profile
+    from gearkit.families.cam.spec import REACH
+
+    kw = dict(prime_radius=5.0, follower="rocker", contact="flat", roller_radius=0.0, pivot_distance=20.0,
+              arm_length=5.1222497768659)
+    motion = MotionProgram.rise_dwell_return(0.1, 20.0, 0.40722810901615936, 26.554173590505993, "polynomial_4567")
+    with pytest.raises(SpecError) as exc:
+        CamSpec(motion=motion, **{**kw, field: value})
+    reach = REACH * (5.0 + motion.stroke)
+    assert exc.value.field == field and f"{reach:.6g} mm" in str(exc.value)
+    # the pivot and the arm at the range's end give a valid cam, within tol at the finest tol too
+    prof = cam_profile(CamSpec(motion=motion, **{**kw, "pivot_distance": reach, field: reach}))
+    for tol in (1e-3 * 5.0, 2e-9 * (5.0 + motion.stroke)):
+        out = prof.outline(tol)
+        assert true_deviation(prof.pieces, np.concatenate([out[::-1], out[-1:]])) <= prof.achieved(tol) <= tol
+
+
 def test_cam_roller_that_reaches_the_centre_is_refused():
     from gearkit.families.cam import CamSpec, MotionProgram
 

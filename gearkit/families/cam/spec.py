@@ -29,6 +29,10 @@ FOLLOWERS = ("translating", "rocker")
 CONTACTS = ("roller", "knife", "flat")
 #: recommended pressure-angle limits (textbook §38): 30 degrees translating, 45 degrees rocker
 DEFAULT_LIMIT_DEG = {"translating": 30.0, "rocker": 45.0}
+#: the farthest pivot and the longest arm of a rocker, in (r0 + stroke): the cam's points are computed
+#: through the follower's pose, whose round-off (1e-14 of the lengths up to the pivot) stays below a
+#: fifth of the cam's finest tol, 1e-9 (r0 + stroke)
+REACH = 1e4
 
 
 def _length(v, name, positive=True, needed_by: str = ""):
@@ -118,6 +122,11 @@ class CamSpec:
         _length(self.pivot_distance, "pivot_distance", needed_by=" by a rocker follower")
         _length(self.arm_length, "arm_length", needed_by=" by a rocker follower")
         l0, arm = self.pivot_distance, self.arm_length
+        reach = REACH * (r0 + self.motion.stroke)
+        require(l0 <= reach, "pivot_distance", f"l0 = {l0!r} mm must be at most {reach:.6g} mm "
+                f"({REACH:g} (r0 + stroke): the cam's points are computed through the pivot)")
+        require(arm <= reach, "arm_length", f"l = {arm!r} mm must be at most {reach:.6g} mm "
+                f"({REACH:g} (r0 + stroke): the cam's points are computed through the pivot)")
         if self.contact == "flat":
             require(r0 < l0, "prime_radius", f"r0 = {r0:g} mm must be below the pivot distance {l0:g} mm")
         else:
