@@ -53,8 +53,10 @@ def _form_roll(field, which, x, rho_l, rb):
     if fit is not None:  # the interpolant's roll length itself (read off d_F it loses 2e-7 mm near zero)
         inside = (xs >= fit[0]) & (xs <= field.x_min[which - 1])
         r[inside] = fit[5](xs[inside])
-        inside |= xs < fit[4]  # below the shifts where the generated gear has a tooth: NaN
-        r[xs < fit[4]] = np.nan
+        if fit[4] > -math.inf:  # below the shifts where the generated gear has a tooth: NaN
+            below = xs < fit[4]
+            inside |= below
+            r[below] = np.nan
     else:
         inside = np.zeros(xs.shape, bool)
     for k in ([] if inside.all() else np.flatnonzero(~inside)):  # outside the interpolant: the generated gear

@@ -36,41 +36,47 @@ def segment_roots(F, a, b, fa, fb, tol: float, which) -> np.ndarray:
     flo, fhi = np.array(fa, dtype=float), np.array(fb, dtype=float)
     t = np.where(flo == 0, 0.0, np.where(fhi == 0, 1.0, np.nan))
     done = (flo == 0) | (fhi == 0) | ~((flo > 0) != (fhi > 0)) | (span <= tol)
-    side = np.zeros(k, dtype=int)
-    stall = np.zeros(k, dtype=int)
+    # the open brackets' state, compacted as brackets close (their ends written back then)
+    act = np.flatnonzero(~done)
+    l, h, fl, fh, aa, dd, ww, sp = (v[act] for v in (lo, hi, flo, fhi, a, d, which, span))
+    s = np.zeros(act.size, dtype=int)  # the end moved last: 1 low, -1 high, 0 none or a bisection
+    stall = np.zeros(act.size, dtype=int)
     for _ in range(ROOT_ITERATIONS):
-        act = np.flatnonzero(~done)
         if not act.size:
             break
-        l, h, fl, fh = lo[act], hi[act], flo[act], fhi[act]
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             c = (l * fh - h * fl) / (fh - fl)
-        bis = ~((c > l) & (c < h)) | (stall[act] >= 3)
+        bis = ~((c > l) & (c < h)) | (stall >= 3)
         c = np.where(bis, 0.5 * (l + h), c)
-        fc = F(a[act] + c[:, None] * d[act], which[act])
+        fc = F(aa + c[:, None] * dd, ww)
         nan = np.isnan(fc)
         zero = fc == 0
-        same_hi = ~nan & ~zero & ((fc > 0) == (fh > 0))
-        same_lo = ~nan & ~zero & ~same_hi
+        live = ~(nan | zero)
+        same_hi = live & ((fc > 0) == (fh > 0))
+        same_lo = live & ~same_hi
         nh = nan & (np.abs(fh) >= np.abs(fl))
-        nl = nan & ~nh
-        s = side[act]
         # Anderson-Bjorck: when the same end moves twice, scale the value kept at the other end
+        scale_l, scale_h = same_hi & (s == -1) & ~bis, same_lo & (s == 1) & ~bis
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             m_hi = 1.0 - fc / fh
             m_lo = 1.0 - fc / fl
-        m_hi = np.where(m_hi > 0, m_hi, 0.5)
-        m_lo = np.where(m_lo > 0, m_lo, 0.5)
-        fl2 = np.where(same_lo, fc, np.where(same_hi & (s == -1) & ~bis, fl * m_hi, fl))
-        fh2 = np.where(same_hi, fc, np.where(same_lo & (s == 1) & ~bis, fh * m_lo, fh))
-        side[act] = np.where(bis | nan, 0, np.where(same_hi, -1, np.where(same_lo, 1, s)))
+        fl2 = np.where(same_lo, fc, np.where(scale_l, fl * np.where(m_hi > 0, m_hi, 0.5), fl))
+        fh2 = np.where(same_hi, fc, np.where(scale_h, fh * np.where(m_lo > 0, m_lo, 0.5), fh))
+        s = np.where(bis | nan, 0, np.where(same_hi, -1, np.where(same_lo, 1, s)))
         new_h = np.where(same_hi | nh, c, h)
-        new_l = np.where(same_lo | nl, c, l)
-        shrunk = (new_h - new_l) <= 0.5 * (h - l)
-        stall[act] = np.where(shrunk | bis, 0, stall[act] + 1)
-        lo[act], hi[act], flo[act], fhi[act] = new_l, new_h, fl2, fh2
-        t[act] = np.where(zero, c, t[act])
-        done[act] = zero | ((new_h - new_l) * span[act] <= tol)
+        new_l = np.where(same_lo | (nan & ~nh), c, l)
+        width = new_h - new_l
+        stall = np.where((width <= 0.5 * (h - l)) | bis, 0, stall + 1)
+        l, h, fl, fh = new_l, new_h, fl2, fh2
+        closed = zero | (width * sp <= tol)
+        if closed.any():
+            t[act[zero]] = c[zero]
+            i = act[closed]
+            lo[i], hi[i], flo[i], fhi[i] = l[closed], h[closed], fl[closed], fh[closed]
+            keep = ~closed
+            act, l, h, fl, fh, aa, dd, ww, sp, s, stall = (v[keep] for v in (act, l, h, fl, fh, aa, dd, ww, sp, s,
+                                                                             stall))
+    lo[act], hi[act], flo[act], fhi[act] = l, h, fl, fh  # brackets still open after the last iteration
     with np.errstate(invalid="ignore"):
         best = np.where(np.abs(flo) <= np.abs(fhi), lo, hi)
     t = np.where(np.isnan(t), best, t)

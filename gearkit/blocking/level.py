@@ -281,13 +281,14 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
                 okb = np.zeros(0, bool)
                 pts, gs = np.zeros((0, 2)), np.zeros(0)
             mid_rows = np.flatnonzero(split_m)
+            # each chord's new vertices (the solved ones and its middle's root) ordered along it, all at once
+            own = np.concatenate([r_idx[okb], np.arange(rows.size)])
+            order = np.lexsort((np.concatenate([tt[okb], np.full(rows.size, 0.5)]), own))
+            ps_all = np.concatenate([pts[okb], root[mid_rows]])[order]
+            gg_all = np.concatenate([gs[okb], g_root[mid_rows]])[order]
+            ends = np.searchsorted(own[order], np.arange(rows.size + 1))
             for q, rr in enumerate(rows):
-                mine = np.flatnonzero((r_idx == q) & okb)
-                ts = np.append(tt[mine], 0.5)
-                ps = np.vstack([pts[mine], root[mid_rows[q]][None]])
-                gg = np.append(gs[mine], g_root[mid_rows[q]])
-                order = np.argsort(ts)
-                inserts[rr] = (ps[order], gg[order])
+                inserts[rr] = (ps_all[ends[q]:ends[q + 1]], gg_all[ends[q]:ends[q + 1]])
         # write back: per polyline, insert new vertices after their chord's start
         base_row = 0
         cuts = {}
