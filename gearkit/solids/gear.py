@@ -187,17 +187,22 @@ class _Mesh:
             bases = [self.add(_rotate(sec.outline, thetas[0]), zs[0])]
             for s in range(len(zs) - 1):
                 bases.append(self.add(_rotate(sec.outline, thetas[s + 1]), zs[s + 1]))
-                a, b = bases[s] + j, bases[s] + jn
-                c, d = bases[s + 1] + j, bases[s + 1] + jn
                 diag = np.tile(diagonals[1 if thetas[s + 1] >= thetas[s] else -1], sec.z).astype(bool)
                 # each quad's two triangles, column by column into one array: (a, b, c) and (b, d, c) along
-                # diagonal 0, (a, b, d) and (a, d, c) along 1; a ring's reversed
+                # diagonal 0, (a, b, d) and (a, d, c) along 1; a ring's reversed. Corners a, b (this slice's
+                # j, j + 1), c, d (the next one's) added straight into their columns
                 tris = np.empty((2 * sec.count, 3), dtype=np.int64)
                 k0, k1, k2 = (2, 1, 0) if sec.internal else (0, 1, 2)
-                tris[:sec.count, k0], tris[:sec.count, k1] = a, b
-                tris[:sec.count, k2] = np.where(diag, c, d)
-                tris[sec.count:, k0] = np.where(diag, b, a)
-                tris[sec.count:, k1], tris[sec.count:, k2] = d, c
+                first, second = tris[:sec.count], tris[sec.count:]
+                lo, hi = bases[s], bases[s + 1]
+                np.add(j, lo, out=first[:, k0])
+                np.add(jn, lo, out=first[:, k1])
+                np.add(jn, hi, out=first[:, k2])
+                np.add(j, hi, out=first[:, k2], where=diag)
+                np.add(j, lo, out=second[:, k0])
+                np.add(jn, lo, out=second[:, k0], where=diag)
+                np.add(jn, hi, out=second[:, k1])
+                np.add(j, hi, out=second[:, k2])
                 self.faces.append(tris)
                 bar.update(s + 2)
         return bases[0], bases[-1]
