@@ -178,3 +178,62 @@ def test_roller_cam_pieces_join_at_a_velocity_jump_and_the_bound_holds(kw, motio
     out = prof.outline(tol)
     real = true_deviation(prof.pieces, np.concatenate([out[::-1], out[-1:]]))
     assert real <= prof.achieved(tol) * (1 + BOUND_SLACK) and prof.achieved(tol) <= tol
+
+
+@pytest.mark.parametrize("kw, motion", [case[:2] for case in JUMPS] + [
+    # a program whose velocity jumps where the envelope's start would be (the top of a 90 degree rise)
+    (dict(prime_radius=40.0, roller_radius=8.0), (10.0, 90.0, 0.0, 90.0, "constant_velocity"))])
+def test_roller_cam_curve_has_no_gap_at_its_section_ends(kw, motion):
+    # at every end of the curve's sections (the corners' arcs, the motion between them, w = 1 back to
+    # w = 0) the parameters an ulp either side and the end itself give one point: an angle a hair before a
+    # velocity jump that rounds onto it reads the law after the jump (the far end of the corner's arc,
+    # 39 mm away on the first cam), and a curve starting at a jump ends on its other side (2 mm)
+    prof = cam_profile(CamSpec(motion=MotionProgram.rise_dwell_return(*motion), **kw))
+    edges = prof.branch.edges[1:-1]
+    ends = [np.nextafter(edges, 0.0), edges, np.nextafter(edges, 1.0)]
+    ends = [np.append(w, wrap) for w, wrap in zip(ends, (np.nextafter(1.0, 0.0), 1.0, np.nextafter(0.0, 1.0)))]
+    pts = [prof.branch(w) for w in ends]
+    gap = max(float(np.hypot(*(pts[i] - pts[j]).T).max()) for i, j in ((0, 1), (1, 2), (0, 2)))
+    # the curve's speed in w is a few r0 per unit: an ulp of w moves it by far less than this
+    assert gap <= 1e-9 * kw["prime_radius"]
+
+
+def _first_entries(centres, radius, rays):
+    """Where each ray from the axis (angles ``rays``) first enters a disc of ``radius`` about a centre
+    (the axis lies outside every disc: the roller is smaller than the prime radius)."""
+    u = np.stack([np.cos(rays), np.sin(rays)], -1)
+    out = np.empty(len(rays))
+    for lo in range(0, len(rays), 64):
+        along = u[lo:lo + 64] @ centres.T
+        disc = radius ** 2 - (np.einsum("ij,ij->i", centres, centres)[None, :] - along ** 2)
+        out[lo:lo + 64] = np.where((disc >= 0) & (along > 0), along - np.sqrt(np.maximum(disc, 0.0)), np.inf).min(axis=1)
+    return out[:, None] * u
+
+
+def test_roller_cam_at_a_velocity_jump_is_the_region_no_roller_covers():
+    # the cam is what the roller never sweeps: the complement of the roller's discs about the pitch curve
+    # (closed form, every join among the centres so the corners are there), no envelope and no sampler.
+    # Every point of the outline's chords lies within the reported deviation of that region's boundary
+    # (R_p less its distance to the nearest centre: a distance is 1-Lipschitz), and the boundary where
+    # each ray from the axis first enters a disc lies within it of the outline. Before the corners sat
+    # after their jumps, the outline ran out to the far end of the roller's arc about the return's
+    # corner and back: chords 99 tol inside the roller, the boundary 28 tol from the outline
+    from scipy.spatial import cKDTree
+
+    kw, motion, tol_r0 = JUMPS[0]
+    spec = CamSpec(motion=MotionProgram.rise_dwell_return(*motion), **kw)
+    prof = cam_profile(spec)
+    tol = tol_r0 * spec.prime_radius
+    out, achieved = prof.outline(tol), prof.achieved(tol)
+    phi = np.union1d(np.linspace(0.0, 2 * math.pi, 1 << 14), [p for p, _, _ in spec.motion.joins()])
+    centres, radius = pitch_curve(spec, phi), spec.roller_radius
+    # a point R_p from the pitch curve is at most sqrt(R_p^2 + (h/2)^2) from the nearest centre (h the
+    # widest spacing): the discs' boundary lies within h^2 / (8 R_p) of the swept region's
+    step = float(np.hypot(*np.diff(centres, axis=0).T).max())
+    slack = step ** 2 / (8 * radius)
+    f = np.linspace(0.0, 1.0, 17)[:-1]
+    chords = (out[:, None] + f[None, :, None] * (np.roll(out, -1, axis=0) - out)[:, None]).reshape(-1, 2)
+    depth = radius - cKDTree(centres).query(chords)[0]
+    assert np.abs(depth).max() <= achieved + slack and achieved <= tol
+    boundary = _first_entries(centres, radius, np.linspace(0.0, 2 * math.pi, 1024, endpoint=False))
+    assert real_deviation(boundary, out) <= achieved + slack
