@@ -130,24 +130,34 @@ def test_flat_rocker_cam_reports_at_least_its_distance_from_the_half_planes(kw, 
     assert 0.5 * tol < real <= achieved * (1 + BOUND_SLACK) and achieved <= tol
 
 
-def test_a_tol_below_the_cams_own_precision_is_refused_and_the_bound_covers_its_round_off():
-    # a hostile prime radius of 1e-12 mm on a flat rocker whose pivot is 40 mm away: the property's
-    # tol (1e-3 r0 = 1e-15 mm) lies below the round-off of points computed 40 mm from the axis (~4e-15
-    # mm); sampling to it split round-off until 20 GB were gone. It is refused, naming tol; at a tol
-    # it accepts, the bound holds the real deviation of the 1e-12 mm sliver of a cam (which the
-    # round-off of its own coordinates, 1e-26 mm, did not)
+def test_lengths_and_tols_beyond_the_cams_own_precision_are_refused_and_the_bound_covers_its_round_off():
+    # a hostile prime radius of 1e-12 mm on a flat rocker whose pivot is 40 mm away: the property's tol
+    # (1e-3 r0 = 1e-15 mm) lay below the round-off of points computed 40 mm from the axis (~4e-15 mm), and
+    # sampling to it split round-off until 20 GB were gone; a base circle of 1e-300 mm under a 0.8 mm
+    # stroke and a pivot 1e300 mm away raised numpy's errors. Each is refused, naming its field; at the
+    # smallest prime radius and the finest tol accepted, the bound holds the real deviation (the
+    # round-off of the points' own coordinates did not cover that of the 40 mm pose)
     from fuzzkit import true_deviation
 
     from gearkit.errors import SpecError
 
-    spec = CamSpec(1e-12, MotionProgram.rise_dwell_return(6.0, 60.0, 20.0, 60.0), follower="rocker", contact="flat",
-                   pivot_distance=40.0, arm_length=40.0)
+    motion = MotionProgram.rise_dwell_return(6.0, 60.0, 20.0, 60.0)
+    rocker = dict(motion=motion, follower="rocker", contact="flat", pivot_distance=40.0, arm_length=40.0)
+    for kw, field in ((dict(rocker, prime_radius=1e-12), "prime_radius"),
+                      (dict(rocker, prime_radius=5.0, pivot_distance=1e300), "pivot_distance"),
+                      (dict(prime_radius=1e-300, motion=MotionProgram.rise_dwell_return(0.8, 20.0, 0.2, 20.0),
+                            contact="knife"), "prime_radius")):
+        with pytest.raises(SpecError) as exc:
+            CamSpec(**kw)
+        assert exc.value.field == field
+    spec = CamSpec(prime_radius=1e-3, **rocker)
     prof = cam_profile(spec)
+    size = spec.prime_radius + spec.stroke
     for call in (prof.outline, prof.achieved, prof.pitch_outline):
         with pytest.raises(SpecError) as exc:
-            call(1e-3 * spec.prime_radius)
+            call(1e-10 * size)
         assert exc.value.field == "tol"
-    tol = 1e-5 * (spec.prime_radius + spec.stroke)
+    tol = 1e-9 * size * (1 + 1e-9)
     out = prof.outline(tol)
     real = true_deviation(prof.pieces, np.concatenate([out[::-1], out[-1:]]))
     assert real <= prof.achieved(tol) * (1 + BOUND_SLACK) and prof.achieved(tol) <= tol

@@ -23,10 +23,14 @@ from dataclasses import dataclass, field
 from gearkit.errors import check_fields, is_real, require
 from gearkit.families.cam.laws import MotionProgram
 
-__all__ = ["CamSpec", "FOLLOWERS", "CONTACTS", "DEFAULT_LIMIT_DEG"]
+__all__ = ["CamSpec", "FOLLOWERS", "CONTACTS", "DEFAULT_LIMIT_DEG", "SPAN"]
 
 FOLLOWERS = ("translating", "rocker")
 CONTACTS = ("roller", "knife", "flat")
+#: the lengths of a mechanism lie within this factor of its cam's size, r0 + stroke, either way
+SPAN = 1e4
+#: the prime radius of a cam, mm (a gear's module spans [1e-4, 1e4] mm)
+PRIME_RANGE = (1e-3, 1e6)
 #: recommended pressure-angle limits (textbook §38): 30 degrees translating, 45 degrees rocker
 DEFAULT_LIMIT_DEG = {"translating": 30.0, "rocker": 45.0}
 #: the farthest pivot and the longest arm of a rocker, in (r0 + stroke): the cam's points are computed
@@ -110,6 +114,7 @@ class CamSpec:
         require(lim is None or (is_real(lim) and 0.0 < lim < 90.0), "pressure_angle_limit_deg",
                 f"{lim!r} must be in (0, 90) degrees")
         r0 = self.prime_radius
+        self._spans_the_cam()
         if self.follower == "translating":
             require(self.pivot_distance is None and self.arm_length is None, "pivot_distance",
                     "a translating follower has no pivot or arm")
@@ -136,6 +141,20 @@ class CamSpec:
         top = self.psi0 + self.motion.stroke / arm
         require(top < math.pi, "rise", f"the rocker would swing past the line of centres (Psi up to "
                 f"{math.degrees(top):.4g} degrees; must stay below 180)")
+
+    def _spans_the_cam(self):
+        """Every length of the mechanism within ``SPAN`` of the cam's size ``r0 + stroke`` either way: the
+        cam's points are computed through the follower's pose, whose round-off grows with its longest
+        length (a pivot 1e300 mm away, a base circle of 1e-300 mm under a 1 mm stroke leave no digits)."""
+        size = self.prime_radius + self.motion.stroke
+        require(PRIME_RANGE[0] <= self.prime_radius <= PRIME_RANGE[1], "prime_radius", f"{self.prime_radius!r} must "
+                f"be a length in [{PRIME_RANGE[0]:g}, {PRIME_RANGE[1]:g}] mm")
+        require(self.prime_radius >= self.motion.stroke / SPAN, "prime_radius", f"{self.prime_radius!r} mm is below "
+                f"1/{SPAN:g} of the stroke {self.motion.stroke:g} mm (the cam's own precision)")
+        for name in ("offset", "pivot_distance", "arm_length"):
+            v = getattr(self, name)
+            require(v is None or abs(v) <= SPAN * size, name, f"{v!r} mm is beyond {SPAN:g} (r0 + stroke) = "
+                    f"{SPAN * size:g} mm (the cam's own precision)")
 
     # -- derived values --------------------------------------------------------------------
     @property
