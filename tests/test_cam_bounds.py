@@ -247,3 +247,19 @@ def test_roller_cam_at_a_velocity_jump_is_the_region_no_roller_covers():
     assert np.abs(depth).max() <= achieved + slack and achieved <= tol
     boundary = _first_entries(centres, radius, np.linspace(0.0, 2 * math.pi, 1024, endpoint=False))
     assert real_deviation(boundary, out) <= achieved + slack
+
+
+def test_velocity_jumps_either_side_of_a_dwell_of_1e_9_degrees_are_found():
+    # two constant-velocity phases 1e-9 degrees apart (1.7e-11 rad): the velocities either side of a
+    # jump were read 1e-9 rad away, past the other jump, and the corner's angle was not found (a
+    # GeometryError on a valid cam); the bound holds against the fuzz property's independent measure
+    from fuzzkit import true_deviation
+
+    spec = CamSpec(5.0, MotionProgram.rise_dwell_return(1.2513223140536098, 90.63967969412961, 1e-9, 20.0,
+                                                        "constant_velocity"),
+                   follower="rocker", contact="flat", pivot_distance=6.0, arm_length=3.0)
+    prof = cam_profile(spec)
+    tol = 1e-5 * spec.prime_radius
+    out = prof.outline(tol)
+    real = true_deviation(prof.pieces, np.concatenate([out[::-1], out[-1:]]))
+    assert real <= prof.achieved(tol) * (1 + BOUND_SLACK) and prof.achieved(tol) <= tol

@@ -314,7 +314,13 @@ def _after_jump(program, phi: float, join: float) -> float:
     >>> v(at) == v(join), v(np.nextafter(at, -np.inf)) == v(join - 1e-9)
     (True, True)
     """
-    v_before, v_after = program.evaluate(np.array([join - 1e-9, join + 1e-9]))[1]
+    # a quarter of the phases either side inward at most (a dwell between two jumps may be 1e-11 rad
+    # short), and a few ulps at least (one of 1e-153 rad puts both jumps at one angle: read as one)
+    ends = np.array([p[1] for p in program.phases()] + [_TWO_PI])
+    spans = np.diff(ends)
+    k = int(np.argmin(np.abs((ends[1:] - join + math.pi) % _TWO_PI - math.pi)))  # the phase ending at the join
+    reach = max(min(1e-9, 0.25 * spans[k], 0.25 * spans[(k + 1) % len(spans)]), 8 * np.spacing(_TWO_PI))
+    v_before, v_after = program.evaluate(np.array([join - reach, join + reach]))[1]
 
     def after(x):
         v = program.evaluate(np.array([x]))[1][0]
