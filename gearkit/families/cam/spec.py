@@ -151,10 +151,9 @@ class CamSpec:
                 f"be a length in [{PRIME_RANGE[0]:g}, {PRIME_RANGE[1]:g}] mm")
         require(self.prime_radius >= self.motion.stroke / SPAN, "prime_radius", f"{self.prime_radius!r} mm is below "
                 f"1/{SPAN:g} of the stroke {self.motion.stroke:g} mm (the cam's own precision)")
-        for name in ("offset", "pivot_distance", "arm_length"):
-            v = getattr(self, name)
-            require(v is None or abs(v) <= SPAN * size, name, f"{v!r} mm is beyond {SPAN:g} (r0 + stroke) = "
-                    f"{SPAN * size:g} mm (the cam's own precision)")
+        # a rocker's pivot and arm are held to REACH below, once they are known to be lengths
+        require(abs(self.offset) <= SPAN * size, "offset", f"{self.offset!r} mm is beyond {SPAN:g} (r0 + stroke) = "
+                f"{SPAN * size:g} mm (the cam's own precision)")
 
     # -- derived values --------------------------------------------------------------------
     @property
