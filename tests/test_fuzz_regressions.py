@@ -183,6 +183,12 @@ def test_9_numpy_scalars_are_numbers():
     (lambda: gk.ShaperCutter(20, pressure_angle_deg=1e-12), "cutter.pressure_angle_deg"),
     (lambda: gk.DriveSpec(12, 11, 90.0, 7.0, 1e-300), "eccentricity"),
     (lambda: gk.DriveSpec(12, 11, 1e300, 7.0, 4.0), "pin_circle_radius"),
+    # the cam property's knife on a base circle of 1e-300 mm (0/0 in the pitch curve's curvature), and a
+    # prime radius in range but below 1e-4 of the stroke
+    (lambda: gk.CamSpec(1e-300, gk.MotionProgram.rise_dwell_return(0.8042838121527993, 20.0, 0.16085676243055985, 20.0,
+                                                                   "polynomial_345"), contact="knife"), "prime_radius"),
+    (lambda: gk.CamSpec(0.01, gk.MotionProgram.rise_dwell_return(1000.0, 90.0, 0.0, 90.0), contact="knife"),
+     "prime_radius"),
     (lambda: gk.tooth_profile(gk.GearSpec(20, 1.0)).half_points(1e-11), "tol"),
     (lambda: gk.tooth_profile(gk.GearSpec(20, 1.0)).outline(math.inf), "tol"),
     (lambda: gk.gear_solid(gk.tooth_profile(gk.GearSpec(20, 1.0)), gk.SolidSpec(5.0), tol=1e-300), "tol"),
