@@ -95,12 +95,15 @@ def roller_depth(pitch_points, radius: float, start: float, samples: int = 65536
     return lambda points: radius - edge_distances(points, pitch, closed=True)
 
 
-def kept_runs(curve, depth, slack: float, samples: int = 16385):
+def kept_runs(curve, depth, slack: float, samples: int = 16385, meet: float | None = None):
     """Where the envelope ``curve`` (of ``w`` in [0, 1], one turn) bounds the cam: ``[(wa, wb), ...]``,
     the cuts from a kept arc's end ``wa`` to the next kept arc's start ``wb`` (cyclic, ``wb`` may be
     below ``wa``: the cut runs through ``w = 1``), each refined to the envelope's self-crossing.
     A sample is kept where ``depth`` (:func:`face_depth`, :func:`roller_depth`) is at most ``slack``
-    (mm: the swept region's own sampling error). Empty when the whole envelope bounds the cam."""
+    (mm: the swept region's own sampling error). Empty when the whole envelope bounds the cam.
+
+    With ``meet`` (mm; a roller) every cut must be a crossing, its ends within ``meet``: the cuts are
+    then the cycle of :func:`_cam_cycle`, in the order the cam's boundary runs."""
     w = np.linspace(0.0, 1.0, samples)
     keep = depth(curve(w)) <= slack
     keep[-1] = keep[0]  # w = 1 is w = 0
@@ -111,11 +114,50 @@ def kept_runs(curve, depth, slack: float, samples: int = 16385):
     k = np.flatnonzero(keep[:-1])
     starts = [int(j) for j in k if not keep[j - 1 if j else samples - 2]]  # runs beginning at j
     ends = [int(j) for j in k if not keep[j + 1]]  # runs ending at j
+    if meet is not None:
+        return _cam_cycle(curve, w, keep, starts, ends, meet)
     cuts = []
     for e in ends:
         b = min((s for s in starts if s > e), default=starts[0])  # the next run, cyclically
         cuts.append(_refine_cut(curve, w, e, b))
     return cuts
+
+
+def _cam_cycle(curve, w, keep, starts, ends, meet: float):
+    """The cuts of the kept runs that bound the cam, followed from run to run around it.
+
+    A sample no roller covers lies on the boundary of the swept region, but not every such boundary
+    bounds the cam: a roller far larger than the rise is steep (a lift of several prime radii over a
+    short rise) sweeps a finger whose outer side the envelope also traces, uncovered and outside the
+    cam. Each run's end meets exactly one run's start (the swept region's boundary has two arcs at a
+    corner), so the runs fall into cycles, and the cam's is the one through the kept sample nearest
+    the axis (the first point of the swept region any ray from the axis meets there lies on the cam).
+
+    Raises
+    ------
+    GeometryError
+        When a run's end meets no run's start, or the runs do not close into a cycle.
+    """
+    kept = np.flatnonzero(keep[:-1])
+    radius = np.hypot(*curve(w[kept]).T)
+    j0 = int(kept[np.argmin(radius)])
+    starts, ends = sorted(starts), sorted(ends)
+    first = max((s for s in starts if s <= j0), default=starts[-1])
+    cuts, s = [], first
+    for _ in range(len(starts)):
+        e = next((j for j in ends if j >= s), ends[0])
+        for b in [j for j in starts if j > e] + [j for j in starts if j <= e]:
+            wa, wb = _refine_cut(curve, w, e, b)
+            pa, pb = curve(np.array([wa, wb]))
+            if np.hypot(*(pa - pb)) <= meet:
+                break
+        else:
+            raise GeometryError(f"the roller's envelope leaves the cam at w = {w[e]:.6g} where it meets no other kept arc")
+        cuts.append((wa, wb))
+        s = b
+        if s == first:
+            return cuts
+    raise GeometryError("the arcs of the roller's envelope that no roller covers do not close around the cam axis")
 
 
 def _refine_cut(curve, w, e, b):

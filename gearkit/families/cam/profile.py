@@ -118,9 +118,11 @@ class CamProfile:
                 depth = face_depth(self.motion, self.tool, self.start)
             else:
                 depth = roller_depth(self.pitch_points, self.spec.roller_radius, self.start)
-            cuts = sorted(kept_runs(self.branch, depth, 1e-7 * scale))
             if self.spec.contact == "flat":  # a cut whose ends do not cross runs along a corner's face line
+                cuts = sorted(kept_runs(self.branch, depth, 1e-7 * scale))
                 cuts, straight = bridge_cuts(self.branch, cuts, corner_lines(self.branch, self.motion, self.tool), scale)
+            else:  # every cut a crossing, in the order the cam's boundary runs
+                cuts = kept_runs(self.branch, depth, 1e-7 * scale, meet=1e-6 * scale)
             loops = tuple((self._phi(wa), self._phi(wb)) for wa, wb in cuts)
             if not cuts:
                 spans = [(0.0, 1.0)]
