@@ -262,7 +262,10 @@ def cam_kwargs(draw):
         kw["arm_length"] = draw(st.floats(0.5, 1.5)) * kw["pivot_distance"]
     law = draw(st.sampled_from(["cycloidal", "harmonic", "polynomial_345", "polynomial_4567",
                                 "modified_trapezoid", "modified_sine", "constant_velocity"]))
-    motion = (draw(st.floats(0.02, 0.6)) * r0, draw(st.floats(20.0, 150.0)), draw(st.floats(0.0, 60.0)),
+    # lifts up to a few prime radii over short rises: the steep, deeply undercut cams where the roller's
+    # swept finger once left its outer side in the outline
+    lift = draw(st.one_of(st.floats(0.02, 0.6), st.floats(0.6, 4.0)))
+    motion = (lift * r0, draw(st.floats(20.0, 150.0)), draw(st.floats(0.0, 60.0)),
               draw(st.floats(20.0, 150.0)), law)
     return draw(maybe_hostile(kw)), motion
 
