@@ -14,8 +14,16 @@ class SpecError(GearkitError, ValueError):
     """Invalid input: the message names the field, its value and the allowed range."""
 
     def __init__(self, field: str, message: str):
-        self.field = field
+        self.field, self.reason = field, message
         super().__init__(f"{field}: {message}")
+
+    def renamed(self, field: str) -> "SpecError":
+        """The same error naming ``field`` (a command-line flag, or a field inside a larger spec).
+
+        >>> SpecError("teeth", "2 must be at least 3").renamed("--z1")
+        SpecError('--z1: 2 must be at least 3')
+        """
+        return SpecError(field, self.reason)
 
 
 class GeometryError(GearkitError):

@@ -95,8 +95,7 @@ def register(subparsers) -> None:
 
 def _as_flag(exc: SpecError) -> SpecError:
     """The same error naming the flag a user types."""
-    msg = str(exc)[len(exc.field) + 2:] if str(exc).startswith(exc.field + ": ") else str(exc)
-    return SpecError(_FLAGS.get(exc.field, exc.field), msg)
+    return exc.renamed(_FLAGS.get(exc.field, exc.field))
 
 
 def spec_from_args(args):

@@ -173,7 +173,7 @@ def shaper_from_args(teeth, alpha, shift, addendum, teeth_flag: str = "--cutter-
         flag = teeth_flag if exc.field == "cutter.teeth" else _SHAPER_FLAGS.get(exc.field)
         if flag is None:  # a derived limit (dedendum, tip radius): the API's own name says what it is
             raise
-        raise SpecError(flag, str(exc).split(": ", 1)[1]) from None
+        raise exc.renamed(flag) from None
 
 
 def refuse_unused_cutter_flags(args) -> None:
@@ -392,4 +392,4 @@ def _apply_center_distance(spec, a_w, x1, x2, split):
         flag = {"split": "--split", "center_distance": "--center-distance"}.get(exc.field)
         if flag is None:
             raise
-        raise SpecError(flag, str(exc).split(": ", 1)[1]) from None
+        raise exc.renamed(flag) from None

@@ -141,7 +141,7 @@ def _arc_from(d, where):
     try:
         return ArcSpec(**d)
     except SpecError as exc:
-        raise SpecError(f"{where}.{exc.field}", str(exc).split(": ", 1)[1]) from None
+        raise exc.renamed(f"{where}.{exc.field}") from None
 
 
 def _rack_from(d, where, labels):
@@ -157,7 +157,7 @@ def _rack_from(d, where, labels):
     except SpecError as exc:
         if exc.field.startswith(where):
             raise
-        raise SpecError(f"{where}.{exc.field}", str(exc).split(": ", 1)[1]) from None
+        raise exc.renamed(f"{where}.{exc.field}") from None
     except TypeError as exc:
         raise SpecError(where, str(exc)) from None
 
