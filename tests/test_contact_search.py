@@ -75,3 +75,20 @@ def test_the_driver_probes_are_the_table_at_the_minimisers_parameters():
     assert np.array_equal(t, drv.ta + frac[:, None] * (drv.tb - drv.ta))
     p = drv.table.evaluate(np.broadcast_to(drv.piece, t.shape), t)
     assert np.array_equal(x, p[..., 0]) and np.array_equal(y, p[..., 1])
+
+
+def test_the_crossings_least_bound_is_numpys_scattered_minimum():
+    """The least bound at the tip-circle crossings of each half, against ``np.minimum.at`` (the oracle):
+    repeated halves, a half crossing three times, nan and inf values, no crossing at all."""
+    rng = np.random.default_rng(11)
+    best = rng.normal(size=(40, 2))
+    best[3] = np.inf
+    rows = rng.integers(0, 40, 120)
+    rows[:3] = 7
+    values = rng.normal(size=(120, 2))
+    values[5, 1], values[9, 0] = np.nan, -np.inf
+    for r, v in ((rows, values), (rows[:0], values[:0])):
+        expected, got = best.copy(), best.copy()
+        np.minimum.at(expected, r, v)
+        search_module._least_at(got, r, v)
+        assert np.array_equal(got, expected, equal_nan=True)

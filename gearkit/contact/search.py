@@ -78,8 +78,9 @@ def _block(mesh, frame, r_n, n, contact_tol, searched):
     np.subtract(w, u, out=big_u[0])
     np.add(w, u, out=big_u[1])
     finite = np.isfinite(w)
-    # the intervals that cross the mate's tip circle (few): the bound at the crossing
-    c_a, c_m = np.nonzero((finite[:-1] != finite[1:]).T)
+    # the intervals that cross the mate's tip circle (few): the bound at the crossing (in any order: every use
+    # below is a minimum or a mask)
+    c_m, c_a = np.nonzero(finite[:-1] != finite[1:])
     r0, r1, u0 = rho[c_m, c_a], rho[c_m + 1, c_a], u[c_m, c_a]
     with np.errstate(divide="ignore", invalid="ignore"):
         frac = np.clip((mate.rho_tip - r0) / (r1 - r0), 0.0, 1.0)
@@ -87,7 +88,7 @@ def _block(mesh, frame, r_n, n, contact_tol, searched):
     u_c = np.mod(u0 + frac * du + pitch / 2, pitch) - pitch / 2
     big_c = mate.w_tip - _SB[None, :] * u_c[:, None]  # (C, 2)
     best = big_u.min(axis=1).T.copy()  # (A, 2)
-    np.minimum.at(best, c_a, big_c)
+    _least_at(best, c_a, big_c)
     # how far the exact function can dip below an interval's ends: the driver's chord deviation
     # plus the mate's bending over the chord, as a normal distance over the arm scale
     rho_mid = 0.5 * (rho[:-1] + rho[1:])
@@ -118,3 +119,17 @@ def _block(mesh, frame, r_n, n, contact_tol, searched):
     k, i_m = np.nonzero(pick)
     i_a = p_a[k]
     return best, i_a, p_b[k], i_m, finite[i_m, i_a], finite[i_m + 1, i_a]
+
+
+def _least_at(best, rows, values):
+    """``np.minimum.at(best, rows, values)`` for rows ``(C,)`` of ``best`` ``(A, 2)``: each row takes the least of its
+    values (a half's curve may cross the tip circle more than once), by one sort and one reduction per distinct
+    row instead of the unbuffered scatter's per-element calls."""
+    if rows.size == 0:
+        return
+    order = np.argsort(rows, kind="stable")
+    r = rows[order]
+    first = np.flatnonzero(np.concatenate([[True], r[1:] != r[:-1]]))
+    least = np.minimum.reduceat(values[order], first, axis=0)
+    np.minimum(best[r[first]], least, out=least)
+    best[r[first]] = least
