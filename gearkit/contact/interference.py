@@ -129,9 +129,9 @@ def sharpen(mesh, ev, ref, shifts, contact_tol, itol):
         pids = np.unique(ev.pid)
         rows = np.searchsorted(pids, ev.pid)
         series = np.full((len(pids), n), -np.inf)
-        for s in range(dep.shape[1]):
-            np.maximum.at(series, (rows[:, s].reshape(n, -1).T, np.arange(n)[None, :]),
-                          dep[:, s].reshape(n, -1).T)
+        for s in range(dep.shape[1]):  # a slice's pairs at one step are distinct (2 tooth + half): no index repeats
+            at = (rows[:, s].reshape(n, -1).T, np.arange(n)[None, :])
+            series[at] = np.maximum(series[at], dep[:, s].reshape(n, -1).T)
         y0, y1, y2 = series[:, :-2], series[:, 1:-1], series[:, 2:]
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             curv = 2 * y1 - y0 - y2

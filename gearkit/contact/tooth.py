@@ -47,7 +47,7 @@ def evaluate_pieces(pieces, k, t):
     k = np.asarray(k)
     t = np.asarray(t, dtype=float)
     out = np.empty(t.shape + (2,))
-    for kk in np.unique(k):
+    for kk in np.flatnonzero(np.bincount(k.ravel(), minlength=len(pieces))):  # the pieces present (few, numbered)
         sel = k == kk
         out[sel] = pieces[int(kk)](t[sel])
     return out
