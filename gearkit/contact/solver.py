@@ -154,14 +154,16 @@ class _Task:
         return out
 
     def value(self, t, rows=slice(None), tangent=False, exact=False):
+        """The bound function at ``t`` and the point's mate coordinate ``rho``; with ``tangent`` (True, or a mask of
+        the rows, exact only) also the fixed-frame points ``q`` and the mate's unit tangent there (zero elsewhere)."""
         exact = exact or self.exact
-        if self._fast(exact) and not tangent:
+        if self._fast(exact) and tangent is False:
             p = self.mesh.driver.table.evaluate_xy(self.piece[rows], t)
             rho, u = self.mesh.mate_coords(p[0], p[1], self.frame[:, rows])
             return self.mesh.mate.table.values(rho) - self.sb[rows] * u, None, rho, None, None
         x, y = _driver_xy(self.mesh, self.piece[rows], t, self.sigma[rows], self.theta[rows], exact)
         rho, u = self.mesh.to_mate_xy(x, y, self.phi[rows])
-        q = np.stack([x, y], -1) if tangent else None
+        q = None if tangent is False else np.stack([x, y], -1)
         w, k2, t2, tan2 = self.mesh.mate.width(rho, (self.k2[rows], self.t2[rows], self.r2[rows]), tangent, exact)
         if t2 is not None:
             self.k2[rows], self.t2[rows], self.r2[rows] = k2, t2, rho
@@ -247,8 +249,10 @@ def _refine(mesh, phi, theta, sigma, sb, m, fa, fb, half):
     piece, a, b, t, at_tip = piece[sel], a[sel], b[sel], t[sel], at_tip[sel]
     task = _Task(mesh, phi, theta, sigma, sb, piece, frame=task.frame[:, sel])
     corner2 = at_tip & (((t == b) & fa) | ((t == a) & fb))
-    # contact value (exact), point, normal and arm
-    exact, q, rho, k2, tan2 = task.value(t, tangent=True, exact=True)
+    # contact value (exact), point, normal and arm; the mate's tangent only where a driver piece ends (a corner)
+    at_end = ((t <= drv.ta[m]) | (t >= drv.tb[m])) & ~corner2
+    piece_end = at_end & ((t <= 0.0) | (t >= 1.0))
+    exact, q, rho, k2, tan2 = task.value(t, tangent=piece_end, exact=True)
     value = np.where(np.isfinite(exact), exact, value[sel])  # a tip crossing a last bit beyond the tip
     if drv.table is not None:  # the tangent from the table's derivative (closer than differences)
         d = drv.table.evaluate(piece, t, derivative=True)[1]
@@ -259,8 +263,6 @@ def _refine(mesh, phi, theta, sigma, sb, m, fa, fb, half):
         ts = np.clip(t, h, 1 - h)
         (x1, y1), (x0, y0) = _driver_xy(mesh, piece, ts + h, sigma, theta), _driver_xy(mesh, piece, ts - h, sigma, theta)
         normal = np.stack([y0 - y1, x1 - x0], -1)
-    at_end = ((t <= drv.ta[m]) | (t >= drv.tb[m])) & ~corner2
-    piece_end = at_end & ((t <= 0.0) | (t >= 1.0))
     corner1 = at_end & np.where(t <= drv.ta[m], drv.corner_end[m], drv.corner_end[m + 1])
     use_mate = piece_end & (k2 >= 0) & (np.linalg.norm(tan2, axis=-1) > 0)
     if use_mate.any():

@@ -274,8 +274,8 @@ class HalfWidth:
         rho : float64 array
         guess : (piece, t, rho_at_t) arrays or None
             A nearby solution (e.g. the previous one of an iteration), used as the first point.
-        tangent : bool
-            Also return the piece's unit tangent at the solution (one more evaluation).
+        tangent : bool or bool array (``rho``'s shape)
+            Also return the piece's unit tangent at the solution (two more evaluations), everywhere or where True.
 
         Returns
         -------
@@ -294,7 +294,7 @@ class HalfWidth:
         w[body] = self._body_width(rho[body])
         piece[body] = -2
         inside = np.flatnonzero(~body & ~self.free(rho))
-        tan = np.zeros(rho.shape + (2,)) if tangent else None
+        tan = None if tangent is False else np.zeros(rho.shape + (2,))
         if inside.size:
             r = rho[inside]
             j = np.clip(np.searchsorted(self._r0, r, side="right") - 1, 0, len(self._r0) - 1)
@@ -356,11 +356,12 @@ class HalfWidth:
             w[inside] = self.pitch / 2 - psi
             piece[inside] = k
             t_out[inside] = t
-            if tangent:
-                h = 1e-6 * (self._t1[j] - self._t0[j])
-                d = evaluate_pieces(self.pieces, k, t + h) - evaluate_pieces(self.pieces, k, t - h)
+            if tangent is not False:
+                at = np.flatnonzero(np.broadcast_to(tangent, shape).ravel()[inside])
+                h = 1e-6 * (self._t1[j[at]] - self._t0[j[at]])
+                d = evaluate_pieces(self.pieces, k[at], t[at] + h) - evaluate_pieces(self.pieces, k[at], t[at] - h)
                 norm = np.linalg.norm(d, axis=-1, keepdims=True)
-                tan[inside] = np.divide(d, norm, out=np.zeros_like(d), where=norm > 0)
+                tan[inside[at]] = np.divide(d, norm, out=np.zeros_like(d), where=norm > 0)
         return (w.reshape(shape), piece.reshape(shape), t_out.reshape(shape),
                 None if tan is None else tan.reshape(shape + (2,)))
 
