@@ -95,9 +95,9 @@ def crossings(pieces, func, target, n=48, grids=None):
 
 def crossings_many(pieces, searches, n=48, grids=None):
     """:func:`crossings` of several searches ``[(func, target)]`` on one grid: a list per search. Every sign
-    change of every search is refined by the steps :func:`~gearkit.roots.bracketed_root` takes, all of them
-    side by side (:func:`~gearkit.roots.bracketed_roots`: each round's points on all the pieces in one call
-    where the pieces share their motion), so the roots are those each search finds alone."""
+    change of every search is refined to a root side by side (:func:`~gearkit.roots.bracketed_roots`: each
+    round's points on all the pieces in one call where the pieces share their motion), so the roots are
+    those each search finds alone."""
     grids = _grids(pieces, n) if grids is None else grids
     found, brackets, asked = [[] for _ in searches], [], []
     for j, (func, target) in enumerate(searches):
@@ -118,8 +118,8 @@ def crossings_many(pieces, searches, n=48, grids=None):
                 found[j].append((k, float(w[i]), None))
 
     def values(which, xs):
-        points = evaluate_curves([pieces[asked[i][1]].curve for i in which], [np.array([x]) for x in xs])
-        return [float(searches[asked[i][0]][0](p)[0] - searches[asked[i][0]][1]) for i, p in zip(which, points)]
+        points = evaluate_curves([pieces[asked[i][1]].curve for i in which], xs)
+        return [searches[asked[i][0]][0](p) - searches[asked[i][0]][1] for i, p in zip(which, points)]
 
     roots = bracketed_roots(values, brackets) if brackets else []
     return [[(k, roots[b] if w is None else w) for k, w, b in hits] for hits in found]

@@ -20,6 +20,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 __all__ = ["bracketed_root", "bracketed_roots", "brentq", "fminbound"]
 
 _EPS = 2.220446049250313e-16
@@ -155,18 +157,26 @@ def bracketed_root(f, a: float, b: float, fa: float | None = None, fb: float | N
 def bracketed_roots(evaluate, brackets, xtol: float = 1e-15, maxiter: int = 200) -> list:
     """Roots of several scalar functions, each with a sign change on its bracket ``(a, b, f(a), f(b))``.
 
-    Each root is found by the steps :func:`bracketed_root` takes (the same root, to the last bit); the
-    steps of all of them are taken side by side, so one call ``evaluate(which, points)`` (the indices of
-    the brackets asking, and the point each asks at) gives every value a round needs: the calls are as
-    many as the most steps one root takes, not their sum.
+    Each root is held in a bracket with a sign change, shrunk until it is within ``xtol * (1 + |x|)``
+    (the stopping test of :func:`bracketed_root`) or ``f`` is exactly zero: the bracket is the proof
+    that a root lies within that tolerance of the one returned. The roots are found side by side: one
+    call ``evaluate(which, points)`` (the indices of the brackets asking, and for each an array of the
+    points it asks at; it returns an array of values for each) gives every value a round needs, so
+    the calls are as many as the most rounds one root takes. A round asks at many points of each
+    bracket at once (:func:`_squeeze`): where the cost of a call is its overhead, not its points, the
+    bracket shrinks in a round by what one point a call would take many calls to do.
 
+    >>> import numpy as np
     >>> funcs = [lambda x: x * x - 2.0, lambda x: x ** 3 - 0.5]
-    >>> roots = bracketed_roots(lambda which, xs: [funcs[i](x) for i, x in zip(which, xs)],
-    ...                         [(0.0, 2.0, -2.0, 2.0), (0.0, 1.0, -0.5, 0.5)])
-    >>> roots == [bracketed_root(f, a, b) for f, (a, b) in zip(funcs, [(0.0, 2.0), (0.0, 1.0)])]
-    True
+    >>> calls = []
+    >>> def evaluate(which, points):
+    ...     calls.append(len(which))
+    ...     return [funcs[i](x) for i, x in zip(which, points)]
+    >>> roots = bracketed_roots(evaluate, [(0.0, 2.0, -2.0, 2.0), (0.0, 1.0, -0.5, 0.5)])
+    >>> [abs(r - e) <= 2e-15 for r, e in zip(roots, [2.0 ** 0.5, 0.5 ** (1 / 3)])], len(calls)
+    ([True, True], 6)
     """
-    steps = [_illinois(a, b, fa, fb, xtol, maxiter) for a, b, fa, fb in brackets]
+    steps = [_squeeze(a, b, fa, fb, xtol, maxiter) for a, b, fa, fb in brackets]
     roots, asked = [None] * len(steps), {}
     for i, s in enumerate(steps):
         try:
@@ -183,6 +193,60 @@ def bracketed_roots(evaluate, brackets, xtol: float = 1e-15, maxiter: int = 200)
             except StopIteration as done:
                 roots[i] = done.value
     return roots
+
+
+#: the guards about a round's estimate stand this factor apart, from the distance to the nearer bracket
+#: end down to half the stopping tolerance
+_LADDER = 8.0
+
+
+def _squeeze(a, b, fa, fb, xtol, maxiter):
+    """:func:`bracketed_roots`' rounds for one root: yields the points ``(k,)`` a round asks at and is sent
+    their values; returns the root.
+
+    A round asks at the regula falsi estimate ``c`` of the bracket, at guards either side of it a
+    factor ``_LADDER`` apart, from ``h``, the distance to the nearer end, down to half the stopping
+    tolerance, and at the bracket's thirds. The bracket becomes the neighbouring pair of those points
+    across a sign change (the one nearest ``c``). Where ``f`` is smooth the estimate's error is far
+    below ``h`` (the secant's error is of the order of the product of its ends' errors), so the
+    guards around the root close the bracket to within a factor ``_LADDER`` of that error, and the
+    next estimate, from the ends of a bracket that narrow, is better still: a few rounds reach the
+    tolerance. Whatever ``f`` is (a jump, a flat stretch, several roots) the thirds shrink the
+    bracket at least threefold a round."""
+    if fa == 0.0:
+        return a
+    if fb == 0.0:
+        return b
+    if (fa > 0) == (fb > 0):
+        raise ValueError("bracketed_root: no sign change on the bracket")
+    if b < a:
+        a, b, fa, fb = b, a, fb, fa
+    for _ in range(maxiter):
+        width = b - a
+        if width <= xtol * (1.0 + min(abs(a), abs(b))):
+            break
+        c = (a * fb - b * fa) / (fb - fa)
+        if not a < c < b:
+            c = 0.5 * (a + b)
+        floor = 0.45 * xtol * (1.0 + abs(c))
+        steps = [min(c - a, b - c)]
+        while steps[-1] > _LADDER * floor:
+            steps.append(steps[-1] / _LADDER)
+        steps.append(floor)
+        h = np.array(steps)
+        xs = np.concatenate([c - h, [a + width / 3.0, c, b - width / 3.0], c + h])
+        xs = np.unique(xs[(xs > a) & (xs < b)])
+        fx = np.asarray((yield xs), dtype=float)
+        zero = np.flatnonzero(fx == 0.0)
+        if len(zero):
+            return float(xs[zero[np.argmin(np.abs(xs[zero] - c))]])
+        x = np.concatenate([[a], xs, [b]])
+        f = np.concatenate([[fa], fx, [fb]])
+        up = f > 0
+        change = np.flatnonzero(up[:-1] != up[1:])
+        k = change[np.argmin(np.abs(0.5 * (x[change] + x[change + 1]) - c))]
+        a, b, fa, fb = float(x[k]), float(x[k + 1]), float(f[k]), float(f[k + 1])
+    return a if abs(fa) < abs(fb) else b
 
 
 def _illinois(a, b, fa, fb, xtol, maxiter):

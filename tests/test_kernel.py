@@ -120,31 +120,73 @@ def test_bad_racks_name_the_field(kwargs, field):
 
 
 def test_roots_found_side_by_side_are_each_found_alone_in_as_many_calls_as_the_longest():
-    """:func:`gearkit.roots.bracketed_roots` takes each root's own steps side by side: every root equals
-    :func:`bracketed_root`'s to the last bit (oracle for the value: the closed-form root), and the calls are
-    as many as the most steps one root takes (one root here converges in one step, another needs several)."""
+    """:func:`gearkit.roots.bracketed_roots` takes each root's own rounds side by side: every root equals
+    the one it finds alone to the last bit, the calls are as many as the most rounds one root takes alone
+    (one root here is exact at its first estimate, another needs several), and every root lies within the
+    stopping tolerance ``xtol (1 + |x|)`` of the closed-form root (oracle)."""
     from gearkit.roots import bracketed_roots
 
-    funcs = [lambda x: math.cos(x) - x, lambda x: x * x - 2.0, lambda x: 2.0 * x - 1.0, lambda x: x ** 3 - 0.001]
+    funcs = [lambda x: np.cos(x) - x, lambda x: x * x - 2.0, lambda x: 2.0 * x - 1.0, lambda x: x ** 3 - 0.001]
     brackets = [(0.0, 1.0), (0.0, 2.0), (0.0, 1.0), (0.0, 1.0)]
-    alone, steps = [], []
-    for f, (a, b) in zip(funcs, brackets):
-        count = [0]
+    xtol = 1e-15
 
-        def counted(x, f=f, count=count):
-            count[0] += 1
-            return f(x)
-        alone.append(bracketed_root(counted, a, b, f(a), f(b)))
-        steps.append(count[0])
+    def counted(funcs, calls):
+        def evaluate(which, points):
+            calls.append(len(which))
+            return [funcs[i](np.asarray(x)) for i, x in zip(which, points)]
+        return evaluate
+
+    alone, rounds = [], []
+    for f, (a, b) in zip(funcs, brackets):
+        calls = []
+        alone.append(bracketed_roots(counted([f], calls), [(a, b, f(a), f(b))], xtol)[0])
+        rounds.append(len(calls))
+    calls = []
+    together = bracketed_roots(counted(funcs, calls), [(a, b, f(a), f(b)) for f, (a, b) in zip(funcs, brackets)], xtol)
+    assert together == alone and len(calls) == max(rounds) and min(rounds) == 1
+    assert sum(calls) == sum(rounds)  # a root that is done asks no more
+    cos_root = bracketed_root(lambda x: math.cos(x) - x, 0.0, 1.0, xtol=1e-16)  # the scalar method's root
+    exact = [cos_root, math.sqrt(2.0), 0.5, 0.1]
+    assert all(abs(r - e) <= 2 * xtol * (1.0 + abs(e)) for r, e in zip(together, exact))
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_roots_side_by_side_hold_a_sign_change_within_the_tolerance_whatever_the_function(seed):
+    """Every root :func:`gearkit.roots.bracketed_roots` returns has a sign change of its function within
+    ``xtol (1 + |x|)`` (checked by evaluating at both ends of that interval: the proof its bracket gives),
+    on smooth, steep, flat (a high power) and jumping functions, and for each the rounds stay within those
+    of trisection (a threefold shrink a round)."""
+    from gearkit.roots import bracketed_roots
+
+    rng = np.random.default_rng(seed)
+    xtol = 1e-15
+    funcs, brackets = [], []
+    for k in range(40):
+        r = float(rng.uniform(-3.0, 3.0))
+        kind = k % 4
+        if kind == 0:
+            f = (lambda r, s: lambda x: np.sin(s * (x - r)))(r, float(rng.uniform(0.1, 1.5)))
+        elif kind == 1:
+            f = (lambda r, s: lambda x: np.tanh(s * (x - r)) + 1e-3 * (x - r))(r, float(10 ** rng.uniform(0, 6)))
+        elif kind == 2:
+            f = (lambda r: lambda x: (x - r) ** 7)(r)
+        else:
+            f = (lambda r: lambda x: np.where(x < r, -1.0, 1.0) * (1.0 + np.abs(x)))(r)
+        a, b = r - float(rng.uniform(0.0, 2.0)), r + float(rng.uniform(1e-3, 2.0))
+        funcs.append(f)
+        brackets.append((a, b, float(f(a)), float(f(b))))
     calls = []
 
-    def evaluate(which, xs):
+    def evaluate(which, points):
         calls.append(len(which))
-        return [funcs[i](x) for i, x in zip(which, xs)]
-    together = bracketed_roots(evaluate, [(a, b, f(a), f(b)) for f, (a, b) in zip(funcs, brackets)])
-    assert together == alone and len(calls) == max(steps) and sum(calls) == sum(steps) and min(steps) == 1
-    exact = [None, math.sqrt(2.0), 0.5, 0.1]
-    assert all(abs(r - e) <= 1e-15 for r, e in zip(together, exact) if e is not None)
+        return [funcs[i](np.asarray(x)) for i, x in zip(which, points)]
+    roots = bracketed_roots(evaluate, brackets, xtol)
+    for f, x in zip(funcs, roots):
+        eps = xtol * (1.0 + abs(x))
+        lo, hi = float(f(x - eps)), float(f(x + eps))
+        assert float(f(x)) == 0.0 or (lo > 0) != (hi > 0) or lo == 0.0 or hi == 0.0
+    widest = max(b - a for a, b, _, _ in brackets)
+    assert len(calls) <= math.ceil(math.log(widest / xtol) / math.log(3.0)) + 1
 
 
 @pytest.mark.parametrize("tool", [BasicRack(20.0), ShaperCutter(18)], ids=["rack", "shaper"])
