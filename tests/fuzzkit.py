@@ -211,3 +211,56 @@ def true_deviation(pieces, polyline, dense=None):
             break
         best = max(best, float(stations.exact(exact[chunk], d[chunk]).max()))
     return best
+
+
+def face_half_planes(spec, phi):
+    """A flat face's lines at cam angles ``phi`` in the cam frame, written out from the frames of
+    :class:`~gearkit.families.cam.CamSpec` alone (no envelope, no pose of the kernel): unit normals ``n``
+    away from the cam axis and heights ``h``, the cam being ``n . x <= h`` for every line. A translating
+    face is the line ``y = r0 + s``; a rocker's lies along the arm through the pivot ``(l0, 0)`` at
+    ``Psi = asin(r0 / l0) + s / l`` from the line to the axis (normal ``(sin Psi, cos Psi)``, height
+    ``l0 sin Psi``); the cam turned by ``phi`` counter-clockwise puts them at ``-phi`` in its frame."""
+    phi = np.asarray(phi, dtype=float)
+    s = spec.motion.evaluate(phi)[0]
+    if spec.follower == "translating":
+        nf, h = np.stack([np.zeros_like(s), np.ones_like(s)], -1), spec.prime_radius + s
+    else:
+        psi = math.asin(spec.prime_radius / spec.pivot_distance) + s / spec.arm_length
+        nf, h = np.stack([np.sin(psi), np.cos(psi)], -1), spec.pivot_distance * np.sin(psi)
+    c, sn = np.cos(phi), np.sin(phi)
+    return np.stack([c * nf[:, 0] + sn * nf[:, 1], -sn * nf[:, 0] + c * nf[:, 1]], -1), h
+
+
+def check_flat_cam(spec, outline, tol, lines: int = 1 << 16):
+    """A flat face's cam is the intersection of its half-planes (:func:`face_half_planes` at ``lines``
+    cam angles and at every velocity jump): the outline (counter-clockwise) must lie inside every one
+    (round-off of its points, computed through lengths up to the pivot), turn one way (a convex cam), and
+    enclose the area of their polygon within its perimeter times ``tol`` plus the polygon's own excess
+    (each vertex between two lines ``delta`` apart stands out by at most ``D (k delta)^2 / 8``: ``D`` the
+    polygon's diameter bounding the curvature radius, ``k = 1 + max|psi'|`` how much faster than the cam
+    the face turns). Returns ``(area of the outline, area of the polygon, allowed difference)``."""
+    from scipy.spatial import ConvexHull, HalfspaceIntersection
+
+    phi = np.concatenate([np.linspace(0.0, 2 * math.pi, lines, endpoint=False),
+                          [p for p, dv, _, _ in spec.motion.jumps() if dv != 0.0]])
+    n, h = face_half_planes(spec, phi)
+    reach = spec.prime_radius + spec.stroke + (spec.pivot_distance or 0.0) + (spec.arm_length or 0.0)
+    slack = 1e-12 * reach
+    sparse = slice(None, None, max(lines // 4096, 1))
+    for lo in range(0, len(outline), 1024):
+        worst = float((outline[lo:lo + 1024] @ n[sparse].T - h[sparse]).max())
+        assert worst <= slack, f"an outline vertex lies {worst:.3g} mm outside a half-plane of the face"
+    e = np.roll(outline, -1, axis=0) - outline
+    turn = (e[:, 0] * np.roll(e, -1, axis=0)[:, 1] - e[:, 1] * np.roll(e, -1, axis=0)[:, 0]) / np.maximum(
+        np.hypot(e[:, 0], e[:, 1]), 1e-300)
+    assert turn.min() >= -slack, f"the outline turns back by {-turn.min():.3g} mm: not a convex cam"
+    polygon = HalfspaceIntersection(np.column_stack([n, -h]), np.zeros(2)).intersections
+    hull = ConvexHull(polygon)
+    k = 1.0 + (np.abs(spec.motion.evaluate(phi)[1]).max() / spec.arm_length if spec.follower == "rocker" else 0.0)
+    diameter = 2.0 * float(np.hypot(*polygon.T).max())
+    excess = diameter * (k * 2 * math.pi / lines) ** 2 / 8
+    x, y = outline.T
+    area = 0.5 * float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
+    allowed = hull.area * (tol + excess)  # hull.area is the polygon's perimeter in 2-D
+    assert abs(area - hull.volume) <= allowed, f"outline area {area:.9g} against the half-planes' {hull.volume:.9g}"
+    return area, float(hull.volume), allowed

@@ -14,7 +14,7 @@ import pytest
 
 from gearkit.distances import edge_distances
 from gearkit.families.cam import CamSpec, MotionProgram, MotionSegment, cam_profile
-from gearkit.families.cam.faces import face_lines
+from gearkit.families.cam.halfplanes import face_lines
 
 #: the bound is proven: a dense measure (which reads at most the real deviation) may exceed it by round-off only
 BOUND_SLACK = 1e-9

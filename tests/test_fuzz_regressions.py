@@ -317,7 +317,7 @@ def test_flat_rocker_cam_runs_straight_along_the_face_line_at_a_velocity_jump():
     # the cam from its touching point on the base circle to the crossing with the rise's envelope.
     # The kept arcs did not cross there; the outline closed with a chord 0.416 mm inside the cam.
     from gearkit.families.cam import CamSpec, MotionProgram, cam_profile
-    from gearkit.families.cam.faces import face_lines
+    from gearkit.families.cam.halfplanes import face_lines
 
     kw = dict(prime_radius=29.920755273305605, follower="rocker", contact="flat", roller_radius=0.0,
               pivot_distance=35.90490632796673, arm_length=17.952453163983364)

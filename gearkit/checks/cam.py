@@ -20,7 +20,8 @@ Findings (:class:`~gearkit.checks.report.Finding`, textbook ch. VII and the fric
     the textbook's advice R_p <= min(0.7 rho_min, 0.4 r0) (warning).
 ``convexity``, ``face_width``
     flat face: the profile's radius of curvature must stay positive; the face must cover the
-    contact's travel along it.
+    contact's travel along it. A flat face's ``undercut`` is how far the follower, held against the
+    cam the face leaves (the intersection of its half-planes), falls short of its law and where.
 ``motion.velocity`` / ``.acceleration`` / ``.jerk`` at each join
     a velocity jump is an infinite acceleration (hard impact), an acceleration jump a soft impact.
 """
@@ -141,7 +142,7 @@ def check_cam(spec, tol: float | None = None) -> CamCheck:
         f.append(Finding("prime_radius", "ok" if spec.prime_radius >= r_min * (1 - 1e-9) else "fail",
                          spec.prime_radius, r_min, f"prime radius r0, mm, against the smallest that keeps the {what}",
                          "min"))
-    _curvature(spec, prof, f, values)
+    _curvature(spec, prof, f, values, tol)
     _motion(spec, f, values)
     rmin, rmax = prof.radii()
     achieved = prof.achieved(tol)
@@ -150,7 +151,7 @@ def check_cam(spec, tol: float | None = None) -> CamCheck:
     return CamCheck(values, CheckReport(tuple(f)))
 
 
-def _curvature(spec, prof, f, values):
+def _curvature(spec, prof, f, values, tol):
     """Undercut, smallest radii of curvature, roller advice, flat-face convexity and width."""
     phi = np.linspace(0.0, 2.0 * math.pi, 7201)
     values["undercut"] = prof.undercut
@@ -168,9 +169,7 @@ def _curvature(spec, prof, f, values):
         f.append(Finding("face_width", "ok", values["face_width"], None,
                          f"the face must reach from {reach.min():.6g} to {reach.max():.6g} mm along it (from the "
                          "foot of the follower axis): at least this width, plus a margin"))
-        if prof.undercut:
-            f.append(Finding("undercut", "fail", 1.0, 0.0, "the envelope of the face loops: the cam is not convex "
-                             "and cannot give the motion", "max"))
+        _departure(spec, prof, phi, tol, f, values)
         return
     rho_p = prof.pitch_curvature_radius(phi)
     convex = rho_p > 0
@@ -189,6 +188,24 @@ def _curvature(spec, prof, f, values):
         values["roller_radius_advice"] = advice
         f.append(Finding("roller_radius", grade(rr, warn_above=advice), rr, advice,
                          "textbook advice R_p <= min(0.7 rho_min, 0.4 r0), mm", "max"))
+
+
+def _departure(spec, prof, phi, tol, f, values):
+    """A flat face's undercut: how far the follower held against the cam it leaves (the intersection of
+    the face's half-planes) falls short of its law, and where (more than the outline's ``tol``)."""
+    from gearkit.families.cam.halfplanes import follower_departure
+
+    gap = follower_departure(spec, prof.planes, phi)
+    k = int(np.argmax(gap))
+    worst, at = float(gap[k]), math.degrees(phi[k])
+    where = _intervals(gap > tol, phi)
+    values.update({"undercut": bool(where), "departure_max": worst, "departure_at_deg": at, "departure_deg": where})
+    unit = "mm of lift" if spec.follower == "translating" else "mm of arc at the arm"
+    say = (f"the follower falls short of its law by up to {worst:.6g} {unit} at {at:.6g} degrees (over "
+           + ", ".join(f"{a:.6g}..{b:.6g}" for a, b in where) + " degrees): the cam the face leaves, the "
+           "intersection of its half-planes, cannot give the motion there") if where else \
+        f"the follower keeps its law on the cam the face leaves within the outline's tol ({worst:.3g} {unit})"
+    f.append(Finding("undercut", "fail" if where else "ok", worst, tol, say, "max"))
 
 
 def _motion(spec, f, values):

@@ -7,21 +7,16 @@ at a concave corner of the pitch curve (a velocity jump), the envelope loops ins
 region and is cut there.
 
 **Flat face.**
-Relative to the cam, the face is a line at every cam angle ``phi`` and the cam lies on the side of
-the cam axis: the cam is the intersection of the half-planes ``n(phi) . x <= h(phi)`` (``n`` the unit
-normal into the follower, ``h > 0`` the line's distance from the axis) — a convex region whatever
-the motion asks for. Where the motion asks for a convex cam (``r0 + s + s'' > 0`` for a translating
-face, textbook 3.45) every line touches it at the envelope point and the envelope is the cam.
-Where it does not, the envelope loops (a swallowtail) or, for a rocker whose face turns back
-relative to the cam (``|psi'| > 1``), runs off along the face; the cam keeps only the envelope's
-points on the boundary of the intersection, and its corners are where the kept arcs cross.
-
-Which lines touch the cam is read off the dual curve ``d = n / h``: the intersection of the
-half-planes is the polar of the convex hull of the ``d``, so a line bounds the cam exactly when
-its dual point is a hull vertex (a line that turns back has its dual point moving towards the
-origin, inside the hull). The envelope's samples are then kept where they lie on the boundary of
-the polygon those lines bound, and each change from kept to cut is refined to the exact crossing
-of the envelope with itself.
+The cam is the intersection of the face's half-planes (:mod:`gearkit.families.cam.halfplanes`), a
+convex region whatever the motion asks for. Where the motion asks for a convex cam (``r0 + s + s''
+> 0`` for a translating face, textbook 3.45) every line touches it at the envelope point and the
+envelope is the cam. Where it does not, the envelope loops (a swallowtail) or, for a rocker whose
+face turns back relative to the cam (``1 + psi' < 0``), folds and runs off along the face; the cam
+keeps only the envelope's points on the boundary of the intersection. Its boundary is convex and
+holds the axis, so the kept arcs follow each other around it in the order of their polar angles
+(not of the cam angle: an arc of the face turning back relative to the cam lies between arcs of
+other phases, and may run the other way); each meets the next where the envelope crosses itself,
+or, at a velocity jump, along the face line of that cam angle (the face slides along it).
 """
 from __future__ import annotations
 
@@ -30,56 +25,9 @@ import math
 import numpy as np
 
 from gearkit.errors import GeometryError
+from gearkit.families.cam.halfplanes import face_lines
 
-__all__ = ["face_lines", "face_depth", "roller_depth", "kept_runs", "FaceEdge", "corner_lines", "bridge_cuts"]
-
-
-def face_lines(motion, tool, phi):
-    """The face at cam angles ``phi`` in the cam frame: unit normals ``n`` (away from the cam axis)
-    and distances ``h > 0`` of the lines ``n . x = h``."""
-    phi = np.atleast_1d(np.asarray(phi, dtype=float))
-    ends = tool.evaluate(np.array([0.0, 1.0]))[0]
-    a = motion.to_blank(np.broadcast_to(ends[0], phi.shape + (2,)), phi)
-    b = motion.to_blank(np.broadcast_to(ends[1], phi.shape + (2,)), phi)
-    d = b - a
-    n = np.stack([d[:, 1], -d[:, 0]], -1) / np.hypot(d[:, 0], d[:, 1])[:, None]
-    h = np.einsum("ij,ij->i", n, a)
-    flip = np.where(h < 0, -1.0, 1.0)
-    return n * flip[:, None], h * flip
-
-
-def _bounding_polygon(n, h):
-    """The lines that bound the intersection of the half-planes (hull vertices of the dual points),
-    in counter-clockwise order, and the polygon's vertex angles: ``(n_active, h_active, angles)``;
-    the edge ending at vertex ``k`` lies on active line ``k``."""
-    from scipy.spatial import ConvexHull
-
-    dual = n / h[:, None]
-    idx = ConvexHull(dual).vertices  # counter-clockwise in 2-D
-    na, ha = n[idx], h[idx]
-    nb, hb = np.roll(na, -1, axis=0), np.roll(ha, -1)
-    det = na[:, 0] * nb[:, 1] - na[:, 1] * nb[:, 0]
-    vx = (ha * nb[:, 1] - hb * na[:, 1]) / det  # vertex of lines k and k + 1
-    vy = (na[:, 0] * hb - nb[:, 0] * ha) / det
-    return na, ha, np.arctan2(vy, vx)
-
-
-def _outside(points, na, ha, ang):
-    """Signed distance of each point outside the polygon (negative inside): against the active line
-    whose edge the ray from the axis through the point crosses."""
-    alpha = np.arctan2(points[:, 1], points[:, 0])
-    order = np.argsort(ang)
-    k = np.searchsorted(ang[order], alpha) % len(ang)  # the edge ends at the next vertex by angle
-    line = order[k]
-    return np.einsum("ij,ij->i", points, na[line]) - ha[line]
-
-
-def face_depth(motion, tool, start: float, samples: int = 65536):
-    """How deep (mm) points lie inside the region the flat face sweeps (negative: on the cam's side
-    of every line), from ``samples`` face positions over one turn from cam angle ``start``."""
-    phi = start + np.linspace(0.0, 2.0 * math.pi, samples, endpoint=False)
-    na, ha, ang = _bounding_polygon(*face_lines(motion, tool, phi))
-    return lambda points: _outside(points, na, ha, ang)
+__all__ = ["roller_depth", "kept_runs", "FaceEdge", "corner_lines", "face_boundary"]
 
 
 def roller_depth(pitch_points, radius: float, start: float, samples: int = 65536):
@@ -95,32 +43,24 @@ def roller_depth(pitch_points, radius: float, start: float, samples: int = 65536
     return lambda points: radius - edge_distances(points, pitch, closed=True)
 
 
-def kept_runs(curve, depth, slack: float, samples: int = 16385, meet: float | None = None):
-    """Where the envelope ``curve`` (of ``w`` in [0, 1], one turn) bounds the cam: ``[(wa, wb), ...]``,
-    the cuts from a kept arc's end ``wa`` to the next kept arc's start ``wb`` (cyclic, ``wb`` may be
-    below ``wa``: the cut runs through ``w = 1``), each refined to the envelope's self-crossing.
-    A sample is kept where ``depth`` (:func:`face_depth`, :func:`roller_depth`) is at most ``slack``
-    (mm: the swept region's own sampling error). Empty when the whole envelope bounds the cam.
-
-    With ``meet`` (mm; a roller) every cut must be a crossing, its ends within ``meet``: the cuts are
-    then the cycle of :func:`_cam_cycle`, in the order the cam's boundary runs."""
+def kept_runs(curve, depth, slack: float, meet: float, samples: int = 16385):
+    """Where the roller's envelope ``curve`` (of ``w`` in [0, 1], one turn) bounds the cam: ``[(wa, wb),
+    ...]``, the cuts from a kept arc's end ``wa`` to the next kept arc's start ``wb`` (cyclic, ``wb`` may
+    be below ``wa``: the cut runs through ``w = 1``), each refined to the envelope's self-crossing, in
+    the order the cam's boundary runs (:func:`_cam_cycle`; a crossing's ends within ``meet``, mm). A
+    sample is kept where ``depth`` (:func:`roller_depth`) is at most ``slack`` (mm: the swept region's
+    own sampling error). Empty when the whole envelope bounds the cam."""
     w = np.linspace(0.0, 1.0, samples)
     keep = depth(curve(w)) <= slack
     keep[-1] = keep[0]  # w = 1 is w = 0
     if keep.all():
         return []
     if not keep.any():
-        raise GeometryError("the flat face leaves no envelope point on the cam (no line touches it)")
+        raise GeometryError("the roller leaves no envelope point on the cam")
     k = np.flatnonzero(keep[:-1])
     starts = [int(j) for j in k if not keep[j - 1 if j else samples - 2]]  # runs beginning at j
     ends = [int(j) for j in k if not keep[j + 1]]  # runs ending at j
-    if meet is not None:
-        return _cam_cycle(curve, w, keep, starts, ends, meet)
-    cuts = []
-    for e in ends:
-        b = min((s for s in starts if s > e), default=starts[0])  # the next run, cyclically
-        cuts.append(_refine_cut(curve, w, e, b))
-    return cuts
+    return _cam_cycle(curve, w, keep, starts, ends, meet)
 
 
 def _cam_cycle(curve, w, keep, starts, ends, meet: float):
@@ -160,19 +100,20 @@ def _cam_cycle(curve, w, keep, starts, ends, meet: float):
     raise GeometryError("the arcs of the roller's envelope that no roller covers do not close around the cam axis")
 
 
-def _refine_cut(curve, w, e, b):
-    """The crossing ``curve(wa) = curve(wb)`` with ``wa`` just after sample ``e`` and ``wb`` just
-    before sample ``b``: the chords' crossing, then Newton."""
+def _refine_cut(curve, w, e, b, da: int = 1, db: int = 1):
+    """The crossing ``curve(wa) = curve(wb)`` with ``wa`` just past sample ``e`` (going in the direction
+    ``da`` of ``w``, +1 or -1) and ``wb`` just before sample ``b`` (coming in the direction ``db``): the
+    chords' crossing, then Newton."""
     n = len(w)
-    ja = np.arange(e - 2, e + 3) % (n - 1)
-    jb = np.arange(b - 3, b + 2) % (n - 1)
+    ja = (e + da * np.arange(-2, 3)) % (n - 1)
+    jb = (b + db * np.arange(-3, 2)) % (n - 1)
     pa, pb = curve(w[ja]), curve(w[jb])
     best = None
     for i in range(len(ja) - 1):
         for j in range(len(jb) - 1):
             t = _chord_cross(pa[i], pa[i + 1], pb[j], pb[j + 1])
             if t is not None:
-                best = (w[ja[i]] + t[0] * (w[1] - w[0]), w[jb[j]] + t[1] * (w[1] - w[0]))
+                best = (w[ja[i]] + da * t[0] * (w[1] - w[0]), w[jb[j]] + db * t[1] * (w[1] - w[0]))
     if best is None:  # no chord crossing seen: start from the last kept and first kept samples
         best = (w[e], w[b])
     return _newton(curve, *best, h=0.5 * (w[1] - w[0]))
@@ -256,27 +197,110 @@ def corner_lines(curve, motion, tool):
     return out
 
 
-def bridge_cuts(curve, cuts, corners, scale: float, step: float = 1.0 / 16384):
-    """Every cut through :func:`_bridge`: the cuts ``[(wa, wb), ...]`` and the straight stretches
-    ``{wa: FaceEdge}`` that run from a cut's ``wa`` to its ``wb``."""
-    out, straight = [], {}
-    for cut in cuts:
-        wa, wb, edge = _bridge(curve, cut, corners, scale, step)
-        out.append((wa, wb))
-        if edge is not None:
-            straight[wa] = edge
-    return out, straight
+def face_boundary(curve, depth, slack: float, corners, scale: float, samples: int = 16385):
+    """The flat face's cam from its envelope ``curve`` (of ``w`` in [0, 1], one turn): the kept arcs in
+    the order the cam's boundary runs (clockwise, as the envelope of a face turning with the cam), each
+    joined to the next, and the stretches of ``w`` cut away.
+
+    A sample is kept where ``depth`` (:meth:`~gearkit.families.cam.halfplanes.HalfPlanes.depth`) is at
+    most ``slack`` (mm: the half-planes' own sampling error). The runs of kept samples are ordered by
+    their polar angles; each run's end meets the next run's start at the envelope's crossing, or along
+    a corner's face line (:func:`_bridge`; ``corners`` of :func:`corner_lines`). Returns ``(arcs,
+    cuts)``: ``arcs`` ``[(spans, edge)]``, the stretches ``(w0, w1)`` of one kept arc in the order they
+    are walked (``w1 < w0`` where it runs against ``w``; split at ``w = 1``) and the :class:`FaceEdge`
+    to the next arc or None; ``cuts`` ``[(wa, wb)]``, from a kept arc's end to the next one's start
+    along ``w`` (cyclic: ``wb`` may be below ``wa``). One arc ``[((0, 1),), None]`` and no cut when the
+    whole envelope bounds the cam.
+
+    Raises
+    ------
+    GeometryError
+        When no sample is kept, or a run's end meets the next run's start neither at a crossing nor
+        along a corner's face line.
+    """
+    w = np.linspace(0.0, 1.0, samples)
+    m, step = samples - 1, w[1] - w[0]
+    keep = depth(curve(w[:-1])) <= slack
+    if keep.all():
+        return [(((0.0, 1.0),), None)], []
+    if not keep.any():
+        raise GeometryError("the flat face leaves no envelope point on the cam (no line touches it)")
+    first = np.flatnonzero(keep & ~np.roll(keep, 1))
+    last = np.flatnonzero(keep & ~np.roll(keep, -1))
+    last = np.where(last < first[0], last + m, last) if last[0] < first[0] else last
+    runs = sorted(zip(first.tolist(), np.sort(last).tolist()))  # (first, last), last >= first (unwrapped)
+    for _ in range(len(runs)):
+        arcs, dropped = _join_runs(curve, w, runs, corners, scale, step)
+        if not dropped:
+            break
+        runs = [r for k, r in enumerate(runs) if k not in dropped]
+    ranges = sorted(((min(e, f, key=sum), max(e, f, key=sum)) for e, f, _ in arcs), key=lambda r: r[0][0])
+    cuts = sorted((hi[0], lo[0]) for (_, hi), (lo, _) in zip(ranges, ranges[1:] + ranges[:1]))  # along w
+    return [(_spans(entry, leave), edge) for entry, leave, edge in arcs], cuts
+
+
+def _join_runs(curve, w, runs, corners, scale, step):
+    """The runs' arcs joined around the cam: ``[(lo, hi, (entry, leave, edge))]`` in boundary order
+    (``lo < hi`` the arc's unwrapped ``w`` range, ``entry`` and ``leave`` its ends as walked) and the
+    indices of runs left with no arc (both joins past each other: a run of a sample or two)."""
+    m = len(w) - 1
+
+    def polar(j):
+        q = curve(np.mod(np.asarray(j, dtype=float), m) / m)
+        return np.unwrap(np.arctan2(q[:, 1], q[:, 0]))
+    info = []
+    for a, b in runs:
+        ang = polar(np.arange(a, b + 1)) if b > a else polar([a - 0.25, a + 0.25])
+        info.append((1 if ang[-1] < ang[0] else -1, float(np.mod(ang[len(ang) // 2], 2 * math.pi))))
+    order = sorted(range(len(runs)), key=lambda k: -info[k][1])  # clockwise from the largest polar angle
+    # start the walk at the run holding w = 0 (the start angle, where the envelope is outermost)
+    home = next((k for k in order if runs[k][0] == 0 or runs[k][1] >= m), order[0])
+    order = order[order.index(home):] + order[:order.index(home)]
+    joins = []
+    for i, k in enumerate(order):
+        nxt = order[(i + 1) % len(order)]
+        (a, b), d = runs[k], info[k][0]
+        (c, e), dn = runs[nxt], info[nxt][0]
+        leave, arrive = (b if d > 0 else a), (c if dn > 0 else e)
+        wa, wb = _refine_cut(curve, w, leave % m, arrive % m, d, dn)
+        joins.append(_bridge(curve, (wa, wb), corners, scale, step))
+    arcs, dropped = [], set()
+    for i, k in enumerate(order):
+        (a, b), d = runs[k], info[k][0]
+        entry = _near(joins[i - 1][1], (a if d > 0 else b) / m)
+        leave = _near(joins[i][0], (b if d > 0 else a) / m)
+        if (sum(leave) - sum(entry)) * d <= 0.0:
+            dropped.add(k)
+        arcs.append((entry, leave, joins[i][2]))
+    return arcs, dropped
+
+
+def _near(x: float, ref: float):
+    """``x`` (in [0, 1]) and the whole turns of ``w`` that put it nearest ``ref``: ``(x, turns)``."""
+    return float(x), int(np.round(ref - x))
+
+
+def _spans(entry, leave):
+    """The walk from ``entry`` to ``leave`` (each ``(w, turns)``) as stretches inside [0, 1], in order."""
+    (x, j), (y, k) = entry, leave
+    if j == k:
+        out = [(x, y)]
+    elif k > j:
+        out = [(x, 1.0)] + [(0.0, 1.0)] * (k - j - 1) + [(0.0, y)]
+    else:
+        out = [(x, 0.0)] + [(1.0, 0.0)] * (j - k - 1) + [(1.0, y)]
+    return tuple(sp for sp in out if sp[0] != sp[1])
 
 
 def _bridge(curve, cut, corners, scale: float, step: float):
-    """A cut ``(wa, wb)`` of :func:`kept_runs` whose ends do not meet (no self-crossing of the
+    """A join ``(wa, wb)`` of :func:`face_boundary` whose ends do not meet (no self-crossing of the
     envelope there): the straight stretch of the cam between them along a corner's face line.
 
     ``corners`` are ``(n, h, e0, e1)``: the face line at each velocity jump and the ``w`` range of
     its corner section. An end within the section's reach snaps to the section's nearer end (the
     face's slide at the jump runs along the same line), any other end to the envelope's crossing
     with the line. Returns ``(wa, wb, edge)``; ``edge`` is None when the cut's ends meet (within
-    ``1e-6 scale``); the step is :func:`kept_runs` sampling step.
+    ``1e-6 scale``); the step is :func:`face_boundary`'s sampling step.
 
     Raises
     ------
@@ -289,7 +313,7 @@ def _bridge(curve, cut, corners, scale: float, step: float):
         return wa, wb, None
     off = [abs(pa @ n - h) + abs(pb @ n - h) for n, h, _, _ in corners]
     if not off or min(off) > 1e-2 * scale:
-        raise GeometryError("a cut of the flat face's envelope meets neither a crossing nor a corner's face line")
+        raise GeometryError("a kept arc of the flat face's envelope meets the next one neither at a crossing nor along a corner's face line")
     n, h, e0, e1 = corners[int(np.argmin(off))]
     ends = []
     for w in (wa, wb):

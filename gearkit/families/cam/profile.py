@@ -23,7 +23,8 @@ from gearkit.curves import cross2, polyline_self_intersections
 from gearkit.envelope import Branch, touching
 from gearkit.errors import GeometryError, is_real, require
 from gearkit.families.cam.curve import AngleBranch, CamCurve, PitchCurve
-from gearkit.families.cam.faces import bridge_cuts, corner_lines, face_depth, kept_runs, roller_depth
+from gearkit.families.cam.faces import corner_lines, face_boundary, kept_runs, roller_depth
+from gearkit.families.cam.halfplanes import face_depth
 from gearkit.families.cam.follower import follower_motion, follower_tool, lift_direction, reference_point
 from gearkit.families.cam.turns import CamTurns
 
@@ -77,6 +78,7 @@ class CamProfile:
         corners = self._corners(scale)
         self.corner_angles = tuple(phi for phi, dv, _, _ in spec.motion.jumps() if abs(dv) > 1e-12 * scale)
         self.branch = CamCurve(AngleBranch(self.envelope), start, corners, CamTurns(spec))
+        self.planes = None  # a flat face's half-planes (gearkit.families.cam.halfplanes.HalfPlanes)
         self.pieces, self.loops = self._trim()
 
     # -- construction ---------------------------------------------------------------------
@@ -109,39 +111,42 @@ class CamProfile:
         return out
 
     def _trim(self):
-        """The kept pieces (split where the curve has a break: a section's end, a motion join) and
-        the loops cut away, ``(phi_a, phi_b)``."""
-        straight = {}
-        if self.spec.contact != "knife":
-            scale = self.spec.prime_radius + self.spec.stroke
-            if self.spec.contact == "flat":
-                depth = face_depth(self.motion, self.tool, self.start)
-            else:
-                depth = roller_depth(self.pitch_points, self.spec.roller_radius, self.start)
-            if self.spec.contact == "flat":  # a cut whose ends do not cross runs along a corner's face line
-                cuts = sorted(kept_runs(self.branch, depth, 1e-7 * scale))
-                cuts, straight = bridge_cuts(self.branch, cuts, corner_lines(self.branch, self.motion, self.tool), scale)
-            else:  # every cut a crossing, in the order the cam's boundary runs
-                cuts = kept_runs(self.branch, depth, 1e-7 * scale, meet=1e-6 * scale)
-            loops = tuple((self._phi(wa), self._phi(wb)) for wa, wb in cuts)
-            if not cuts:
-                spans = [(0.0, 1.0)]
-            else:
-                spans = []
-                for (_, wb), (wa, _) in zip(cuts, cuts[1:] + cuts[:1]):
-                    spans += [(wb, wa)] if wb < wa else [(wb, 1.0), (0.0, wa)]
-                spans = sorted(sp for sp in spans if sp[1] > sp[0])
-        else:
+        """The kept pieces in the order the cam's boundary runs (split where the curve has a break: a
+        section's end, a motion join) and the loops cut away, ``(phi_a, phi_b)``."""
+        if self.spec.contact == "knife":
             pieces, loops = self._trim_loops()
-            spans = [(pc.w0, pc.w1) for pc in pieces]
+            return self._split([((pc.w0, pc.w1), None) for pc in pieces]), loops
+        scale = self.spec.prime_radius + self.spec.stroke
+        if self.spec.contact == "flat":  # the arcs in the order of the boundary, joined along a corner's line
+            self.planes = face_depth(self.motion, self.tool, self.start, self.corner_angles)
+            arcs, cuts = face_boundary(self.branch, self.planes.depth, 1e-7 * scale,
+                                       corner_lines(self.branch, self.motion, self.tool), scale)
+            chain = [(span, edge if k + 1 == len(spans) else None) for spans, edge in arcs
+                     for k, span in enumerate(spans)]
+        else:  # every cut a crossing, in the order the cam's boundary runs
+            depth = roller_depth(self.pitch_points, self.spec.roller_radius, self.start)
+            cuts = kept_runs(self.branch, depth, 1e-7 * scale, meet=1e-6 * scale)
+            chain = []
+            for (_, wb), (wa, _) in zip(cuts, cuts[1:] + cuts[:1]):
+                chain += [((wb, wa), None)] if wb < wa else [((wb, 1.0), None), ((0.0, wa), None)]
+            chain = sorted(c for c in chain if c[0][1] > c[0][0]) if cuts else [((0.0, 1.0), None)]
+        loops = tuple((self._phi(wa), self._phi(wb)) for wa, wb in cuts)
+        pieces = self._split(chain)
+        first = next((k for k, pc in enumerate(pieces) if pc.curve is self.branch and pc.w0 == 0.0), 0)
+        return pieces[first:] + pieces[:first], loops  # from w = 0, the start angle, where it is kept
+
+    def _split(self, chain):
+        """Pieces of the chain ``[((w0, w1), edge)]`` (a stretch of the branch walked from ``w0`` to ``w1``,
+        then the straight ``edge`` or None), split at the curve's breaks in the order they are walked."""
         breaks = self.branch.breaks(self.spec.motion)
         out = []
-        for w0, w1 in spans:
-            inner = breaks[(breaks > w0 + 1e-12) & (breaks < w1 - 1e-12)]
-            edges = [w0, *inner.tolist(), w1]
+        for (w0, w1), edge in chain:
+            lo, hi = min(w0, w1), max(w0, w1)
+            inner = breaks[(breaks > lo + 1e-12) & (breaks < hi - 1e-12)]
+            edges = [w0, *(inner if w1 > w0 else inner[::-1]).tolist(), w1]
             out += [Piece(self.spec.contact, self.branch, a, b) for a, b in zip(edges[:-1], edges[1:])]
-            out += [Piece(self.spec.contact, straight[w1], 0.0, 1.0)] if w1 in straight else []
-        return tuple(out), tuple(loops)
+            out += [Piece(self.spec.contact, edge, 0.0, 1.0)] if edge is not None else []
+        return tuple(out)
 
     def _trim_loops(self):
         w = np.linspace(0.0, 1.0, 4 * _SCAN + 1)

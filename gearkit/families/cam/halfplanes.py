@@ -1,0 +1,137 @@
+"""The flat face's cam as the intersection of its half-planes, and how far the follower riding it
+leaves its law.
+
+Relative to the cam, the face is a line at every cam angle ``phi`` and the cam lies on the side of
+the cam axis: the cam a flat face leaves is the intersection of the half-planes ``n(phi) . x <=
+h(phi)`` (``n`` the unit normal into the follower, ``h > 0`` the line's distance from the axis), a
+convex region whatever the motion asks for. :class:`HalfPlanes` holds that region from the lines
+of many cam angles: the lines that bound it are the vertices of the convex hull of the dual points
+``d = n / h`` (the intersection is the polar of their hull), in the order of their normals.
+
+Where the motion asks for more than a convex cam gives (``r0 + s + s'' < 0`` for a translating
+face, textbook 3.45; a rocker whose face turns back relative to the cam, ``1 + psi' < 0``), the
+face at its prescribed pose stands off the cam: the follower, held against the cam, leaves its law.
+:func:`follower_departure` measures by how much: a translating face rests at the cam's support
+``H(n)`` in its own direction; a rocker's face turns about the pivot until it touches the cam (the
+largest arm angle at which its line still meets the cam, found by bisection on the support).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = ["HalfPlanes", "face_lines", "face_depth", "follower_departure", "LINES", "ROUND_OFF"]
+
+#: face positions over one turn that stand for the whole family of half-planes
+LINES = 65536
+#: a face whose line misses the cam by less than this fraction of r0 + stroke touches it (round-off of
+#: the support, computed through points up to a few r0 + stroke from the axis)
+ROUND_OFF = 1e-9
+
+
+def face_lines(motion, tool, phi):
+    """The face at cam angles ``phi`` in the cam frame: unit normals ``n`` (away from the cam axis)
+    and distances ``h > 0`` of the lines ``n . x = h``."""
+    phi = np.atleast_1d(np.asarray(phi, dtype=float))
+    ends = tool.evaluate(np.array([0.0, 1.0]))[0]
+    a = motion.to_blank(np.broadcast_to(ends[0], phi.shape + (2,)), phi)
+    b = motion.to_blank(np.broadcast_to(ends[1], phi.shape + (2,)), phi)
+    d = b - a
+    n = np.stack([d[:, 1], -d[:, 0]], -1) / np.hypot(d[:, 0], d[:, 1])[:, None]
+    h = np.einsum("ij,ij->i", n, a)
+    flip = np.where(h < 0, -1.0, 1.0)
+    return n * flip[:, None], h * flip
+
+
+class HalfPlanes:
+    """The convex polygon the half-planes ``n . x <= h`` bound (``n`` unit, ``h > 0``: the origin inside).
+
+    ``normals``, ``heights``: the lines that bound it, counter-clockwise; ``vertices[k]`` is where
+    line ``k`` meets line ``k + 1``, ``angles`` their polar angles.
+
+    Examples
+    --------
+    The unit square from its four sides and a line that cuts off nothing:
+
+    >>> n = np.array([[1.0, 0.0], [0.0, 1.0], [-1.0, 0.0], [0.0, -1.0], [0.6, 0.8]])
+    >>> square = HalfPlanes(n, np.array([1.0, 1.0, 1.0, 1.0, 5.0]))
+    >>> len(square.heights), square.depth(np.array([[0.5, 0.0], [2.0, 1.0]])).tolist()
+    (4, [-0.5, 1.0])
+    >>> square.support(np.array([[0.6, 0.8]])).tolist()  # at the corner (1, 1)
+    [1.4]
+    """
+
+    def __init__(self, n, h):
+        from scipy.spatial import ConvexHull
+
+        idx = ConvexHull(n / h[:, None]).vertices  # counter-clockwise in 2-D
+        na, ha = n[idx], h[idx]
+        nb, hb = np.roll(na, -1, axis=0), np.roll(ha, -1)
+        det = na[:, 0] * nb[:, 1] - na[:, 1] * nb[:, 0]
+        self.normals, self.heights = na, ha
+        self.vertices = np.stack([(ha * nb[:, 1] - hb * na[:, 1]) / det, (na[:, 0] * hb - nb[:, 0] * ha) / det], -1)
+        self.angles = np.arctan2(self.vertices[:, 1], self.vertices[:, 0])
+        self._by_angle = np.argsort(self.angles)
+        normal_angles = np.arctan2(na[:, 1], na[:, 0])
+        self._by_normal = np.argsort(normal_angles)
+        self._normal_angles = normal_angles[self._by_normal]
+
+    def depth(self, points):
+        """Signed distance (mm) of each point outside the polygon (negative inside): against the line
+        whose edge the ray from the origin through the point crosses."""
+        alpha = np.arctan2(points[:, 1], points[:, 0])
+        k = np.searchsorted(self.angles[self._by_angle], alpha) % len(self.angles)  # the edge ends at the next vertex
+        line = self._by_angle[k]
+        return np.einsum("ij,ij->i", points, self.normals[line]) - self.heights[line]
+
+    def support(self, u):
+        """``max u . x`` over the polygon for unit directions ``u`` ``(n, 2)``: at the vertex between the
+        two lines whose normals bracket ``u``."""
+        beta = np.arctan2(u[:, 1], u[:, 0])
+        k = self._by_normal[(np.searchsorted(self._normal_angles, beta) - 1) % len(self._normal_angles)]
+        return np.einsum("ij,ij->i", u, self.vertices[k])
+
+
+def face_depth(motion, tool, start: float, corners=(), samples: int = LINES):
+    """:class:`HalfPlanes` of ``samples`` face positions over one turn from cam angle ``start``, and of the
+    face at each of ``corners`` (cam angles of the velocity jumps, where the face slides along one line)."""
+    phi = np.concatenate([start + np.linspace(0.0, 2.0 * math.pi, samples, endpoint=False), np.asarray(corners, float)])
+    return HalfPlanes(*face_lines(motion, tool, phi))
+
+
+def follower_departure(spec, planes: HalfPlanes, phi):
+    """How far (mm of lift; a rocker's as the arc at its arm) the follower held against the cam
+    ``planes`` falls short of its law at cam angles ``phi``: ``s(phi) - s_actual(phi) >= 0`` (0 where
+    the face touches the cam at its prescribed pose).
+
+    A translating face rests at ``r0 + s_actual = H(n)``, the cam's support in the face's direction
+    (the face's normal in the cam frame is ``(sin phi, cos phi)``). A rocker's face lies along the arm
+    through the pivot ``(l0, 0)``: at arm angle ``Psi`` its line has the normal ``(sin Psi, cos Psi)``
+    and the height ``l0 sin Psi`` (fixed frame); it rests at the largest ``Psi`` whose line still
+    meets the cam (the lines from ``Psi = 0``, through the axis inside the cam, up to that one all
+    cut it), found by bisection between 0 and the prescribed angle. The face is the whole line, as
+    the cam was generated: a line touching the cam at its prescribed pose (within ``ROUND_OFF`` of
+    the cam's size) gives the law, wherever along it the contact lies.
+    """
+    phi = np.atleast_1d(np.asarray(phi, dtype=float))
+    s = spec.motion.evaluate(phi)[0]
+    c, n = np.cos(phi), np.sin(phi)
+
+    def support(u):  # the cam's support in fixed-frame directions u (turned by -phi into the cam frame)
+        return planes.support(np.stack([c * u[:, 0] + n * u[:, 1], -n * u[:, 0] + c * u[:, 1]], -1))
+
+    if spec.follower == "translating":
+        return np.maximum(spec.prime_radius + s - support(np.stack([np.zeros_like(phi), np.ones_like(phi)], -1)), 0.0)
+    l0, arm = spec.pivot_distance, spec.arm_length
+
+    def gap(psi):  # how far the cam reaches beyond the face's line at arm angle psi
+        return support(np.stack([np.sin(psi), np.cos(psi)], -1)) - l0 * np.sin(psi)
+    prescribed = spec.psi0 + s / arm
+    lo, hi = np.zeros_like(prescribed), prescribed.copy()
+    away = gap(hi) < -ROUND_OFF * (spec.prime_radius + spec.stroke)  # it stands off: it turns down until it touches
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        meets = gap(mid) >= 0.0
+        lo, hi = np.where(away & meets, mid, lo), np.where(away & ~meets, mid, hi)
+    return np.where(away, arm * (prescribed - hi), 0.0)

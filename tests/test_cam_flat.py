@@ -1,0 +1,123 @@
+"""A flat face's cam is the intersection of its half-planes, and where the face cannot follow its law the
+check reports how far and where the follower leaves it (never an error).
+
+Oracles, none of them the product's envelope, trimming or departure code: the face's lines written out
+from the frames of :class:`CamSpec` (``fuzzkit.face_half_planes``) and scipy's intersection of 65 536 of
+their half-planes (``fuzzkit.check_flat_cam``: the outline inside every one, convex, enclosing their
+polygon's area); the follower's pose on that polygon by brute force over its vertices (a translating face
+rests on the highest vertex, a rocker's line through the pivot on the vertex at the largest line angle).
+"""
+import math
+
+import numpy as np
+import pytest
+from fuzzkit import check_flat_cam, face_half_planes, true_deviation
+
+from gearkit.checks.cam import check_cam
+from gearkit.families.cam import CamSpec, MotionProgram, MotionSegment, cam_profile
+
+#: the bound is proven: the dense measure may exceed it by round-off only
+BOUND_SLACK = 1e-9
+#: the oracle's lines over one turn
+LINES = 1 << 16
+#: the product's pose and the oracle's agree to this fraction of r0 + stroke: their polygons of sampled lines
+#: (from different start angles) differ by their vertices' excess, below 1e-7 of the cam's size here
+AGREE = 1e-6
+
+ROCKER = dict(follower="rocker", contact="flat")
+#: flat rockers whose face turns several times as fast as the cam and back on the return (psi' from -6.9 to
+#: 6.9; from -2.5 to 2.6): the kept arcs of the envelope lie out of the order of the cam angle, and pairing
+#: them by it raised GeometryError ("a cut of the flat face's envelope meets neither a crossing nor a face line")
+STEEP = [
+    (dict(prime_radius=20.0, pivot_distance=24.0, arm_length=27.13), (35.0, 20.0, 1.75, 20.0, "polynomial_345"), 1e-5),
+    (dict(prime_radius=8.0, pivot_distance=20.33, arm_length=10.17), (26.7, 92.2, 0.0, 93.0, "harmonic"), 1e-4),
+]
+
+
+@pytest.mark.parametrize("kw, motion, tol_r0", STEEP)
+def test_steep_flat_rocker_cam_is_the_intersection_of_its_half_planes(kw, motion, tol_r0):
+    spec = CamSpec(motion=MotionProgram.rise_dwell_return(*motion), **ROCKER, **kw)
+    prof = cam_profile(spec)
+    tol = tol_r0 * spec.prime_radius
+    out, achieved = prof.outline(tol), prof.achieved(tol)
+    closed = np.concatenate([out[::-1], out[-1:]])  # the pieces' own order
+    assert true_deviation(prof.pieces, closed) <= achieved * (1 + BOUND_SLACK) and achieved <= tol
+    check_flat_cam(spec, out, tol, LINES)
+    # the pieces follow each other around the cam: each starts where the one before it ends
+    ends = np.array([[pc(np.array([0.0]))[0], pc(np.array([1.0]))[0]] for pc in prof.pieces])
+    gaps = np.hypot(*(ends[:, 0] - np.roll(ends[:, 1], 1, axis=0)).T)
+    assert gaps.max() <= 1e-6 * (spec.prime_radius + spec.stroke)
+
+
+def brute_departure(spec, phi):
+    """How far the follower falls short of its law at cam angles ``phi``, on the polygon of the face's
+    half-planes: its pose found over every vertex (the face is the whole line through the pivot, as the cam
+    was generated: each vertex's line angle is taken within a half turn below the prescribed one)."""
+    from scipy.spatial import HalfspaceIntersection
+
+    lines = np.concatenate([np.linspace(0.0, 2 * math.pi, LINES, endpoint=False),
+                            [p for p, dv, _, _ in spec.motion.jumps() if dv != 0.0]])
+    n, h = face_half_planes(spec, lines)
+    poly = HalfspaceIntersection(np.column_stack([n, -h]), np.zeros(2)).intersections
+    out = []
+    for p, s in zip(phi, spec.motion.evaluate(phi)[0]):
+        c, sn = math.cos(p), math.sin(p)
+        x, y = c * poly[:, 0] - sn * poly[:, 1], sn * poly[:, 0] + c * poly[:, 1]  # the cam turned by phi
+        if spec.follower == "translating":
+            out.append(spec.prime_radius + s - y.max())
+            continue
+        psi = math.asin(spec.prime_radius / spec.pivot_distance) + s / spec.arm_length
+        line = np.arctan2(y, spec.pivot_distance - x)
+        top = psi + 1e-9  # a vertex on the prescribed line (either side of the pivot) counts as touching
+        out.append(spec.arm_length * (psi - (top - np.mod(top - line, math.pi)).max()))
+    return np.array(out)
+
+
+DEPARTING = STEEP + [
+    # a rocker turning back on a constant-velocity return: every line of the return is cut away (the cut
+    # holds the return's velocity jump, so the profile's undercut flag did not count it)
+    (dict(prime_radius=29.920755273305605, pivot_distance=35.90490632796673, arm_length=17.952453163983364),
+     (14.960377636652803, 29.920755273305605, 29.920755273305605, 20.0, "constant_velocity"), 1e-4),
+    # translating: r0 + s + s'' < 0 (textbook 3.45) on a cycloidal rise, and a velocity drop at a
+    # constant-velocity rise's end (s'' = -inf there: no face can follow it)
+    (dict(prime_radius=40.0, follower="translating"), (20.0, 60.0, 60.0, 60.0, "cycloidal"), 1e-4),
+    (dict(prime_radius=10.0, follower="translating"), (8.0, 60.0, 20.0, 60.0, "constant_velocity"), 1e-4),
+]
+#: cams a flat face follows exactly: r0 above max(-s - s'') (translating), a slow rocker
+FOLLOWING = [
+    (dict(prime_radius=60.0, follower="translating"), (10.0, 90.0, 20.0, 90.0, "cycloidal"), 1e-4),
+    (dict(prime_radius=30.0, pivot_distance=80.0, arm_length=60.0), (5.0, 90.0, 20.0, 90.0, "cycloidal"), 1e-4),
+]
+
+
+@pytest.mark.parametrize("kw, motion, tol_r0", DEPARTING + FOLLOWING)
+def test_flat_face_departure_from_its_law_is_reported_where_and_how_far(kw, motion, tol_r0):
+    spec = CamSpec(motion=MotionProgram.rise_dwell_return(*motion), **dict(ROCKER, **kw))
+    tol = tol_r0 * spec.prime_radius
+    res = check_cam(spec, tol)
+    finding = next(f for f in res.report.findings if f.id == "undercut")
+    grid = np.linspace(0.0, 2 * math.pi, 7201)[::10]  # every tenth angle the check reads
+    brute = brute_departure(spec, grid)
+    agree = AGREE * (spec.prime_radius + spec.stroke)
+    worst, at = res.values["departure_max"], res.values["departure_at_deg"]
+    assert abs(brute_departure(spec, np.array([math.radians(at)]))[0] - worst) <= agree
+    assert worst >= brute.max() - agree and finding.value == worst and finding.limit == tol
+    inside = np.zeros(len(grid), dtype=bool)
+    for a, b in res.values["departure_deg"]:
+        inside |= (np.degrees(grid) >= a - 1e-9) & (np.degrees(grid) <= b + 1e-9)
+    assert not inside[brute < tol - agree].any() and inside[brute > tol + agree].all()
+    if (kw, motion, tol_r0) in FOLLOWING:
+        assert worst <= agree and finding.status == "ok" and res.values["undercut"] is False
+    else:
+        assert worst > 100 * tol and finding.status == "fail" and res.report.status == "fail"
+        assert res.values["undercut"] is True and f"{worst:.6g}" in finding.message
+
+
+def test_flat_face_on_an_eccentric_circle_keeps_its_law():
+    # an eccentric circle (radius R, eccentricity eps) moves a flat face by s = eps (1 - cos phi) exactly:
+    # the harmonic law over half turns is followed, nothing is cut
+    big_r, eps = 30.0, 6.0
+    prog = MotionProgram((MotionSegment("rise", 180.0, 2 * eps, "harmonic"),
+                          MotionSegment("return", 180.0, 2 * eps, "harmonic")))
+    res = check_cam(CamSpec(big_r - eps, prog, contact="flat"), 1e-3)
+    assert res.values["departure_max"] <= 1e-9 * (big_r + eps) and res.values["departure_deg"] == []
