@@ -201,17 +201,18 @@ def _crossing(task, a, b):
     return np.where(gb <= 0, np.where((ga <= 0) & (ga > gb), a, b), a)
 
 
-def _refine(mesh, phi, theta, sigma, sb, m, fa, fb, half):
+def _refine(mesh, phi, theta, sigma, sb, m, fa, fb, half, frame):
     """Minima of the bound function over polyline intervals ``m`` (one row each), the smallest kept
-    per ``half`` (row indices ``sel``): on the tables, then the winners evaluated on the exact pieces."""
+    per ``half`` (row indices ``sel``): on the tables, then the winners evaluated on the exact pieces.
+    ``frame``: the rows' :meth:`Mesh.frames`, made by the search."""
     drv = mesh.driver
     piece, a, b = drv.piece[m], drv.ta[m].copy(), drv.tb[m].copy()
-    task = _Task(mesh, phi, theta, sigma, sb, piece, m)
+    task = _Task(mesh, phi, theta, sigma, sb, piece, m, frame)
     cross = fa != fb
     at_tip = np.zeros(len(m), bool)
     if cross.any():
         rows = np.flatnonzero(cross)
-        sub = _Task(mesh, phi[rows], theta[rows], sigma[rows], sb[rows], piece[rows])
+        sub = _Task(mesh, phi[rows], theta[rows], sigma[rows], sb[rows], piece[rows], frame=frame[:, rows])
         tc = inner = _crossing(sub, a[rows], b[rows])
         if mesh.tables:  # the crossing on the exact pieces, in a narrow bracket about the tables' one
             sub.exact = True
@@ -241,7 +242,7 @@ def _refine(mesh, phi, theta, sigma, sb, m, fa, fb, half):
         flag = (g > -rim) & ~(at_tip[sel] & ((ts == ls) | (ts == hs)))
         if flag.any():
             r = np.flatnonzero(np.isin(half, half[sel[flag]]))
-            sub = _Task(mesh, phi[r], theta[r], sigma[r], sb[r], piece[r])
+            sub = _Task(mesh, phi[r], theta[r], sigma[r], sb[r], piece[r], frame=frame[:, r])
             sub.exact = True
             value[r], t[r] = minimise(sub, a[r], b[r])
             sel = _winners(value, half)
@@ -344,7 +345,8 @@ def _solve_chunk(mesh, phi, contact_tol, bounds) -> Bounds:
     corner2 = np.zeros(shape, bool)
     if i_n.size:
         sigma = np.where(i_h == 0, 1.0, -1.0)
-        sel, res = _refine(mesh, phi[i_n], theta[i_n, i_k], sigma, np.array([1.0, -1.0])[i_b], i_m, fa, fb, i_a * 2 + i_b)
+        sel, res = _refine(mesh, phi[i_n], theta[i_n, i_k], sigma, np.array([1.0, -1.0])[i_b], i_m, fa, fb, i_a * 2 + i_b,
+                           frame[:, i_a])
         at = (i_n[sel], i_k[sel], i_h[sel], i_b[sel])
         exact[at] = True
         value[at], point[at], normal[at], arm[at], piece1[at], piece2[at], rho2[at], corner1[at], corner2[at] = res

@@ -178,7 +178,7 @@ class CurveTable:
             return self._exact_piece(kf, tf).reshape(shape + (2,))
         j, s = self._locate(kf, tf)
         p = np.stack(_gathered(self._coef, j, s), -1)
-        slow = np.flatnonzero(self._fallback[j])
+        slow = np.flatnonzero(self._fallback[j]) if not self.smooth else j[:0]  # (smooth: none left to the pieces)
         if slow.size:
             p[slow] = self._exact_piece(kf[slow], tf[slow])
         p = p.reshape(shape + (2,))
@@ -196,7 +196,7 @@ class CurveTable:
         """:meth:`evaluate` of flat ``k``, ``t`` as two flat arrays ``[x, y]``."""
         j, s = self._locate(k, t)
         p = _gathered(self._coef, j, s)
-        slow = np.flatnonzero(self._fallback[j])
+        slow = np.flatnonzero(self._fallback[j]) if not self.smooth else j[:0]  # (smooth: none left to the pieces)
         if slow.size:
             exact = self._exact_piece(k[slow], t[slow])
             p[0][slow], p[1][slow] = exact[:, 0], exact[:, 1]
@@ -312,7 +312,7 @@ class WidthTable:
         half = self.half
         j, row, x, s = self._locate(rho)
         w = _gathered(self._coef, j, s)[0]
-        slow = np.flatnonzero(self._fallback[j])
+        slow = np.flatnonzero(self._fallback[j]) if not self.smooth else j[:0]  # (smooth: none left to the pieces)
         if slow.size:
             w[slow] = half.exact(rho[slow])[0]
         body, free = half._body(rho), half.free(rho)
