@@ -51,26 +51,33 @@ def test_steep_flat_rocker_cam_is_the_intersection_of_its_half_planes(kw, motion
 
 def brute_departure(spec, phi):
     """How far the follower falls short of its law at cam angles ``phi``, on the polygon of the face's
-    half-planes: its pose found over every vertex (the face is the whole line through the pivot, as the cam
-    was generated: each vertex's line angle is taken within a half turn below the prescribed one)."""
+    half-planes, and where along the face it touches: its pose found over every vertex (a translating face
+    rests on the highest; a rocker's turns down about the pivot until a vertex stops it, the one at the
+    largest angle seen from the pivot: every vertex lies within a half turn below the prescribed angle, on
+    the axis's side of the face). Returns ``(gap, contact, vertex spacing)``."""
     from scipy.spatial import HalfspaceIntersection
 
     lines = np.concatenate([np.linspace(0.0, 2 * math.pi, LINES, endpoint=False),
                             [p for p, dv, _, _ in spec.motion.jumps() if dv != 0.0]])
     n, h = face_half_planes(spec, lines)
     poly = HalfspaceIntersection(np.column_stack([n, -h]), np.zeros(2)).intersections
-    out = []
+    gap, contact = [], []
     for p, s in zip(phi, spec.motion.evaluate(phi)[0]):
         c, sn = math.cos(p), math.sin(p)
         x, y = c * poly[:, 0] - sn * poly[:, 1], sn * poly[:, 0] + c * poly[:, 1]  # the cam turned by phi
         if spec.follower == "translating":
-            out.append(spec.prime_radius + s - y.max())
+            k = int(np.argmax(y))
+            gap.append(spec.prime_radius + s - y[k])
+            contact.append(x[k] - spec.offset)
             continue
         psi = math.asin(spec.prime_radius / spec.pivot_distance) + s / spec.arm_length
-        line = np.arctan2(y, spec.pivot_distance - x)
-        top = psi + 1e-9  # a vertex on the prescribed line (either side of the pivot) counts as touching
-        out.append(spec.arm_length * (psi - (top - np.mod(top - line, math.pi)).max()))
-    return np.array(out)
+        seen = np.arctan2(y, spec.pivot_distance - x)
+        k = int(np.argmax(seen))
+        gap.append(spec.arm_length * (psi - seen[k]))
+        contact.append(math.hypot(spec.pivot_distance - x[k], y[k]))
+    ring = np.roll(poly[np.argsort(np.arctan2(poly[:, 1], poly[:, 0]))], 1, axis=0) - poly[np.argsort(np.arctan2(
+        poly[:, 1], poly[:, 0]))]
+    return np.array(gap), np.array(contact), float(np.hypot(*ring.T).max())
 
 
 DEPARTING = STEEP + [
@@ -96,12 +103,14 @@ def test_flat_face_departure_from_its_law_is_reported_where_and_how_far(kw, moti
     tol = tol_r0 * spec.prime_radius
     res = check_cam(spec, tol)
     finding = next(f for f in res.report.findings if f.id == "undercut")
-    grid = np.linspace(0.0, 2 * math.pi, 7201)[::10]  # every tenth angle the check reads
-    brute = brute_departure(spec, grid)
+    grid = np.linspace(0.0, 2 * math.pi, 7201)  # the angles the check reads
+    brute, contact, spacing = brute_departure(spec, grid)
     agree = AGREE * (spec.prime_radius + spec.stroke)
     worst, at = res.values["departure_max"], res.values["departure_at_deg"]
-    assert abs(brute_departure(spec, np.array([math.radians(at)]))[0] - worst) <= agree
-    assert worst >= brute.max() - agree and finding.value == worst and finding.limit == tol
+    assert abs(brute_departure(spec, np.array([math.radians(at)]))[0][0] - worst) <= agree
+    assert abs(worst - brute.max()) <= agree and finding.value == worst and finding.limit == tol
+    # where the face touches the cam (its law's contact, or where it rests), to the polygon's vertex spacing
+    assert np.allclose(res.values["face_contact_range"], [contact.min(), contact.max()], rtol=0.0, atol=spacing)
     inside = np.zeros(len(grid), dtype=bool)
     for a, b in res.values["departure_deg"]:
         inside |= (np.degrees(grid) >= a - 1e-9) & (np.degrees(grid) <= b + 1e-9)

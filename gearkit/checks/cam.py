@@ -163,13 +163,13 @@ def _curvature(spec, prof, f, values, tol):
         f.append(Finding("convexity", "ok" if rho_min > 0 and not prof.undercut else "fail", rho_min, 0.0,
                          "smallest radius of curvature of the flat-faced cam, mm: it must stay positive (convex "
                          "cam), else the face cannot follow the motion", "min"))
-        reach = prof.face_contact(phi)
+        gap, actual = _departure(spec, prof, phi, tol, f, values)
+        reach = np.where(gap > 0.0, actual, prof.face_contact(phi))  # where the face leaves its law: where it rests
         values["face_contact_range"] = [float(reach.min()), float(reach.max())]
         values["face_width"] = float(reach.max() - reach.min())
         f.append(Finding("face_width", "ok", values["face_width"], None,
                          f"the face must reach from {reach.min():.6g} to {reach.max():.6g} mm along it (from the "
-                         "foot of the follower axis): at least this width, plus a margin"))
-        _departure(spec, prof, phi, tol, f, values)
+                         "foot of the follower axis; a rocker's from the pivot): at least this width, plus a margin"))
         return
     rho_p = prof.pitch_curvature_radius(phi)
     convex = rho_p > 0
@@ -192,10 +192,11 @@ def _curvature(spec, prof, f, values, tol):
 
 def _departure(spec, prof, phi, tol, f, values):
     """A flat face's undercut: how far the follower held against the cam it leaves (the intersection of
-    the face's half-planes) falls short of its law, and where (more than the outline's ``tol``)."""
+    the face's half-planes) falls short of its law, and where (more than the outline's ``tol``); returns
+    that shortfall and where along the face it rests on the cam, at the cam angles ``phi``."""
     from gearkit.families.cam.halfplanes import follower_departure
 
-    gap = follower_departure(spec, prof.planes, phi)
+    gap, contact = follower_departure(spec, prof.planes, phi)
     k = int(np.argmax(gap))
     worst, at = float(gap[k]), math.degrees(phi[k])
     where = _intervals(gap > tol, phi)
@@ -206,6 +207,7 @@ def _departure(spec, prof, phi, tol, f, values):
            "intersection of its half-planes, cannot give the motion there") if where else \
         f"the follower keeps its law on the cam the face leaves within the outline's tol ({worst:.3g} {unit})"
     f.append(Finding("undercut", "fail" if where else "ok", worst, tol, say, "max"))
+    return gap, contact
 
 
 def _motion(spec, f, values):

@@ -88,9 +88,12 @@ class HalfPlanes:
     def support(self, u):
         """``max u . x`` over the polygon for unit directions ``u`` ``(n, 2)``: at the vertex between the
         two lines whose normals bracket ``u``."""
+        return np.einsum("ij,ij->i", u, self.support_points(u))
+
+    def support_points(self, u):
+        """The vertex where ``u . x`` is largest for each direction ``u`` ``(n, 2)``."""
         beta = np.arctan2(u[:, 1], u[:, 0])
-        k = self._by_normal[(np.searchsorted(self._normal_angles, beta) - 1) % len(self._normal_angles)]
-        return np.einsum("ij,ij->i", u, self.vertices[k])
+        return self.vertices[self._by_normal[(np.searchsorted(self._normal_angles, beta) - 1) % len(self._normal_angles)]]
 
 
 def face_depth(motion, tool, start: float, corners=(), samples: int = LINES):
@@ -101,37 +104,53 @@ def face_depth(motion, tool, start: float, corners=(), samples: int = LINES):
 
 
 def follower_departure(spec, planes: HalfPlanes, phi):
-    """How far (mm of lift; a rocker's as the arc at its arm) the follower held against the cam
-    ``planes`` falls short of its law at cam angles ``phi``: ``s(phi) - s_actual(phi) >= 0`` (0 where
-    the face touches the cam at its prescribed pose).
+    """How far the follower held against the cam ``planes`` falls short of its law at cam angles ``phi``,
+    and where its face touches the cam: ``(gap, contact)``, ``gap = s(phi) - s_actual(phi) >= 0`` in mm of
+    lift (a rocker's as the arc at its arm; 0 where the face touches the cam at its prescribed pose) and
+    ``contact`` the contact's place along the face, mm (from the foot of the follower's axis; a rocker's
+    from the pivot, along the arm).
 
     A translating face rests at ``r0 + s_actual = H(n)``, the cam's support in the face's direction
     (the face's normal in the cam frame is ``(sin phi, cos phi)``). A rocker's face lies along the arm
     through the pivot ``(l0, 0)``: at arm angle ``Psi`` its line has the normal ``(sin Psi, cos Psi)``
-    and the height ``l0 sin Psi`` (fixed frame); it rests at the largest ``Psi`` whose line still
-    meets the cam (the lines from ``Psi = 0``, through the axis inside the cam, up to that one all
-    cut it), found by bisection between 0 and the prescribed angle. The face is the whole line, as
-    the cam was generated: a line touching the cam at its prescribed pose (within ``ROUND_OFF`` of
-    the cam's size) gives the law, wherever along it the contact lies.
+    and the height ``l0 sin Psi`` (fixed frame). The closing force turns it down (``Psi`` falling) until
+    the cam stops it, which only a contact in front of the pivot does (the cam pushing on the face behind
+    the pivot turns it further down): it keeps its law where its line touches the cam (within
+    ``ROUND_OFF`` of the cam's size) in front of the pivot, and rests otherwise at the largest ``Psi``
+    below the prescribed one whose line meets the cam (the lines from ``Psi = 0``, through the axis
+    inside the cam, up to that one all cut it; none below the prescribed one meets it behind the
+    pivot), found by bisection.
     """
     phi = np.atleast_1d(np.asarray(phi, dtype=float))
     s = spec.motion.evaluate(phi)[0]
     c, n = np.cos(phi), np.sin(phi)
 
-    def support(u):  # the cam's support in fixed-frame directions u (turned by -phi into the cam frame)
-        return planes.support(np.stack([c * u[:, 0] + n * u[:, 1], -n * u[:, 0] + c * u[:, 1]], -1))
+    def to_cam(u):  # fixed-frame vectors turned by -phi into the cam frame
+        return np.stack([c * u[:, 0] + n * u[:, 1], -n * u[:, 0] + c * u[:, 1]], -1)
 
     if spec.follower == "translating":
-        return np.maximum(spec.prime_radius + s - support(np.stack([np.zeros_like(phi), np.ones_like(phi)], -1)), 0.0)
+        up = to_cam(np.stack([np.zeros_like(phi), np.ones_like(phi)], -1))
+        touch = planes.support_points(up)
+        gap = np.maximum(spec.prime_radius + s - np.einsum("ij,ij->i", up, touch), 0.0)
+        return gap, np.einsum("ij,ij->i", touch, to_cam(np.stack([np.ones_like(phi), np.zeros_like(phi)], -1))) - spec.offset
     l0, arm = spec.pivot_distance, spec.arm_length
+    pivot = to_cam(np.stack([np.full_like(phi, l0), np.zeros_like(phi)], -1))
+
+    def face(psi):  # the face's normal and its direction along the arm, cam frame
+        return to_cam(np.stack([np.sin(psi), np.cos(psi)], -1)), to_cam(np.stack([-np.cos(psi), np.sin(psi)], -1))
 
     def gap(psi):  # how far the cam reaches beyond the face's line at arm angle psi
-        return support(np.stack([np.sin(psi), np.cos(psi)], -1)) - l0 * np.sin(psi)
+        return planes.support(face(psi)[0]) - l0 * np.sin(psi)
     prescribed = spec.psi0 + s / arm
+    normal, along = face(prescribed)
+    front = planes.support_points(normal + 1e-9 * along)  # of the points the line touches, the farthest along the arm
+    held = (gap(prescribed) >= -ROUND_OFF * (spec.prime_radius + spec.stroke)) & \
+        (np.einsum("ij,ij->i", front - pivot, along) > 0.0)
     lo, hi = np.zeros_like(prescribed), prescribed.copy()
-    away = gap(hi) < -ROUND_OFF * (spec.prime_radius + spec.stroke)  # it stands off: it turns down until it touches
     for _ in range(60):
         mid = 0.5 * (lo + hi)
         meets = gap(mid) >= 0.0
-        lo, hi = np.where(away & meets, mid, lo), np.where(away & ~meets, mid, hi)
-    return np.where(away, arm * (prescribed - hi), 0.0)
+        lo, hi = np.where(~held & meets, mid, lo), np.where(~held & ~meets, mid, hi)
+    normal, along = face(hi)
+    touch = np.where(held[:, None], front, planes.support_points(normal + 1e-9 * along))
+    return np.where(held, 0.0, arm * (prescribed - hi)), np.einsum("ij,ij->i", touch - pivot, along)
