@@ -130,3 +130,44 @@ def test_flat_face_on_an_eccentric_circle_keeps_its_law():
                           MotionSegment("return", 180.0, 2 * eps, "harmonic")))
     res = check_cam(CamSpec(big_r - eps, prog, contact="flat"), 1e-3)
     assert res.values["departure_max"] <= 1e-9 * (big_r + eps) and res.values["departure_deg"] == []
+
+
+def test_kept_arcs_are_joined_in_the_order_of_the_boundary_whatever_way_they_run():
+    # the intersection of three disks (radius R, centres D from the axis at 90, 210 and 330 degrees): its
+    # boundary is one arc of each circle, the disk centred opposite. An "envelope" walks the three circles
+    # past both vertices of their arcs, in the order 0, 2, 1 of w and the second one counter-clockwise: the
+    # kept arcs follow each other around the region clockwise (1, 0, 2 from the top), the second walked
+    # against w, each meeting the next at a vertex, sqrt(4 R^2 - 3 D^2)/2 - D/2 from the axis by symmetry
+    from gearkit.families.cam.faces import face_boundary
+
+    big_r, d = 1.2, 0.5
+    centres = d * np.stack([np.cos(np.radians([90.0, 210.0, 330.0])), np.sin(np.radians([90.0, 210.0, 330.0]))], -1)
+    walks = [(0, 350.0, 190.0), (2, 70.0, 230.0), (1, 110.0, -50.0)]  # circle, from, to (degrees about its centre)
+
+    def curve(w):
+        w = np.atleast_1d(np.asarray(w, dtype=float))
+        k = np.minimum((3 * w).astype(int), 2)
+        out = np.empty((len(w), 2))
+        for i, (c, a0, a1) in enumerate(walks):
+            a = np.radians(a0 + (3 * w[k == i] - i) * (a1 - a0))
+            out[k == i] = centres[c] + big_r * np.stack([np.cos(a), np.sin(a)], -1)
+        return out
+
+    def depth(points):
+        return np.max([np.hypot(*(points - c).T) - big_r for c in centres], axis=0)
+
+    arcs, cuts = face_boundary(curve, depth, 1e-12, [], 1.0)
+    rho = 0.5 * (math.sqrt(4 * big_r ** 2 - 3 * d ** 2) - d)
+    vertex = {a: rho * np.array([math.cos(math.radians(a)), math.sin(math.radians(a))]) for a in (-30, 90, 210)}
+    assert len(arcs) == 3 and all(edge is None and len(spans) == 1 for spans, edge in arcs)
+    spans = [spans[0] for spans, _ in arcs]
+    ends = np.array([curve(np.array(s)) for s in spans])  # (arc, its start and end, xy)
+    polar = np.degrees(np.arctan2(ends[:, :, 1], ends[:, :, 0])).ravel()
+    order = [min(vertex, key=lambda a: abs((p - a + 180) % 360 - 180)) for p in polar]
+    # clockwise, each arc from one vertex to the next, and the next arc starting where it ends
+    assert order in ([90, -30, -30, 210, 210, 90], [-30, 210, 210, 90, 90, -30], [210, 90, 90, -30, -30, 210])
+    assert max(np.hypot(*(e - vertex[a])) for e, a in zip(ends.reshape(-1, 2), order)) <= 1e-12
+    assert [b < a for a, b in spans].count(True) == 1  # the one arc walked against w
+    # the cuts are the rest of w: from each kept arc's end along w to the next one's start
+    kept = sum(abs(b - a) for a, b in spans)
+    assert len(cuts) == 3 and abs(kept + sum((b - a) % 1.0 for a, b in cuts) - 1.0) <= 1e-12
