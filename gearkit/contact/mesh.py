@@ -219,11 +219,22 @@ class Mesh:
     def mate_coords(self, px, py, frame):
         """``rho, u`` (as :meth:`to_mate_xy`) of driver points given in their half's own coordinates,
         through :meth:`frames` ``frame`` (each of its rows broadcast against ``px``, ``py``)."""
-        a, b, c, d, ox, oy, shift = frame
+        rho, x, y = self.mate_radius(px, py, frame)
+        return rho, self.mate_offset(x, y, frame[6])
+
+    def mate_radius(self, px, py, frame):
+        """``rho`` of :meth:`mate_coords` and the mate-frame coordinates ``x, y`` it comes from (for
+        :meth:`mate_offset`, where ``u`` is wanted)."""
+        a, b, c, d, ox, oy, _ = frame
         x, y = a * px - b * py - ox, c * px + d * py - oy
+        return (self.a - y if self.kind == "rack" else np.sqrt(x * x + y * y)), x, y  # (hypot's scaling not needed)
+
+    def mate_offset(self, x, y, shift):
+        """``u`` of :meth:`mate_coords` from :meth:`mate_radius`'s ``x, y`` (``shift``: the frames' last row, read
+        for a rack only)."""
         if self.kind == "rack":
-            return self.a - y, self.space_offset(shift - x)
-        return np.sqrt(x * x + y * y), self.space_offset(np.arctan2(x, y), True)  # (hypot's scaling not needed)
+            return self.space_offset(shift - x)
+        return self.space_offset(np.arctan2(x, y), True)
 
     def mate_derivatives(self, p, d1, d2, frame):
         """:meth:`mate_coords` along a driver curve, with the first and second derivatives in its

@@ -71,9 +71,22 @@ def _block(mesh, frame, r_n, n, contact_tol, searched):
     arm_scale, pitch = mesh.arm_scale, mesh.pitch2
     size = mesh.half_reach[2]
     pts, chord = drv.points[:size], drv.chord[:size - 1]
-    rho, u = mesh.mate_coords(pts[:, :1], pts[:, 1:], frame[:, None, :])  # (M1, A)
-    at = mate.lookup(rho)
-    w = mate.coarse(rho, at)
+    rho, x, y = mesh.mate_radius(pts[:, :1], pts[:, 1:], frame[:, None, :])  # (M1, A)
+    # beyond the mate's tip circle (about a third of the samples) the width is infinite, the arm the radial scale
+    # and the bend nothing: the table is read, and u formed, only on the flank side and next to it
+    free = mate.free(rho)
+    on = np.flatnonzero(~free)
+    near = ~free
+    near[1:] |= ~free[:-1]
+    near[:-1] |= ~free[1:]
+    near = np.flatnonzero(near)
+    u = np.zeros(rho.shape)  # (w = inf where no u is formed: w - u and w + u are inf either way)
+    u.ravel()[near] = mesh.mate_offset(x.ravel()[near], y.ravel()[near],
+                                       frame[6][near % rho.shape[1]] if mesh.kind == "rack" else None)
+    r_on = rho.ravel()[on]
+    at = mate.lookup(r_on)
+    w = np.full(rho.shape, np.inf)
+    w.ravel()[on] = mate.coarse(r_on, at)
     big_u = np.empty((2,) + rho.shape)  # (2, M1, A): w - u, w + u
     np.subtract(w, u, out=big_u[0])
     np.add(w, u, out=big_u[1])
@@ -92,10 +105,16 @@ def _block(mesh, frame, r_n, n, contact_tol, searched):
     # how far the exact function can dip below an interval's ends: the driver's chord deviation
     # plus the mate's bending over the chord, as a normal distance over the arm scale
     rho_mid = 0.5 * (rho[:-1] + rho[1:])
-    at_mid = mate.lookup(rho_mid)
-    bend = mate.curvature(rho_mid, at_mid)
-    arm = mate.arm(rho, at)
-    arm = np.minimum(np.minimum(arm[:-1], arm[1:]), mate.arm(rho_mid, at_mid))
+    mid = np.flatnonzero(~(free[:-1] & free[1:]))  # (between two free samples the midpoint is free)
+    r_mid = rho_mid.ravel()[mid]
+    at_mid = mate.lookup(r_mid)
+    bend = np.zeros(rho_mid.shape)
+    bend.ravel()[mid] = mate.curvature(r_mid, at_mid)
+    arm = mate.off_arm(rho)
+    arm.ravel()[on] = mate.arm(r_on, at)
+    arm_mid = mate.off_arm(rho_mid)
+    arm_mid.ravel()[mid] = mate.arm(r_mid, at_mid)
+    arm = np.minimum(np.minimum(arm[:-1], arm[1:]), arm_mid)
     dip = (mesh.tol + bend * chord[:, None] ** 2 / 8.0) / np.maximum(arm, 1e-12 * arm_scale)  # (M, A)
     if mate.crest:  # next to a rounded crest the bound falls like a square root: always look
         dip[c_m, c_a] = np.inf

@@ -380,9 +380,11 @@ class HalfWidth:
         j, off = self.lookup(rho) if at is None else at
         frac = (rho - self._grid_r[j]) * self._inv_grid[j]
         np.minimum(np.maximum(frac, 0.0, out=frac), 1.0, out=frac)
-        out = self._arm_node[j] + frac * self._darm[j]
-        s = np.abs(rho) if self.root_scale != 1.0 else 1.0
-        return np.where(off, s, out)
+        return np.where(off, self.off_arm(rho), self._arm_node[j] + frac * self._darm[j])
+
+    def off_arm(self, rho):
+        """:meth:`arm` off the flank (beyond the tip, inside the root circle): the radial scale, a new array."""
+        return np.abs(rho) if self.root_scale != 1.0 else np.ones(np.shape(rho))
 
     def curvature(self, rho, at=None):
         """Largest curvature (1/mm) of the mate's flank near ``rho`` (0 off the flank)."""
