@@ -106,7 +106,8 @@ def test_loaded_analysis_agrees_with_the_exact_pieces():
     te = np.abs(exact.transmission_error).max()
     assert np.abs(fast.transmission_error - exact.transmission_error).max() <= position + ARM * te
     assert fast.contact_ratio_loaded == pytest.approx(exact.contact_ratio_loaded, abs=RATIO)
-    assert math.isclose(fast.mesh_stiffness_mean, exact.mesh_stiffness_mean, rel_tol=1e-9)
+    # the stiffness is load over approach along the normals, so it inherits the arms' relative accuracy
+    assert math.isclose(fast.mesh_stiffness_mean, exact.mesh_stiffness_mean, rel_tol=ARM)
 
 
 @pytest.mark.parametrize("spec, z2, x2", [(PairSpec(20, 40, 2.0), 40, 0.0), (PairSpec(18, 41, 1.0, 0.3, -0.1), 41, -0.1)],
