@@ -112,6 +112,32 @@ def test_contact_ratio_does_not_depend_on_the_step_count():
     assert coarse == pytest.approx(fine, abs=1e-6)
 
 
+def test_the_benchmarked_cycle_against_its_closed_forms():
+    """The bench's rigid cycle (20/40, m = 2, 2000 steps) against the closed-form standard pair: zero transmission
+    error within the mesh's stated round-off of a position (``mesh.noise`` along the normal, here on the driven
+    base circle), every contact on the line of action within ``LOCATE``, and the contact ratio of the tip circles
+    ``(g_a1 + g_a2 - a sin alpha) / p_b``. The simulation counts a pair in contact while its clearance is within
+    ``contact_tol``; past an end of the path the clearance grows with the square of the roll, over a radius of
+    curvature below the tip radius, so each of the two ends of a contact lengthens it by at most ``sqrt(2 r_a2
+    contact_tol)``: the simulated ratio lies that far (over ``p_b``) above the formula, and no more than the instants'
+    tolerance below it."""
+    from gearkit.contact.cycle import INSTANT_TOL
+
+    m, z1, z2, alpha = 2.0, 20, 40, math.radians(20.0)
+    mesh = pair_mesh(PairSpec(z1, z2, m, face_width=20.0))
+    res = simulate(mesh, 2000)
+    r1, r2 = m * z1 / 2, m * z2 / 2
+    ra2, rb1, rb2 = r2 + m, r1 * math.cos(alpha), r2 * math.cos(alpha)
+    p_b = math.pi * m * math.cos(alpha)
+    eps = (math.sqrt((r1 + m) ** 2 - rb1 ** 2) + math.sqrt(ra2 ** 2 - rb2 ** 2) - (r1 + r2) * math.sin(alpha)) / p_b
+    lengthen = 2 * math.sqrt(2 * ra2 * res.contact_tol) / p_b
+    assert -4 * INSTANT_TOL <= res.contact_ratio - eps <= lengthen + 4 * INSTANT_TOL
+    assert res.transmission_error_max * rb2 <= mesh.noise
+    off, ang = _line_distance(res.contacts["point"], res.contacts["normal"], mesh.pitch_point, alpha)
+    assert off <= LOCATE * m and ang <= 1e-6
+    assert set(np.unique(res.pairs_in_contact)) == {1, 2} and not res.interference.found
+
+
 def test_contact_instants_converge_to_their_definition():
     """Each instant is the zero of its margin, found to ``INSTANT_TOL`` of a cycle whatever the step:
     16 and 2000 steps average alike within four times that (two instants a cycle, two runs; an
