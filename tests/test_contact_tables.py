@@ -27,7 +27,6 @@ import pytest
 
 from gearkit.contact import Mesh, pair_mesh, simulate
 from gearkit.contact.loaded import loaded_cycle
-from gearkit.contact import tooth as tooth_module
 from gearkit.contact.table import TABLE_TOL
 from gearkit.curves import inv
 from gearkit.families.involute import Modification, ShaperCutter
@@ -112,35 +111,18 @@ def test_loaded_analysis_agrees_with_the_exact_pieces():
 
 @pytest.mark.parametrize("spec, z2, x2", [(PairSpec(20, 40, 2.0), 40, 0.0), (PairSpec(18, 41, 1.0, 0.3, -0.1), 41, -0.1)],
                          ids=["z40", "z41 x=-0.1"])
-def test_the_mates_width_from_the_tables_start_is_the_closed_form_involute(spec, z2, x2):
-    """``HalfWidth.exact`` started from the width table's parameter: on the involute flank the half space width is
-    ``pi / z - psi(rho)``, ``psi = (pi / 2 + 2 x tan alpha) / z + inv alpha - inv alpha_rho``, ``cos alpha_rho = r_b /
-    rho`` (closed form), within ``ULPS`` units in the last place of the tip radius, and the start saves evaluations
-    of the pieces against the secant from the table interval's ends (the table set aside)."""
+def test_the_mates_exact_width_is_the_closed_form_involute(spec, z2, x2):
+    """``HalfWidth.exact`` (the exact pieces every reported contact is valued on): on the involute flank the half
+    space width is ``pi / z - psi(rho)``, ``psi = (pi / 2 + 2 x tan alpha) / z + inv alpha - inv alpha_rho``,
+    ``cos alpha_rho = r_b / rho`` (closed form), within ``ulps`` units in the last place of the tip radius."""
     ulps = 16
-    mesh = pair_mesh(spec)
-    half = mesh.mate
+    half = pair_mesh(spec).mate
     alpha = math.radians(20.0)
     r_b = spec.module * z2 / 2 * math.cos(alpha)
     rho = np.random.default_rng(5).uniform(max(half.rho_root, r_b), half.rho_tip, 20000)
-    calls = []
-    evaluate = tooth_module.evaluate_pieces
-
-    def counted(pieces, k, t):
-        calls.append(np.size(t))
-        return evaluate(pieces, k, t)
-
-    with pytest.MonkeyPatch.context() as mp:
-        mp.setattr(tooth_module, "evaluate_pieces", counted)
-        w, piece, _, _ = half.exact(rho)
-        from_table = sum(calls)
-        mp.setattr(half, "table", None)
-        calls.clear()
-        half.exact(rho)
-        from_ends = sum(calls)
+    w, piece, _, _ = half.exact(rho)
     flank = np.array(half.labels)[np.maximum(piece, 0)] == "flank"
     assert flank.sum() > rho.size // 2
     r = rho[flank]
     psi = (math.pi / 2 + 2 * x2 * math.tan(alpha)) / z2 + inv(alpha) - inv(np.arccos(r_b / r))
     assert (np.abs(w[flank] - (math.pi / z2 - psi)) * r).max() <= ulps * np.finfo(float).eps * half.rho_tip
-    assert from_table < from_ends

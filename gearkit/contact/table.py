@@ -249,12 +249,6 @@ class WidthTable:
         #: every sub-interval within ``tol``: :meth:`derivatives` applies everywhere
         self.smooth = not self._fallback.any()
         self._piece = half._k[rows]
-        # the piece parameter at ``rho`` on the same sub-intervals, interpolated at the same nodes: where the exact
-        # inversion starts (:meth:`parameter`); not held to ``tol`` (the inversion converges to round-off from it)
-        mid, span = 0.5 * (a + b), 0.5 * (b - a)
-        nodes = (mid[:, None] + span[:, None] * _NODES[None, :]).ravel()
-        t = half.exact(rho_of(np.repeat(rows, len(_NODES)), nodes))[2]
-        self._tcoef = _derived(_fit(t.reshape(len(rows), len(_NODES), 1)))[0]
         # sub-interval starts in rho, for the lookup (increasing, like the half width's table)
         self._r_start = np.where(self._grazing[rows], self._anchor[rows] + np.sign(a) * a * a, a)
         self._polar = polar
@@ -273,12 +267,6 @@ class WidthTable:
         row = self._row[j]
         x = self._x(row, rho)
         return j, row, x, np.minimum(np.maximum((x - self._a[j]) * self._inv[j] - 1.0, -1.0), 1.0)
-
-    def parameter(self, rho):
-        """The flank piece and its parameter at flat ``rho`` (on the flank), interpolated: a start for the exact
-        inversion (:meth:`~gearkit.contact.tooth.HalfWidth.exact`), about as close as the table's ``w``."""
-        j, row, x, s = self._locate(rho)
-        return self._piece[j], _gathered(self._tcoef, j, s)[0]
 
     def derivatives(self, rho):
         """``w`` and its first and second derivatives in ``rho`` at flat ``rho``, on the table only (for a

@@ -311,7 +311,6 @@ class HalfWidth:
             target = g(r)
             fa, fb = g(self._r0[j]) - target, g(self._r1[j]) - target
             ta, tb = lo.copy(), hi.copy()
-            ok = np.zeros(len(r), bool)  # rows started from ``guess``
             if guess is not None:
                 gk, gt, gr = (np.asarray(x).ravel()[inside] for x in guess)
                 ok = (gk == k) & ((gt - lo) * (gt - hi) < 0)
@@ -320,12 +319,6 @@ class HalfWidth:
                 fa = np.where(ok, np.where(near, fa, fb), fa)
                 tb = np.where(ok, gt, tb)
                 fb = np.where(ok, g(gr) - target, fb)
-            start = None
-            if self.table is not None and not ok.all():  # elsewhere the table's parameter is the first point
-                sk, st = self.table.parameter(r)  # tried, the nearer end the secant's other one
-                start = np.where(~ok & (sk == k) & ((st - lo) * (st - hi) < 0), st, np.nan)
-                swap = np.isfinite(start) & (np.abs(fa) < np.abs(fb))
-                ta, tb, fa, fb = np.where(swap, tb, ta), np.where(swap, ta, tb), np.where(swap, fb, fa), np.where(swap, fa, fb)
             t = np.where(np.abs(fa) < np.abs(fb), ta, tb)
             psi = np.zeros(len(r))
             todo = np.arange(len(r))
@@ -334,8 +327,6 @@ class HalfWidth:
                     tn = tb[todo] - fb[todo] * (tb[todo] - ta[todo]) / (fb[todo] - fa[todo])
                 bad = ~np.isfinite(tn) | ((tn - lo[todo]) * (tn - hi[todo]) > 0)
                 tn = np.where(bad, 0.5 * (lo[todo] + hi[todo]), tn)
-                if start is not None:
-                    tn, start = np.where(np.isnan(start), tn, start), None
                 p = evaluate_pieces(self.pieces, k[todo], tn)
                 rr, ps = self.coords(p)
                 d = rr - anchor[todo]
