@@ -134,11 +134,13 @@ def rotate(points, angle, *more):
     """
     c, s = np.cos(angle), np.sin(angle)
     if more:
-        return tuple(_turn(v, c, s) for v in (points,) + more)
-    return _turn(points, c, s)
+        return tuple(turn_by(v, c, s) for v in (points,) + more)
+    return turn_by(points, c, s)
 
 
-def _turn(points, c, s):
+def turn_by(points, c, s):
+    """``(n, 2)`` points turned counter-clockwise by the angle whose cosine and sine are ``c`` and ``s``
+    (scalars or ``(n,)``): :func:`rotate` once it has them."""
     p = np.asarray(points, dtype=float)
     x, y = c * p[..., 0] - s * p[..., 1], s * p[..., 0] + c * p[..., 1]
     out = np.empty(np.shape(x) + (2,), dtype=np.result_type(x, y))  # np.stack's result, without its overhead

@@ -16,10 +16,10 @@ machine precision wherever it is asked.
 """
 from __future__ import annotations
 
+import math
 
 import numpy as np
 
-from gearkit.curves import rotate
 from gearkit.motion import RollingMotion
 from gearkit.segments import Segment
 from gearkit.values import frozen
@@ -55,8 +55,7 @@ class Branch:
         valid : (n,) bool, False where the normal misses the tool centrode (along the motion: where
             the foot of the normal from the instant centre falls off the segment)
         """
-        w = np.atleast_1d(np.asarray(w, dtype=float))
-        u = self.u0 * (1.0 - w) + self.u1 * w  # exact at both ends (u0 > u1 walks backwards)
+        u = _tool_parameters(self, w)
         if self.along == "motion":
             s = u
             u, valid = touching(self.segment, self.motion.tool_pole(s), self.root)
@@ -65,11 +64,10 @@ class Branch:
             p, _, n = self.segment.evaluate(u)
             s, valid = self.motion.contact(p, n, self.root)
         s0 = np.where(valid, s, 0.0)
-        shift, angle, offset = self.motion.pose(s0)
         if not normals:
-            return rotate(p - shift, angle) + offset, None, s, valid
-        q, n = rotate(p - shift, angle, n)
-        return q + offset, -n, s, valid
+            return self.motion.carry(p, s0)[0], None, s, valid
+        q, _, n = self.motion.carry(p, s0, n)
+        return q, -n, s, valid
 
     def __call__(self, w):
         """Blank-frame points at ``w`` (the exact curve)."""
@@ -112,6 +110,9 @@ class Branch:
 
 def _tool_parameters(branch, w):
     w = np.atleast_1d(np.asarray(w, dtype=float))
+    if branch.u1 == 1.0 and branch.u0 == 0.0 and math.copysign(1.0, branch.u0) == 1.0:
+        # +0 (1 - w) + 1 w is w itself to the bit (+ 0.0: a -0 sums to +0 there too)
+        return w + 0.0
     return branch.u0 * (1.0 - w) + branch.u1 * w  # exact at both ends (u0 > u1 walks backwards)
 
 
@@ -134,8 +135,8 @@ def solve_together(branches, ws):
     tool = [br.segment.evaluate(_tool_parameters(br, w)) for br, w in zip(branches, ws)]
     p, n = _joined([t[0] for t in tool]), _joined([t[2] for t in tool])
     s, valid = first.motion.contact(p, n, first.root)
-    shift, angle, offset = first.motion.pose(np.where(valid, s, 0.0))
-    return _parted([len(t[0]) for t in tool], rotate(p - shift, angle) + offset, s, valid)
+    q = first.motion.carry(p, np.where(valid, s, 0.0))[0]
+    return _parted([len(t[0]) for t in tool], q, s, valid)
 
 
 def turning_together(branches, ws):
@@ -149,9 +150,8 @@ def turning_together(branches, ws):
     first = branches[have[0]]
     p, t, tool_angle = (_joined([turned[i][j] for i in have]) for j in range(3))
     s, valid = first.motion.contact(p, np.stack([-t[..., 1], t[..., 0]], -1), first.root)
-    shift, angle, offset = first.motion.pose(np.where(valid, s, 0.0))
-    q, t = rotate(p - shift, angle, t)
-    for i, part in zip(have, _parted([len(turned[i][0]) for i in have], q + offset, t,
+    q, angle, t = first.motion.carry(p, np.where(valid, s, 0.0), t)
+    for i, part in zip(have, _parted([len(turned[i][0]) for i in have], q, t,
                                      np.stack([tool_angle, angle], -1))):
         out[i] = part
     return out

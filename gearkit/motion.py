@@ -23,7 +23,7 @@ from functools import cached_property
 
 import numpy as np
 
-from gearkit.curves import cross2, rotate
+from gearkit.curves import cross2, rotate, turn_by
 from gearkit.errors import require
 from gearkit.values import frozen
 
@@ -94,6 +94,25 @@ class RollingMotion:
         c_t, tau_t = _centrode(self.tool_centre, s)
         c_b, tau_b = _centrode(self.blank_centre, s)
         return c_t, tau_b - tau_t, c_b + self.blank_offset
+
+    def carry(self, points, s, *vectors):
+        """Tool-frame ``points`` at rolls ``s`` in the blank frame, the turn ``angle`` of the pose and
+        ``vectors`` turned by it: ``(q, angle, *vectors)``, each to the bit as ``rotate(points - shift, angle,
+        *vectors)`` and ``+ offset`` from :meth:`pose` give them (a rack cutting a gear turns by the blank
+        centrode's own angle: its sine and cosine serve the centrode and the turn)."""
+        if self.tool_centre is not None or self.blank_centre is None:
+            shift, angle, offset = self.pose(s)
+            turned = rotate(np.asarray(points) - shift, angle, *vectors)
+            return (turned[0] + offset, angle, *turned[1:]) if vectors else (turned + offset, angle)
+        c = self.blank_centre
+        angle = np.asarray(s, dtype=float) / c  # the blank's turn less the rack's (none)
+        cos, sin = np.cos(angle), np.sin(angle)
+        p = np.asarray(points, dtype=float)
+        dx, dy = p[..., 0] - s, p[..., 1]  # minus the pole (s, 0) in the tool frame
+        q = np.empty(p.shape)
+        q[..., 0] = cos * dx - sin * dy + (c * sin + 0.0)  # plus the pole in the blank frame
+        q[..., 1] = sin * dx + cos * dy + (c * (1.0 - cos) + -c)
+        return (q, angle, *(turn_by(v, cos, sin) for v in vectors))
 
     def to_blank(self, points, s):
         """Tool-frame points at roll ``s`` expressed in the blank frame.
@@ -247,6 +266,13 @@ class PlanarMotion:
         ``q = rotate(p - shift, angle) + offset`` (the shift is zero)."""
         theta, _, _, d, _, _ = self.rates(np.asarray(t, dtype=float))
         return np.zeros_like(d), theta, d
+
+    def carry(self, points, t, *vectors):
+        """Tool-frame ``points`` at ``t`` in the blank frame, the turn ``angle`` and ``vectors`` turned by it:
+        ``(q, angle, *vectors)``, as :meth:`RollingMotion.carry`."""
+        shift, angle, offset = self.pose(t)
+        turned = rotate(np.asarray(points) - shift, angle, *vectors)
+        return (turned[0] + offset, angle, *turned[1:]) if vectors else (turned + offset, angle)
 
     def to_blank(self, points, t):
         """Tool-frame points at ``t`` in the blank frame, ``(n, 2)``."""

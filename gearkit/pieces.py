@@ -8,6 +8,8 @@ several such searches side by side, the pieces of one motion evaluated in one ca
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from gearkit.refine import evaluate_curves
@@ -55,7 +57,11 @@ class Piece:
     span = property(lambda self: getattr(self.curve, "span", None))  # a leg's turn from its parts (gearkit.chords)
 
     def _curve_parameters(self, t):
-        return self.w0 + np.asarray(t, dtype=float) * (self.w1 - self.w0)
+        t = np.asarray(t, dtype=float)
+        if self.w1 == 1.0 and self.w0 == 0.0 and math.copysign(1.0, self.w0) == 1.0:
+            # +0 + t 1 is t itself to the bit (+ 0.0: a -0 sums to +0 there too)
+            return t + 0.0
+        return self.w0 + t * (self.w1 - self.w0)
 
     @property
     def joint(self):

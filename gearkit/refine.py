@@ -35,14 +35,15 @@ UNEVEN = 2.5
 ATOM = 1e-13
 
 
-def _probe(evaluate, w, pts, tol, rows=None):
+def _probe(evaluate, w, pts, tol, rows=None, probed=None):
     """Quarter-point probes of the intervals ``rows`` (vertex ``i`` to ``i + 1``; default all): (probes,
     probe points, chord deviation, uneven), each interval measured on its own. ``evaluate(x, rows)``
-    gives the points at parameters ``x`` ``(m, j)`` of the intervals ``rows``."""
+    gives the points at parameters ``x`` ``(m, j)`` of the intervals ``rows``; ``probed``: the points at
+    the probes (flat), where the caller evaluated them already."""
     rows = np.arange(len(w) - 1) if rows is None else rows
     lo, hi, a, b = w[rows], w[rows + 1], pts[rows, None, :], pts[rows + 1, None, :]
     probes = lo[:, None] + (hi - lo)[:, None] * _PROBES
-    q = evaluate(probes, rows).reshape(len(lo), len(_PROBES), 2)
+    q = (evaluate(probes, rows) if probed is None else probed).reshape(len(lo), len(_PROBES), 2)
     dev = _chord_deviation(a, b, q).max(axis=1)
     walk = np.concatenate([a, q, b], axis=1)
     legs = np.linalg.norm(np.diff(walk, axis=1), axis=-1)
@@ -130,6 +131,22 @@ class _Curves:
             return self.curves[runs[0][2]](np.ravel(x))
         out = evaluate_curves([self.curves[c] for _, _, c in runs], [np.ravel(x[a:b]) for a, b, _ in runs])
         return np.concatenate(out)
+
+    def evaluate_at(self, x, own, turning: bool = False):
+        """Points (or ``turning``, as :meth:`turning`) at flat parameters ``x`` of the curves ``own`` (any order):
+        each curve called once, on its parameters in their order."""
+        order = np.argsort(own, kind="stable")
+        x, own = x[order], own[order]
+        cuts = np.flatnonzero(own[1:] != own[:-1]) + 1
+        starts, ends = np.concatenate([[0], cuts]).tolist(), np.concatenate([cuts, [len(x)]]).tolist()
+        curves, params = [self.curves[c] for c in own[starts].tolist()], [x[a:b] for a, b in zip(starts, ends)]
+        back = np.empty_like(order)
+        back[order] = np.arange(len(order))
+        if not turning:
+            return np.concatenate(evaluate_curves(curves, params))[back]
+        out = turn_curves(curves, params)
+        joined = out[0] if len(out) == 1 and out[0][2].shape[1] == self.parts else _joined(out, self.parts)
+        return tuple(v[back] for v in joined)
 
     def _span(self, pa, pb, rows):
         """Each leg's turn range (:func:`~gearkit.chords.interval_bounds`' ``span``): its curve's own ``span``,
@@ -242,7 +259,7 @@ def refine_samples(curves, ws, ptss, tol: float, max_rounds: int = 60, max_split
             measured = kept[1]
         else:
             measured = (interval_bounds(curves.turning, w, pts, tan, parts, tol, _PROBES, todo, probed, curves.span)
-                        if bound else _probe(curves.points, w, pts, tol, todo))
+                        if bound else _probe(curves.points, w, pts, tol, todo, probed))
             probed = None
             measured = _scatter(len(lo), todo, measured, *(kept or (None, None)))
         if bound:
@@ -281,13 +298,13 @@ def refine_samples(curves, ws, ptss, tol: float, max_rounds: int = 60, max_split
             at = np.flatnonzero(bad)[many][rows][keep]  # the interval each new point splits
             new_w.append(extra)
             new_o.append(owner[:-1][at])
+            # evaluated below, with the next round's probes (one call)
+            new_p.append(np.full((len(extra), 2), np.nan))
             if bound:
-                pe, te, ae = curves.turning(extra[:, None], at)
-                new_p.append(pe)
-                new_t.append(te)
-                new_a.append(ae)
-            else:
-                new_p.append(curves.points(extra[:, None], at))
+                new_t.append(np.full((len(extra), 2), np.nan))
+                new_a.append(np.full((len(extra), parts.shape[-1]), np.nan))
+        else:
+            extra = None
         n_old = len(w)
         w, owner = np.concatenate([w] + new_w), np.concatenate([owner] + new_o)
         pts = np.concatenate([pts] + new_p)
@@ -301,7 +318,7 @@ def refine_samples(curves, ws, ptss, tol: float, max_rounds: int = 60, max_split
         if bound:
             tan, parts = np.concatenate([tan] + new_t)[order], np.concatenate([parts] + new_a)[order]
         # an interval with the same two ends is measured the same: only the new ones are probed again
-        where = np.empty(len(first), dtype=int)
+        where = np.full(len(first), -1)  # -1: a new point dropped (its parameter a vertex's already)
         where[order] = np.arange(len(order))
         at = where[:n_old]  # the old vertices (all kept) in the new sampling
         same = np.diff(at) == 1
@@ -309,6 +326,18 @@ def refine_samples(curves, ws, ptss, tol: float, max_rounds: int = 60, max_split
         fresh = owner[:-1] == owner[1:]
         fresh[kept[0]] = False
         todo = np.flatnonzero(fresh)
+        if extra is not None:  # the new split points and the next round's probes, in one call
+            new = where[n_old + sum(len(v) for v in new_w[:-1]):]  # the new split points in the new sampling
+            extra, new = extra[new >= 0], new[new >= 0]
+            lo, hi = w[todo], w[todo + 1]
+            x = np.concatenate([extra, (lo[:, None] + (hi - lo)[:, None] * _PROBES).ravel()])
+            got = curves.evaluate_at(x, np.concatenate([owner[new], np.repeat(owner[todo], len(_PROBES))]), bound)
+            e = len(extra)
+            if bound:
+                pts[new], tan[new], parts[new] = got[0][:e], got[1][:e], got[2][:e]
+                probed = tuple(v[e:] for v in got)
+            else:
+                pts[new], probed = got[:e], got[e:]
     curves.owner = owner[:-1]
     starts = np.flatnonzero(np.concatenate([[True], owner[1:] != owner[:-1]]))
     inside = owner[:-1] == owner[1:]

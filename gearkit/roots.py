@@ -229,13 +229,11 @@ def _squeeze(a, b, fa, fb, xtol, maxiter):
         if not a < c < b:
             c = 0.5 * (a + b)
         floor = 0.45 * xtol * (1.0 + abs(c))
-        steps = [min(c - a, b - c)]
-        while steps[-1] > _LADDER * floor:
-            steps.append(steps[-1] / _LADDER)
-        steps.append(floor)
-        h = np.array(steps)
+        near = min(c - a, b - c)
+        rungs = max(0, math.ceil(math.log(near / floor) / math.log(_LADDER))) if near > floor else 0
+        h = np.append(near / _LADDER ** np.arange(rungs), floor)
         xs = np.concatenate([c - h, [a + width / 3.0, c, b - width / 3.0], c + h])
-        xs = np.unique(xs[(xs > a) & (xs < b)])
+        xs = np.sort(xs[(xs > a) & (xs < b)])  # a repeated point is asked twice: no harm
         fx = np.asarray((yield xs), dtype=float)
         zero = np.flatnonzero(fx == 0.0)
         if len(zero):

@@ -99,6 +99,20 @@ class Segment:
         """
         return self._evaluate(u)[:3]
 
+    @cached_property
+    def _line_frame(self):
+        """A line's unit tangent and normal, ``(tx, ty, nx, ny)``: the same numbers :meth:`_evaluate` divides
+        out at every point (one tangent for the whole line), divided once."""
+        x0, y0, x1, y1 = self.data
+        a11, a12, a21, a22 = self.affine[:4]
+        t0x, t0y = x1 - x0, y1 - y0
+        tx, ty = a11 * t0x + a12 * t0y, a21 * t0x + a22 * t0y
+        norm = np.hypot(tx, ty)
+        if self.reverse:
+            norm = -norm
+        ux, uy = np.divide(tx, norm), np.divide(ty, norm)
+        return float(ux), float(uy), float(np.negative(uy)), float(ux)
+
     def _evaluate(self, u):
         """:meth:`evaluate`, and the primitive's parameter and (unnormalised) tangent it came from."""
         u = np.asarray(u, dtype=float)
@@ -114,6 +128,12 @@ class Segment:
         else:
             p[..., 0] = a11 * px + a12 * py + b1
             p[..., 1] = a21 * px + a22 * py + b2
+        if self.kind == "line":  # one tangent and normal, filled in
+            tx, ty, nx, ny = self._line_frame
+            t, n = np.empty(shape), np.empty(shape)
+            t[...] = (tx, ty)
+            n[...] = (nx, ny)
+            return p, t, n, u, (t0x, t0y)
         tx = a11 * t0x + a12 * t0y
         ty = a21 * t0x + a22 * t0y
         norm = np.hypot(tx, ty)
@@ -151,6 +171,13 @@ class Segment:
         True
         """
         p, t, _, ue, (t0x, t0y) = self._evaluate(u)
+        if self.kind == "line" and ue.size > 1:  # one tangent: its angle taken once, and filled in
+            return p, t, np.full(ue.shape, self._angle(ue.ravel()[:1], t0x, t0y)[0])
+        angle = self._angle(ue, t0x, t0y)
+        return None if angle is None else (p, t, angle)
+
+    def _angle(self, ue, t0x, t0y):
+        """:meth:`turning`'s angle at the primitive's parameters ``ue`` and (unnormalised) tangents, or None."""
         d = self.data
         if self.kind == "arc":
             lin = d[3] + ue * (d[4] - d[3])
@@ -174,10 +201,10 @@ class Segment:
         c, s = math.cos(rho), math.sin(rho)
         b11, b12, b21, b22 = c * a11 + s * a21, c * a12 + s * a22, -s * a11 + c * a21, -s * a12 + c * a22
         if (b11, b12, b21, b22) == (1.0, 0.0, 0.0, 1.0):  # A a rotation: f = e, their angle exactly 0
-            return p, t, rho + psi + 0.0
+            return rho + psi + 0.0
         ex, ey = np.cos(psi), np.sin(psi)
         fx, fy = b11 * ex + b12 * ey, b21 * ex + b22 * ey  # symmetric positive definite: within 90 deg of e
-        return p, t, rho + psi + np.arctan2(ex * fy - ey * fx, ex * fx + ey * fy)
+        return rho + psi + np.arctan2(ex * fy - ey * fx, ex * fx + ey * fy)
 
 
 def transform_chain(chain, matrix, offset=(0.0, 0.0)):
