@@ -54,7 +54,7 @@ def brute_departure(spec, phi):
     half-planes, and where along the face it touches: its pose found over every vertex (a translating face
     rests on the highest; a rocker's turns down about the pivot until a vertex stops it, the one at the
     largest angle seen from the pivot: every vertex lies within a half turn below the prescribed angle, on
-    the axis's side of the face). Returns ``(gap, contact, vertex spacing)``."""
+    the axis's side of the face). Returns ``(gap, contact, the polygon's longest edge)``."""
     from scipy.spatial import HalfspaceIntersection
 
     lines = np.concatenate([np.linspace(0.0, 2 * math.pi, LINES, endpoint=False),
@@ -75,9 +75,8 @@ def brute_departure(spec, phi):
         k = int(np.argmax(seen))
         gap.append(spec.arm_length * (psi - seen[k]))
         contact.append(math.hypot(spec.pivot_distance - x[k], y[k]))
-    ring = np.roll(poly[np.argsort(np.arctan2(poly[:, 1], poly[:, 0]))], 1, axis=0) - poly[np.argsort(np.arctan2(
-        poly[:, 1], poly[:, 0]))]
-    return np.array(gap), np.array(contact), float(np.hypot(*ring.T).max())
+    around = poly[np.argsort(np.arctan2(poly[:, 1], poly[:, 0]))]
+    return np.array(gap), np.array(contact), float(np.hypot(*(np.roll(around, 1, axis=0) - around).T).max())
 
 
 DEPARTING = STEEP + [
@@ -109,7 +108,7 @@ def test_flat_face_departure_from_its_law_is_reported_where_and_how_far(kw, moti
     worst, at = res.values["departure_max"], res.values["departure_at_deg"]
     assert abs(brute_departure(spec, np.array([math.radians(at)]))[0][0] - worst) <= agree
     assert abs(worst - brute.max()) <= agree and finding.value == worst and finding.limit == tol
-    # where the face touches the cam (its law's contact, or where it rests), to the polygon's vertex spacing
+    # where the face touches the cam (its law's contact, or where it rests), to the polygon's longest edge
     assert np.allclose(res.values["face_contact_range"], [contact.min(), contact.max()], rtol=0.0, atol=spacing)
     inside = np.zeros(len(grid), dtype=bool)
     for a, b in res.values["departure_deg"]:
