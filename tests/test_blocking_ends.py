@@ -114,3 +114,21 @@ def test_interference_line_reaches_its_saddle(saddle_1230, tol):
     assert _nearest(np.array(zeros), comps).max() <= CONTRACT * tol
     ends = np.array([q[i] for q in comps for i in (0, -1)])
     assert np.hypot(*(ends - s).T).min() > 10 * max(RADII)
+
+
+@pytest.mark.parametrize("delta", [1e-6, 1e-9, 1e-12])
+def test_across_sees_a_zero_closer_to_the_edge_than_its_floor(delta):
+    """The continuation's search along a normal that runs into the no-pair area samples from the edge
+    towards the point down to round-off, whatever the floor of its samples about the point (tol / 16
+    in the continuation: a line meeting the edge at a small angle runs closer to it than that). F =
+    cbrt(1 - y) - cbrt(delta) for y < 1 (undefined beyond): the cube-root growth of the margins beside
+    the no-pair edge, and a zero at y = 1 - delta in closed form."""
+    from gearkit.blocking.edges import across
+
+    F = lambda p, k: np.where(p[:, 1] < 1.0, np.cbrt(1.0 - p[:, 1]) - np.cbrt(delta), np.nan)  # noqa: E731
+    floor = 1e-4  # tol / 16 at tol 1.6e-3: far above delta
+    Q, N = np.array([[0.0, 0.5]]), np.array([[0.0, 1.0]])
+    (s, v, c), = across(F, Q, N, np.array([1.0]), np.array([-1.0]), np.array([0]), 1.0, floor)
+    assert c >= 0
+    zero = 0.5 - delta  # along the normal from Q
+    assert s[c] <= zero <= s[c + 1] and s[c + 1] - s[c] <= max(delta, 1e-12)

@@ -91,8 +91,9 @@ def across(F, Q, N, reach, sig, which, span, floor=None):
     """Along the normals ``N`` through ``Q`` (within ``reach``): per point ``(s, v, c)``, samples at
     positions ``s`` along the normal with values ``v`` and the index ``c`` of the sign change nearest
     to ``Q`` with ``F`` going from ``-sig`` to ``sig`` (-1: none). The samples lie at distances
-    shrinking geometrically from ``Q`` and, where the normal runs into the undefined area, from
-    that edge towards ``Q``."""
+    shrinking geometrically from ``Q`` down to ``floor`` (default: round-off) and, where the normal
+    runs into the undefined area, from that edge towards ``Q`` from round-off up (a zero closer to
+    the edge than ``floor`` is seen)."""
     floor = FLOOR * span if floor is None else floor
     plans, pts, ks = [], [], []
     for q, n, h, k in zip(Q, N, reach, which):
@@ -115,7 +116,9 @@ def across(F, Q, N, reach, sig, which, span, floor=None):
         A = Q[idx] + np.array([a for _, a, _ in edge])[:, None] * N[idx]
         B = Q[idx] + np.array([b for _, _, b in edge])[:, None] * N[idx]
         E = edge_point(F, A, B, which[idx], span)
-        d = ladder(1.0, floor / max(float(np.max(np.hypot(*(A - E).T))), 1e-300))
+        # from the edge to round-off whatever ``floor``: a line meeting the edge at a small angle runs
+        # closer to it than any sample about Q (the margins vary as the cube root of the distance)
+        d = ladder(1.0, FLOOR * span / max(float(np.max(np.hypot(*(A - E).T))), 1e-300))
         P = E[:, None, :] + d[None, :, None] * (A - E)[:, None, :]
         W = F(P.reshape(-1, 2), np.repeat(which[idx], d.size)).reshape(len(idx), d.size)
         for r, e in enumerate(idx):
