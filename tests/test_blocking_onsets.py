@@ -91,3 +91,19 @@ def test_onset_vertex_is_the_corner():
     assert out[0][1][2] == pytest.approx([0.3, 0.0], abs=1e-12)
     assert len(out[0][1]) == 4
     assert onset_vertices(F, lines, [(0, 0.3)], set(), 1e-13)[0][1].shape == (3, 2)  # not a kinked curve
+
+
+def test_onset_vertex_beside_the_no_pair_edge_is_the_near_zero():
+    """A chord crossing an onset close above the no-pair edge: the zero on the onset line lies between
+    the crossing and the edge, where every even sample of the search is undefined, and a second zero
+    of the same margin lies farther the other way. The vertex is the near zero (the far one turned the
+    chord into a 0.11 long spur across another line). Closed form: F = (y - Y0 - |x| / 2)(Y1 - y) for
+    y > 0 (undefined below), zeros on x = 0 at y = Y0 and y = Y1."""
+    y0, y1 = 1e-3, 0.2
+
+    def F(p, k):
+        return np.where(p[:, 1] > 0.0, (p[:, 1] - y0 - 0.5 * np.abs(p[:, 0])) * (y1 - p[:, 1]), np.nan)
+    chord = np.array([[-0.1, y0 + 0.05], [0.1, y0 + 0.05]])  # both ends on the first factor's zeros
+    out = onset_vertices(F, [(0, chord, np.ones(2))], [(0, 0.0)], {0}, 1e-14)
+    assert len(out[0][1]) == 3
+    assert np.allclose(out[0][1][1], [0.0, y0], rtol=0.0, atol=1e-13)

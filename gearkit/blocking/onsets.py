@@ -15,6 +15,7 @@ import math
 import numpy as np
 
 from gearkit.blocking.brackets import NearestBracket, segment_roots
+from gearkit.blocking.edges import toward_edge
 from gearkit.blocking.field import FORM_GAP
 
 __all__ = ["onset_vertices", "undercut_onsets"]
@@ -55,8 +56,10 @@ def undercut_onsets(field) -> tuple:
 def onset_vertices(F, lines, onsets, curves, vtol: float) -> list:
     """``lines`` (``(k, points (n, 2), slopes (n,)[, chords to refine (n - 1,)])``) with a vertex added
     on every chord of a curve in ``curves`` that crosses an onset ``(axis, x)`` of ``onsets``: the zero
-    of ``F_k`` on the line ``x_axis = x`` nearest the chord's crossing (within two chord lengths),
-    solved to ``vtol``; its slope is the one across the curve. A chord that got one is refined again.
+    of ``F_k`` on the line ``x_axis = x`` nearest the chord's crossing (within two chord lengths; where
+    that line runs into the no-pair area, samples from its edge towards the crossing see a zero
+    closer to the edge than any even sample), solved to ``vtol``; its slope is the one across the
+    curve. A chord that got one is refined again.
 
     >>> import numpy as np
     >>> F = lambda p, k: p[:, 1] - np.abs(p[:, 0])  # a corner at x1 = 0
@@ -87,9 +90,14 @@ def onset_vertices(F, lines, onsets, curves, vtol: float) -> list:
     best = NearestBracket(P, f0)
     for reach in REACH:
         for sgn in (1.0, -1.0):
-            end = P + sgn * reach * L[:, None] * along
-            best.consider(np.flatnonzero(~best.have), P[~best.have], f0[~best.have], end[~best.have],
-                          F(end[~best.have], which[~best.have]))
+            i = np.flatnonzero(~best.have)
+            end = P[i] + sgn * reach * L[i, None] * along[i]
+            fe = F(end, which[i])
+            out = np.flatnonzero(np.isnan(fe))
+            if out.size:  # into the no-pair area: the sign change nearest before its edge (to round-off)
+                lo, flo, hi, fhi = toward_edge(F, P[i[out]], f0[i[out]], end[out], which[i[out]])
+                best.consider(i[out], lo, flo, hi, fhi)
+            best.consider(i, P[i], f0[i], end, fe)
         if best.have.all():
             break
     found = np.flatnonzero(best.have)
