@@ -22,8 +22,9 @@ import math
 
 import numpy as np
 
-from gearkit.accuracy import adaptive_sample
+from gearkit.accuracy import sample_curves
 from gearkit.errors import GeometryError, SpecError
+from gearkit.refine import evaluate_curves
 from gearkit.values import frozen
 
 #: exact sub-points per polyline edge (the reference the deviation is measured against)
@@ -60,10 +61,10 @@ def _half(half, tol: float):
     """Half tooth (tip -> space centre) with the exact sub-points of every edge."""
     pts, fine = [], []
     sub = np.linspace(0.0, 1.0, FINE + 1)
-    for k, piece in enumerate(half.pieces):
-        w, p, _ = adaptive_sample(piece, tol, fewest=True)
-        ws = w[:-1, None] + (w[1:] - w[:-1])[:, None] * sub[None, :]
-        fine.append(piece(ws.ravel()).reshape(len(w) - 1, FINE + 1, 2))
+    sampled = sample_curves(half.pieces, tol)  # all pieces in one refinement: each as it samples alone
+    ws = [(w[:-1, None] + (w[1:] - w[:-1])[:, None] * sub[None, :]).ravel() for w, _, _ in sampled]
+    for k, ((w, p, _), exact) in enumerate(zip(sampled, evaluate_curves(half.pieces, ws))):
+        fine.append(exact.reshape(len(w) - 1, FINE + 1, 2))
         pts.append(p if k == 0 else p[1:])
     return np.concatenate(pts), np.concatenate(fine)
 

@@ -34,6 +34,7 @@ from gearkit.curves import inv, polar_from_y
 from gearkit.envelope import chain_branches
 from gearkit.errors import GeometryError, SpecError, check_fields, require, require_cut_inputs
 from gearkit.motion import RollingMotion
+from gearkit.refine import evaluate_curves
 from gearkit.families.involute.names import tool_label
 from gearkit.families.involute.tools import BasicRack, ShaperCutter
 from gearkit.segments import rotation_matrix, transform_chain
@@ -307,22 +308,24 @@ class InvoluteProfile(ToothProfile):
         # pieces run from the tip to the root, so the undercut region starts at t = 0 of the piece
         # after the flank (it can be a few micrometres tall): a coarse sample, geometric near t = 0,
         # finds the deepest sample of each piece, then the bracket around it is resampled twice
+        # (the pieces side by side: each round's points of all of them in one evaluation)
         t = np.sort(np.concatenate([np.geomspace(1e-12, 1.0, 96), np.linspace(0.0, 1.0, 65)]))
         best = 0.0
-        for piece in self.half.pieces:
-            if piece.label == "tip":
-                continue
-            ts = t
-            for _ in range(3):
-                rho, psi = polar_from_y(piece(ts))
+        todo = {k: t for k, piece in enumerate(self.half.pieces) if piece.label != "tip"}
+        for _ in range(3):
+            pieces = list(todo)
+            points = evaluate_curves([self.half.pieces[k] for k in pieces], [todo[k] for k in pieces])
+            for k, pts in zip(pieces, points):
+                ts = todo.pop(k)
+                rho, psi = polar_from_y(pts)
                 sel = (rho >= rb) & (rho <= rf)
                 if not sel.any():
-                    break
+                    continue
                 depth = np.where(sel, rho * (self._involute_half_angle(np.where(sel, rho, rb)) - psi), -np.inf)
                 i = int(np.argmax(depth))
                 best = max(best, float(depth[i]))
                 lo, hi = ts[max(i - 1, 0)], ts[min(i + 1, len(ts) - 1)]
-                ts = np.linspace(lo, hi, 65)
+                todo[k] = np.linspace(lo, hi, 65)
         return best
 
     def summary(self, tol: float | None = None, sample: bool = True) -> dict:
