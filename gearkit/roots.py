@@ -229,21 +229,25 @@ def _squeeze(a, b, fa, fb, xtol, maxiter):
         if not a < c < b:
             c = 0.5 * (a + b)
         floor = 0.45 * xtol * (1.0 + abs(c))
-        near = min(c - a, b - c)
-        rungs = max(0, math.ceil(math.log(near / floor) / math.log(_LADDER))) if near > floor else 0
-        h = np.append(near / _LADDER ** np.arange(rungs), floor)
-        xs = np.concatenate([c - h, [a + width / 3.0, c, b - width / 3.0], c + h])
-        xs = np.sort(xs[(xs > a) & (xs < b)])  # a repeated point is asked twice: no harm
-        fx = np.asarray((yield xs), dtype=float)
-        zero = np.flatnonzero(fx == 0.0)
-        if len(zero):
-            return float(xs[zero[np.argmin(np.abs(xs[zero] - c))]])
-        x = np.concatenate([[a], xs, [b]])
-        f = np.concatenate([[fa], fx, [fb]])
-        up = f > 0
-        change = np.flatnonzero(up[:-1] != up[1:])
-        k = change[np.argmin(np.abs(0.5 * (x[change] + x[change + 1]) - c))]
-        a, b, fa, fb = float(x[k]), float(x[k + 1]), float(f[k]), float(f[k + 1])
+        h = [min(c - a, b - c)]
+        while h[-1] > _LADDER * floor:
+            h.append(h[-1] / _LADDER)
+        h.append(floor)
+        xs = [c - d for d in h] + [a + width / 3.0, c, b - width / 3.0] + [c + d for d in h]
+        xs = sorted(x for x in xs if a < x < b)  # a repeated point is asked twice: no harm
+        fx = np.asarray((yield np.array(xs)), dtype=float).tolist()
+        x, f = [a] + xs + [b], [fa] + fx + [fb]
+        zeros = [v for v, g in zip(xs, fx) if g == 0.0]
+        if zeros:  # an exact root: the one nearest c
+            return min(zeros, key=lambda v: abs(v - c))
+        best = None  # the neighbouring pair across a sign change nearest c
+        for k in range(len(x) - 1):
+            if (f[k] > 0) != (f[k + 1] > 0):
+                gap = abs(0.5 * (x[k] + x[k + 1]) - c)
+                if best is None or gap < best[0]:
+                    best = (gap, k)
+        k = best[1]
+        a, b, fa, fb = x[k], x[k + 1], f[k], f[k + 1]
     return a if abs(fa) < abs(fb) else b
 
 
