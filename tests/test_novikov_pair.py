@@ -228,6 +228,37 @@ def test_interference_is_detected():
     assert bad < -0.25 * 2e-3 * c.radii[1]
 
 
+def test_clearance_sign_off_a_sharp_corner_is_the_outside():
+    """A point whose nearest point is a corner that turns by more than a right angle (a tooth's tip
+    corner) can lie on the inner side of one edge's line and still be outside. Oracle: the exact
+    distance to the corner and ray casting for the side; then the tiny single-arc pair 8/8 (spur, m 0.5),
+    whose wheel's tip corners turn by 98 deg: the scan once read its far side as 4.08 mm deep inside."""
+    from matplotlib.path import Path
+
+    from gearkit.distances import distances_to_polyline
+    from gearkit.families.novikov import tooth_profile
+    from gearkit.families.novikov.mesh import _rot
+
+    sliver = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 0.2]])  # counter-clockwise, the corner at (1, 0)
+    p = np.array([[2.0, -0.5], [1.5, 0.01], [0.2, 0.05]])
+    want = [math.hypot(1.0, 0.5), math.hypot(0.5, 0.01), -0.05]  # the last inside, 0.05 above the base
+    assert signed_clearance(p, sliver) == pytest.approx(want, abs=1e-12)
+
+    spec = NovikovPairSpec(8, 8, 0.5, 0.0, 10.0, racks="single-arc")
+    c = mesh_contact(spec, 0, interference=False)
+    tol = 1e-5 * spec.module
+    loops = [tooth_profile(spec.gear(k + 1)).outline(tol) @ _rot(c.rotations[k]).T
+             + np.array([0.0, k * c.center_distance]) for k in (0, 1)]
+    for k in (0, 1):
+        got = signed_clearance(loops[k], loops[1 - k])
+        dist = distances_to_polyline(loops[k], loops[1 - k], closed=True)
+        inside = Path(loops[1 - k]).contains_points(loops[k])
+        assert np.abs(np.abs(got) - dist).max() <= 1e-12 * spec.module
+        far = dist > 2 * tol  # at the contact the side is the sampling's to choose
+        assert np.array_equal(got[far] < 0, inside[far])
+    assert mesh_contact(spec, 0, tol=tol).clearance > -2 * tol  # chords of a sampled outline sit within tol
+
+
 def test_contact_travels_along_the_face_one_pitch_apart():
     spec = worked()
     c = mesh_contact(spec, 0, interference=False)

@@ -181,26 +181,42 @@ def signed_clearance(points, polygon):
     """Signed distance (mm) of ``points`` from a closed counter-clockwise ``polygon``: negative inside.
 
     The distance is that of :func:`gearkit.distances.distances_to_polyline` (the edges at the six
-    nearest vertices), its sign the side of the nearest of those edges (a sampled smooth outline has
-    no reflex vertex that could mislead it at the sampling tolerance); one neighbour search serves both.
+    nearest vertices). Its sign is the side of the nearest edge where the nearest point is inside that
+    edge; where it is a vertex, the side of the vertex's bisector (the sum of its two edges' unit
+    normals): at a corner that turns by more than a right angle (a tooth's tip corner) a point off the
+    corner can lie on the inner side of one edge's line and still be outside. One neighbour search
+    serves both.
+
+    >>> tip = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 0.2]])  # a sharp corner at (1, 0)
+    >>> round(float(signed_clearance(np.array([[2.0, -0.5]]), tip)[0]), 6)  # outside: sqrt(1 + 0.5**2)
+    1.118034
     """
     from scipy.spatial import cKDTree
 
     poly = np.asarray(polygon, dtype=float)
+    poly = poly[np.any(poly != np.roll(poly, 1, axis=0), axis=1)]  # no zero-length edge
     pts = np.asarray(points, dtype=float)
     n = len(poly)
     _, idx = cKDTree(poly).query(pts, k=min(6, n))
     idx = idx.reshape(len(pts), -1)
     best = np.full(len(pts), np.inf)
-    side = np.zeros(len(pts))
+    edge = np.zeros(len(pts), dtype=int)
     for col in range(idx.shape[1]):
         for off in (0, -1):
             i = (idx[:, col] + off) % n
-            a, b = poly[i], poly[(i + 1) % n]
-            dd = chord_distance(a, b, pts)
+            dd = chord_distance(poly[i], poly[(i + 1) % n], pts)
             better = dd < best
             best = np.where(better, dd, best)
-            side = np.where(better, cross2(b - a, pts - a), side)
+            edge = np.where(better, i, edge)
+    a, b = poly[edge], poly[(edge + 1) % n]
+    d = b - a
+    t = np.einsum("ij,ij->i", pts - a, d) / np.einsum("ij,ij->i", d, d)
+    side = cross2(d, pts - a)  # > 0: on the inner (left) side of the edge
+    tang = np.diff(np.vstack([poly[-1:], poly, poly[:1]]), axis=0)
+    tang /= np.hypot(*tang.T)[:, None]  # tang[k]: unit direction of the edge into vertex k; tang[k + 1]: out of it
+    for at_end, vert in ((t <= 0.0, edge), (t >= 1.0, (edge + 1) % n)):
+        inner = tang[vert] + tang[vert + 1]  # the bisector's direction turned a quarter: left of both edges
+        side = np.where(at_end, cross2(inner, pts - poly[vert]), side)
     return np.where(side > 0, -best, best)
 
 
