@@ -170,6 +170,39 @@ def test_contact_point_cut_away_on_a_small_gear():
     assert large.working_window("concave")[0] > DCA.geometry.concave_window[0]  # the ridge moves up the arc
 
 
+@pytest.mark.parametrize("z,beta", [(8, 15.0), (6, 30.0)])
+def test_a_folded_working_arc_keeps_the_piece_that_holds_the_contact(z, beta):
+    """A few-toothed single-arc wheel: the concave arc's envelope folds next to the tip corner and the
+    loop between its crossing points is cut away, so the arc survives in two pieces. The contact point
+    is on the second one: the sampled outline passes through the arc's point at alpha_k (oracle: the
+    distance to the polyline) and misses the point halfway across the gap; the window and the checks
+    read the piece that holds the contact (they once read the first piece, 2.6..2.8 deg, and failed
+    the pair's working arc, centre-distance window and contact)."""
+    from gearkit.checks.novikov import check_novikov
+
+    m = 0.5
+    spec = NovikovPairSpec(z, z, m, beta, 10.0, racks="single-arc")
+    prof = tooth_profile(spec.gear(2))
+    tol = 1e-5 * m
+    loop = prof.outline(tol)
+    branch = prof.working_branch("concave")
+    wins = prof.working_windows("concave")
+    assert len(wins) == 2 and wins[0][1] < wins[1][0]
+
+    def off_outline(angle):
+        q = branch(np.array([prof.branch_param("concave", angle)]))
+        return float(distances_to_polyline(q, loop, closed=True)[0])
+
+    assert off_outline(WHEEL.alpha) <= 2 * tol  # chords of a sampled outline lie within tol of the tooth
+    gap = 0.5 * (wins[0][1] + wins[1][0])
+    assert off_outline(gap) > 10 * tol
+    assert prof.working_window("concave") == wins[1]
+    assert prof.on_working_arc("concave", WHEEL.alpha) and not prof.on_working_arc("concave", gap)
+    rep = check_novikov(spec).report
+    for key in ("working_arc.2.concave", "center_distance_window", "mesh.contact.0", "mesh.interference"):
+        assert rep[key].status == "ok", rep[key].message
+
+
 def test_invalid_gear_specs():
     with pytest.raises(SpecError, match="teeth"):
         NovikovGearSpec(2, 1.0, DCA)

@@ -164,17 +164,31 @@ class NovikovProfile(ToothProfile):
         u = (target - a0) / (a1 - a0)
         return float((u - br.u0) / (br.u1 - br.u0))
 
+    def working_windows(self, which: str):
+        """Rack-angle ranges ``((lo, hi), ...)``, rad, ascending, of the pieces of the working arc that
+        survive on the generated tooth; empty when the whole arc was cut away.
+
+        More than one where the arc's envelope folds (a swallowtail next to a few-toothed wheel's tip
+        corner) and the loop between its crossing points was cut away: the rack angles of the loop are
+        not on the tooth.
+        """
+        br = self.working_branch(which)
+        return tuple(sorted(tuple(sorted(float(self.rack_angle(which, w)) for w in (p.w0, p.w1)))
+                            for p in self.half.pieces if p.curve is br))
+
     def working_window(self, which: str):
-        """Rack-angle range (lo, hi), rad, of the working arc that survives on the generated tooth.
+        """Rack-angle range (lo, hi), rad, of the working arc that survives on the generated tooth: the
+        piece (:meth:`working_windows`) that holds the rack's contact angle, else the one nearest it.
 
         None when the whole arc was cut away (undercut or trimmed).
         """
-        br = self.working_branch(which)
-        for p in self.half.pieces:
-            if p.curve is br:
-                ang = sorted(float(self.rack_angle(which, w)) for w in (p.w0, p.w1))
-                return tuple(ang)
-        return None
+        a = self.spec.rack.alpha
+        return min(self.working_windows(which), key=lambda w: max(w[0] - a, a - w[1], 0.0), default=None)
+
+    def on_working_arc(self, which: str, angle: float, slack: float = 0.0) -> bool:
+        """Whether the rack angle ``angle`` (rad) lies on a surviving piece of the working arc, within
+        ``slack`` (rad) of its ends."""
+        return any(lo - slack <= angle <= hi + slack for lo, hi in self.working_windows(which))
 
     def contact_point(self, which: str):
         """The generated point (blank frame, mm) of the rack's contact point, and its radius."""

@@ -281,11 +281,8 @@ def mesh_contact(spec: NovikovPairSpec, zone: int = 0, center_distance: float | 
     p1, m1, _, _ = (v[0] for v in _states(x, branches, theta2_0, ratio, a_w))
     at = math.atan2(abs(m1[1]), abs(m1[0]))
     ak = math.atan(math.tan(at) * math.cos(spec.beta))
-    on = True
-    for k in (0, 1):
-        win = profiles[k].working_window(which[k])
-        ang = float(profiles[k].rack_angle(which[k], x[k]))
-        on &= win is not None and win[0] - 1e-12 <= ang <= win[1] + 1e-12
+    on = all(profiles[k].on_working_arc(which[k], float(profiles[k].rack_angle(which[k], x[k])), 1e-12)
+             for k in (0, 1))
     rotations = (float(x[2]), float(theta2_0 - ratio * x[2] + x[3]))
     tol = 1e-5 * spec.module if tol is None else tol
     clearance, touches = math.inf, 1
