@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-from gearkit.refine import evaluate_curves, first_turnings, refine_sample, refine_samples
+from gearkit.refine import evaluate_curves, first_samples, first_turnings, refine_sample, refine_samples
 from gearkit.errors import check_fields, is_real, require
 from gearkit.values import frozen
 
@@ -175,8 +175,9 @@ def sample_curves(curves, tol: float, n_init: int = 5, max_rounds: int = 60, max
     ([20, 2], True)
     """
     w0 = np.linspace(0.0, 1.0, max(n_init, PILOT_START))
-    pilot = refine_samples(curves, [w0] * len(curves), evaluate_curves(curves, [w0] * len(curves)), PILOT * tol,
-                           max_rounds, max_split)
+    start = first_samples(curves, [w0] * len(curves))  # the starts and their first probes in one evaluation
+    pilot = refine_samples(curves, [w0] * len(curves), [s[0] for s in start], PILOT * tol, max_rounds, max_split,
+                           probed=[s[1] for s in start])
     placed = [place_by_curvature(np.concatenate([w, probes.ravel()]), np.concatenate([pts, q.reshape(-1, 2)]),
                                  PLACE_AT * tol) for w, pts, _, probes, q in pilot]
     turned = first_turnings(curves, placed)

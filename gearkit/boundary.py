@@ -23,7 +23,7 @@ from gearkit.accuracy import sample_curves
 from gearkit.curves import polar_from_y, polyline_self_intersections, zoom_crossing
 from gearkit.errors import GeometryError
 from gearkit.pieces import CircleArc, Piece, TipLine, crossings_many, linear_coords
-from gearkit.refine import evaluate_curves, refine_samples
+from gearkit.refine import evaluate_curves, first_samples, refine_samples
 from gearkit.values import frozen
 
 
@@ -117,11 +117,13 @@ _START, _ENDS = np.linspace(0.0, 1.0, 17), np.concatenate([_GRADED, 1.0 - _GRADE
 
 
 def _sample_chain(branches, tol):
-    both = evaluate_curves(branches, [np.concatenate([_START, _ENDS])] * len(branches))
-    refined = refine_samples(branches, [_START] * len(branches), [b[:len(_START)] for b in both], tol)
+    # each branch's uniform start, its first probes and its graded ends in one evaluation
+    start = first_samples(branches, [_START] * len(branches), [_ENDS] * len(branches))
+    refined = refine_samples(branches, [_START] * len(branches), [s[0] for s in start], tol,
+                             probed=[s[1] for s in start])
     pts, owner, ws = [], [], []
-    for k, ((w, p, *_), b) in enumerate(zip(refined, both)):
-        w, p = np.concatenate([w, _ENDS]), np.concatenate([p, b[len(_START):]])
+    for k, ((w, p, *_), s) in enumerate(zip(refined, start)):
+        w, p = np.concatenate([w, _ENDS]), np.concatenate([p, s[2]])
         order = np.argsort(w, kind="stable")
         w, p = w[order], p[order]
         pts.append(p)

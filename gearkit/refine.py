@@ -15,8 +15,8 @@ import numpy as np
 from gearkit.chords import angle_parts, interval_bounds, monotone_range, round_off
 from gearkit.chords import chord_distance as _chord_deviation
 
-__all__ = ["ATOM", "PROBE_MARGIN", "UNEVEN", "evaluate_curves", "first_turning", "first_turnings", "refine_sample",
-           "refine_samples", "turn_curves"]
+__all__ = ["ATOM", "PROBE_MARGIN", "UNEVEN", "evaluate_curves", "first_samples", "first_turning", "first_turnings",
+           "refine_sample", "refine_samples", "turn_curves"]
 
 #: probe fractions of every interval: quarter points, and eighths at both ends (where a square-root
 #: end, x ~ sqrt(w), puts the chord's largest deviation)
@@ -220,17 +220,32 @@ def first_turning(curve, w):
 
 def first_turnings(curves, ws):
     """:func:`first_turning` of several curves (those of one ``joint`` key in one call)."""
-    return turn_curves(curves, [np.concatenate([w, (w[:-1, None] + np.diff(w)[:, None] * _PROBES).ravel()])
-                                for w in ws])
+    return turn_curves(curves, [np.concatenate([w, _first_probes(w)]) for w in ws])
 
 
-def refine_samples(curves, ws, ptss, tol: float, max_rounds: int = 60, max_split: int = 16, turned=None):
+def _first_probes(w):
+    """The first round's probes of the intervals of a sampling ``w``, flat (as the rounds place them)."""
+    return (w[:-1, None] + np.diff(w)[:, None] * _PROBES).ravel()
+
+
+def first_samples(curves, ws, more=None):
+    """Points of each curve at its vertices ``ws[i]``, at the first round's probes of their intervals (what
+    :func:`refine_samples` takes as ``probed``) and at the parameters ``more[i]``, all in one evaluation
+    (:func:`evaluate_curves`): ``[(at w, at the probes, at more)]``."""
+    more = [np.empty(0)] * len(ws) if more is None else more
+    out = evaluate_curves(curves, [np.concatenate([w, _first_probes(w), m]) for w, m in zip(ws, more)])
+    return [(p[:len(w)], p[len(w):len(w) + 5 * (len(w) - 1)], p[len(w) + 5 * (len(w) - 1):]) for p, w in zip(out, ws)]
+
+
+def refine_samples(curves, ws, ptss, tol: float, max_rounds: int = 60, max_split: int = 16, turned=None,
+                   probed=None):
     """:func:`refine_sample` of several curves at once: ``[(w, points, achieved, probes, q)]``, one per curve,
     each to the last bit what the curve gets alone.
 
     ``ws`` are the curves' starting parameters (sorted, each curve's own); ``ptss`` their points (probed
-    sampling), or None with ``turned`` given: each curve's :func:`first_turning` at its ``w`` (proven
-    bounds; every curve must give angle parts).
+    sampling; ``probed``: each curve's points at the first round's probes, where the caller evaluated them
+    with :func:`first_samples`), or None with ``turned`` given: each curve's :func:`first_turning` at its
+    ``w`` (proven bounds; every curve must give angle parts).
     """
     bound = turned is not None
     sizes = [len(w) for w in ws]
@@ -248,7 +263,8 @@ def refine_samples(curves, ws, ptss, tol: float, max_rounds: int = 60, max_split
         margin = 1.0
     else:
         curves = _Curves(curves, owner[:-1])
-        pts, probed, margin = np.concatenate(ptss), None, PROBE_MARGIN
+        pts, margin = np.concatenate(ptss), PROBE_MARGIN
+        probed = None if probed is None else np.concatenate(probed)
     todo, kept = np.flatnonzero(owner[:-1] == owner[1:]), None  # the intervals to probe: within a curve
     for _ in range(max_rounds):
         curves.owner = owner[:-1]
