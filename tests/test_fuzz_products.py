@@ -67,6 +67,51 @@ def _pair_check(data):
     run("pair_check", (kw, extra), build, check)
 
 
+def _novikov_arcs_and_clearance(res):
+    """The working-arc findings and the interference scan against the sampled outlines: a design contact
+    point the check keeps (or loses) by more than half a degree of rack angle is on (off) the outline,
+    and each contact's clearance is the smallest signed distance with the side by ray casting."""
+    from matplotlib.path import Path
+
+    from gearkit.distances import distances_to_polyline
+
+    spec, m = res.geometry.spec, res.geometry.module
+    tol = res.contacts[0].tol if res.contacts else 1e-5 * m
+    for k, prof in enumerate(res.profiles, start=1):
+        loop = prof.outline(tol)
+        for which in ("convex", "concave"):
+            if getattr(prof.spec.rack, which) is None:
+                continue
+            margin = res.report[f"working_arc.{k}.{which}"].value  # degrees of rack angle
+            off = float(distances_to_polyline(prof.contact_point(which)[0][None, :], loop, closed=True)[0])
+            if margin > 0.5:  # the point lies 0.5 deg * rho (> 0.01 m) inside the arc's ends
+                assert off <= 2 * tol, f"gear {k}'s {which} contact point said kept is {off:.3g} mm off the tooth"
+            elif margin < -0.5:
+                assert not off <= 2 * tol, f"gear {k}'s {which} contact point said cut away is on the tooth"
+    window = 3.0 * math.pi * res.geometry.transverse_module
+    coarse = 1e-3 * m  # the side by ray casting in outlines sampled to this: right beyond 2 (coarse + tol)
+    for c in res.contacts:
+        loops, rough = [], []
+        for k, prof in enumerate(res.profiles):
+            cs, sn = math.cos(c.rotations[k]), math.sin(c.rotations[k])
+            turn, at = np.array([[cs, sn], [-sn, cs]]), np.array([0.0, k * c.center_distance])
+            loops.append(prof.outline(tol) @ turn + at)
+            rough.append(prof.outline(coarse) @ turn + at)
+        pole_y = c.center_distance * spec.teeth1 / (spec.teeth1 + spec.teeth2)
+        lo = hi = math.inf  # bounds of the smallest signed distance
+        for k in (0, 1):
+            pts = loops[k][(np.abs(loops[k][:, 0]) < window) & (np.abs(loops[k][:, 1] - pole_y) < window)]
+            if not len(pts):
+                continue
+            d = distances_to_polyline(pts, loops[1 - k], closed=True)
+            far = d > 2 * (coarse + tol)
+            signed = np.where(Path(rough[1 - k]).contains_points(pts[far]), -d[far], d[far])
+            lo = min(lo, float(signed.min(initial=math.inf)), float(-d[~far].max(initial=-math.inf)))
+            hi = min(hi, float(signed.min(initial=math.inf)), float(d[~far].min(initial=math.inf)))
+        assert lo - 2 * tol <= c.clearance <= hi + 2 * tol, \
+            f"clearance {c.clearance:.3g} mm, the outlines say {lo:.3g} .. {hi:.3g}"
+
+
 @fuzz_settings(6)
 @given(data=st.data())
 def _novikov_pair_check(data):
@@ -74,7 +119,8 @@ def _novikov_pair_check(data):
     m = data.draw(modules)
     kw = data.draw(maybe_hostile(dict(teeth1=z1, teeth2=z1 + data.draw(st.integers(0, 100)), module=m,
                                        helix_angle_deg=data.draw(st.floats(8.0, 30.0)),
-                                       face_width=data.draw(st.floats(5.0, 40.0)) * m)))
+                                       face_width=data.draw(st.floats(5.0, 40.0)) * m,
+                                       racks=data.draw(st.sampled_from(["dca24", "single-arc"])))))
     off = data.draw(st.floats(-0.6, 0.6))
 
     def build():
@@ -101,6 +147,7 @@ def _novikov_pair_check(data):
         solved = {c.zone for c in res.contacts}
         for k in range(len(spec.racks.zones)):
             assert k in solved or res.report[f"mesh.contact.{k}"].status == "fail", "unmeshed zone not failed"
+        _novikov_arcs_and_clearance(res)
 
     run("novikov_pair_check", (kw, off), build, check)
 
