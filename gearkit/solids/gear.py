@@ -127,6 +127,12 @@ class _Section:
             cell = np.concatenate([t, [self.core_radius * u1, self.core_radius * u0]])
             self._cells = _triangulate([cell])
             self.inradius = self.core_radius * math.cos(math.pi / teeth)
+            # tooth k's cell corners: a tooth vertex c is outline vertex k n + c, a core vertex (c = n + 1,
+            # n + 2) core vertex k + 1 or k; the last tooth's far ends wrap round to vertex 0
+            cells = self._cells
+            self._on_tooth = cells <= self.n
+            self._stride = np.where(self._on_tooth, self.n, 1)
+            self._wrap = np.where(self._on_tooth, cells == self.n, cells == self.n + 1)
 
     def face(self, mesh, theta: float, base: int, z: float, wall, wall_base: int) -> np.ndarray:
         """Triangles (counter-clockwise seen from +z) of an end face at ``z``, teeth turned by ``theta``.
@@ -141,11 +147,10 @@ class _Section:
             spaces = _rotate(self.outline[::n], theta)
             core = spaces * (self.core_radius / np.hypot(spaces[:, 0], spaces[:, 1]))[:, None]
             core_base = mesh.add(core, z)
-            k = np.arange(self.z)[:, None, None]
-            cells = self._cells[None]
-            on_tooth = cells <= n
-            cells = np.where(on_tooth, (k * n + cells) % count + base,
-                             core_base + (k + (cells == n + 1)) % self.z).reshape(-1, 3)
+            cells = np.multiply.outer(np.arange(self.z), self._stride)  # (teeth, cell triangles, 3)
+            cells += np.where(self._on_tooth, base + self._cells, core_base + (self._cells == n + 1))
+            cells[-1] -= np.where(self._on_tooth, count, self.z) * self._wrap
+            cells = cells.reshape(-1, 3)
             if wall is None:
                 centre = mesh.add(np.zeros((1, 2)), z)
                 j = np.arange(self.z)

@@ -324,7 +324,7 @@ def _measures(v, f, what: str, bar) -> dict:
         k += np.multiply(np.maximum(ca, cb, out=high), 2, out=high)
         k += ca > cb
     del high
-    key.sort()
+    key.sort(kind="stable")  # the keys come in long ascending runs (facets in order), which a merge sort takes whole
     if not _paired(key):
         raise RepairableMesh(f"{what}: the mesh is not a valid solid (an edge without exactly one opposite edge)")
     del key
