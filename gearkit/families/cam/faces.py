@@ -114,9 +114,35 @@ def _refine_cut(curve, w, e, b, da: int = 1, db: int = 1):
             t = _chord_cross(pa[i], pa[i + 1], pb[j], pb[j + 1])
             if t is not None:
                 best = (w[ja[i]] + da * t[0] * (w[1] - w[0]), w[jb[j]] + db * t[1] * (w[1] - w[0]))
+    if best is None:  # a shallow crossing: samples past it lie within the slack of the cam and were kept
+        best = _far_cross(curve, w, e, b, da, db)
     if best is None:  # no chord crossing seen: start from the last kept and first kept samples
         best = (w[e], w[b])
     return _newton(curve, *best, h=0.5 * (w[1] - w[0]))
+
+
+def _far_cross(curve, w, e, b, da: int, db: int, reach: int = 64):
+    """The chords' crossing nearest the samples ``e`` and ``b`` within ``reach`` samples either side of
+    each (the two runs walked as in :func:`_refine_cut`; chords sharing a sample are no crossing), as
+    ``(wa, wb)``, or None."""
+    n = len(w) - 1
+    k = np.arange(-reach, reach + 1)
+    ja, jb = (e + da * k) % n, (b + db * k) % n
+    pa, pb = curve(w[ja]), curve(w[jb])
+    d1, d2 = (pa[1:] - pa[:-1])[:, None, :], (pb[1:] - pb[:-1])[None, :, :]
+    r = pb[None, :-1, :] - pa[:-1, None, :]
+    den = d1[..., 0] * d2[..., 1] - d1[..., 1] * d2[..., 0]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = (r[..., 0] * d2[..., 1] - r[..., 1] * d2[..., 0]) / den
+        u = (r[..., 0] * d1[..., 1] - r[..., 1] * d1[..., 0]) / den
+    apart = np.abs((ja[:-1, None] - jb[None, :-1] + n // 2) % n - n // 2) > 1  # not one chord, nor two that touch
+    hit = apart & (den != 0.0) & (t >= 0.0) & (t <= 1.0) & (u >= 0.0) & (u <= 1.0)
+    if not hit.any():
+        return None
+    i, j = np.nonzero(hit)
+    c = int(np.argmin(np.abs(i - reach) + np.abs(j - reach)))
+    step = w[1] - w[0]
+    return w[ja[i[c]]] + da * t[i[c], j[c]] * step, w[jb[j[c]]] + db * u[i[c], j[c]] * step
 
 
 def _chord_cross(p0, p1, q0, q1):
@@ -234,15 +260,18 @@ def face_boundary(curve, depth, slack: float, corners, scale: float, samples: in
         if not dropped:
             break
         runs = [r for k, r in enumerate(runs) if k not in dropped]
+        if not runs:
+            raise GeometryError("no kept arc of the flat face's envelope is left between its crossings")
     ranges = sorted(((min(e, f, key=sum), max(e, f, key=sum)) for e, f, _ in arcs), key=lambda r: r[0][0])
     cuts = sorted((hi[0], lo[0]) for (_, hi), (lo, _) in zip(ranges, ranges[1:] + ranges[:1]))  # along w
     return [(_spans(entry, leave), edge) for entry, leave, edge in arcs], cuts
 
 
 def _join_runs(curve, w, runs, corners, scale, step):
-    """The runs' arcs joined around the cam: ``[(lo, hi, (entry, leave, edge))]`` in boundary order
-    (``lo < hi`` the arc's unwrapped ``w`` range, ``entry`` and ``leave`` its ends as walked) and the
-    indices of runs left with no arc (both joins past each other: a run of a sample or two)."""
+    """The runs' arcs joined around the cam: ``[(entry, leave, edge)]`` in boundary order (``entry`` and
+    ``leave`` the arc's ends as walked, each ``(w, turns)``; ``edge`` the straight stretch to the next
+    arc or None) and the indices of runs left with no arc (both joins past each other: a run of a sample
+    or two)."""
     m = len(w) - 1
 
     def polar(j):
