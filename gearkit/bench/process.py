@@ -54,6 +54,9 @@ def _face_width_flag():
 
 def process_times(runs: int = 5):
     """Median whole-process wall time (s) over ``runs`` runs for each reference gear."""
+    from gearkit.bench.targets import user_environment
+
+    env = user_environment()  # as a user runs it: cached bytecode, BLAS threads as the command sets them
     stl = mesh_export_available()
     width_flag = _face_width_flag() if stl else None
     rows = []
@@ -66,7 +69,7 @@ def process_times(runs: int = 5):
             times, ok, err = [], True, ""
             for _ in range(runs):
                 t0 = time.perf_counter()
-                proc = subprocess.run(cmd, capture_output=True, text=True)
+                proc = subprocess.run(cmd, capture_output=True, text=True, env=env)
                 times.append(time.perf_counter() - t0)
                 if proc.returncode != 0:
                     ok, err = False, proc.stderr.strip().splitlines()[-1:] or [""]
