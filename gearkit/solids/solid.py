@@ -233,7 +233,7 @@ class Solid:
             single = _columns(v.astype(np.float32))
             self._normals = np.zeros((len(f), 3), dtype=np.float32)
             for s in range(0, len(f), CHUNK):
-                n = np.stack(_cross(single, _columns(f[s:s + CHUNK]))[1], 1)
+                n = np.stack(_cross(_gather(single, _columns(f[s:s + CHUNK]))), 1)
                 length = np.sqrt(np.einsum("ij,ij->i", n, n))[:, None]
                 self._normals[s:s + CHUNK] = np.divide(n, length, out=np.zeros_like(n), where=length > 0)
         return self._normals
@@ -329,15 +329,14 @@ def _measures(v, f, what: str, bar) -> dict:
         raise RepairableMesh(f"{what}: the mesh is not a valid solid (an edge without exactly one opposite edge)")
     del key
     bar.step(len(f))
-    exact, single = tuple(v[:, k] for k in range(3)), _columns(v.astype(np.float32))  # (exact: views)
-    normals = np.empty((len(f), 3), dtype=np.float32)
-    volume = area = 0.0
+    exact, normals, volume, area = tuple(v[:, k] for k in range(3)), np.empty((len(f), 3), dtype=np.float32), 0.0, 0.0
     for s in range(0, len(f), CHUNK):
         chunk = tuple(c[s:s + CHUNK] for c in corners)
-        p0, n = _cross(exact, chunk)
-        volume += sum(float(np.einsum("i,i->", p, c)) for p, c in zip(p0, n)) / 6.0
+        n = _cross(corner_points := _gather(exact, chunk))
+        volume += sum(float(np.einsum("i,i->", p, c)) for p, c in zip(corner_points[0], n)) / 6.0
         area += 0.5 * float(np.sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sum())
-        n = _cross(single, chunk)[1]
+        # the same corners rounded to single precision (gathered once: rounding commutes with the gather)
+        n = _cross(tuple(tuple(c.astype(np.float32).astype(np.float64) for c in p) for p in corner_points))
         length = np.sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2])
         if not (length > 0.0).all():
             raise RepairableMesh(f"{what}: the mesh has degenerate facets (zero area in single precision)")
@@ -362,15 +361,18 @@ def _columns(a):
     return tuple(np.ascontiguousarray(a[:, k], dtype=kind) for k in range(3))
 
 
-def _cross(points, corners):
-    """The first corners of facets and the cross products of their edges (twice the area along the
-    normal), as columns, from :func:`_columns` of the points and of the facets' corner indices (the
-    products as ``np.cross`` forms them)."""
-    p0 = tuple(c[corners[0]] for c in points)
-    e1 = tuple(c[corners[1]] - q for c, q in zip(points, p0))
-    e2 = tuple(c[corners[2]] - q for c, q in zip(points, p0))
-    n = (e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0])
-    return p0, n
+def _gather(points, corners):
+    """The facets' corners ``((x, y, z) of the 1st, 2nd, 3rd)`` from point and corner index columns."""
+    return tuple(tuple(c[k] for c in points) for k in corners)
+
+
+def _cross(corner_points):
+    """The cross products of the facets' edges (twice the area along the normal), as columns, from
+    their corners (:func:`_gather`; the products as ``np.cross`` forms them)."""
+    p0, p1, p2 = corner_points
+    e1 = tuple(c - q for c, q in zip(p1, p0))
+    e2 = tuple(c - q for c, q in zip(p2, p0))
+    return (e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0])
 
 
 def manifold_from_arrays(vertices, faces):
