@@ -60,6 +60,8 @@ def bore_points(diameter: float, keyway, tol: float) -> np.ndarray:
 
 
 def _rotate(p, angle):
+    if angle == 0.0:  # a spur gear's slices: no product (a large one may wake numpy's BLAS threads)
+        return p
     c, s = math.cos(angle), math.sin(angle)
     return p @ np.array([[c, s], [-s, c]])
 
