@@ -30,6 +30,17 @@ def gearkit_command():
     return [exe] if os.path.exists(exe) else [sys.executable, "-m", "gearkit"]
 
 
+def user_environment() -> dict:
+    """This process's environment without the BLAS settings the ``gearkit`` command made itself
+    (the environment a user's ``python`` starts in), bytecode writing allowed."""
+    env = dict(os.environ)
+    cli = sys.modules.get("gearkit.cli")
+    for variable in getattr(cli, "BLAS_THREADS_SET_HERE", ()):
+        env.pop(variable, None)
+    env.pop("PYTHONDONTWRITEBYTECODE", None)  # a user's install runs from cached bytecode
+    return env
+
+
 def mesh_export_available() -> bool:
     """True when ``gearkit gear`` can write an STL (the solids module exists)."""
     try:
@@ -54,8 +65,6 @@ def _face_width_flag():
 
 def process_times(runs: int = 5):
     """Median whole-process wall time (s) over ``runs`` runs for each reference gear."""
-    from gearkit.bench.targets import user_environment
-
     env = user_environment()  # as a user runs it: cached bytecode, BLAS threads as the command sets them
     stl = mesh_export_available()
     width_flag = _face_width_flag() if stl else None

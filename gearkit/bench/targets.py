@@ -32,6 +32,8 @@ import time
 
 import numpy as np
 
+from gearkit.bench.process import user_environment
+
 __all__ = ["target_row", "user_environment", "one_blas_thread", "process_target_rows", "mesh_target_rows",
            "contact_targets", "blocking_targets", "format_target_rows", "markdown_target_rows"]
 
@@ -68,17 +70,6 @@ def _child_times(cmd, env) -> tuple[float, float, int]:
     wall = time.perf_counter() - t0
     r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
     return (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime), wall, proc.returncode
-
-
-def user_environment() -> dict:
-    """This process's environment without the BLAS settings the ``gearkit`` command made itself
-    (the environment a user's ``python`` starts in), bytecode writing allowed."""
-    env = dict(os.environ)
-    cli = sys.modules.get("gearkit.cli")
-    for variable in getattr(cli, "BLAS_THREADS_SET_HERE", ()):
-        env.pop(variable, None)
-    env.pop("PYTHONDONTWRITEBYTECODE", None)  # a user's install runs from cached bytecode
-    return env
 
 
 def one_blas_thread(env: dict) -> dict:
