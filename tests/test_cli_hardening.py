@@ -320,7 +320,7 @@ def test_ctrl_c_while_an_error_is_reported_exits_130(capsys, tmp_path, monkeypat
     command's error) escaped main. It is one line and 130 too."""
     import gearkit.cli.shell
 
-    real, calls = gearkit.cli.shell.signal.signal, []
+    real, calls = gearkit.cli.shell._signal.signal, []
 
     def signal_then_interrupt(*a):
         calls.append(a)
@@ -329,7 +329,7 @@ def test_ctrl_c_while_an_error_is_reported_exits_130(capsys, tmp_path, monkeypat
         return real(*a)
 
     before = signal.getsignal(signal.SIGTERM)
-    monkeypatch.setattr(gearkit.cli.shell.signal, "signal", signal_then_interrupt)
+    monkeypatch.setattr(gearkit.cli.shell._signal, "signal", signal_then_interrupt)
     try:
         code, _, err = run(capsys, "gear", "-z", "20", "-m", "2", "-o", str(tmp_path / "missing" / "g.svg"))
     finally:

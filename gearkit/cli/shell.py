@@ -16,8 +16,8 @@ gearkit.errors.SpecError: --tol: this needs about 3.2e+07 points (limit 2e+06); 
 """
 from __future__ import annotations
 
+import _signal  # the built-in module under signal, whose enum wrappers a command never needs
 import os
-import signal
 import sys
 
 from gearkit.errors import GearkitError, SpecError
@@ -122,7 +122,7 @@ def run_guarded(args, debug: bool = False) -> int:
     prefix = f"gearkit {getattr(args, 'command', '')}".rstrip()
     previous = None
     try:
-        previous = signal.signal(signal.SIGTERM, _on_sigterm)
+        previous = _signal.signal(_signal.SIGTERM, _on_sigterm)
     except ValueError:  # not the main thread: leave signals alone
         previous = None
     tee = _Tee(sys.stdout)
@@ -168,7 +168,7 @@ def run_guarded(args, debug: bool = False) -> int:
         return EXIT_INTERNAL
     finally:
         if previous is not None:
-            signal.signal(signal.SIGTERM, previous)
+            _signal.signal(_signal.SIGTERM, previous)
 
 
 def _stamp(path):
