@@ -16,6 +16,9 @@ import numpy as np
 __all__ = ["segment_roots", "NearestBracket"]
 
 ROOT_ITERATIONS = 100
+GUARD_FRACTION = 0.5  #: a round's guard stands this fraction of tol beyond its estimate ...
+GUARD_SETTLED = 0.5  #: ... where the estimate moved less than this fraction of its bracket since the round
+#: before (it is settling on a root; not beside a jump of F or while the bracket is still wide)
 
 
 def segment_roots(F, a, b, fa, fb, tol: float, which) -> np.ndarray:
@@ -23,8 +26,10 @@ def segment_roots(F, a, b, fa, fb, tol: float, which) -> np.ndarray:
     values of opposite signs; each within ``tol`` (in x) of a sign change of ``F``.
 
     Regula falsi with the Illinois modification; a step that fails to halve the bracket over two
-    iterations is followed by a bisection. Where ``F`` is undefined (NaN) inside a bracket the
-    half towards the end with the larger ``|F|`` is kept.
+    iterations is followed by a bisection. Regula falsi comes at a root from one side, so where its
+    estimate settles a guard ``GUARD_FRACTION tol`` beyond it is evaluated in the same call: a root
+    between the two closes the bracket at once (read off the chord between them). Where ``F`` is
+    undefined (NaN) inside a bracket the half towards the end with the larger ``|F|`` is kept.
     """
     a = np.asarray(a, dtype=float).reshape(-1, 2)
     b = np.asarray(b, dtype=float).reshape(-1, 2)
@@ -41,6 +46,7 @@ def segment_roots(F, a, b, fa, fb, tol: float, which) -> np.ndarray:
     l, h, fl, fh, aa, dd, ww, sp = (v[act] for v in (lo, hi, flo, fhi, a, d, which, span))
     s = np.zeros(act.size, dtype=int)  # the end moved last: 1 low, -1 high, 0 none or a bisection
     stall = np.zeros(act.size, dtype=int)
+    cp = np.full(act.size, np.nan)
     for _ in range(ROOT_ITERATIONS):
         if not act.size:
             break
@@ -48,7 +54,16 @@ def segment_roots(F, a, b, fa, fb, tol: float, which) -> np.ndarray:
             c = (l * fh - h * fl) / (fh - fl)
         bis = ~((c > l) & (c < h)) | (stall >= 3)
         c = np.where(bis, 0.5 * (l + h), c)
-        fc = F(aa + c[:, None] * dd, ww)
+        # a guard GUARD_FRACTION tol beyond a settling estimate, towards the end regula falsi has not
+        # moved (it comes at the root from one side): where the root lies between them the bracket closes
+        # now, where the estimate fell short the guard moves the same end a little farther
+        with np.errstate(invalid="ignore"):
+            g = c + np.where(s == 1, 1.0, -1.0) * (GUARD_FRACTION * tol / sp)
+            settled = np.abs(c - cp) <= GUARD_SETTLED * (h - l)
+            gi = np.flatnonzero((s != 0) & ~bis & settled & (g > l) & (g < h))
+        both = F(np.concatenate([aa + c[:, None] * dd, aa[gi] + g[gi, None] * dd[gi]]), np.concatenate([ww, ww[gi]]))
+        fc, fg = both[:act.size], both[act.size:]
+        cp_next = c.copy()
         nan = np.isnan(fc)
         zero = fc == 0
         live = ~(nan | zero)
@@ -65,17 +80,36 @@ def segment_roots(F, a, b, fa, fb, tol: float, which) -> np.ndarray:
         s = np.where(bis | nan, 0, np.where(same_hi, -1, np.where(same_lo, 1, s)))
         new_h = np.where(same_hi | nh, c, h)
         new_l = np.where(same_lo | (nan & ~nh), c, l)
+        # the guard: inside the bracket left by the estimate, it moves the end of its own sign
+        ok = np.isfinite(fg) & (g[gi] > new_l[gi]) & (g[gi] < new_h[gi])
+        gi, gv, fg = gi[ok], g[gi][ok], fg[ok]
+        g_hi = (fg > 0) == (fh2[gi] > 0)
+        g_zero = fg == 0
+        new_h[gi] = np.where(g_hi | g_zero, gv, new_h[gi])
+        fh2[gi] = np.where(g_hi | g_zero, fg, fh2[gi])
+        new_l[gi] = np.where(g_hi | g_zero, new_l[gi], gv)
+        fl2[gi] = np.where(g_hi | g_zero, fl2[gi], fg)
+        c[gi[g_zero]] = gv[g_zero]
+        zero[gi[g_zero]] = True
+        # a bracket the guard closed has two fresh ends: its root read between them (the chord's zero)
+        pair = np.flatnonzero(~g_hi & ~g_zero & np.isfinite(fc[gi]) & (fc[gi] != 0) & ((fc[gi] > 0) != (fg > 0)))
+        t_in = np.full(act.size, np.nan)
+        ci, cg, fci, fgi = c[gi[pair]], gv[pair], fc[gi[pair]], fg[pair]
+        t_in[gi[pair]] = ci + (cg - ci) * (fci / (fci - fgi))
         width = new_h - new_l
         stall = np.where((width <= 0.5 * (h - l)) | bis, 0, stall + 1)
         l, h, fl, fh = new_l, new_h, fl2, fh2
+        cp = cp_next
         closed = zero | (width * sp <= tol)
         if closed.any():
             t[act[zero]] = c[zero]
+            at = closed & ~zero & np.isfinite(t_in)
+            t[act[at]] = t_in[at]
             i = act[closed]
             lo[i], hi[i], flo[i], fhi[i] = l[closed], h[closed], fl[closed], fh[closed]
             keep = ~closed
-            act, l, h, fl, fh, aa, dd, ww, sp, s, stall = (v[keep] for v in (act, l, h, fl, fh, aa, dd, ww, sp, s,
-                                                                             stall))
+            act, l, h, fl, fh, aa, dd, ww, sp, s, stall, cp = (v[keep] for v in (act, l, h, fl, fh, aa, dd, ww, sp,
+                                                                                 s, stall, cp))
     lo[act], hi[act], flo[act], fhi[act] = l, h, fl, fh  # brackets still open after the last iteration
     with np.errstate(invalid="ignore"):
         best = np.where(np.abs(flo) <= np.abs(fhi), lo, hi)

@@ -9,7 +9,8 @@ where undefined); every step below evaluates all the points it needs, of all the
    of one interpolant).
 2. **Vertices on the curve**: each marching-squares vertex lies on a grid edge with a sign change;
    it is moved to the root of ``F`` on that edge
-   (:func:`~gearkit.blocking.brackets.segment_roots`: regula falsi with the Illinois modification and bisection safeguards) to ``tol / 4`` in x.
+   (:func:`~gearkit.blocking.brackets.segment_roots`: regula falsi with the Illinois modification,
+   a guard beside a settling estimate and bisection safeguards) to ``tol / 4`` in x.
 3. **Chords on the curve** (:func:`densify`): a chord's deviation from its curve is estimated at
    its middle ``m`` from ``|F(m)| / |grad F|`` (the slope known from the roots that made its ends);
    a chord estimated within ``tol / 2`` is kept, any other is measured by a root of ``F`` along
