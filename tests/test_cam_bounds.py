@@ -264,6 +264,20 @@ def test_roller_cam_with_a_lift_of_four_prime_radii_is_the_region_no_roller_cove
     _assert_is_the_region_no_roller_covers(spec, 0.02)
 
 
+def test_roller_rocker_cam_whose_envelope_turns_back_at_a_dwell_join_is_the_region_no_roller_covers():
+    # the fuzz search's rocker swinging about four times as fast as its cam: the harmonic rise ends so
+    # sharply curved that the envelope turns back before the dwell and again at the join (a corner), and
+    # the kept arc of the rise meets the dwell's circle a quarter step past the join, at a crossing two
+    # degrees shallow. The chord across the join crossed the rise's and led Newton to the turned-back
+    # stretch, 0.017 mm from it, and the cam was refused (GeometryError: "leaves the cam ... where it
+    # meets no other kept arc")
+    kw = dict(prime_radius=180.34961027865103, follower="rocker", contact="roller", roller_radius=67.63110385449414,
+              pivot_distance=216.41953233438122, arm_length=220.35446417687436)
+    motion = MotionProgram.rise_dwell_return(315.27588322487213, 31.5, 1.7481373136196519, 75.80154362919123, "harmonic")
+    spec = CamSpec(motion=motion, **kw)
+    _assert_is_the_region_no_roller_covers(spec, 1e-5 * spec.prime_radius)
+
+
 def test_velocity_jumps_either_side_of_a_dwell_of_1e_9_degrees_are_found():
     # two constant-velocity phases 1e-9 degrees apart (1.7e-11 rad): the velocities either side of a
     # jump were read 1e-9 rad away, past the other jump, and the corner's angle was not found (a

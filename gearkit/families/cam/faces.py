@@ -87,7 +87,7 @@ def _cam_cycle(curve, w, keep, starts, ends, meet: float):
     for _ in range(len(starts)):
         e = next((j for j in ends if j >= s), ends[0])
         for b in [j for j in starts if j > e] + [j for j in starts if j <= e]:
-            wa, wb = _refine_cut(curve, w, e, b)
+            wa, wb = _refine_cut(curve, w, e, b, meet=meet)
             pa, pb = curve(np.array([wa, wb]))
             if np.hypot(*(pa - pb)) <= meet:
                 break
@@ -100,10 +100,13 @@ def _cam_cycle(curve, w, keep, starts, ends, meet: float):
     raise GeometryError("the arcs of the roller's envelope that no roller covers do not close around the cam axis")
 
 
-def _refine_cut(curve, w, e, b, da: int = 1, db: int = 1):
+def _refine_cut(curve, w, e, b, da: int = 1, db: int = 1, meet: float | None = None):
     """The crossing ``curve(wa) = curve(wb)`` with ``wa`` just past sample ``e`` (going in the direction
     ``da`` of ``w``, +1 or -1) and ``wb`` just before sample ``b`` (coming in the direction ``db``): the
-    chords' crossing, then Newton."""
+    chords' crossing, then Newton. With ``meet`` (mm), a crossing whose ends lie farther apart is
+    sought again from the closest pair of the curve resampled densely between the samples
+    (:func:`_dense_start`): a chord across a motion join, where the envelope turns back at a corner,
+    is not the curve, and its crossing may lead Newton to another stretch."""
     n = len(w)
     ja = (e + da * np.arange(-2, 3)) % (n - 1)
     jb = (b + db * np.arange(-3, 2)) % (n - 1)
@@ -118,7 +121,27 @@ def _refine_cut(curve, w, e, b, da: int = 1, db: int = 1):
         best = _far_cross(curve, w, e, b, da, db)
     if best is None:  # no chord crossing seen: start from the last kept and first kept samples
         best = (w[e], w[b])
-    return _newton(curve, *best, h=0.5 * (w[1] - w[0]))
+    h = 0.5 * (w[1] - w[0])
+    wa, wb = _newton(curve, *best, h=h)
+    if meet is not None and np.hypot(*np.subtract(*curve(np.array([wa, wb])))) > meet:
+        wa, wb = _newton(curve, *_dense_start(curve, w, ja, jb), h=h)
+    return wa, wb
+
+
+def _dense_start(curve, w, ja, jb, per: int = 128):
+    """The closest pair ``(wa, wb)`` of the curve resampled ``per`` times a sample step along the
+    samples ``ja`` and ``jb`` (each walked in its own direction, consecutive samples)."""
+    f = np.arange(per) / per
+
+    def dense(j):
+        a, b = w[j[:-1]], w[j[1:]]
+        b = np.where(np.abs(b - a) > 0.5, b + np.sign(a - b), b)  # a step across w = 1
+        return np.mod((a[:, None] + f[None, :] * (b - a)[:, None]).ravel(), 1.0)
+    xa, xb = dense(ja), dense(jb)
+    pa, pb = curve(xa), curve(xb)
+    gap = np.hypot(pa[:, None, 0] - pb[None, :, 0], pa[:, None, 1] - pb[None, :, 1])
+    i, k = np.unravel_index(int(np.argmin(gap)), gap.shape)
+    return float(xa[i]), float(xb[k])
 
 
 def _far_cross(curve, w, e, b, da: int, db: int, reach: int = 64):
