@@ -213,12 +213,9 @@ def _squeeze(a, b, fa, fb, xtol, maxiter):
     next estimate, from the ends of a bracket that narrow, is better still: a few rounds reach the
     tolerance. Whatever ``f`` is (a jump, a flat stretch, several roots) the thirds shrink the
     bracket at least threefold a round."""
-    if fa == 0.0:
-        return a
-    if fb == 0.0:
-        return b
-    if (fa > 0) == (fb > 0):
-        raise ValueError("bracketed_root: no sign change on the bracket")
+    end = _end_root(a, b, fa, fb)
+    if end is not None:
+        return end
     if b < a:
         a, b, fa, fb = b, a, fb, fa
     for _ in range(maxiter):
@@ -251,14 +248,23 @@ def _squeeze(a, b, fa, fb, xtol, maxiter):
     return a if abs(fa) < abs(fb) else b
 
 
-def _illinois(a, b, fa, fb, xtol, maxiter):
-    """:func:`bracketed_root`'s steps: yields each point it needs ``f`` at and is sent the value; returns the root."""
+def _end_root(a, b, fa, fb):
+    """``a`` or ``b`` where ``f`` is exactly zero there, else None; raises ``ValueError`` when the
+    bracket's ends have one sign."""
     if fa == 0.0:
         return a
     if fb == 0.0:
         return b
     if (fa > 0) == (fb > 0):
         raise ValueError("bracketed_root: no sign change on the bracket")
+    return None
+
+
+def _illinois(a, b, fa, fb, xtol, maxiter):
+    """:func:`bracketed_root`'s steps: yields each point it needs ``f`` at and is sent the value; returns the root."""
+    end = _end_root(a, b, fa, fb)
+    if end is not None:
+        return end
     side = 0
     width = abs(b - a)
     for _ in range(maxiter):
