@@ -138,22 +138,54 @@ def test_plot_is_written(tmp_path, capsys):
 FLAT = [a for a in BASE if a not in ("--roller-radius", "10")] + ["--contact", "flat", "--prime-radius", "30"]
 
 
-@pytest.mark.parametrize("argv", [BASE, BASE + ["--rocker", "--pivot-distance", "90", "--arm-length", "70",
-                                                "--friction", "0.2"], FLAT], ids=["roller", "rocker", "flat"])
-def test_plot_legends_cover_no_line_and_no_other_panel(argv):
-    """Every legend sits where no plotted point of its panel falls and overlaps no other panel; it stays inside
-    the picture (a legend drawn over the cam once hid its pitch curve)."""
+#: a flat rocker whose face swings several times as fast as the cam (tests/test_cam_flat.py STEEP): its
+#: acceleration and jerk run to thousands, tick labels five and six characters wide
+STEEP_FLAT_ROCKER = ["cam", "--contact", "flat", "--rocker", "--prime-radius", "20", "--pivot-distance", "24",
+                     "--arm-length", "27.13", "--law", "polynomial_345", "--rise", "35", "--rise-deg", "20",
+                     "--dwell-deg", "1.75", "--return-deg", "20"]
+
+
+def _drawn(argv):
+    """The cam picture of ``argv`` drawn on an Agg canvas: ``(figure, renderer)``."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
     from gearkit.cli import build_parser
     from gearkit.cli.cam import spec_from_args
     from gearkit.families.cam import cam_profile
     from gearkit.families.cam.plot import figure
 
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-
     fig = figure(cam_profile(spec_from_args(build_parser("cam").parse_args(argv))))
     canvas = FigureCanvasAgg(fig)
     canvas.draw()
-    renderer = canvas.get_renderer()
+    return fig, canvas.get_renderer()
+
+
+@pytest.mark.parametrize("argv", [BASE, FLAT + ["--rocker", "--pivot-distance", "80", "--arm-length", "60"],
+                                  STEEP_FLAT_ROCKER], ids=["roller", "flat-rocker", "steep-flat-rocker"])
+def test_plot_every_label_and_tick_is_inside_the_picture(argv):
+    """Everything drawn in each panel (its title, axis labels, the tick labels it draws, its legend) lies within
+    the figure's frame: a wide tick label once pushed the acceleration's axis label past the left edge. No
+    panel's labels run into a neighbour's."""
+    fig, renderer = _drawn(argv)
+    frame = fig.bbox
+    boxes = [(ax, ax.get_tightbbox(renderer)) for ax in fig.axes]  # drawn ticks only, legends included
+    assert [ax.get_ylabel().split("\n")[0] for ax in fig.axes[:4]] == ["s", "s'", "s''", "s'''"]
+    for ax, box in boxes:
+        assert frame.x0 <= box.x0 and box.x1 <= frame.x1 and frame.y0 <= box.y0 and box.y1 <= frame.y1, \
+            f"panel {ax.get_ylabel() or ax.get_title()!r} drawn at {box.extents}, outside {frame.extents}"
+    for i, (a, box) in enumerate(boxes):
+        for b, other in boxes[i + 1:]:
+            inter = box.intersection(box, other)
+            assert inter is None or inter.width * inter.height <= 0.0, \
+                f"{a.get_ylabel()!r} and {b.get_ylabel()!r} overlap by {inter.width:.1f} x {inter.height:.1f} px"
+
+
+@pytest.mark.parametrize("argv", [BASE, BASE + ["--rocker", "--pivot-distance", "90", "--arm-length", "70",
+                                                "--friction", "0.2"], FLAT], ids=["roller", "rocker", "flat"])
+def test_plot_legends_cover_no_line_and_no_other_panel(argv):
+    """Every legend sits where no plotted point of its panel falls and overlaps no other panel; it stays inside
+    the picture (a legend drawn over the cam once hid its pitch curve)."""
+    fig, renderer = _drawn(argv)
     frame = fig.bbox
     legends = [(ax, ax.get_legend()) for ax in fig.axes if ax.get_legend() is not None]
     assert len(legends) == 2

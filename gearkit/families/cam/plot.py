@@ -46,18 +46,19 @@ def figure(prof, tol: float | None = None):
 
     spec = prof.spec
     tol = 1e-4 * (spec.prime_radius + spec.stroke) if tol is None else tol
-    fig = Figure(figsize=(11.0, 6.6), dpi=100)
-    outer = fig.add_gridspec(1, 2, width_ratios=(1.15, 1.0), wspace=0.2, left=0.07, right=0.98, top=0.94,
-                             bottom=0.08)
-    left = outer[0].subgridspec(4, 1, hspace=0.12)
-    right = outer[1].subgridspec(2, 1, hspace=0.3, height_ratios=(1.2, 1.0))
+    fig = Figure(figsize=(11.0, 6.6), dpi=100, layout="constrained")
+    outer = fig.add_gridspec(1, 2, width_ratios=(1.15, 1.0))
+    left = outer[0].subgridspec(4, 1)
+    right = outer[1].subgridspec(2, 1, height_ratios=(1.2, 1.0))
     deg = np.linspace(0.0, 360.0, 2881)
     phi = np.radians(deg)
     curves = spec.motion.evaluate(phi)
+    motion_axes = []
     names = (("s", "mm"), ("s'", "mm/rad"), ("s''", "mm/rad²"), ("s'''", "mm/rad³"))
     colours = ("#1b4f72", "#117a65", "#b9770e", "#922b21")
     for k, (values, (label, unit), colour) in enumerate(zip(curves, names, colours)):
         ax = fig.add_subplot(left[k])
+        motion_axes.append(ax)
         ax.plot(deg, values, color=colour, lw=1.4)
         ax.axhline(0.0, color="#999999", lw=0.6)
         ax.set_ylabel(f"{label}\n[{unit}]", fontsize=9)
@@ -70,8 +71,9 @@ def figure(prof, tol: float | None = None):
         else:
             ax.set_xlabel("cam angle φ [deg]", fontsize=9)
         if k == 0:
-            ax.set_title("follower motion: displacement, velocity, acceleration, jerk (per cam angle)", fontsize=10)
-    top = right[0].subgridspec(1, 2, width_ratios=(1.0, 0.45), wspace=0.04)
+            ax.set_title("follower motion: displacement, velocity, acceleration, jerk", fontsize=10)
+    fig.align_ylabels(motion_axes)
+    top = right[0].subgridspec(1, 2, width_ratios=(1.0, 0.45))
     ax = fig.add_subplot(top[0])
     out = prof.outline(tol)
     pitch = prof.pitch_outline(tol)[0] if spec.contact != "flat" else None
@@ -81,8 +83,7 @@ def figure(prof, tol: float | None = None):
     foll = _follower_outline(prof)
     ax.plot(foll[:, 0], foll[:, 1], color="#922b21", lw=1.4, label=f"{spec.follower} {spec.contact}\nat φ = 0")
     ax.plot([0.0], [0.0], marker="+", color="black", ms=8, label="cam axis")
-    ax.set_aspect("equal")
-    ax.set_anchor("E")  # the plot against its legend's column: the legend is beside it, where no line runs
+    ax.set_aspect("equal", adjustable="datalim")  # the box fills its cell, so the layout sees where it is
     ax.tick_params(labelsize=8)
     key = fig.add_subplot(top[1])
     key.axis("off")
@@ -100,6 +101,8 @@ def figure(prof, tol: float | None = None):
     lim = spec.limit_deg
     for sign in (1, -1):
         ax.axhline(sign * lim, color="#b9770e", lw=1.0, ls=":", label="limit ±%g°" % lim if sign > 0 else None)
+    lo, hi = ax.get_ylim()  # the limit lines inside the frame, not on its edge
+    ax.set_ylim(min(lo, -1.1 * lim), max(hi, 1.1 * lim))
     ax.set_xlim(0.0, 360.0)
     ax.set_xticks(np.arange(0, 361, 60))
     ax.set_xlabel("cam angle φ [deg]", fontsize=9)
