@@ -4,6 +4,9 @@ The ladder's "achieved" must be an independent measurement: it must track the re
 (within 2x, monotone over the ladder) and it must see a polyline that is too coarse.
 """
 import math
+import os
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -68,6 +71,29 @@ def test_markdown_block_replaces_only_the_marked_region():
     text = f"# t\n\nbefore\n{mod.START}\nold\n{mod.END}\nafter\n"
     out = mod.replace_block(text, "new table")
     assert out == f"# t\n\nbefore\n{mod.START}\nnew table\n{mod.END}\nafter\n"
+
+
+@pytest.mark.skipif(not os.path.isdir("/proc/self/task"), reason="counts threads in Linux's /proc")
+def test_the_bench_script_times_with_numpys_blas_on_one_thread():
+    """``examples/bench_table.py`` runs the bench as ``gearkit bench`` does: its in-process rows run with numpy's
+    BLAS on one thread, and the bench says so. Oracle: the process's own threads (Linux's ``/proc``) once
+    numpy is loaded: one, where a plain ``import numpy`` in the same environment starts BLAS's pool (a thread
+    per core)."""
+    from pathlib import Path
+
+    script = Path(__file__).resolve().parent.parent / "examples" / "bench_table.py"
+    env = {k: v for k, v in os.environ.items() if k not in ("OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS")}
+    count = "import os, numpy; print(len(os.listdir('/proc/self/task')))"
+    plain = subprocess.run([sys.executable, "-c", count], capture_output=True, text=True, env=env, timeout=120)
+    probe = ("import os, runpy, sys\n"
+             f"runpy.run_path({str(script)!r}, run_name='bench_table')\n"
+             "from gearkit.bench import process\n"
+             "print(len(os.listdir('/proc/self/task')), process.blas_threads(), 'numpy' in sys.modules)")
+    proc = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True, env=env, timeout=120)
+    assert plain.returncode == 0 and proc.returncode == 0, plain.stderr + proc.stderr
+    assert proc.stdout.split() == ["1", "1", "True"]
+    if (os.cpu_count() or 1) > 1:  # the oracle sees a pool where there is one
+        assert int(plain.stdout) > 1
 
 
 def test_bench_is_a_registered_command():

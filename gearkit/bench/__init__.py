@@ -64,7 +64,7 @@ def run_bench(quick: bool = False, process: bool = True, progress=None) -> dict:
         t0 = time.perf_counter()
         out = {"meta": {"quick": quick, "repeats": repeats, "python": platform.python_version(),
                         "numpy": np.__version__, "machine": platform.machine(), "cpus": os.cpu_count(),
-                        "load_before": _load()}}
+                        "load_before": _load(), "blas_threads": proc.blas_threads()}}
         say("overhead against the closed-form involute")
         out["overhead"] = profiles.overhead(11 if quick else 31)
         out["overhead_ratio"] = out["overhead"]["overhead_ratio"]

@@ -5,7 +5,10 @@ Targets (issues 15 and 16): a 2000-step rigid cycle of the standard 20/40 pair (
 time beside its target and pass/fail; the loaded cycle is also timed against its steps and slices
 (the accuracy knobs reported with every loaded result). The first, untimed call builds the teeth.
 Wall time and the process's CPU time are both reported; pass/fail reads the CPU time, which other
-work on a shared machine does not inflate (it counts this process's threads only).
+work on a shared machine does not inflate (it counts this process's threads only). Run as the
+``gearkit`` command runs (``gearkit bench``, ``examples/bench_table.py``), numpy's BLAS is on one
+thread: no idle BLAS thread spins on the CPU clock beside the cycle, and CPU time stays at or below
+wall time (the bench's ``meta`` says which way it ran: ``blas_threads``).
 """
 from __future__ import annotations
 

@@ -41,6 +41,12 @@ def user_environment() -> dict:
     return env
 
 
+def blas_threads() -> str:
+    """numpy's BLAS threads in this process as its environment set them: ``"1"`` where the ``gearkit``
+    command (or the user) held them to one, ``"default"`` (a thread per core) where nothing did."""
+    return os.environ.get("OPENBLAS_NUM_THREADS") or "default"
+
+
 def mesh_export_available() -> bool:
     """True when ``gearkit gear`` can write an STL (the solids module exists)."""
     try:

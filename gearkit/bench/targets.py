@@ -221,8 +221,11 @@ def _header(res):
                                f"({floor['wall_seconds'] * 1e3:.0f} ms wall"
                                + (f"; {one * 1e3:.0f} ms CPU with one BLAS thread, as gearkit runs" if one else "")
                                + "), measured in this run; ")
+    blas = meta.get("blas_threads")
+    inproc = "" if blas is None else ("; in-process rows with one BLAS thread" if blas == "1" else
+                                      f"; in-process rows with BLAS threads: {blas}")
     return (f"{fl}load average {meta.get('load_before')} before, {meta.get('load_after')} after, on "
-            f"{meta.get('cpus')} CPUs; pass/fail reads CPU time")
+            f"{meta.get('cpus')} CPUs; pass/fail reads CPU time{inproc}")
 
 
 def format_target_rows(res: dict) -> list:
