@@ -33,6 +33,7 @@ import numpy as np
 
 from gearkit.checks.cycloidal import FamilyCheck
 from gearkit.checks.report import CheckReport, Finding, grade
+from gearkit.export import json_number
 
 __all__ = ["CamCheck", "check_cam", "default_cam_tol", "ROLLER_ADVICE"]
 
@@ -42,6 +43,8 @@ ROLLER_ADVICE = (0.7, 0.4)
 _PER_PHASE = 1201
 #: a jump in a derivative of s (mm/rad^n) below this fraction of the stroke is no jump
 _JUMP_REL = 1e-6
+#: step of the central differences of a flat-faced cam's radius of curvature over the cam angle, rad
+_FD_STEP = 2e-4
 
 
 class CamCheck(FamilyCheck):
@@ -157,10 +160,15 @@ def _curvature(spec, prof, f, values, tol):
     values["undercut"] = prof.undercut
     values["loops_deg"] = [[math.degrees(a), math.degrees(b)] for a, b in prof.loops]
     if spec.contact == "flat":
-        rho = prof.curvature_radius(phi)
-        rho_min = float(np.min(rho))
-        values["min_curvature_radius"] = rho_min
+        back = _turning_back(spec, phi)
+        at = ", ".join(f"{math.degrees(x):.6g}" for x in back)
+        rho_min = -math.inf if back else float(np.min(prof.curvature_radius(*_one_sided(spec, phi))))
+        values["min_curvature_radius"] = json_number(rho_min)  # None: unbounded below (where: the list)
+        values["curvature_unbounded_deg"] = [math.degrees(x) for x in back]
         f.append(Finding("convexity", "ok" if rho_min > 0 and not prof.undercut else "fail", rho_min, 0.0,
+                         (f"the radius of curvature of the flat-faced cam is unbounded below: the face stops turning "
+                          f"against the cam and turns back (1 + psi' = 0) at {at} degrees, where its contact runs "
+                          "off along the face (the cam is not convex there)") if back else
                          "smallest radius of curvature of the flat-faced cam, mm: it must stay positive (convex "
                          "cam), else the face cannot follow the motion", "min"))
         gap, actual = _departure(spec, prof, phi, tol, f, values)
@@ -175,8 +183,8 @@ def _curvature(spec, prof, f, values, tol):
     convex = rho_p > 0
     rho_pitch = float(rho_p[convex].min()) if convex.any() else math.inf
     rr = spec.roller_radius
-    values["pitch_min_curvature_radius"] = rho_pitch
-    values["min_curvature_radius"] = rho_pitch - rr
+    values["pitch_min_curvature_radius"] = json_number(rho_pitch)  # None: the pitch curve is nowhere convex
+    values["min_curvature_radius"] = json_number(rho_pitch - rr)
     under = convex & (rho_p < rr)
     values["undercut_deg"] = _intervals(under, phi)
     f.append(Finding("undercut", "fail" if prof.undercut or rho_pitch <= rr else "ok", rr, rho_pitch,
@@ -188,6 +196,64 @@ def _curvature(spec, prof, f, values, tol):
         values["roller_radius_advice"] = advice
         f.append(Finding("roller_radius", grade(rr, warn_above=advice), rr, advice,
                          "textbook advice R_p <= min(0.7 rho_min, 0.4 r0), mm", "max"))
+
+
+def _joins(spec, velocity_only: bool = False) -> np.ndarray:
+    """Cam angles of the motion law's joins (only those where the velocity jumps, with ``velocity_only``), rad,
+    each also a turn on and back (the grids run over 0..2 pi)."""
+    h = max(spec.stroke, 1e-12)
+    at = np.array([p for p, dv, _, _ in spec.motion.jumps() if not velocity_only or abs(dv) > _JUMP_REL * h])
+    return np.concatenate([at, at + 2.0 * math.pi, at - 2.0 * math.pi])
+
+
+def _one_sided(spec, phi, h: float = _FD_STEP):
+    """The cam angles ``phi`` with every node whose difference stencil ``phi -+ h`` would straddle a join of
+    the motion law replaced by two nodes one and a half steps either side of it: the radius of curvature
+    follows ``s''``, which may jump there, so a difference across the join reads neither side; returns
+    ``(angles, h)``."""
+    joins = _joins(spec)
+    if not len(joins):
+        return phi, h
+    near = (np.abs(phi[:, None] - joins[None, :]) <= h).any(axis=1)
+    hit = joins[(joins >= phi[0]) & (joins <= phi[-1])]
+    return np.concatenate([phi[~near], hit - 1.5 * h, hit + 1.5 * h]), h
+
+
+def _turning_back(spec, phi) -> list:
+    """Cam angles (rad) where a flat rocker's face stops turning against the cam and turns back smoothly.
+
+    The face turns against the cam at ``theta' = -(1 + psi')``, ``psi' = s'/l``. The cam is the envelope of
+    the face's lines, whose support distance ``p`` gives the radius of curvature ``rho = p + d2p/dtheta2 =
+    p + (p'' theta' - p' theta'') / theta'^3``: where ``theta'`` passes through zero (not at a velocity
+    jump) ``rho`` runs to infinity with both signs, and its smallest value is unbounded below. Each root
+    is bracketed on the grid ``phi`` and closed by bisection on the law's ``s'``. A translating face turns
+    with the cam (``theta' = -1``): never.
+
+    Examples
+    --------
+    >>> from gearkit.families.cam import CamSpec, MotionProgram
+    >>> spec = CamSpec(20.0, MotionProgram.rise_dwell_return(35.0, 20.0, 1.75, 20.0, "polynomial_345"),
+    ...                "rocker", "flat", pivot_distance=24.0, arm_length=27.13)
+    >>> back = _turning_back(spec, np.linspace(0.0, 2 * math.pi, 7201))
+    >>> len(back), bool(np.all(np.abs(1.0 + spec.motion.evaluate(np.array(back))[1] / 27.13) < 1e-9))
+    (2, True)
+    """
+    if spec.follower != "rocker":
+        return []
+
+    def turn(x):
+        return 1.0 + spec.motion.evaluate(x)[1] / spec.arm_length
+
+    t = turn(phi)
+    jumps = _joins(spec, velocity_only=True)
+    k = np.nonzero((np.sign(t[:-1]) != np.sign(t[1:])) & (t[:-1] != 0.0))[0]
+    k = k[~((jumps[None, :] > phi[k, None]) & (jumps[None, :] <= phi[k + 1, None])).any(axis=1)]
+    lo, hi = phi[k], phi[k + 1]
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        same = np.sign(turn(mid)) == np.sign(t[k])
+        lo, hi = np.where(same, mid, lo), np.where(same, hi, mid)
+    return [float(x) for x in 0.5 * (lo + hi)]
 
 
 def _departure(spec, prof, phi, tol, f, values):

@@ -13,7 +13,6 @@ Exit status: 0 when no finding fails, 1 when one fails, 2 for bad input (one lin
 """
 from __future__ import annotations
 
-import math
 import sys
 
 from gearkit.cli.common import (QUANTITIES, add_json_flag, add_keyway_flag, add_output_flag, add_renamed_flag, add_tol_flag,
@@ -210,21 +209,16 @@ def run(args) -> int:
         save(prof, args.plot, tol)
         out["plot"] = args.plot
     if args.json:
-        print_json(out, default=_json_default, allow_nan=True)
+        print_json(out)
     else:
         print(format_summary(spec, result, out))
     return 0 if result.report.ok else 1
 
 
-def _json_default(v):
-    if isinstance(v, float) and not math.isfinite(v):
-        return None
-    raise TypeError(f"not JSON: {v!r}")
-
-
 def format_summary(spec, result, out) -> str:
     """The plain-text report: key values, then the findings table."""
     from gearkit.checks.report import format_findings
+    from gearkit.export import text_number
 
     v = result.values
     follower = f"{spec.follower} {spec.contact}" + (f" R_p = {spec.roller_radius:g} mm" if spec.roller_radius else "")
@@ -240,8 +234,10 @@ def format_summary(spec, result, out) -> str:
         lines.append(f"  smallest prime radius, mm     {v['prime_radius_min']:.4f}"
                      + (f"   with friction {v['prime_radius_min_friction']:.4f}"
                         if "prime_radius_min_friction" in v else ""))
-    lines.append(f"  min radius of curvature, mm   {v['min_curvature_radius']:.6g}   undercut: "
-                 f"{'yes' if v['undercut'] else 'no'}")
+    back = v.get("curvature_unbounded_deg")
+    rho = "unbounded below (the face turns back at " + ", ".join(f"{x:.6g}" for x in back) + " deg)" if back \
+        else text_number(v["min_curvature_radius"], ".6g", "none")
+    lines.append(f"  min radius of curvature, mm   {rho}   undercut: {'yes' if v['undercut'] else 'no'}")
     lines.append(f"  profile radii, mm             {v['base_radius']:.6g} .. {v['max_radius']:.6g}")
     t = v["tolerance"]
     lines.append(f"  tolerance, mm                 requested {t['requested']:.3g}, achieved {t['achieved']:.3g} "
