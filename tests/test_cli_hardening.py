@@ -121,16 +121,16 @@ SUFFIX = {"demo": "", "atlas": "", "bench": ".json", "contact": ".png", "blockin
 def test_unwritable_directory_for_every_command_even_as_root(capsys, tmp_path, monkeypatch, argv):
     """A folder nobody can write in (``/sys``: root too; permission bits do not stop root) is refused
     for every command's output before any work."""
-    import argparse
+    import gearkit.cli
 
-    real_parse = argparse.ArgumentParser.parse_args
+    real_parse = gearkit.cli.parse_command_line
 
-    def parse_without_work(self, *a, **k):
-        ns = real_parse(self, *a, **k)
+    def parse_without_work(argv):
+        ns = real_parse(argv)
         ns.run = lambda args: pytest.fail("the command ran")
         return ns
 
-    monkeypatch.setattr(argparse.ArgumentParser, "parse_args", parse_without_work)
+    monkeypatch.setattr(gearkit.cli, "parse_command_line", parse_without_work)
     scene = tmp_path / "s.toml"
     scene.write_text("")
     target = "/sys/gearkit-test-out" + SUFFIX.get(argv[0], ".svg")
@@ -340,12 +340,12 @@ def test_ctrl_c_while_an_error_is_reported_exits_130(capsys, tmp_path, monkeypat
 
 def test_ctrl_c_while_the_command_loads_exits_130(capsys, monkeypatch):
     """An interrupt before the command runs (its modules still importing) is no traceback either."""
-    import gearkit.cli
+    import gearkit.cli.lean
 
     def interrupted(name):
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(gearkit.cli.importlib, "import_module", interrupted)
+    monkeypatch.setattr(gearkit.cli.lean.importlib, "import_module", interrupted)
     code, _, err = run(capsys, "gear", "-z", "20", "-m", "2")
     assert code == 130 and one_error_line(err) == "gearkit: interrupted"
 

@@ -9,7 +9,8 @@ import pytest
 
 from cli_examples import EXAMPLES
 from gearkit.cli import build_parser, main
-from gearkit.cli.common import RACKS, TIP_RULES, RenamedFlag
+from gearkit.cli.common import RACKS, TIP_RULES
+from gearkit.cli.parser import RenamedFlag
 
 PARSER = build_parser()
 COMMANDS = next(a for a in PARSER._actions if a.dest == "command").choices
@@ -156,7 +157,7 @@ ARITY_EXCEPTIONS = {
 
 
 def _signature(action):
-    kind = type(action).__name__.removeprefix("Given")  # gearkit.cli.design.track_given's subclass
+    kind = type(action).__name__.removeprefix("Given")  # gearkit.cli.parser.track_given's subclass
     return (kind, getattr(action.type, "__name__", action.type), tuple(sorted(action.choices or ())), action.nargs)
 
 

@@ -4,8 +4,11 @@ Every command lives in its own module ``gearkit.cli.<name>`` exposing
 ``register(subparsers)``; heavy imports happen inside the command's run function.
 The parser is lazy: ``gearkit <cmd> ...`` imports and registers only the module of
 ``<cmd>`` (:data:`COMMANDS` lists the modules, :data:`MODULE_OF` names the module of a
-command whose name differs from it), so a command pays only for what it uses; the
-full parser (every module) is built only for ``gearkit --help`` and unknown commands.
+command whose name differs from it), so a command pays only for what it uses. A plain line
+(every flag spelled in full, every value valid) is read without argparse at all
+(:mod:`gearkit.cli.lean`); help, errors and anything else go to the full parser
+(:mod:`gearkit.cli.parser`: every module for ``gearkit --help`` and unknown commands), which
+prints every help text and error message.
 
 The command runs numpy's BLAS on one thread (:data:`BLAS_THREAD_VARIABLES`, set before numpy
 loads unless the user set them): starting the BLAS thread pool costs about 50 ms of CPU per
@@ -30,108 +33,29 @@ BLAS_THREADS_SET_HERE = () if "numpy" in sys.modules else tuple(v for v in BLAS_
                                                                 if v not in os.environ)
 os.environ.update(dict.fromkeys(BLAS_THREADS_SET_HERE, "1"))
 
-import argparse  # noqa: E402 - after the BLAS setting, which must precede any numpy import
-import gc  # noqa: E402
-import importlib  # noqa: E402
+import gc  # noqa: E402 - after the BLAS setting, which must precede any numpy import
+
+from gearkit.cli.lean import COMMANDS, MODULE_OF, command_module  # noqa: E402, F401 - the command table
 
 
-#: command modules, in the order ``gearkit --help`` lists them
-COMMANDS = ("demo", "gear", "rack", "check", "pair", "bench", "novikov", "blocking", "atlas", "cycloid", "contact",
-            "view", "cam", "scene", "planetary")
-#: command name -> module, where they differ (a module may register several commands)
-MODULE_OF = {"cycloidal-drive": "cycloid"}
+def build_parser(command: str | None = None):
+    """The full argument parser (:func:`gearkit.cli.parser.build_parser`): with a known ``command``, only
+    its module is imported and registered."""
+    from gearkit.cli.parser import build_parser as full
+
+    return full(command)
 
 
-def version() -> str:
-    """The installed version of gearkit (the source tree's when not installed)."""
-    try:
-        from importlib.metadata import version as _v
+def parse_command_line(argv: list):
+    """The parsed command line (``argv`` without ``--debug``, ``--progress`` and ``--max-points``): the
+    lean reading of a plain line (:func:`gearkit.cli.lean.parse`), else the full parser's (which prints
+    help or one error line and exits, as ``SystemExit``)."""
+    from gearkit.cli.lean import parse
 
-        return _v("gearkit")
-    except Exception:  # running from a source tree that is not installed
-        return "0+unknown"
-
-
-def command_module(command: str | None) -> str | None:
-    """The module (in :data:`COMMANDS`) that registers ``command``; None when unknown."""
-    if command is None:
-        return None
-    module = MODULE_OF.get(command, command)
-    return module if module in COMMANDS else None
-
-
-def terminal_columns() -> int:
-    """Columns of the terminal (``COLUMNS`` first, 80 when not a terminal), as the standard library
-    reckons them for help text, without importing ``shutil`` (and its compression modules)."""
-    try:
-        columns = int(os.environ.get("COLUMNS", "0"))
-    except ValueError:
-        columns = 0
-    if columns <= 0:
-        try:
-            columns = os.get_terminal_size(sys.__stdout__.fileno()).columns
-        except (AttributeError, ValueError, OSError):
-            columns = 0
-    return columns if columns > 0 else 80
-
-
-class HelpFormatter(argparse.HelpFormatter):
-    """argparse's help formatter, told the terminal width up front (:func:`terminal_columns`)."""
-
-    def __init__(self, prog, *args, **kwargs):
-        if len(args) < 3 and kwargs.get("width") is None:
-            kwargs["width"] = terminal_columns() - 2  # as argparse trims its own look-up
-        super().__init__(prog, *args, **kwargs)
-
-
-class ArgumentParser(argparse.ArgumentParser):
-    """argparse's parser with :class:`HelpFormatter` by default (every command's parser is one too), whose
-    errors are one line naming the flag, the value and the range, as every other error of the command line
-    (``--help`` still prints the usage)."""
-
-    def __init__(self, *args, **kwargs):
-        kwargs.setdefault("formatter_class", HelpFormatter)
-        super().__init__(*args, **kwargs)
-
-    def error(self, message):
-        self.exit(2, f"{self.prog}: error: {message} (see '{self.prog} --help')\n")
-
-
-def build_parser(command: str | None = None) -> argparse.ArgumentParser:
-    """The argument parser: with a known ``command``, only its module is imported and registered."""
-    from gearkit.cli.common import add_progress_flag
-
-    parser = ArgumentParser(
-        prog="gearkit",
-        description="Gear geometry and tooth-contact kernel: generate, check and export gears (lengths in mm). "
-                    "Exit status: 0 ok, 1 a design check fails, 2 bad input or a file problem, 130/143 "
-                    "interrupted, 70 an internal error (a bug).",
-    )
-    # the version is looked up (importlib.metadata: slow) only for the full parser: a command's
-    # parser never sees a top-level --version
-    parser.add_argument("--version", action="version",
-                        version=f"gearkit {version()}" if command_module(command) is None else "gearkit")
-    parser.add_argument("--debug", action="store_true",
-                        help="show the traceback of an internal error (also accepted after the command)")
-    parser.add_argument("--max-points", type=int, default=None, metavar="N",
-                        help="raise the size limit a refused output names (points, faces, steps; also after the "
-                             "command)")
-    add_progress_flag(parser)
-    sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
-    module = command_module(command)
-    for name in (module,) if module else COMMANDS:
-        importlib.import_module(f"gearkit.cli.{name}").register(sub)
-    from gearkit.cli.design import track_given
-
-    def track(p):  # every command (and sub-command) knows which flags were typed: they override a design file
-        for action in p._actions:
-            if isinstance(action, argparse._SubParsersAction):
-                for child in action.choices.values():
-                    track(child)
-        track_given(p)
-    for child in sub.choices.values():
-        track(child)
-    return parser
+    args = parse(argv)
+    if args is None:
+        args = build_parser(argv[0] if argv and not argv[0].startswith("-") else None).parse_args(argv)
+    return args
 
 
 def hold_collector() -> bool:
@@ -177,8 +101,7 @@ def _main(argv, held: bool) -> int:
         print(f"gearkit: error: --max-points: {max_points}", file=sys.stderr)
         return 2
     try:
-        parser = build_parser(argv[0] if argv and not argv[0].startswith("-") else None)  # lazy: its module only
-        args = parser.parse_args(argv)
+        args = parse_command_line(argv)
     except SystemExit as exc:  # argparse reports bad flags itself and exits 2 (0 for --help/--version)
         return int(exc.code or 0)
     except KeyboardInterrupt:  # Ctrl-C while the command's modules load: no traceback either

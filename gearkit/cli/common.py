@@ -18,12 +18,12 @@ from __future__ import annotations
 
 import math
 
-from gearkit.cli.vocabulary import QUANTITIES, RenamedFlag, add_renamed_flag
+from gearkit.cli.vocabulary import QUANTITIES, add_renamed_flag
 from gearkit.errors import SpecError
 
 Q = QUANTITIES
 
-__all__ = ["QUANTITIES", "RACKS", "RACK_HELP", "SIGN_NOTE", "TIP_RULES", "RenamedFlag", "add_gear_flags",
+__all__ = ["QUANTITIES", "RACKS", "RACK_HELP", "SIGN_NOTE", "TIP_RULES", "add_gear_flags",
            "add_json_flag", "add_keyway_flag", "add_module_flag", "add_output_flag", "add_pair_arguments",
            "add_progress_flag", "add_rack_flag", "add_renamed_flag", "add_tol_flag", "add_tool_flags",
            "keyway_from_arg", "output_kind", "pair_spec_from_args", "print_json", "rack_from_args",

@@ -13,17 +13,14 @@ by :func:`gearkit.export.read_toml` (a file problem is one line, exit 2) and has
   table of the command's own flags: each key is a long flag's name (``z1 = 20``, ``helix_angle_deg = 15``,
   ``rack = "single-arc"``, ``pin-radius = 7``), each value what the flag takes, checked as the flag is.
 
-Which flags were typed is known exactly (:func:`track_given`), so a flag given with its default value
-still overrides the file.
+Which flags were typed is known exactly (``args.given_flags``, see :func:`given`), so a flag given
+with its default value still overrides the file.
 """
 from __future__ import annotations
 
-import argparse
-
-from gearkit.cli.vocabulary import RenamedFlag
 from gearkit.errors import SpecError
 
-__all__ = ["add_design_argument", "apply_flag_design", "given", "require_flags", "track_given"]
+__all__ = ["add_design_argument", "apply_flag_design", "given", "require_flags"]
 
 
 def add_design_argument(p, shape: str) -> None:
@@ -32,37 +29,6 @@ def add_design_argument(p, shape: str) -> None:
             "cam": "a cam design file ([cam] and [[motion]] tables, see 'gearkit cam --help')",
             }.get(shape, "a TOML table of this command's flags (keys: the long flag names)")
     p.add_argument("design", nargs="?", help=f"TOML design file: {what}; flags given override its values")
-
-
-def track_given(p) -> None:
-    """Record in ``args.given_flags`` the destination of every flag typed on the command line (call it
-    last in a command's ``register``); ``args.flag_actions`` maps each destination to its action."""
-    flags = [a for a in p._actions if a.option_strings and a.dest not in ("help", "version")]
-    for action in flags:
-        if not isinstance(action, _Given):
-            action.__class__ = _given_class(type(action))
-    actions = {}
-    for action in flags:  # a renamed flag's old spelling shares the destination: the new one checks a value
-        if action.dest not in actions or isinstance(actions[action.dest], RenamedFlag):
-            actions[action.dest] = action
-    p.set_defaults(given_flags=frozenset(), flag_actions=actions)
-
-
-class _Given:
-    """Mixin of a tracked action: records its destination in ``given_flags`` when it is called."""
-
-    def __call__(self, parser, namespace, values, option_string=None):
-        namespace.given_flags = frozenset(getattr(namespace, "given_flags", frozenset()) | {self.dest})
-        super().__call__(parser, namespace, values, option_string)
-
-
-_CLASSES: dict = {}
-
-
-def _given_class(cls):
-    if cls not in _CLASSES:
-        _CLASSES[cls] = type(f"Given{cls.__name__}", (_Given, cls), {})
-    return _CLASSES[cls]
 
 
 def given(args, dest: str) -> bool:
@@ -110,6 +76,8 @@ def _checked(action, key: str, value):
         if action.type is not None:
             if getattr(action.type, "kind", action.type) is int and isinstance(v, float) and not v.is_integer():
                 raise SpecError(f"design: {key}", f"{v!r} must be a whole number")
+            import argparse
+
             try:
                 v = action.type(v)
             except (argparse.ArgumentTypeError, ValueError, TypeError) as exc:

@@ -17,12 +17,9 @@ argparse.ArgumentTypeError: 60.0 is outside (-60, 60) degrees (helix angle)
 """
 from __future__ import annotations
 
-import argparse
 import math
-import sys
 
-__all__ = ["QUANTITIES", "Quantity", "RenamedFlag", "add_renamed_flag"]
-
+__all__ = ["QUANTITIES", "Quantity", "add_renamed_flag"]
 
 
 class Quantity:
@@ -51,11 +48,11 @@ class Quantity:
     def __call__(self, text):
         value = self.kind(text)  # ValueError: argparse says "invalid integer/number value"
         if self.kind is float and not math.isfinite(value):
-            raise argparse.ArgumentTypeError(f"{text!r} is not a finite number ({self.name})")
+            raise _refused(f"{text!r} is not a finite number ({self.name})")
         below = value <= self.lo if self.open_lo else value < self.lo
         above = value >= self.hi if self.open_hi else value > self.hi
         if below or above:
-            raise argparse.ArgumentTypeError(f"{value!r} is outside {self.range_text} ({self.name})")
+            raise _refused(f"{value!r} is outside {self.range_text} ({self.name})")
         return value
 
     def __repr__(self) -> str:
@@ -75,22 +72,19 @@ QUANTITIES = {
 }
 
 
-class RenamedFlag(argparse.Action):
-    """The earlier spelling of a flag, kept working: it stores into the new flag's destination and
-    prints one deprecation line on stderr (:func:`add_renamed_flag`)."""
+def _refused(message: str) -> Exception:
+    """The error a ``type=`` raises for argparse to print as it is (argparse is loaded only on a refusal:
+    a plain command line is read without it)."""
+    import argparse
 
-    def __init__(self, option_strings, dest, new_flag: str = "", **kwargs):
-        self.new_flag = new_flag
-        super().__init__(option_strings, dest, **kwargs)
-
-    def __call__(self, parser, namespace, values, option_string=None):
-        print(f"{parser.prog}: {option_string} is deprecated, use {self.new_flag} (the same value)", file=sys.stderr)
-        setattr(namespace, self.dest, values)
+    return argparse.ArgumentTypeError(message)
 
 
 def add_renamed_flag(p, old: str, new: str, dest: str, **kwargs) -> None:
-    """Declare ``old`` as the deprecated spelling of ``new`` (destination ``dest``; same type).
+    """Declare ``old`` as the deprecated spelling of ``new`` (destination ``dest``; same type): the
+    action ``"renamed"`` (:class:`gearkit.cli.parser.RenamedFlag`) stores into ``dest`` and prints one
+    deprecation line; it sets nothing unless typed.
 
     Put both in one mutually exclusive group to refuse them together."""
-    p.add_argument(old, dest=dest, action=RenamedFlag, new_flag=new, default=argparse.SUPPRESS,
-                   help=f"deprecated: the old name of {new}", **kwargs)
+    p.add_argument(old, dest=dest, action="renamed", new_flag=new, help=f"deprecated: the old name of {new}",
+                   **kwargs)
