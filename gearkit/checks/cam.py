@@ -105,11 +105,17 @@ def check_cam(spec, tol: float | None = None) -> CamCheck:
     fr = _friction(spec)
     worst = {"rise": 0.0, "return": 0.0}
     worst_fr = {"rise": 0.0, "return": 0.0}
+    behind = {"rise": [], "return": []}
     for kind, p0, p1, _, _ in phases:
         if kind == "dwell":
             continue
         grid = _phase_grid(p0, p1)
-        worst[kind] = max(worst[kind], float(np.degrees(np.abs(prof.pressure_angle(grid))).max()))
+        alpha = np.degrees(np.abs(prof.pressure_angle(grid)))
+        if _pivoted_face(spec):  # behind the pivot the face's force turns the arm against its lift
+            back = prof.face_contact(grid) <= 0.0
+            behind[kind] += _intervals(back, grid)
+            alpha = alpha[~back]
+        worst[kind] = max(worst[kind], float(alpha.max()) if alpha.size else 0.0)
         if fr is not None:
             _, eta, mu = fr
             worst_fr[kind] = max(worst_fr[kind],
@@ -121,7 +127,10 @@ def check_cam(spec, tol: float | None = None) -> CamCheck:
         status = grade(worst[kind], fail_above=lim) if driven else grade(worst[kind], warn_above=lim)
         f.append(Finding(f"pressure_angle.{kind}", status, worst[kind], lim,
                          f"largest pressure angle of the {kind}, degrees, read off the generated contact"
-                         + ("" if driven else " (spring-closed return: a warning only)"), "max"))
+                         + ("" if driven else " (spring-closed return: a warning only)") + _behind_note(behind[kind]),
+                         "max"))
+    if _pivoted_face(spec):
+        values["contact_behind_pivot_deg"] = behind["rise"] + behind["return"]
     if fr is not None:
         label, eta, mu = fr
         values["pressure_angle_friction_max_deg"] = worst_fr
@@ -152,6 +161,24 @@ def check_cam(spec, tol: float | None = None) -> CamCheck:
     values.update({"base_radius": rmin, "max_radius": rmax, "vertices": int(len(outline)),
                    "tolerance": {"requested": tol, "achieved": achieved}})
     return CamCheck(values, CheckReport(tuple(f)))
+
+
+def _pivoted_face(spec) -> bool:
+    """A flat face along a rocker's arm: its pressure angle is defined only where the contact lies ahead of
+    the pivot."""
+    return spec.contact == "flat" and spec.follower == "rocker"
+
+
+def _behind_note(where) -> str:
+    """The pressure-angle finding's words for the cam angles where a flat rocker's contact lies behind its
+    pivot: the angle between the face's force and the contact's velocity is 180 degrees there, which says
+    the cam would turn the arm against its lift, not how well it drives it; the undercut finding says how far
+    the follower falls short there."""
+    if not where:
+        return ""
+    return ("; not read over " + ", ".join(f"{a:.6g}..{b:.6g}" for a, b in where) + " degrees, where the "
+            "prescribed contact lies behind the pivot: the face's force there would turn the arm against its lift "
+            "(180 degrees), the cam cannot drive it, and the follower leaves its law (see undercut)")
 
 
 def _curvature(spec, prof, f, values, tol):

@@ -92,6 +92,12 @@ def figure(prof, tol: float | None = None):
                  + ("\nundercut (loop cut away)" if prof.undercut else ""), fontsize=10)
     ax = fig.add_subplot(right[1])
     alpha = np.degrees(prof.pressure_angle(phi))
+    if spec.contact == "flat" and spec.follower == "rocker":  # no pressure angle where the contact is behind the pivot
+        behind = prof.face_contact(phi) <= 0.0
+        alpha[behind] = np.nan
+        edges = np.flatnonzero(np.diff(np.concatenate([[0], behind.astype(int), [0]])))
+        for k, (a, b) in enumerate(zip(edges[::2], edges[1::2])):
+            ax.axvspan(deg[a], deg[b - 1], color="#f5cba7", lw=0.0, label="contact behind the pivot" if k == 0 else None)
     ax.plot(deg, alpha, color="#1b4f72", lw=1.4, label="without friction")
     if spec.friction > 0 or spec.efficiency < 1:
         model = f"μ = {spec.friction:g}" if spec.friction > 0 else f"η = {spec.efficiency:g}"

@@ -1,12 +1,16 @@
-"""A flat-faced cam's radius of curvature as the check reports it: the smallest value where it is bounded, and
-"unbounded below" (JSON null and the angles, never a huge finite number) where a rocker's face stops turning
-against the cam and turns back.
+"""What the check reports of a flat rocker: the smallest radius of curvature where it is bounded, "unbounded below"
+(JSON null and the angles, never a huge finite number) where the face stops turning against the cam and turns
+back, and the pressure angle only where the prescribed contact lies ahead of the pivot.
 
 Oracle: the cam is the envelope of the face's lines. A rocker's face lies along its arm through the pivot
 ``(l0, 0)``, so its distance from the cam axis is ``p = l0 sin Psi``, ``Psi = asin(r0/l0) + s/l``, and it turns
 against the cam at ``theta' = -(1 + s'/l)``. The radius of curvature of the envelope of lines with support
 ``p(theta)`` is ``rho = p + d2p/dtheta2 = p + (p'' theta' - p' theta'') / theta'^3`` (derivatives over the cam
-angle), written out here from the motion laws' closed forms, none of it the product's envelope or check code.
+angle). The contact is the foot of the perpendicular from the relative pole, on the line of centres at
+``l0 / (1 + s'/l)`` from the pivot, onto the face: ``l0 cos Psi / (1 + s'/l)`` from the pivot along the arm
+(negative: behind it). Where it is ahead, the face's force (normal to the face) and the contact's velocity
+(normal to the arm) are parallel: the pressure angle is zero. All of it is written out here from the motion
+laws' closed forms, none of it the product's envelope or check code.
 """
 import json
 import math
@@ -127,3 +131,50 @@ def test_the_smallest_radius_of_curvature_of_a_flat_rocker_is_the_formula(kw, mo
     assert res.values["curvature_unbounded_deg"] == [] and math.isfinite(res.values["min_curvature_radius"])
     assert abs(res.values["min_curvature_radius"] - rho.min()) <= SAMPLING * (kw["prime_radius"] + mo[0])
     assert res.report["convexity"].value == res.values["min_curvature_radius"]
+
+
+#: flat rockers whose prescribed contact passes behind the pivot: the steep one (the far dwell's arm beyond
+#: 90 degrees, then the face turning back on the return) and the constant-velocity one (turning back over
+#: the return)
+BEHIND = [TURNING_BACK[0], BOUNDED[1]]
+#: the pressure angle where the contact is ahead of the pivot: zero, to the round-off of an atan2, degrees
+ZERO_DEG = 1e-9
+
+
+def contact_ahead(kw, mo, phi):
+    """Where the prescribed contact lies along the arm from the pivot, mm (negative: behind it)."""
+    s, v, _ = motion(*mo, phi)
+    l, l0 = kw["arm_length"], kw["pivot_distance"]
+    return l0 * np.cos(math.asin(kw["prime_radius"] / l0) + s / l) / (1 + v / l)
+
+
+@pytest.mark.parametrize("kw, mo", BEHIND + [BOUNDED[0]])
+def test_a_flat_rockers_pressure_angle_is_read_where_the_contact_is_ahead_of_the_pivot(kw, mo, capsys):
+    spec = CamSpec(motion=MotionProgram.rise_dwell_return(*mo), **ROCKER, **kw)
+    res = check_cam(spec)
+    lift, rise, dwell, ret, _ = mo
+    spans = {"rise": (0.0, rise), "return": (rise + dwell, rise + dwell + ret)}
+    reported = res.values["contact_behind_pivot_deg"]
+    expected = []
+    for kind, (a, b) in spans.items():
+        assert res.values["pressure_angle_max_deg"][kind] <= ZERO_DEG
+        finding = res.report[f"pressure_angle.{kind}"]
+        assert finding.value <= ZERO_DEG and finding.status == "ok"
+        deg = np.linspace(a, b, 100001)
+        back = contact_ahead(kw, mo, np.radians(deg)) <= 0.0
+        edges = np.flatnonzero(np.diff(np.concatenate([[0], back.astype(int), [0]])))
+        runs = [[deg[i], deg[j - 1]] for i, j in zip(edges[::2], edges[1::2])]
+        expected += runs
+        assert ("behind the pivot" in finding.message) == bool(runs)
+    # the check reads each phase on 1201 angles: its runs end within one of its steps of the formula's
+    step = max(rise, ret) / 1200
+    assert len(reported) == len(expected)
+    assert np.allclose(reported, expected, rtol=0.0, atol=step * (1 + 1e-9)) if expected else reported == []
+    # the shortfall finding covers every such stretch: the follower leaves its law there
+    for a, b in reported:
+        assert any(c - 0.05 - 1e-9 <= a and b <= d + 0.05 + 1e-9 for c, d in res.values["departure_deg"])
+    if expected:
+        assert res.report["undercut"].status == "fail"
+    assert main(cli_args(kw, mo) + ["--json"]) == (1 if expected else 0)
+    out = json.loads(capsys.readouterr().out)
+    assert out["contact_behind_pivot_deg"] == reported
