@@ -17,7 +17,8 @@ field names, made without compiling anything:
   the fields with ``compare=True`` (``hash`` when given), as tuples;
 * assigning or deleting a field raises :class:`dataclasses.FrozenInstanceError`.
 
-A method the class body defines itself is kept, as :mod:`dataclasses` keeps it. One difference
+A method the class body defines itself is kept, as :mod:`dataclasses` keeps it. A class without a
+docstring gets the one the standard library writes (its name and signature), made when first read. One difference
 shows: ``__dataclass_params__`` records the options the fields were collected with
 (``init``, ``repr``, ``eq`` and ``frozen`` all False), not the ones the methods behave by.
 
@@ -35,6 +36,12 @@ Examples
 (Pin(radius=3.0, name='pin'), True, True)
 >>> dataclasses.replace(p, radius=4), [f.name for f in dataclasses.fields(p)]
 (Pin(radius=4.0, name='pin'), ['radius', 'name'])
+>>> def bare(decorate):  # a class without a docstring gets the standard library's (written when read)
+...     class Bare:
+...         size: int = 1
+...     return decorate(Bare)
+>>> bare(frozen).__doc__ == bare(dataclasses.dataclass(frozen=True)).__doc__, bare(frozen)(2).__doc__
+(True, "Bare(size: 'int' = 1)")
 >>> p.radius = 5.0
 Traceback (most recent call last):
 ...
@@ -60,6 +67,8 @@ FACTORY = _Factory()
 def frozen(cls: type) -> type:
     """Class decorator: ``cls`` as ``@dataclass(frozen=True)`` makes it (see the module's notes)."""
     documented = bool(cls.__dict__.get("__doc__"))
+    if not documented:  # a stand-in, so the standard library does not write the signature text itself
+        cls.__doc__ = cls.__name__
     dataclasses.dataclass(cls, init=False, repr=False, eq=False)  # collects the fields, writes no method
     fields = dataclasses.fields(cls)
     if any(f.kw_only for f in fields):
@@ -77,7 +86,7 @@ def frozen(cls: type) -> type:
             setattr(cls, name, method)
     cls.__signature__ = _SIGNATURE
     if not documented:
-        cls.__doc__ = cls.__name__ + str(inspect.signature(cls)).replace(" -> None", "")
+        cls.__doc__ = _SIGNATURE_DOC
     return cls
 
 
@@ -94,6 +103,18 @@ class _Signature:
 
 
 _SIGNATURE = _Signature()
+
+
+class _SignatureDoc:
+    """``__doc__`` of a frozen class without a docstring: its name and signature, as the standard library
+    writes it (``Pin(radius: float, name: str = 'pin')``), made when read (``help``, doctest), not when
+    the class is made."""
+
+    def __get__(self, instance, owner):
+        return owner.__name__ + str(inspect.signature(owner)).replace(" -> None", "")
+
+
+_SIGNATURE_DOC = _SignatureDoc()
 
 
 def _init(cls, names, fields):
