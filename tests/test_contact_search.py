@@ -92,3 +92,25 @@ def test_the_crossings_least_bound_is_numpys_scattered_minimum():
         np.minimum.at(expected, r, v)
         search_module._least_at(got, r, v)
         assert np.array_equal(got, expected, equal_nan=True)
+
+
+@pytest.mark.parametrize("spec", [PairSpec(20, 40, 2.0), PairSpec(20, None, 1.0, 0.2, kind="rack")],
+                         ids=["20/40", "rack"])
+def test_the_mates_radius_alone_is_the_radius_of_both_coordinates(spec):
+    """``Mesh.to_mate_radius`` (no offset formed) against ``to_mate_xy``'s radius, to the bit, and against the
+    oracle of the plain geometry: a gear's radial coordinate is the distance from the mate's centre, whatever
+    the turn (within round-off of the coordinates); a rack's is the height below the centre distance."""
+    mesh = pair_mesh(spec)
+    rng = np.random.default_rng(5)
+    x, y = rng.uniform(-30, 30, (2, 500))
+    phi = rng.uniform(-1, 1, 500)
+    rho = mesh.to_mate_radius(x, y, phi)
+    assert np.array_equal(rho, mesh.to_mate_xy(x, y, phi)[0])
+    if mesh.kind == "rack":
+        assert np.array_equal(rho, mesh.a - y)
+    else:
+        dx, dy = x - mesh.centre2[0], y - mesh.centre2[1]
+        # the turn's products and sums and the turn's cosine and sine: a few units in the last place of the
+        # largest coordinate each
+        roundoff = 8 * np.finfo(float).eps * np.abs(np.stack([dx, dy])).max()
+        assert np.abs(rho - np.hypot(dx, dy)).max() <= roundoff

@@ -165,12 +165,22 @@ class Mesh:
             rho = self.a - y
             psi = self.beta0 + self.ratio * phi - x
         else:
-            beta = self.beta0 + self.ratio * phi
-            c, s = np.cos(beta), np.sin(beta)
-            x, y = x - self.centre2[0], y - self.centre2[1]
-            qx, qy = c * x + s * y, c * y - s * x
+            qx, qy = self._turned(x, y, phi)
             rho, psi = np.hypot(qx, qy), np.arctan2(qx, qy)
         return rho, self.space_offset(psi, self.kind != "rack")
+
+    def to_mate_radius(self, x, y, phi):
+        """``rho`` of :meth:`to_mate_xy` alone, to the bit (no offset: no arctangent, no remainder)."""
+        if self.kind == "rack":
+            return self.a - np.asarray(y, dtype=float)
+        return np.hypot(*self._turned(x, y, np.asarray(phi, dtype=float)))
+
+    def _turned(self, x, y, phi):
+        """Fixed-frame points relative to the mate's centre, turned into the mate's frame at ``phi``."""
+        beta = self.beta0 + self.ratio * phi
+        c, s = np.cos(beta), np.sin(beta)
+        x, y = x - self.centre2[0], y - self.centre2[1]
+        return c * x + s * y, c * y - s * x
 
     def space_offset(self, psi, polar: bool = False):
         """The offset ``u`` of a periodic coordinate ``psi`` (mate units) from the space centre: ``fmod(psi,

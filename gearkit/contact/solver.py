@@ -125,11 +125,13 @@ class _Task:
         return not (exact or self.exact) and self.mesh.driver.table is not None
 
     def rho(self, t, rows=slice(None)):
+        """The mate's radial coordinate of the rows' points at ``t`` (the offset ``u``, and its arctangent,
+        left unformed)."""
         if self._fast(False):  # the table, through the row's frame
             p = self.mesh.driver.table.evaluate_xy(self.piece[rows], t)
-            return self.mesh.mate_coords(p[0], p[1], self.frame[:, rows])[0]
+            return self.mesh.mate_radius(p[0], p[1], self.frame[:, rows])[0]
         x, y = _driver_xy(self.mesh, self.piece[rows], t, self.sigma[rows], self.theta[rows], self.exact)
-        return self.mesh.to_mate_xy(x, y, self.phi[rows])[0]
+        return self.mesh.to_mate_radius(x, y, self.phi[rows])
 
     def grid_values(self, grid):
         """:meth:`value` at ``grid`` ``(P, n)`` (row ``i``'s parameters in column ``i``), on the tables: a row
