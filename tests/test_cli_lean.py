@@ -135,7 +135,8 @@ NOT_PLAIN = [
     ["gear", "--help"], ["gear", "-z", "2", "-m", "2"], ["gear", "-z12", "-m", "2"], ["gear", "--wid", "5"],
     ["gear", "-z", "12", "-m", "2", "d.toml"], ["gear", "-z", "12", "-m", "2", "--", "x"],
     ["gear", "-z", "12", "-m", "2", "--outer-diameter", "50", "--rim", "3"], ["gear", "-z", "12", "-m"],
-    ["gear", "--json=1"], ["gear", "-x", "-1e-3"], ["gear", "-o=x.stl"], ["gear", "--output=--"], ["check", "--z1", "18", "--z2", "41", "-m", "2", "--tip", "standard"],
+    ["gear", "--json=1"], ["gear", "-x", "-1e-3"], ["gear", "-x", "-5\n"], ["gear", "-o=x.stl"], ["gear", "--output=--"],
+    ["check", "--z1", "18", "--z2", "41", "-m", "2", "--tip", "standard"],
     ["check", "--z1", "18", "--da1", "40"], ["view", "pair", "--z1", "18", "--z2", "41", "-m", "2"],
     ["gear", "-z", "12", "-m", "2", "--tip-rule", "pointy"], ["nope"], [], ["--version"],
 ]

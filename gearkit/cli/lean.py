@@ -30,9 +30,9 @@ True
 from __future__ import annotations
 
 import importlib
-import re
 
-__all__ = ["COMMANDS", "MODULE_OF", "SUPPRESS", "Commands", "Flag", "Namespace", "command_module", "parse"]
+__all__ = ["COMMANDS", "MODULE_OF", "SUPPRESS", "Commands", "Flag", "Namespace", "command_module", "negative_number",
+           "parse"]
 
 #: command modules, in the order ``gearkit --help`` lists them
 COMMANDS = ("demo", "gear", "rack", "check", "pair", "bench", "novikov", "blocking", "atlas", "cycloid", "contact",
@@ -44,10 +44,24 @@ SUPPRESS = "==SUPPRESS=="
 #: the top-level parser's own destinations and defaults (``--debug``, ``--max-points`` and
 #: ``--progress`` are taken off the line before it is read, so they keep their defaults)
 TOP_DEFAULTS = {"debug": False, "max_points": None, "progress": False}
-#: a value that is a negative number, not a flag (argparse's rule)
-NEGATIVE_NUMBER = re.compile(r"^-\d+$|^-\d*\.\d+$")
 #: the action kinds the lean reading knows: a flag that takes one value, and a switch
 _SWITCHES = {"store_true": True, "store_false": False}
+
+
+def negative_number(text: str) -> bool:
+    """True for ``-5``, ``-0.5`` or ``-.5``: a value, not a flag, as argparse reads it (its pattern
+    ``^-\\d+$|^-\\d*\\.\\d+$``, without compiling a regular expression; a trailing newline,
+    which that pattern lets through, is left to argparse).
+
+    >>> [negative_number(t) for t in ("-5", "-0.5", "-.5", "-5.", "-1e-3", "--5", "-x", "5")]
+    [True, True, True, False, False, False, False, False]
+    """
+    if not text.startswith("-"):
+        return False
+    whole, dot, fraction = text[1:].partition(".")
+    if not dot:
+        return whole.isdecimal()
+    return fraction.isdecimal() and (whole == "" or whole.isdecimal())
 
 
 def command_module(command: str | None) -> str | None:
@@ -241,7 +255,7 @@ def read(parser: Parser, argv: list) -> dict:
             values[flag.dest] = flag.const
         elif flag.kind == "store" and flag.nargs is None:
             if explicit is None:
-                if i + 1 >= len(argv) or (argv[i + 1].startswith("-") and not NEGATIVE_NUMBER.match(argv[i + 1])):
+                if i + 1 >= len(argv) or (argv[i + 1].startswith("-") and not negative_number(argv[i + 1])):
                     raise Unsupported(text)
                 explicit = argv[i + 1]
                 i += 1
@@ -257,7 +271,7 @@ def read(parser: Parser, argv: list) -> dict:
 def _check(parser: Parser, typed: list, by_name: dict) -> None:
     """Required flags typed, at most one flag of an exclusive group, and no flag that looks like a
     negative number (which would make such values flags)."""
-    if any(NEGATIVE_NUMBER.match(name) for name in by_name):
+    if any(negative_number(name) for name in by_name):
         raise Unsupported("negative-number flags")
     seen = {id(f) for f in typed}
     if any(f.required and id(f) not in seen for f in parser.flags):
