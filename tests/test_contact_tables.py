@@ -126,3 +126,43 @@ def test_the_mates_exact_width_is_the_closed_form_involute(spec, z2, x2):
     r = rho[flank]
     psi = (math.pi / 2 + 2 * x2 * math.tan(alpha)) / z2 + inv(alpha) - inv(np.arccos(r_b / r))
     assert (np.abs(w[flank] - (math.pi / z2 - psi)) * r).max() <= ulps * np.finfo(float).eps * half.rho_tip
+
+
+def test_table_derivatives_are_their_polynomials_derivatives():
+    """The tables' slopes for Newton's steps (``CurveTable.derivatives``, ``WidthTable.derivatives``: the first and
+    second derivatives of each sub-interval's polynomial, from its coefficients gathered once) against
+    ``numpy.polynomial``'s derivatives of the same polynomials, evaluated by ``polyval``: equal within Horner's
+    round-off, ``2 D eps`` times the sum of the terms' magnitudes (degree ``D``), scaled as the derivatives are."""
+    from numpy.polynomial import polynomial as P
+
+    from gearkit.contact.table import DEGREE
+
+    mesh = pair_mesh(PairSpec(20, 40, 2.0))
+    rng = np.random.default_rng(9)
+    eps = np.finfo(float).eps
+
+    def expected(coef, s, order, scale):
+        c = P.polyder(coef, order) if order else coef
+        bound = 2 * DEGREE * eps * P.polyval(np.abs(s), np.abs(c), tensor=False)
+        return P.polyval(s, c, tensor=False) * scale ** order, bound * scale ** order
+
+    drv = mesh.driver.table
+    k = rng.integers(0, len(mesh.driver.pieces), 5000)
+    t = rng.random(5000)
+    j, s = drv._locate(k, t)
+    got = drv.derivatives(k, t)
+    for comp in range(2):
+        coef = drv._coef[comp][:, j]
+        for order in range(3):
+            want, bound = expected(coef, s, order, drv._inv[j])
+            assert np.all(np.abs(got[order][comp] - want) <= bound)
+    mate = mesh.mate.table
+    rho = rng.uniform(mesh.mate.rho_root, mesh.mate.rho_tip, 5000)
+    j, row, x, s = mate._locate(rho)
+    plain = ~mate._grazing[row]  # in rho itself (next to a stationary end the chain rule follows)
+    got = mate.derivatives(rho)
+    coef = mate._coef[0][:, j]
+    for order in range(3):
+        want, bound = expected(coef, s, order, mate._inv[j])
+        assert np.all(np.abs(got[order] - want)[plain] <= bound[plain])
+    assert plain.mean() > 0.5

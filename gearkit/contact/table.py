@@ -77,13 +77,31 @@ def _gathered(coef, j, s):
     return out
 
 
+def _gathered_derivatives(coef, j, s):
+    """:func:`_gathered` of the coefficients stored ``(c, D+1, J)`` and of their first and second derivatives in
+    ``s``: three lists of ``c`` flat arrays. Each coefficient is gathered once; the derivatives' coefficients
+    ``a_k k`` and ``(a_k k) (k - 1)`` are formed from it as :func:`_derived` forms its stored ones (the same
+    products of the same numbers), and every sum runs in the same order: the same values to the bit."""
+    out = ([], [], [])
+    for comp in coef:
+        a = [comp[i][j] for i in range(len(comp))]
+        d1 = [None] + [a[k] * k for k in range(1, len(a))]  # before Horner's steps overwrite a[-1]
+        d2 = [None, None] + [d1[k] * (k - 1) for k in range(2, len(a))]
+        for row, co, low in zip(out, (a, d1, d2), (0, 1, 2)):
+            acc = co[-1]
+            for k in range(len(co) - 2, low - 1, -1):
+                acc *= s
+                acc += co[k]
+            row.append(acc)
+    return out
+
+
 def _derived(coef):
-    """Coefficients ``(n, D+1, c)`` and those of their first and second derivatives in ``s``, each stored
-    ``(c, D+1-i, n)`` (for :func:`_gathered`)."""
+    """Coefficients ``(n, D+1, c)`` and those of their first derivative in ``s``, each stored ``(c, D+1-i, n)`` (for
+    :func:`_gathered`)."""
     powers = np.arange(DEGREE + 1)[None, :, None]
     d1 = coef[:, 1:] * powers[:, 1:]
-    d2 = d1[:, 1:] * powers[:, 1:-1]
-    return tuple(np.ascontiguousarray(c.transpose(2, 1, 0)) for c in (coef, d1, d2))
+    return tuple(np.ascontiguousarray(c.transpose(2, 1, 0)) for c in (coef, d1))
 
 
 def _build(evaluate, rows, a, b, tol, scale=None):
@@ -158,7 +176,7 @@ class CurveTable:
         self.intervals = len(k)
         self._key = 2.0 * k + a  # pieces two apart: t in [0, 1] never reaches the next piece's key
         self._a, self._inv = a, 2.0 / (b - a)
-        self._coef, self._dcoef, self._d2coef = _derived(self._coef)
+        self._coef, self._dcoef = _derived(self._coef)
         #: every sub-interval within ``tol``: :meth:`derivatives` applies everywhere
         self.smooth = not self._fallback.any()
 
@@ -207,11 +225,9 @@ class CurveTable:
         three lists ``[x, y]`` of flat arrays, on the table only (for a table that is :attr:`smooth`)."""
         j, s = self._locate(k, t)
         inv = self._inv[j]
-        p = _gathered(self._coef, j, s)
-        d1 = [c * inv for c in _gathered(self._dcoef, j, s)]
+        p, d1, d2 = _gathered_derivatives(self._coef, j, s)
         inv2 = inv * inv
-        d2 = [c * inv2 for c in _gathered(self._d2coef, j, s)]
-        return p, d1, d2
+        return p, [c * inv for c in d1], [c * inv2 for c in d2]
 
 
 class WidthTable:
@@ -245,7 +261,7 @@ class WidthTable:
         self.achieved = float(err[~self._fallback].max(initial=0.0))
         self.intervals = len(rows)
         self._row, self._a, self._b, self._inv = rows, a, b, 2.0 / (b - a)
-        self._coef, self._dcoef, self._d2coef = _derived(coef)
+        self._coef, self._dcoef = _derived(coef)
         #: every sub-interval within ``tol``: :meth:`derivatives` applies everywhere
         self.smooth = not self._fallback.any()
         self._piece = half._k[rows]
@@ -275,9 +291,9 @@ class WidthTable:
         half = self.half
         j, row, x, s = self._locate(rho)
         inv = self._inv[j]
-        w = _gathered(self._coef, j, s)[0]
-        w_x = _gathered(self._dcoef, j, s)[0] * inv
-        w_xx = _gathered(self._d2coef, j, s)[0] * (inv * inv)
+        (w,), (w_x,), (w_xx,) = _gathered_derivatives(self._coef, j, s)
+        w_x = w_x * inv
+        w_xx = w_xx * (inv * inv)
         graz = self._grazing[row]
         r_x = np.where(graz, 2.0 * np.abs(x), 1.0)
         with np.errstate(divide="ignore", invalid="ignore"):
