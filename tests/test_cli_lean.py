@@ -179,3 +179,16 @@ def test_every_command_is_found_by_the_lean_reading():
             continue
         assert name in commands.parsers
     assert SUPPRESS == argparse.SUPPRESS
+
+
+def test_a_setting_the_recorder_does_not_know_leaves_the_line_to_the_full_parser():
+    """A ``register`` using more of argparse than the recorder models (parents, aliases, nested commands,
+    a setting that changes how a flag reads) is not read lean, rather than read wrongly."""
+    from gearkit.cli.lean import Commands, Unsupported
+
+    for attempt in (lambda: Commands().add_parser("x", parents=[]), lambda: Commands().add_parser("x", aliases=["y"]),
+                    lambda: Commands().add_parser("x").add_subparsers(dest="what"),
+                    lambda: Commands().add_parser("x").add_argument("--y", type=int, dest_hint="z"),
+                    lambda: Commands().add_parser("x").parse_known_args):
+        with pytest.raises(Unsupported):
+            attempt()

@@ -44,6 +44,9 @@ SUPPRESS = "==SUPPRESS=="
 #: the top-level parser's own destinations and defaults (``--debug``, ``--max-points`` and
 #: ``--progress`` are taken off the line before it is read, so they keep their defaults)
 TOP_DEFAULTS = {"debug": False, "max_points": None, "progress": False}
+_NOT_GIVEN = object()
+#: ``add_argument`` settings that only word the help (or name a renamed flag's successor)
+_TEXT_ONLY = frozenset({"help", "metavar", "new_flag", "version"})
 #: the action kinds the lean reading knows: a flag that takes one value, and a switch
 _SWITCHES = {"store_true": True, "store_false": False}
 
@@ -152,10 +155,11 @@ class Parser(_Recorder):
         nargs, const = kw.pop("nargs", None), kw.pop("const", None)
         if action in _SWITCHES:
             nargs, const = 0, _SWITCHES[action]
+        given_default = kw.pop("default", _NOT_GIVEN)
         if action in ("renamed", "help"):  # a renamed flag sets its destination only when typed
             default = SUPPRESS
-        elif "default" in kw:
-            default = kw.pop("default")
+        elif given_default is not _NOT_GIVEN:
+            default = given_default
         elif dest in self.defaults:
             default = self.defaults[dest]
         else:
@@ -163,6 +167,8 @@ class Parser(_Recorder):
         required = kw.pop("required", not names and nargs not in ("?", "*"))
         flag = Flag(names, dest, action, nargs, default, kw.pop("type", None), kw.pop("choices", None), required,
                     const)
+        if set(kw) - _TEXT_ONLY:  # a setting that could change what the line means: not read here
+            raise Unsupported(f"{dest}: {sorted(set(kw) - _TEXT_ONLY)}")
         self.actions.append(flag)
         if group is not None:
             group.append(flag)
@@ -206,8 +212,8 @@ class Commands(_Recorder):
         self.parsers: dict = {}
 
     def add_parser(self, name: str, **kwargs):
-        if kwargs.get("aliases"):
-            raise Unsupported("aliases")
+        if set(kwargs) - {"help", "description", "epilog", "formatter_class"}:  # aliases, parents, prefixes...
+            raise Unsupported(name)
         self.parsers[name] = Parser(name)
         return self.parsers[name]
 
