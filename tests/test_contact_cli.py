@@ -3,7 +3,6 @@
 Oracles: the pair geometry's formula values (contact ratio, backlash), the formula findings the
 simulated ones are compared with, and the PNG/SVG file signatures.
 """
-import argparse
 import json
 
 import pytest
@@ -12,6 +11,7 @@ from gearkit.checks import CheckLimits, check_pair
 from gearkit.checks.report import Finding
 from gearkit.checks.simulated import simulated_findings
 from gearkit.cli import contact as contact_cli
+from gearkit.cli.parser import ArgumentParser
 from gearkit.contact import analyse_pair, plot_path_of_contact, plot_transmission_error
 from gearkit.contact.analysis import Interference
 from gearkit.pair import PairSpec, pair_geometry
@@ -20,7 +20,7 @@ EPS_TOL = 1e-3
 
 
 def _run(argv, capsys):
-    parser = argparse.ArgumentParser(prog="gearkit")
+    parser = ArgumentParser(prog="gearkit")  # the command line's parser: it knows the renamed flags' action
     sub = parser.add_subparsers(dest="command")
     contact_cli.register(sub)
     args = parser.parse_args(["contact", *argv])
