@@ -184,7 +184,10 @@ def polyline_self_intersections(points):
     a, b = p[:-1], p[1:]
     lo = np.minimum(a, b)
     hi = np.maximum(a, b)
-    order = np.argsort(lo[:, 0], kind="stable")
+    # an edge of no length (a repeated point) crosses nothing, and a run of them at one point would pair
+    # each with every other in the sweep: only edges of some length take part
+    live = np.flatnonzero((a != b).any(axis=1))
+    order = live[np.argsort(lo[live, 0], kind="stable")]
     lo_s, hi_s = lo[order], hi[order]
     # candidate pairs: x-ranges overlap (sweep over edges sorted by their left end)
     reach = np.searchsorted(lo_s[:, 0], hi_s[:, 0], side="right")

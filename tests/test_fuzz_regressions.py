@@ -387,6 +387,20 @@ def test_cam_roller_corner_past_a_turn_starts_after_the_jump():
     assert distances_to_polyline(0.5 * (closed[1:] + closed[:-1]), pitch).min() >= r - tol * (1 + 1e-3)
 
 
+def test_repeated_points_take_no_part_in_the_crossing_sweep():
+    # a knife cam's corners are points (the tip stands while the velocity jumps): thousands of repeated
+    # scan points paired each with every other in the sweep (a (23 963 643, 2) array for one cam).
+    # A figure eight with a run of 300 000 repeats of one point: the crossing is the one of the plain
+    # figure eight (the same edges, their indices shifted past the run), without 4.5e10 candidate pairs
+    from gearkit.curves import polyline_self_intersections
+
+    eight = np.array([[0.0, 0.0], [1.0, 1.0], [1.0, 0.0], [0.0, 1.0]])
+    run = 300_000
+    points = np.concatenate([eight[:2], np.repeat(eight[1:2], run, axis=0), eight[2:]])
+    i, j, ti, tj = polyline_self_intersections(points)
+    assert (i.tolist(), j.tolist(), ti.tolist(), tj.tolist()) == ([0], [run + 2], [0.5], [0.5])
+
+
 @pytest.mark.parametrize("field, value", [("pivot_distance", 1e300), ("arm_length", 1e300)])
 def test_cam_rocker_pivot_beyond_its_reach_is_refused(field, value):
     # a flat rocker's pivot 1e300 mm from a 5 mm cam divided by zero in its pose (numpy errors raised);
