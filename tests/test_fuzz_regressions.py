@@ -387,6 +387,27 @@ def test_cam_roller_corner_past_a_turn_starts_after_the_jump():
     assert distances_to_polyline(0.5 * (closed[1:] + closed[:-1]), pitch).min() >= r - tol * (1 + 1e-3)
 
 
+def _knife_pitch_curve(r0, e, lift, rise, dwell, ret, shape, points=1 << 18):
+    """A translating knife's cam from the textbook alone: its tip ``(e, sqrt(r0^2 - e^2) + s)`` seen from the
+    cam turned counter-clockwise by ``phi`` (spans in degrees, ``shape(x)`` the law's lift fraction), at
+    ``points`` cam angles plus the phases' ends (where a constant-velocity law's curve has its corners)."""
+    ends = np.radians(np.cumsum([rise, dwell, ret]))
+    phi = np.unique(np.concatenate([np.linspace(0.0, 2 * np.pi, points), ends]))
+    s = np.where(phi < ends[0], lift * shape(phi / ends[0]),
+                 np.where(phi < ends[1], lift,
+                          np.where(phi < ends[2], lift * (1 - shape((phi - ends[1]) / (ends[2] - ends[1]))), 0.0)))
+    y = math.sqrt(r0 * r0 - e * e) + s
+    return np.stack([e * np.cos(phi) + y * np.sin(phi), -e * np.sin(phi) + y * np.cos(phi)], -1)
+
+
+def _own_chord_error(curve, mids):
+    """How far a dense polyline of a curve lies from it: its edges' midpoints (``mids``, points of the
+    curve halfway in the parameter) against it."""
+    from gearkit.distances import distances_to_polyline
+
+    return float(distances_to_polyline(mids, curve).max())
+
+
 def test_repeated_points_take_no_part_in_the_crossing_sweep():
     # a knife cam's corners are points (the tip stands while the velocity jumps): thousands of repeated
     # scan points paired each with every other in the sweep (a (23 963 643, 2) array for one cam).
@@ -399,6 +420,59 @@ def test_repeated_points_take_no_part_in_the_crossing_sweep():
     points = np.concatenate([eight[:2], np.repeat(eight[1:2], run, axis=0), eight[2:]])
     i, j, ti, tj = polyline_self_intersections(points)
     assert (i.tolist(), j.tolist(), ti.tolist(), tj.tolist()) == ([0], [run + 2], [0.5], [0.5])
+
+
+@pytest.mark.parametrize("dwell", [1e-300, 0.0, 1e-12, 1.0])
+def test_cam_knife_on_velocity_jumps_across_a_vanishing_dwell_builds(dwell):
+    # constant velocity up 19.58 mm in 20 degrees and back in 63.7, a knife (its cam has corners at the
+    # jumps): with a dwell of 1e-300 degrees (two jumps at one angle) the loop scan ran out of memory.
+    # A dwell that small is no dwell: every one builds, the cam of the textbook's tip path within tol
+    from gearkit.families.cam import CamSpec, MotionProgram, cam_profile
+
+    r0, e, lift, rise, ret = 5.0, 1.535935442883325, 19.580223362389933, 20.0, 63.68876519046828
+    spec = CamSpec(r0, MotionProgram.rise_dwell_return(lift, rise, dwell, ret, "constant_velocity"),
+                   contact="knife", roller_radius=0.0, offset=e)
+    prof = cam_profile(spec)
+    tol = 5e-5
+    out, achieved = prof.outline(tol), prof.achieved(tol)
+    assert achieved <= tol
+    exact = _knife_pitch_curve(r0, e, lift, rise, dwell, ret, lambda x: x)
+    fine = _knife_pitch_curve(r0, e, lift, rise, dwell, ret, lambda x: x, points=(1 << 19) - 1)
+    own = _own_chord_error(exact, fine)
+    # the formula's curve within the reported bound of the outline, every vertex on that curve
+    assert polyline_deviation(out, exact, closed=True) <= achieved * (1 + 1e-9)
+    assert _own_chord_error(exact, out) <= own + EXACT
+
+
+def test_cam_knife_keeps_the_whole_cam_when_nothing_loops():
+    # a knife on a steep 3-4-5 return (pitch curve concave to 0.27 mm at the scan's start): the scan's
+    # first and last edges, an ulp apart where the turn closes, read as a crossing, and the whole cam was
+    # cut away as one loop; its outline was 2 points, reported 1.4e-13 off while 9.25e-9 off
+    from gearkit.families.cam import CamSpec, MotionProgram, cam_profile
+
+    r0, e, lift, rise, dwell, ret = 5.0, -2.078956268207175, 1.9298767865596234, 78.74266669206554, 9.56962657256484, 20.0
+    spec = CamSpec(r0, MotionProgram.rise_dwell_return(lift, rise, dwell, ret, "polynomial_345"),
+                   contact="knife", roller_radius=0.0, offset=e)
+    prof = cam_profile(spec)
+    assert prof.loops == () and not prof.undercut
+    def shape(x):
+        return x ** 3 * (10 - 15 * x + 6 * x * x)
+    exact = _knife_pitch_curve(r0, e, lift, rise, dwell, ret, shape)
+    fine = _knife_pitch_curve(r0, e, lift, rise, dwell, ret, shape, points=(1 << 19) - 1)
+    own = _own_chord_error(exact, fine)
+    for tol in (5e-5, 5e-3):
+        out, achieved = prof.outline(tol), prof.achieved(tol)
+        closed = np.concatenate([out[::-1], out[-1:]])
+        assert achieved <= tol
+        # the reported deviation bounds the real one: the formula's curve, and the fuzz property's measure
+        assert polyline_deviation(out, exact, closed=True) <= achieved * (1 + 1e-9)
+        assert true_deviation(prof.pieces, closed) <= achieved * (1 + 1e-9)
+        assert _own_chord_error(exact, out) <= own + EXACT
+        # the whole cam: the area the tip path encloses (shoelace), within the perimeter times tol
+        def area(p):
+            return 0.5 * abs(np.dot(p[:, 0], np.roll(p[:, 1], -1)) - np.dot(p[:, 1], np.roll(p[:, 0], -1)))
+        perimeter = float(np.hypot(*np.diff(exact, axis=0).T).sum())
+        assert abs(area(out) - area(exact)) <= perimeter * (tol + own)
 
 
 @pytest.mark.parametrize("field, value", [("pivot_distance", 1e300), ("arm_length", 1e300)])

@@ -152,6 +152,10 @@ class CamProfile:
         w = np.linspace(0.0, 1.0, 4 * _SCAN + 1)
         pts = self.branch(w)
         ii, jj, ti, tj = polyline_self_intersections(pts)
+        # the scan is closed: its first and last edges meet at the start (an ulp or so apart, the angle
+        # a turn later), and read as crossing there would cut the whole cam away as one loop
+        joint = (ii == 0) & (jj == len(w) - 2)
+        ii, jj, ti, tj = ii[~joint], jj[~joint], ti[~joint], tj[~joint]
         pieces, loops = [], []
         pos_e, pos_f, start = -1, 0.0, 0.0
         step = w[1] - w[0]
@@ -264,24 +268,37 @@ class CamProfile:
         reach = size + abs(spec.offset) + (spec.pivot_distance or 0.0) + (spec.arm_length or 0.0)
         return float(tol), ROUND_OFF * reach
 
+    def _gap(self) -> float:
+        """The widest gap between a kept piece's end and the next one's start (the last's end and the first's
+        start), mm. The outline drops each piece's start for the previous end: its first chord moves by the
+        gap, and so may its deviation."""
+        ends = np.array([pc(np.array([0.0, 1.0])) for pc in self.pieces])
+        return float(np.hypot(*(np.roll(ends[:, 1], 1, axis=0) - ends[:, 0]).T).max())
+
     def _sample(self, tol: float):
         tol, slack = self._tol(tol)
         key = ("outline", tol)
         if key not in self._cache:
-            done = sample_curves(list(self.pieces), tol - slack, n_init=33)
+            gap = self._gap()
+            if gap >= tol - slack:
+                raise GeometryError(f"the cam's kept pieces meet only within {gap:.3g} mm, not within tol {tol:.3g} mm")
+            done = sample_curves(list(self.pieces), tol - slack - gap, n_init=33)
             pts = np.concatenate([pts if k == 0 else pts[1:] for k, (_, pts, _) in enumerate(done)])
             pts = pts[:-1][::-1]  # closed: drop the repeated start; counter-clockwise
-            self._cache[key] = (np.ascontiguousarray(pts), max(dev for _, _, dev in done) + slack)
+            # a knife's corner is a point (the tip stands while the velocity jumps): its piece's points are one
+            pts = pts[(pts != np.roll(pts, 1, axis=0)).any(axis=1)]
+            self._cache[key] = (np.ascontiguousarray(pts), max(dev for _, _, dev in done) + gap + slack)
         return self._cache[key]
 
     def outline(self, tol: float = 1e-3):
-        """Closed profile, ``(n, 2)`` float64, counter-clockwise, no repeated end point; every chord
-        within ``tol`` (mm, in ``[1e-9, 1] (r0 + stroke)``) of the exact envelope."""
+        """Closed profile, ``(n, 2)`` float64, counter-clockwise, no vertex repeating the one before it (nor the
+        end the start); every chord within ``tol`` (mm, in ``[1e-9, 1] (r0 + stroke)``) of the exact envelope."""
         return self._sample(tol)[0]
 
     def achieved(self, tol: float = 1e-3) -> float:
         """A proven bound (mm) of the largest chord deviation of :meth:`outline` at ``tol`` from the exact
-        pieces (:mod:`gearkit.families.cam.turns`: the tangent's turn over every leg, bounded by the law)."""
+        pieces (:mod:`gearkit.families.cam.turns`: the tangent's turn over every leg, bounded by the law),
+        plus the widest gap where one kept piece hands over to the next."""
         return self._sample(tol)[1]
 
     def pitch_outline(self, tol: float = 1e-3):
