@@ -26,7 +26,7 @@ import math
 import numpy as np
 
 from gearkit.curves import inv
-from gearkit.blocking.gear_arrays import gear_forms, inv_inverse, ring_settings
+from gearkit.blocking.gear_arrays import form_roll_lengths, gear_forms, inv_inverse, ring_settings
 from gearkit.pair.internal import SWEEP_RESOLUTION
 from gearkit.pair.sweep import SWEEP_ENOUGH, sweep_depth
 from gearkit.pair.tooling import graded_tip_radius, half_angle
@@ -37,33 +37,9 @@ PLUNGE_SAMPLES = 97  #: samples of the plunge-trimming gap (over a quarter wave 
 #: most two extrema), then Newton on the derivative from the smallest; the check samples 801
 
 
-def _form_roll(field, which, x, rho_l, rb):
-    """Roll length of the form circle (mm) of gear ``which`` at shifts ``x``: generated where undercut."""
-    rho = np.maximum(rho_l, 0.0)
-    if which == 2 and field.internal:
-        return rho
-    under = rho_l < 0
-    if not under.any():
-        return rho
-    rho = rho.copy()
-    fit = field.form_interpolant(which) if field.x_ranges is not None else None
-    idx = np.flatnonzero(under)
-    xs = x[idx]
-    r = np.full(xs.shape, np.nan)
-    if fit is not None:  # the interpolant's roll length itself (read off d_F it loses 2e-7 mm near zero)
-        inside = (xs >= fit[0]) & (xs <= field.x_min[which - 1])
-        r[inside] = fit[5](xs[inside])
-        if fit[4] > -math.inf:  # below the shifts where the generated gear has a tooth: NaN
-            below = xs < fit[4]
-            inside |= below
-            r[below] = np.nan
-    else:
-        inside = np.zeros(xs.shape, bool)
-    for k in ([] if inside.all() else np.flatnonzero(~inside)):  # outside the interpolant: the generated gear
-        d = field.form_diameter(which, float(xs[k]), exact=True)
-        r[k] = math.sqrt(max((d / 2) ** 2 - rb ** 2, 0.0)) if d is not None and not math.isnan(d) else math.nan
-    rho[idx] = r
-    return rho
+def _no_thinning(thinning) -> bool:
+    """True for a thinning of +0 (``d - 0.0`` is ``d`` to the bit; ``-0.0`` would turn a ``-0.0`` into ``+0.0``)."""
+    return thinning == 0 and math.copysign(1.0, thinning) > 0
 
 
 class _Pair:
@@ -86,7 +62,9 @@ class _Pair:
         # the thickness allowance feeds the tool in (generating shift x_E) for roots and form circles
         x2c = ring_settings(sec, t, x2) if internal and t.shift_convention == "iso" else x2
         k_e = 2 * mn * math.tan(sec.alpha_n)
-        xe1, xe2 = x1 - t.thinning1 / k_e, x2c - t.thinning2 / k_e  # generating shifts (x itself without thinning)
+        # generating shifts (x itself without thinning)
+        xe1 = x1 if _no_thinning(t.thinning1) else x1 - t.thinning1 / k_e
+        xe2 = x2c if _no_thinning(t.thinning2) else x2c - t.thinning2 / k_e
         d1, rf1, rho_l1, _ = gear_forms(sec, z1, x1, tool1, False)
         if t.thinning1:
             _, rf1, rho_l1, _ = gear_forms(sec, z1, xe1, tool1, False)
@@ -94,64 +72,71 @@ class _Pair:
         if t.thinning2:
             _, rf2, rho_l2, _ = gear_forms(sec, z2, xe2, tool2, internal)
         self.a02 = a02
-        with np.errstate(invalid="ignore", divide="ignore"):
-            if internal:
-                value = inv(at) - (d1 + d2) / (z2 - z1)
-                base, a_ref, x_sum = rb2 - rb1, r2 - r1, x2 - x1
-            else:
-                value = inv(at) + (d1 + d2) / (z1 + z2)
-                base, a_ref, x_sum = rb1 + rb2, r1 + r2, x1 + x2
-            bad = ~(value > 1e-9)
-            alpha_tight = inv_inverse(np.where(bad, 1.0, value))
-            a_w = np.where(bad, np.nan, base / np.cos(alpha_tight))
-            bad |= ~(a_w > base * (1 + 1e-12))
-            a_w = np.where(bad, np.nan, a_w)
-            alpha_w = np.arccos(base / a_w)
-            y = (a_w - a_ref) / mn
-            dy = y - x_sum if internal else x_sum - y
-            cut = dy if t.tip_rule == "shortened" else 0.0
-            ha = t.addendum
-            # the tips the check grades: the blank's, cut down to what the tools leave (one function)
-            ra1 = graded_tip_radius(sec, z1, xe1, tool1, False, r1 + mn * (ha + x1 - cut))
-            ra2 = graded_tip_radius(sec, z2, xe2, tool2, internal,
-                                    r2 - mn * (ha - x2 - cut) if internal else r2 + mn * (ha + x2 - cut))
-            bad |= ~(ra1 > rb1)
-            bad |= ~(ra2 < rf2) if internal else ~(ra2 > rb2)
-            self.bad = bad | np.isnan(d1) | np.isnan(d2)
-            rhoF1 = _form_roll(field, 1, x1, rho_l1, rb1)
-            rhoF2 = _form_roll(field, 2, x2, rho_l2, rb2)
-            self.bad |= np.isnan(rhoF1) | np.isnan(rhoF2)
-            g_line = a_w * np.sin(alpha_w)
-            u_c = rb1 * np.tan(alpha_w)
-            u_e = np.sqrt(ra1 ** 2 - rb1 ** 2)
-            if internal:
-                nu = np.sqrt(a02 ** 2 + 2 * rb2 * (tool2.teeth * mt * math.cos(at) / 2)
-                             - (tool2.teeth * mt * math.cos(at) / 2) ** 2)
-                inner2 = np.maximum(np.maximum(ra2, rb2), nu)
-                u_a = -g_line + np.sqrt(np.maximum(ra2, rb2) ** 2 - rb2 ** 2)
-                u_lo2 = -g_line + np.sqrt(inner2 ** 2 - rb2 ** 2)
-                u_hi = rhoF2 - g_line
-                lo = np.maximum(np.maximum(u_a, rhoF1), u_lo2)
-                self.nu = nu
-            else:
-                u_a = g_line - np.sqrt(ra2 ** 2 - rb2 ** 2)
-                u_hi = g_line - rhoF2
-                lo = np.maximum(u_a, rhoF1)
-            hi = np.minimum(u_e, u_hi)
-            p_bt = math.pi * mt * math.cos(at)
-            self.eps = np.maximum(hi - lo, 0.0) / p_bt
-            self.eps_nominal = (u_e - u_a) / p_bt
-            self.u_a, self.u_e, self.rhoF1, self.u_hi = u_a, u_e, rhoF1, u_hi
-            self.lo, self.hi, self.g_line = lo, hi, g_line
-            if internal:
-                self.clear = (rf2 - a_w - ra1, ra2 - a_w - rf1)
-            else:
-                self.clear = (a_w - ra1 - rf2, a_w - ra2 - rf1)
-            t1 = d1 - t.thinning1 / mn
-            t2 = d2 - t.thinning2 / mn
+        # (the callers hold an errstate that ignores invalid and divide: :func:`_quiet`)
+        if internal:
+            value = inv(at) - (d1 + d2) / (z2 - z1)
+            base, a_ref, x_sum = rb2 - rb1, r2 - r1, x2 - x1
+        else:
+            value = inv(at) + (d1 + d2) / (z1 + z2)
+            base, a_ref, x_sum = rb1 + rb2, r1 + r2, x1 + x2
+        bad = ~(value > 1e-9)
+        alpha_tight = inv_inverse(np.where(bad, 1.0, value))
+        a_w = np.where(bad, np.nan, base / np.cos(alpha_tight))
+        bad |= ~(a_w > base * (1 + 1e-12))
+        a_w = np.where(bad, np.nan, a_w)
+        alpha_w = np.arccos(base / a_w)
+        y = (a_w - a_ref) / mn
+        dy = y - x_sum if internal else x_sum - y
+        cut = dy if t.tip_rule == "shortened" else 0.0
+        ha = t.addendum
+        # the tips the check grades: the blank's, cut down to what the tools leave (one function)
+        ra1 = graded_tip_radius(sec, z1, xe1, tool1, False, r1 + mn * (ha + x1 - cut))
+        ra2 = graded_tip_radius(sec, z2, xe2, tool2, internal,
+                                r2 - mn * (ha - x2 - cut) if internal else r2 + mn * (ha + x2 - cut))
+        bad |= ~(ra1 > rb1)
+        bad |= ~(ra2 < rf2) if internal else ~(ra2 > rb2)
+        self.bad = bad | np.isnan(d1) | np.isnan(d2)
+        rhoF1 = form_roll_lengths(field, 1, x1, rho_l1, rb1)
+        rhoF2 = form_roll_lengths(field, 2, x2, rho_l2, rb2)
+        self.bad |= np.isnan(rhoF1) | np.isnan(rhoF2)
+        g_line = a_w * np.sin(alpha_w)
+        u_e = np.sqrt(ra1 ** 2 - rb1 ** 2)
+        if internal:
+            nu = np.sqrt(a02 ** 2 + 2 * rb2 * (tool2.teeth * mt * math.cos(at) / 2)
+                         - (tool2.teeth * mt * math.cos(at) / 2) ** 2)
+            inner2 = np.maximum(np.maximum(ra2, rb2), nu)
+            u_a = -g_line + np.sqrt(np.maximum(ra2, rb2) ** 2 - rb2 ** 2)
+            u_lo2 = -g_line + np.sqrt(inner2 ** 2 - rb2 ** 2)
+            u_hi = rhoF2 - g_line
+            lo = np.maximum(np.maximum(u_a, rhoF1), u_lo2)
+            self.nu = nu
+        else:
+            u_a = g_line - np.sqrt(ra2 ** 2 - rb2 ** 2)
+            u_hi = g_line - rhoF2
+            lo = np.maximum(u_a, rhoF1)
+        hi = np.minimum(u_e, u_hi)
+        self.p_bt = p_bt = math.pi * mt * math.cos(at)
+        self.eps = np.maximum(hi - lo, 0.0) / p_bt
+        self.u_a, self.u_e, self.rhoF1, self.u_hi = u_a, u_e, rhoF1, u_hi
+        self.lo, self.hi, self.g_line = lo, hi, g_line
+        # a gear without thinning: d - 0.0 is d itself, to the bit
+        t1 = d1 if _no_thinning(t.thinning1) else d1 - t.thinning1 / mn
+        t2 = d2 if _no_thinning(t.thinning2) else d2 - t.thinning2 / mn
         self.a_w, self.alpha_w, self.ra1, self.ra2, self.rf1, self.rf2 = a_w, alpha_w, ra1, ra2, rf1, rf2
         self.t1, self.t2 = t1, t2
         self._tips = None
+
+    @property
+    def eps_nominal(self):
+        """The contact ratio of the tips alone (no form circles)."""
+        return (self.u_e - self.u_a) / self.p_bt
+
+    def clearance(self, which):
+        """Tip clearance (mm) of gear ``which``: its tip's distance from the mate's root circle."""
+        a_w = self.a_w
+        if self.internal:
+            return self.rf2 - a_w - self.ra1 if which == 1 else self.ra2 - a_w - self.rf1
+        return a_w - self.ra1 - self.rf2 if which == 1 else a_w - self.ra2 - self.rf1
 
     @property
     def backlash(self):
@@ -180,13 +165,12 @@ class _Pair:
         z, t, ra, r, rb = ((self.z1, self.t1, self.ra1, self.r1, self.rb1) if which == 1 else
                            (self.z2, self.t2, self.ra2, self.r2, self.rb2))
         internal = self.internal and which == 2
-        with np.errstate(invalid="ignore"):
-            rr = np.maximum(ra, rb)
-            s_at = 2 * rr * half_angle(sec, z, t, rr, internal)
-            if not sec.beta:  # spur: the normal section is the transverse one
-                return s_at
-            beta_a = np.arctan(math.tan(sec.beta) * ra / r)
-            return s_at * np.cos(beta_a)
+        rr = np.maximum(ra, rb)
+        s_at = 2 * rr * half_angle(sec, z, t, rr, internal)
+        if not sec.beta:  # spur: the normal section is the transverse one
+            return s_at
+        beta_a = np.arctan(math.tan(sec.beta) * ra / r)
+        return s_at * np.cos(beta_a)
 
     def sliding(self):
         """|zeta1| at the start of the real path minus |zeta2| at its end."""
@@ -277,9 +261,8 @@ class _Pair:
 
     def smallest(self, names, sel):
         """The smallest of the margins ``names`` at the points ``sel``: NaN where no pair exists."""
-        with np.errstate(invalid="ignore"):
-            m = np.minimum.reduce([self._value(n, sel) for n in names])
-        return np.where(self.bad[sel], np.nan, m)
+        m = np.minimum.reduce([self._value(n, sel) for n in names])
+        return np.where(self.bad if sel is None else self.bad[sel], np.nan, m)
 
     def _value(self, name, sel):
         """Margin ``name`` at the points ``sel`` (None: all), read where a pair exists."""
@@ -299,7 +282,7 @@ class _Pair:
             s = at(self.tip_thickness(int(base[-1])))
             return np.where(s == 0, -5e-324, s) / mn
         if base in ("tip_clearance.1", "tip_clearance.2"):
-            return at(self.clear[int(base[-1]) - 1]) / mn
+            return at(self.clearance(int(base[-1]))) / mn
         if name == "contact_ratio=1":
             return at(self.eps) - 1.0
         if base == "contact_ratio":
@@ -336,14 +319,16 @@ def _points(x1, x2):
 def margins(field, x1, x2, names) -> dict:
     """Margins ``names`` of ``field`` at the shift pairs ``(x1[i], x2[i])``: name -> (n,) float64, NaN
     where no pair exists (see :meth:`~gearkit.blocking.field.PairField.margin` for names and units)."""
-    g = _Pair(field, *_points(x1, x2))
-    return {name: g.margin(name) for name in dict.fromkeys(names)}
+    with np.errstate(invalid="ignore", divide="ignore"):
+        g = _Pair(field, *_points(x1, x2))
+        return {name: g.margin(name) for name in dict.fromkeys(names)}
 
 
 def sliding_ends(field, x1, x2):
     """(|zeta1| at the start, |zeta2| at the end of the real path, eps_alpha) at the points, arrays."""
-    g = _Pair(field, *_points(x1, x2))
-    z1, z2 = g.sliding_ends()
+    with np.errstate(invalid="ignore", divide="ignore"):
+        g = _Pair(field, *_points(x1, x2))
+        z1, z2 = g.sliding_ends()
     bad = g.bad
     return np.where(bad, np.nan, z1), np.where(bad, np.nan, z2), np.where(bad, np.nan, g.eps)
 
@@ -358,32 +343,34 @@ def evaluator(field, names, window):
     cheap = [n for n in hard if n != "tip_interference"]  # not the backlash: zero at the tight mesh by construction (the check
     # forgives 1e-9 m_n of round-off); a plateau at 1e-9 would hide the region's real edges
 
+    def one(g, p, name, sel):
+        """Function ``name`` at the points ``sel`` (indices; None: all of them)."""
+        if name != "region":
+            return g.margin(name, sel)
+        m = g.smallest(cheap, sel)
+        if sweep:  # the tip sweep only where the others pass (elsewhere the region fails anyway)
+            at = np.flatnonzero(m >= 0)
+            m[at] = np.minimum(m[at], g.margin("tip_interference", at if sel is None else sel[at]))
+        if window is None:
+            return m
+        q = p if sel is None else p[sel]
+        w = np.minimum(np.minimum(q[:, 0] - window[0], window[1] - q[:, 0]),
+                       np.minimum(q[:, 1] - window[2], window[3] - q[:, 1]))
+        v = np.minimum(w, m)
+        return np.where(np.isnan(v), np.minimum(w, -1.0), v)
+
     def F(p, which):
         p = np.asarray(p, dtype=float).reshape(-1, 2)
         which = np.asarray(which)
-        g = _Pair(field, p[:, 0].copy(), p[:, 1].copy())
-        out = np.empty(len(p))
-        order = np.argsort(which, kind="stable")  # each function's points, in their order
-        ends = np.flatnonzero(np.diff(which[order])).tolist() + [len(p) - 1]
-        for lo, hi in zip([-1] + ends, ends if len(p) else []):
-            sel = order[lo + 1:hi + 1]
-            name = names[which[sel[0]]]
-            if name != "region":
-                out[sel] = g.margin(name, sel)
-                continue
-            m = g.smallest(cheap, sel)
-            with np.errstate(invalid="ignore"):
-                if sweep:  # the tip sweep only where the others pass (elsewhere the region fails anyway)
-                    at = np.flatnonzero(m >= 0)
-                    m[at] = np.minimum(m[at], g.margin("tip_interference", sel[at]))
-            if window is None:
-                out[sel] = m
-                continue
-            q = p[sel]
-            w = np.minimum(np.minimum(q[:, 0] - window[0], window[1] - q[:, 0]),
-                           np.minimum(q[:, 1] - window[2], window[3] - q[:, 1]))
-            with np.errstate(invalid="ignore"):
-                v = np.minimum(w, m)
-            out[sel] = np.where(np.isnan(v), np.minimum(w, -1.0), v)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            g = _Pair(field, p[:, 0].copy(), p[:, 1].copy())
+            if len(p) and (which == which[0]).all():  # one function (most calls): every point in its place
+                return np.asarray(one(g, p, names[which[0]], None), dtype=float)
+            out = np.empty(len(p))
+            order = np.argsort(which, kind="stable")  # each function's points, in their order
+            ends = np.flatnonzero(np.diff(which[order])).tolist() + [len(p) - 1]
+            for lo, hi in zip([-1] + ends, ends if len(p) else []):
+                sel = order[lo + 1:hi + 1]
+                out[sel] = one(g, p, names[which[sel[0]]], sel)
         return out
     return F

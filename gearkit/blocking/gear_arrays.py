@@ -2,7 +2,8 @@
 
 The array forms of :func:`~gearkit.pair.tooling.thickness_coeff`, :func:`~gearkit.pair.tooling.root_radius`,
 :func:`~gearkit.pair.tooling.form_roll` and :func:`~gearkit.families.involute.ring_cutter_setting`
-(the tests hold them equal to the scalar ones through the blocking margins).
+(the tests hold them equal to the scalar ones through the blocking margins), and the roll length of
+each gear's form circle as the check reads it (:func:`form_roll_lengths`: generated where undercut).
 
 >>> import numpy as np
 >>> from gearkit.curves import inv
@@ -20,7 +21,7 @@ from gearkit.curves import inv
 from gearkit.families.involute.tools import BasicRack
 from gearkit.pair.tooling import cutter_radii
 
-__all__ = ["inv_inverse", "gear_forms", "ring_settings"]
+__all__ = ["inv_inverse", "gear_forms", "ring_settings", "form_roll_lengths"]
 
 NEWTON = 12  #: most Newton steps of the inverse involute (quadratic from the start: 4 to 6 suffice)
 SERIES_BELOW = 0.1  #: angles (rad) whose ``inv`` is left to :func:`~gearkit.curves.inv` (its series below
@@ -103,3 +104,35 @@ def ring_settings(sec, t, x):
     ok = value > 0
     ac = inv_inverse(np.where(ok, value, 1.0))
     return np.where(ok, dz / (2 * math.cos(sec.beta)) * (math.cos(at) / np.cos(ac) - 1.0), np.nan)
+
+
+def form_roll_lengths(field, which, x, rho_l, rb):
+    """Roll length of the form circle (mm) of gear ``which`` of ``field`` (a
+    :class:`~gearkit.blocking.field.PairField`) at shifts ``x``, from the closed-form roll lengths
+    ``rho_l``: the closed form where the gear is not undercut, the generated one where it is (the
+    field's interpolant inside its range, the generated gear outside it), NaN where no gear exists."""
+    rho = np.maximum(rho_l, 0.0)
+    if which == 2 and field.internal:
+        return rho
+    under = rho_l < 0
+    if not under.any():
+        return rho
+    rho = rho.copy()
+    fit = field.form_interpolant(which) if field.x_ranges is not None else None
+    idx = np.flatnonzero(under)
+    xs = x[idx]
+    r = np.full(xs.shape, np.nan)
+    if fit is not None:  # the interpolant's roll length itself (read off d_F it loses 2e-7 mm near zero)
+        inside = (xs >= fit[0]) & (xs <= field.x_min[which - 1])
+        r[inside] = fit[5](xs[inside])
+        if fit[4] > -math.inf:  # below the shifts where the generated gear has a tooth: NaN
+            below = xs < fit[4]
+            inside |= below
+            r[below] = np.nan
+    else:
+        inside = np.zeros(xs.shape, bool)
+    for k in ([] if inside.all() else np.flatnonzero(~inside)):  # outside the interpolant: the generated gear
+        d = field.form_diameter(which, float(xs[k]), exact=True)
+        r[k] = math.sqrt(max((d / 2) ** 2 - rb ** 2, 0.0)) if d is not None and not math.isnan(d) else math.nan
+    rho[idx] = r
+    return rho
