@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 import pytest
-from fuzzkit import true_deviation
+from fuzzkit import check_flat_cam, true_deviation
 
 import gearkit as gk
 from gearkit.cli import main
@@ -442,6 +442,27 @@ def test_cam_knife_on_velocity_jumps_across_a_vanishing_dwell_builds(dwell):
     # the formula's curve within the reported bound of the outline, every vertex on that curve
     assert polyline_deviation(out, exact, closed=True) <= achieved * (1 + 1e-9)
     assert _own_chord_error(exact, out) <= own + EXACT
+
+
+@pytest.mark.parametrize("dwell", [1e-14, 0.0, 1e-9])
+def test_flat_rocker_across_a_dwell_of_a_few_ulps_is_convex_with_no_repeated_vertex(dwell):
+    # a 0.1 mm polynomial rise and return of 20 degrees each on a flat rocker: a dwell of 1e-14 degrees is a
+    # piece a few ulps long, whose two ends came out as two vertices 4e-15 mm apart, an edge of no direction
+    # that read as the outline turning back by 0.0058 mm. The cam is the intersection of the face's
+    # half-planes written from the spec alone (check_flat_cam), convex, with every edge of some length
+    from gearkit.families.cam import CamSpec, MotionProgram, cam_profile
+
+    spec = CamSpec(5.0, MotionProgram.rise_dwell_return(0.1, 20.0, dwell, 20.0, "polynomial_345"),
+                   follower="rocker", contact="flat", pivot_distance=6.625248492635871,
+                   arm_length=9.788188074451035)
+    prof = cam_profile(spec)
+    tol = 5e-4
+    out = prof.outline(tol)
+    assert prof.achieved(tol) <= tol
+    reach = spec.prime_radius + spec.stroke + spec.pivot_distance + spec.arm_length
+    assert np.hypot(*(out - np.roll(out, 1, axis=0)).T).min() > 1e-14 * reach
+    check_flat_cam(spec, out, tol)
+    assert true_deviation(prof.pieces, np.concatenate([out[::-1], out[-1:]])) <= prof.achieved(tol)
 
 
 def test_cam_knife_keeps_the_whole_cam_when_nothing_loops():

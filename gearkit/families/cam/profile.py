@@ -280,25 +280,32 @@ class CamProfile:
         key = ("outline", tol)
         if key not in self._cache:
             gap = self._gap()
-            if gap >= tol - slack:
+            if gap >= tol - 2 * slack:
                 raise GeometryError(f"the cam's kept pieces meet only within {gap:.3g} mm, not within tol {tol:.3g} mm")
-            done = sample_curves(list(self.pieces), tol - slack - gap, n_init=33)
+            done = sample_curves(list(self.pieces), tol - 2 * slack - gap, n_init=33)
             pts = np.concatenate([pts if k == 0 else pts[1:] for k, (_, pts, _) in enumerate(done)])
             pts = pts[:-1][::-1]  # closed: drop the repeated start; counter-clockwise
-            # a knife's corner is a point (the tip stands while the velocity jumps): its piece's points are one
-            pts = pts[(pts != np.roll(pts, 1, axis=0)).any(axis=1)]
-            self._cache[key] = (np.ascontiguousarray(pts), max(dev for _, _, dev in done) + gap + slack)
+            # a vertex within round-off of the one before it is the same point: a knife's corner (the tip stands
+            # while the velocity jumps), or the ends of a piece a few ulps long (a dwell of 1e-14 degrees). Each
+            # one dropped moves a chord by at most its step, so the bound adds the steps dropped
+            step = np.hypot(*(pts - np.roll(pts, 1, axis=0)).T)
+            same = step <= slack
+            pts = pts[~same]
+            self._cache[key] = (np.ascontiguousarray(pts), max(dev for _, _, dev in done) + gap + slack
+                                + float(step[same].sum()))
         return self._cache[key]
 
     def outline(self, tol: float = 1e-3):
-        """Closed profile, ``(n, 2)`` float64, counter-clockwise, no vertex repeating the one before it (nor the
-        end the start); every chord within ``tol`` (mm, in ``[1e-9, 1] (r0 + stroke)``) of the exact envelope."""
+        """Closed profile, ``(n, 2)`` float64, counter-clockwise, no vertex within round-off of the one before it
+        (nor the last of the first); every chord within ``tol`` (mm, in ``[1e-9, 1] (r0 + stroke)``) of the exact
+        envelope."""
         return self._sample(tol)[0]
 
     def achieved(self, tol: float = 1e-3) -> float:
         """A proven bound (mm) of the largest chord deviation of :meth:`outline` at ``tol`` from the exact
         pieces (:mod:`gearkit.families.cam.turns`: the tangent's turn over every leg, bounded by the law),
-        plus the widest gap where one kept piece hands over to the next."""
+        plus the widest gap where one kept piece hands over to the next and the steps to the vertices merged with
+        the one before them."""
         return self._sample(tol)[1]
 
     def pitch_outline(self, tol: float = 1e-3):
