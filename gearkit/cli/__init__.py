@@ -18,10 +18,13 @@ gain from threads. A user's own setting always wins.
 A fresh process also imports with the cycle collector paused (:func:`hold_collector`): numpy's
 import makes tens of thousands of long-lived objects, and the collector would walk them all
 again and again as they pile up (about 10 ms of CPU per process); once the command's modules
-are in, they are frozen out of the collector's sight (``gc.freeze``) and it runs as usual.
+are in, they are frozen out of the collector's sight (``gc.freeze``) and it runs as usual. Once the
+command is done, such a process ends at once (:func:`end_process`): the exit functions run and the
+streams are flushed, but the interpreter does not free its modules and objects one by one.
 """
 from __future__ import annotations
 
+import atexit
 import os
 import sys
 
@@ -79,13 +82,49 @@ def release_collector() -> None:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Run the CLI; return the exit status (0 ok, 1 a check failed, 2 bad input, 130/143 interrupted)."""
+    """Run the CLI; return the exit status (0 ok, 1 a check failed, 2 bad input, 130/143 interrupted).
+
+    Run as the program itself (``argv`` read from ``sys.argv`` in a fresh process: the ``gearkit``
+    command, ``python -m gearkit``), it ends the process once the command is done
+    (:func:`end_process`) instead of returning.
+    """
     held = hold_collector()
     try:
-        return _main(argv, held)
+        code = _main(argv, held)
     finally:
         if held and not gc.isenabled():
             gc.enable()
+    if held and argv is None:
+        end_process(code)
+    return code
+
+
+def end_process(code: int) -> None:
+    """End this process with exit status ``code`` now, skipping the interpreter's teardown.
+
+    A finished command's objects need no freeing one by one: the teardown (a last collection, then
+    every module and object freed in turn) costs about as much CPU as building a small gear. What of
+    it can show is done first: the exit functions run (:mod:`atexit`) and the standard streams are
+    flushed. It returns instead, leaving the usual exit to the caller, where the teardown has more to
+    do: a thread (other than a daemon) still runs or is waited for at exit, a profiler or tracer is
+    attached (it writes its report at exit), the interpreter stays for inspection (``-i``), or a
+    stream cannot be flushed (the usual exit reports it as it always has).
+    """
+    threading = sys.modules.get("threading")
+    if threading is not None and (getattr(threading, "_threading_atexits", None) or any(
+            t.is_alive() and not t.daemon for t in threading.enumerate() if t is not threading.main_thread())):
+        return
+    run_exit_functions = getattr(atexit, "_run_exitfuncs", None)
+    if sys.getprofile() is not None or sys.gettrace() is not None or sys.flags.inspect or run_exit_functions is None:
+        return
+    run_exit_functions()
+    try:
+        for stream in (sys.stdout, sys.stderr):
+            if stream is not None:
+                stream.flush()
+    except (OSError, ValueError):
+        return
+    os._exit(code)
 
 
 def _main(argv, held: bool) -> int:
