@@ -136,12 +136,14 @@ def _distance_to_fine(q, fine):
     norm = np.maximum(np.einsum("nki,nki->nk", chord, chord), 1e-300)
     t_fine = np.einsum("nmi,nki->nm", fine - a, chord) / norm
     t_q = np.einsum("ngi,nki->ng", q - a, chord) / norm
-    j = (t_fine[:, None, 1:-1] <= t_q[:, :, None]).sum(axis=2)  # segment holding the point's position
-    rows = np.arange(len(fine))[:, None]
+    # the segment holding each point's position (the inner sub-points it has passed, counted a row of
+    # them at a time: a sum along a short last axis costs a step per point)
+    j = (np.ascontiguousarray(t_fine.T[1:-1, :, None]) <= t_q).sum(axis=0)
+    flat, first = fine.reshape(-1, 2), np.arange(len(fine))[:, None] * fine.shape[1]  # row gathers: numpy's fast path
     best = np.full(q.shape[:2], np.inf)
     for off in (-1, 0, 1):
-        k = np.clip(j + off, 0, FINE - 1)
-        p0, p1 = fine[rows, k], fine[rows, k + 1]
+        k = np.clip(j + off, 0, FINE - 1) + first
+        p0, p1 = flat.take(k, axis=0), flat.take(k + 1, axis=0)
         d = p1 - p0
         dd = np.maximum(np.einsum("ngi,ngi->ng", d, d), 1e-300)
         t = np.clip(np.einsum("ngi,ngi->ng", q - p0, d) / dd, 0.0, 1.0)
