@@ -73,3 +73,45 @@ def test_an_output_that_cannot_be_written_is_reported_as_before(unbuffered):
                              stderr=subprocess.PIPE, text=True, env=env, timeout=120)
     assert res.returncode == (2 if unbuffered else 120), res.stderr
     assert "No space left on device" in res.stderr
+
+
+FAULTS = """
+import resource, sys
+from gearkit.cli import keep_freed_memory
+print(keep_freed_memory())
+import numpy as np
+
+def faults():
+    return resource.getrusage(resource.RUSAGE_SELF).ru_minflt
+
+a = np.ones(1 << 18)  # 2 MiB, every page touched, then freed (numpy asks for huge pages from 4 MiB on)
+del a
+before = faults()
+b = np.ones(1 << 18)  # the same again
+print(faults() - before)
+"""
+PAGES = (1 << 21) // 4096  # the pages of 2 MiB (4 KiB pages)
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="glibc's allocator and Linux page counts")
+def test_a_fresh_process_reuses_the_memory_it_freed():
+    """The second 2 MiB array lands on the first one's pages (few faults) where the allocator keeps
+    freed memory; by default it is mapped afresh, each of its pages faulted in."""
+    env = {k: v for k, v in os.environ.items() if not k.startswith("MALLOC_")}
+    env["PYTHONPATH"] = os.pathsep.join(filter(None, [os.getcwd(), os.environ.get("PYTHONPATH")]))
+    kept = subprocess.run([sys.executable, "-c", FAULTS], capture_output=True, text=True, env=env, timeout=120)
+    assert kept.returncode == 0, kept.stderr
+    was_set, faults = kept.stdout.split()
+    if was_set != "True":
+        pytest.skip("not glibc: no mallopt to set")
+    assert int(faults) < PAGES // 10
+    plain = FAULTS.replace("print(keep_freed_memory())", "print(True)")
+    default = subprocess.run([sys.executable, "-c", plain], capture_output=True, text=True, env=env, timeout=120)
+    assert int(default.stdout.split()[1]) > PAGES * 0.9
+
+
+def test_a_users_own_allocator_setting_wins(monkeypatch):
+    from gearkit.cli import keep_freed_memory
+
+    monkeypatch.setenv("MALLOC_TRIM_THRESHOLD_", "131072")
+    assert keep_freed_memory() is False
