@@ -120,35 +120,32 @@ _TRIANGLES = (
 )
 
 
-def _rotate(p, angle):
-    c, s = np.cos(angle), np.sin(angle)
-    return np.stack([c * p[..., 0] - s * p[..., 1], s * p[..., 0] + c * p[..., 1]], -1)
-
-
-def _distance_to_fine(q, fine):
-    """Distance of points ``q`` (n, g, 2) to the dense exact polyline of their edge (n, FINE+1, 2).
+def _distance_to_fine(qx, qy, fine):
+    """Distance of points ``(qx, qy)`` (each (n, g)) to the dense exact polyline of their edge (n, FINE+1, 2).
 
     Only the segments around each point's position along the edge are searched (the nearest and
     one on either side): a distance to fewer segments can only be larger, never hide a deviation.
+    The x and y coordinates are arrays of their own (a dot product of two is ``x x' + y y'``).
     """
-    a = fine[:, :1, :]
-    chord = fine[:, -1:, :] - a
-    norm = np.maximum(np.einsum("nki,nki->nk", chord, chord), 1e-300)
-    t_fine = np.einsum("nmi,nki->nm", fine - a, chord) / norm
-    t_q = np.einsum("ngi,nki->ng", q - a, chord) / norm
+    fx, fy = (np.ascontiguousarray(fine[..., i]) for i in range(2))
+    cx, cy = fx[:, -1:] - fx[:, :1], fy[:, -1:] - fy[:, :1]  # each edge's chord
+    norm = np.maximum(cx * cx + cy * cy, 1e-300)
+    t_fine = ((fx - fx[:, :1]) * cx + (fy - fy[:, :1]) * cy) / norm
+    t_q = ((qx - fx[:, :1]) * cx + (qy - fy[:, :1]) * cy) / norm
     # the segment holding each point's position (the inner sub-points it has passed, counted a row of
     # them at a time: a sum along a short last axis costs a step per point)
     j = (np.ascontiguousarray(t_fine.T[1:-1, :, None]) <= t_q).sum(axis=0)
-    flat, first = fine.reshape(-1, 2), np.arange(len(fine))[:, None] * fine.shape[1]  # row gathers: numpy's fast path
-    best = np.full(q.shape[:2], np.inf)
+    fx, fy, first = fx.ravel(), fy.ravel(), np.arange(len(fine))[:, None] * fine.shape[1]
+    best = np.full(qx.shape, np.inf)
     for off in (-1, 0, 1):
         k = np.clip(j + off, 0, FINE - 1) + first
-        p0, p1 = flat.take(k, axis=0), flat.take(k + 1, axis=0)
-        d = p1 - p0
-        dd = np.maximum(np.einsum("ngi,ngi->ng", d, d), 1e-300)
-        t = np.clip(np.einsum("ngi,ngi->ng", q - p0, d) / dd, 0.0, 1.0)
-        gap = q - p0 - t[..., None] * d
-        best = np.minimum(best, np.einsum("ngi,ngi->ng", gap, gap))
+        x0, y0 = fx.take(k), fy.take(k)
+        dx, dy = fx.take(k + 1) - x0, fy.take(k + 1) - y0
+        dd = np.maximum(dx * dx + dy * dy, 1e-300)
+        wx, wy = qx - x0, qy - y0
+        t = np.clip((wx * dx + wy * dy) / dd, 0.0, 1.0)
+        gx, gy = wx - t * dx, wy - t * dy
+        best = np.minimum(best, gx * gx + gy * gy)
     return np.sqrt(best)
 
 
@@ -165,23 +162,26 @@ def layer_deviation(poly: ToothPolyline, dtheta: float) -> np.ndarray:
     (n, 2) float64, mm: the largest transverse distance of the column's two facets from the
     exact profile, with diagonal 0 (bottom-left to top-right) and diagonal 1.
     """
-    p = poly.points
+    x, y = (poly.points[:, i, None] for i in range(2))  # (n + 1, 1) each
     if dtheta == 0.0:  # a straight prism: the facets' transverse sections are the chords
-        q = p[:-1, None, :] + _CHORD[None, :, None] * (p[1:] - p[:-1])[:, None, :]
-        dev = _distance_to_fine(q, poly.fine).max(axis=1)
+        q = [c[:-1] + _CHORD[None, :] * (c[1:] - c[:-1]) for c in (x, y)]
+        dev = _distance_to_fine(*q, poly.fine).max(axis=1)
         return np.stack([dev, dev], 1)
-    ends = (p[:-1], p[1:])
+    ends = ((x[:-1], y[:-1]), (x[1:], y[1:]))
     out = np.empty((poly.edges, 2))
     for choice, triangles in enumerate(_TRIANGLES):
         worst = np.zeros(poly.edges)
         for tri in triangles:
             t_v = np.array([top for _, top in tri], dtype=float)
             t_g = _GRID @ t_v  # height fraction of every grid point
-            q = np.zeros((poly.edges, len(_GRID), 2))
-            for i, (end, top) in enumerate(tri):
-                turned = _rotate(ends[end][:, None, :], ((top - t_g) * dtheta)[None, :])
-                q += _GRID[None, :, i, None] * turned
-            worst = np.maximum(worst, _distance_to_fine(q, poly.fine).max(axis=1))
+            qx, qy = np.zeros((poly.edges, len(_GRID))), np.zeros((poly.edges, len(_GRID)))
+            for i, (end, top) in enumerate(tri):  # each corner turned to the grid point's height, weighted
+                angle = ((top - t_g) * dtheta)[None, :]
+                c, s = np.cos(angle), np.sin(angle)
+                (ex, ey), w = ends[end], _GRID[None, :, i]
+                qx += w * (c * ex - s * ey)
+                qy += w * (s * ex + c * ey)
+            worst = np.maximum(worst, _distance_to_fine(qx, qy, poly.fine).max(axis=1))
         out[:, choice] = worst
     return out
 
