@@ -77,23 +77,6 @@ def test_the_driver_probes_are_the_table_at_the_minimisers_parameters():
     assert np.array_equal(x, p[..., 0]) and np.array_equal(y, p[..., 1])
 
 
-def test_the_crossings_least_bound_is_numpys_scattered_minimum():
-    """The least bound at the tip-circle crossings of each half, against ``np.minimum.at`` (the oracle):
-    repeated halves, a half crossing three times, nan and inf values, no crossing at all."""
-    rng = np.random.default_rng(11)
-    best = rng.normal(size=(40, 2))
-    best[3] = np.inf
-    rows = rng.integers(0, 40, 120)
-    rows[:3] = 7
-    values = rng.normal(size=(120, 2))
-    values[5, 1], values[9, 0] = np.nan, -np.inf
-    for r, v in ((rows, values), (rows[:0], values[:0])):
-        expected, got = best.copy(), best.copy()
-        np.minimum.at(expected, r, v)
-        search_module._least_at(got, r, v)
-        assert np.array_equal(got, expected, equal_nan=True)
-
-
 @pytest.mark.parametrize("spec", [PairSpec(20, 40, 2.0), PairSpec(20, None, 1.0, 0.2, kind="rack")],
                          ids=["20/40", "rack"])
 def test_the_mates_radius_alone_is_the_radius_of_both_coordinates(spec):

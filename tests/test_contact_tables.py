@@ -128,6 +128,26 @@ def test_the_mates_exact_width_is_the_closed_form_involute(spec, z2, x2):
     assert (np.abs(w[flank] - (math.pi / z2 - psi)) * r).max() <= ulps * np.finfo(float).eps * half.rho_tip
 
 
+def test_components_gathered_together_are_each_ones_horner_sum_to_the_bit():
+    """The tables gather every component's coefficients in one array operation and sum the value's and both
+    derivatives' polynomials side by side (the shorter ones led by zeros): against each point's own Horner sum
+    (``_horner``, the tables' fitting check) and the stored first-derivative coefficients (``evaluate`` with
+    ``derivative``), to the bit; the three sums of one point agree with the slope ``derivatives`` returns."""
+    from gearkit.contact.table import _horner
+
+    mesh = pair_mesh(PairSpec(20, 40, 2.0))
+    drv = mesh.driver.table
+    rng = np.random.default_rng(5)
+    k = rng.integers(0, len(mesh.driver.pieces), 3000)
+    t = rng.random(3000)
+    j, s = drv._locate(k, t)
+    p, d = drv.evaluate(k, t, derivative=True)
+    assert np.array_equal(p, _horner(drv._coef.transpose(2, 1, 0)[j], s))
+    assert np.array_equal(d, _horner(drv._dcoef.transpose(2, 1, 0)[j], s) * drv._inv[j][:, None])
+    value, first, _ = drv.derivatives(k, t)
+    assert np.array_equal(np.stack(value, -1), p) and np.array_equal(np.stack(first, -1), d)
+
+
 def test_table_derivatives_are_their_polynomials_derivatives():
     """The tables' slopes for Newton's steps (``CurveTable.derivatives``, ``WidthTable.derivatives``: the first and
     second derivatives of each sub-interval's polynomial, from its coefficients gathered once) against

@@ -101,7 +101,7 @@ def _block(mesh, frame, r_n, n, contact_tol, searched):
     u_c = np.mod(u0 + frac * du + pitch / 2, pitch) - pitch / 2
     big_c = mate.w_tip - _SB[None, :] * u_c[:, None]  # (C, 2)
     best = big_u.min(axis=1).T.copy()  # (A, 2)
-    _least_at(best, c_a, big_c)
+    np.minimum.at(best, c_a, big_c)  # a half's curve may cross the tip circle more than once
     # how far the exact function can dip below an interval's ends: the driver's chord deviation
     # plus the mate's bending over the chord, as a normal distance over the arm scale
     rho_mid = 0.5 * (rho[:-1] + rho[1:])
@@ -139,16 +139,3 @@ def _block(mesh, frame, r_n, n, contact_tol, searched):
     i_a = p_a[k]
     return best, i_a, p_b[k], i_m, finite[i_m, i_a], finite[i_m + 1, i_a]
 
-
-def _least_at(best, rows, values):
-    """``np.minimum.at(best, rows, values)`` for rows ``(C,)`` of ``best`` ``(A, 2)``: each row takes the least of its
-    values (a half's curve may cross the tip circle more than once), by one sort and one reduction per distinct
-    row instead of the unbuffered scatter's per-element calls."""
-    if rows.size == 0:
-        return
-    order = np.argsort(rows, kind="stable")
-    r = rows[order]
-    first = np.flatnonzero(np.concatenate([[True], r[1:] != r[:-1]]))
-    least = np.minimum.reduceat(values[order], first, axis=0)
-    np.minimum(best[r[first]], least, out=least)
-    best[r[first]] = least

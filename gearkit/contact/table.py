@@ -66,34 +66,34 @@ def _horner(coef, s):
 
 def _gathered(coef, j, s):
     """:func:`_horner` of sub-intervals ``j`` from coefficients stored ``(c, D+1, J)``: a list of ``c``
-    flat arrays (one component each: flat arrays are the fastest for numpy)."""
-    out = []
-    for comp in coef:
-        acc = comp[-1][j]
-        for i in range(len(comp) - 2, -1, -1):
-            acc *= s
-            acc += comp[i][j]
-        out.append(acc)
-    return out
+    flat arrays (one component each), every component in the same few array operations."""
+    a = np.take(coef, j, axis=2, mode="clip")  # (c, D+1, n); j is within the table
+    acc = a[:, -1].copy()
+    for i in range(a.shape[1] - 2, -1, -1):
+        acc *= s
+        acc += a[:, i]
+    return list(acc)
 
 
 def _gathered_derivatives(coef, j, s):
     """:func:`_gathered` of the coefficients stored ``(c, D+1, J)`` and of their first and second derivatives in
     ``s``: three lists of ``c`` flat arrays. Each coefficient is gathered once; the derivatives' coefficients
     ``a_k k`` and ``(a_k k) (k - 1)`` are formed from it as :func:`_derived` forms its stored ones (the same
-    products of the same numbers), and every sum runs in the same order: the same values to the bit."""
-    out = ([], [], [])
-    for comp in coef:
-        a = [comp[i][j] for i in range(len(comp))]
-        d1 = [None] + [a[k] * k for k in range(1, len(a))]  # before Horner's steps overwrite a[-1]
-        d2 = [None, None] + [d1[k] * (k - 1) for k in range(2, len(a))]
-        for row, co, low in zip(out, (a, d1, d2), (0, 1, 2)):
-            acc = co[-1]
-            for k in range(len(co) - 2, low - 1, -1):
-                acc *= s
-                acc += co[k]
-            row.append(acc)
-    return out
+    products of the same numbers), and every sum runs in the same order: the same values to the bit. The three
+    sums run side by side, the derivatives' shorter ones led by zeros (``0 s + b = b``)."""
+    c, d = coef.shape[:2]
+    k = np.arange(d, dtype=float)[:, None]
+    e = np.empty((3, c, d, len(j)))  # the value's, the first and the second derivative's coefficients
+    np.take(coef, j, axis=2, out=e[0], mode="clip")
+    np.multiply(e[0, :, 1:], k[1:], out=e[1, :, :-1])
+    np.multiply(e[1, :, 1:-1], k[1:-1], out=e[2, :, :-2])
+    e[1, :, -1] = 0.0
+    e[2, :, -2:] = 0.0
+    acc = e[:, :, -1].copy()
+    for i in range(d - 2, -1, -1):
+        acc *= s
+        acc += e[:, :, i]
+    return list(acc[0]), list(acc[1]), list(acc[2])
 
 
 def _derived(coef):
