@@ -115,7 +115,7 @@ def _refine_cut(curve, w, e, b, da: int = 1, db: int = 1, meet: float | None = N
     for i in range(len(ja) - 1):
         for j in range(len(jb) - 1):
             t = _chord_cross(pa[i], pa[i + 1], pb[j], pb[j + 1])
-            if t is not None:
+            if t is not None and not {ja[i], ja[i + 1]} & {jb[j], jb[j + 1]}:  # chords sharing a sample touch
                 best = (w[ja[i]] + da * t[0] * (w[1] - w[0]), w[jb[j]] + db * t[1] * (w[1] - w[0]))
     if best is None:  # a shallow crossing: samples past it lie within the slack of the cam and were kept
         best = _far_cross(curve, w, e, b, da, db)
@@ -125,7 +125,16 @@ def _refine_cut(curve, w, e, b, da: int = 1, db: int = 1, meet: float | None = N
     wa, wb = _newton(curve, *best, h=h)
     if meet is not None and np.hypot(*np.subtract(*curve(np.array([wa, wb])))) > meet:
         wa, wb = _newton(curve, *_dense_start(curve, w, ja, jb), h=h)
+    if _same(wa, wb, h):  # Newton fell to the curve meeting itself, wa = wb: a swallowtail a few samples wide
+        start = best if not _same(*best, h) else (w[e] + da * h, w[b] - db * h)
+        wa, wb = _newton(curve, *start, h=h, divided=True)
+        if _same(wa, wb, h):
+            raise GeometryError(f"the envelope's crossing past w = {w[e]:.6g} was not found apart from the curve itself")
     return wa, wb
+
+
+def _same(wa: float, wb: float, h: float) -> bool:  # within a sixteenth of a sample step 2 h (cyclic): one point
+    return abs((wa - wb + 0.5) % 1.0 - 0.5) < h / 8
 
 
 def _dense_start(curve, w, ja, jb, per: int = 128):
@@ -178,19 +187,29 @@ def _chord_cross(p0, p1, q0, q1):
     return (t, u) if 0.0 <= t <= 1.0 and 0.0 <= u <= 1.0 else None
 
 
-def _newton(curve, wa, wb, h):
-    """Newton on ``curve(wa) = curve(wb)`` within ``h`` of the start (central differences)."""
+def _newton(curve, wa, wb, h, divided: bool = False):
+    """Newton on ``curve(wa) = curve(wb)`` within ``4 h`` of the start (central differences); ``divided``: on
+    ``(curve(wa) - curve(wb)) / (wa - wb)``, the curve's slope (not zero) as ``wb`` comes to ``wa``, keeping their
+    order: a swallowtail a few samples wide crosses so near the curve meeting itself (every ``wa = wb`` a root of
+    the plain difference) that Newton falls to that."""
     x = np.array([wa, wb])
     lo, hi = x - 4 * h, x + 4 * h
     step_h = 1e-9
     for _ in range(50):
-        p = curve(np.mod(np.array([x[0] - step_h, x[0] + step_h, x[1] - step_h, x[1] + step_h, x[0], x[1]]), 1.0))
-        jac = np.column_stack([(p[1] - p[0]) / (2 * step_h), -(p[3] - p[2]) / (2 * step_h)])
+        a = np.array([x[0] - step_h, x[0] + step_h, x[0], x[0], x[0]])
+        b = np.array([x[1], x[1], x[1] - step_h, x[1] + step_h, x[1]])
+        p = curve(np.mod(np.concatenate([a[[0, 1, 4]], b[[2, 3, 4]]]), 1.0))
+        g = p[[0, 1, 2, 2, 2]] - p[[5, 5, 3, 4, 5]]  # curve(a) - curve(b) at the five pairs
+        if divided:
+            g = g / (a - b)[:, None]
+        jac = np.column_stack([(g[1] - g[0]) / (2 * step_h), (g[3] - g[2]) / (2 * step_h)])
         try:
-            step = np.linalg.solve(jac, p[4] - p[5])
+            step = np.linalg.solve(jac, g[4])
         except np.linalg.LinAlgError:
             break
         new = np.clip(x - step, lo, hi)
+        if divided and (new[1] - new[0]) * np.sign(wb - wa) < h / 8:  # the pair would pass through the curve meeting itself
+            break
         done = np.abs(new - x).max() < 1e-15
         x = new
         if done:
@@ -252,14 +271,15 @@ def face_boundary(curve, depth, slack: float, corners, scale: float, samples: in
     joined to the next, and the stretches of ``w`` cut away.
 
     A sample is kept where ``depth`` (:meth:`~gearkit.families.cam.halfplanes.HalfPlanes.depth`) is at
-    most ``slack`` (mm: the half-planes' own sampling error). The runs of kept samples are ordered by
-    their polar angles; each run's end meets the next run's start at the envelope's crossing, or along
-    a corner's face line (:func:`_bridge`; ``corners`` of :func:`corner_lines`). Returns ``(arcs,
-    cuts)``: ``arcs`` ``[(spans, edge)]``, the stretches ``(w0, w1)`` of one kept arc in the order they
-    are walked (``w1 < w0`` where it runs against ``w``; split at ``w = 1``) and the :class:`FaceEdge`
-    to the next arc or None; ``cuts`` ``[(wa, wb)]``, from a kept arc's end to the next one's start
-    along ``w`` (cyclic: ``wb`` may be below ``wa``). One arc ``[((0, 1),), None]`` and no cut when the
-    whole envelope bounds the cam.
+    most ``slack`` (mm: round-off; the polygon of sampled lines holds the whole cam, so a swallowtail's
+    sliver is cut however shallow). The runs of kept samples are ordered by their polar angles; each run's
+    end meets the next run's start at the envelope's crossing (sought again from a dense resampling when
+    Newton's ends stay apart: a cusp at an acceleration jump), or along a corner's face line (:func:`_bridge`;
+    ``corners`` of :func:`corner_lines`). Returns ``(arcs, cuts)``: ``arcs`` ``[(spans, edge)]``, the
+    stretches ``(w0, w1)`` of one kept arc in the order they are walked (``w1 < w0`` where it runs against
+    ``w``; split at ``w = 1``) and the :class:`FaceEdge` to the next arc or None; ``cuts`` ``[(wa, wb)]``,
+    from a kept arc's end to the next one's start along ``w`` (cyclic: ``wb`` may be below ``wa``). One arc
+    ``[((0, 1),), None]`` and no cut when the whole envelope bounds the cam.
 
     Raises
     ------
@@ -314,7 +334,7 @@ def _join_runs(curve, w, runs, corners, scale, step):
         (a, b), d = runs[k], info[k][0]
         (c, e), dn = runs[nxt], info[nxt][0]
         leave, arrive = (b if d > 0 else a), (c if dn > 0 else e)
-        wa, wb = _refine_cut(curve, w, leave % m, arrive % m, d, dn)
+        wa, wb = _refine_cut(curve, w, leave % m, arrive % m, d, dn, meet=1e-9 * scale)
         joins.append(_bridge(curve, (wa, wb), corners, scale, step))
     arcs, dropped = [], set()
     for i, k in enumerate(order):

@@ -119,7 +119,8 @@ class CamProfile:
         scale = self.spec.prime_radius + self.spec.stroke
         if self.spec.contact == "flat":  # the arcs in the order of the boundary, joined along a corner's line
             self.planes = face_depth(self.motion, self.tool, self.start, self.corner_angles)
-            arcs, cuts = face_boundary(self.branch, self.planes.depth, 1e-7 * scale,
+            reach = scale + (self.spec.pivot_distance or 0.0) + (self.spec.arm_length or 0.0)
+            arcs, cuts = face_boundary(self.branch, self.planes.depth, 1e-13 * reach,
                                        corner_lines(self.branch, self.motion, self.tool), scale)
             chain = [(span, edge if k + 1 == len(spans) else None) for spans, edge in arcs
                      for k, span in enumerate(spans)]
