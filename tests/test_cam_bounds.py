@@ -278,6 +278,18 @@ def test_roller_rocker_cam_whose_envelope_turns_back_at_a_dwell_join_is_the_regi
     _assert_is_the_region_no_roller_covers(spec, 1e-5 * spec.prime_radius)
 
 
+def test_roller_rocker_cam_with_a_kept_sample_inside_a_loop_is_the_region_no_roller_covers():
+    # a harmonic return whose envelope loops where it starts: one sample inside the loop lies on the swept
+    # region's boundary to the kept slack, a run of its own. The crossing from the run before it lands past it,
+    # at the next run's start, but the walk went on from the lone sample and found the same crossing again: the
+    # pieces ran twice around the cam, 1.74 mm apart (GeometryError at tol 5e-5 mm)
+    kw = dict(prime_radius=5.0, follower="rocker", contact="roller", roller_radius=0.25, pivot_distance=6.0,
+              arm_length=8.053033243967208)
+    spec = CamSpec(motion=MotionProgram.rise_dwell_return(2.5, 20.0, 20.0, 20.0, "harmonic"), **kw)
+    assert len(cam_profile(spec).loops) == 1
+    _assert_is_the_region_no_roller_covers(spec, 1e-5 * spec.prime_radius)
+
+
 def test_velocity_jumps_either_side_of_a_dwell_of_1e_9_degrees_are_found():
     # two constant-velocity phases 1e-9 degrees apart (1.7e-11 rad): the velocities either side of a
     # jump were read 1e-9 rad away, past the other jump, and the corner's angle was not found (a

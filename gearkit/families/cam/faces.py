@@ -93,8 +93,8 @@ def _cam_cycle(curve, w, keep, starts, ends, meet: float):
                 break
         else:
             raise GeometryError(f"the roller's envelope leaves the cam at w = {w[e]:.6g} where it meets no other kept arc")
-        cuts.append((wa, wb))
-        s = b
+        cuts.append((wa, wb))  # the run the crossing enters: a run of a kept sample inside a loop is passed by
+        s = min(starts, key=lambda j: abs((w[j] - wb + 0.5) % 1.0 - 0.5))
         if s == first:
             return cuts
     raise GeometryError("the arcs of the roller's envelope that no roller covers do not close around the cam axis")
