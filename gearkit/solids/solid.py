@@ -328,15 +328,15 @@ def _measures(v, f, what: str, bar) -> dict:
     del key
     bar.step(len(f))
     exact, normals, volume, area = tuple(v[:, k] for k in range(3)), np.empty((len(f), 3), dtype=np.float32), 0.0, 0.0
-    single = tuple(c.astype(np.float32).astype(np.float64) for c in exact)  # as STL stores them (rounding commutes
-    # with the gather: the vertices rounded once)
     for s in range(0, len(f), CHUNK):
         chunk = tuple(c[s:s + CHUNK] for c in corners)
         n = _cross(corner_points := _gather(exact, chunk))
         volume += sum(float(np.einsum("i,i->", p, c)) for p, c in zip(corner_points[0], n)) / 6.0
         area += 0.5 * float(np.sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sum())
-        del corner_points, n  # (freed before the rounded corners are gathered: fewer fresh pages at the peak)
-        n = _cross(_gather(single, chunk))  # the same corners rounded to single precision
+        del n  # (the rounded pass reuses the exact corners' arrays: fewer fresh pages at the peak)
+        for c in (c for p in corner_points for c in p):  # the same corners rounded to single precision, in place
+            c[...] = c.astype(np.float32)
+        n = _cross(corner_points)
         length = np.sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2])
         if not (length > 0.0).all():
             raise RepairableMesh(f"{what}: the mesh has degenerate facets (zero area in single precision)")
