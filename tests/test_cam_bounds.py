@@ -304,3 +304,33 @@ def test_velocity_jumps_either_side_of_a_dwell_of_1e_9_degrees_are_found():
     out = prof.outline(tol)
     real = true_deviation(prof.pieces, np.concatenate([out[::-1], out[-1:]]))
     assert real <= prof.achieved(tol) * (1 + BOUND_SLACK) and prof.achieved(tol) <= tol
+
+
+
+#: the fuzz search's roller rocker (a swallowtail about 1e-6 mm deep after the dwell), a micrometre either
+#: side, and an arm 3 um shorter
+SHALLOW_LOOPS = [8.053033243967208, 8.053033243967208 - 1e-6, 8.053033243967208 + 1e-6, 8.05]
+
+
+@pytest.mark.parametrize("arm", SHALLOW_LOOPS)
+def test_roller_rocker_cam_whose_loop_is_as_shallow_as_the_slack_is_the_region_no_roller_covers(arm):
+    # the loop is about as deep as the slack that keeps a scan sample, so samples inside it come and go
+    # with the arm's length: one kept in its middle was a run of its own, and the loop was cut twice (every
+    # outline refused); with 8.05 a few kept in the middle started Newton within two samples of both sides,
+    # and each cut settled on the trivial solution wa = wb: nothing cut, the outline 7.7e-7 mm inside the
+    # roller at tol 5e-8, unseen by the discs' check at 1e-5 r0 (its own slack is 4e-6 mm). Checked against the discs at tol 1e-5 r0, and at 1e-8 r0 against a polyline of 2^20 exact roller
+    # centres: its chords lie within h^2 / (8 rho) of the pitch curve (h the widest, rho its least radius of
+    # curvature, above 0.15 mm here), so an outline vertex's depth in the swept region reads at most that high
+    from fuzzkit import true_deviation
+
+    spec = CamSpec(5.0, MotionProgram.rise_dwell_return(2.5, 20.0, 20.0, 20.0, "harmonic"), follower="rocker",
+                   contact="roller", roller_radius=0.25, pivot_distance=6.0, arm_length=arm)
+    prof = cam_profile(spec)
+    _assert_is_the_region_no_roller_covers(spec, 1e-5 * spec.prime_radius)
+    tol = 1e-8 * spec.prime_radius
+    out, achieved = prof.outline(tol), prof.achieved(tol)
+    centres = pitch_curve(spec, np.linspace(0.0, 2 * math.pi, 1 << 20, endpoint=False))
+    sagitta = float(np.hypot(*np.diff(centres, axis=0).T).max()) ** 2 / (8 * 0.15)
+    assert (spec.roller_radius - edge_distances(out, centres, closed=True)).max() <= achieved + sagitta
+    real = true_deviation(prof.pieces, np.concatenate([out[::-1], out[-1:]]))
+    assert real <= achieved * (1 + BOUND_SLACK) and achieved <= tol
