@@ -57,6 +57,9 @@ SLIVER = [
      (15.619104664739782, 31.5, 59.0, 104.07049232462066, "cycloidal"), 1e-5),
     (dict(prime_radius=8.0, pivot_distance=10.02147318225105, arm_length=11.738518689816196),
      (3.9727, 31.5, 59.0, 104.07049232462066, "cycloidal"), 1e-5),
+    # a polynomial_4567 return: 4.36e-6 mm outside
+    (dict(prime_radius=39.06527482107495, pivot_distance=63.229241166192665, arm_length=52.103007412441094),
+     (0.781305496421499, 20.0, 0.9, 27.759925869977888, "polynomial_4567"), 1e-3),
 ]
 #: a harmonic rise whose acceleration jump at its end is a cusp of the envelope: the kept arcs' crossing lies
 #: past it, where the chord across the join led Newton astray (GeometryError: "meets the next one neither at a
