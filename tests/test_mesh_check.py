@@ -1,4 +1,4 @@
-"""The numpy mesh check (``gearkit.solids.solid.mesh_measures``) against plain second methods.
+"""The numpy mesh check (``gearkit.solids.measures.mesh_measures``) against plain second methods.
 
 Oracles: a unit cube's volume and area (closed form); for a gear mesh spanning several chunks of
 facets, the edges counted one by one in a dictionary (every directed edge once, its reverse once),
@@ -15,8 +15,8 @@ import pytest
 from gearkit.errors import GeometryError
 from gearkit.families.involute import GearSpec, tooth_profile
 from gearkit.solids import SolidSpec, gear_solid
-from gearkit.solids import solid as solid_module
-from gearkit.solids.solid import mesh_measures
+from gearkit.solids import measures as measures_module
+from gearkit.solids.measures import mesh_measures
 
 REL = 1e-12
 
@@ -43,10 +43,10 @@ def test_a_mesh_that_is_not_closed_and_oriented_is_refused(faces):
 
 
 def test_a_gear_mesh_over_many_chunks_agrees_with_plain_numpy(monkeypatch):
-    monkeypatch.setattr(solid_module, "CHUNK", 4096)  # chunks of facets, and of the sorted edge pairs
+    monkeypatch.setattr(measures_module, "CHUNK", 4096)  # chunks of facets, and of the sorted edge pairs
     solid = gear_solid(tooth_profile(GearSpec(200, 1.0)), SolidSpec(5.0), 1e-3)
     v, f = solid.arrays()
-    assert len(f) > 2 * solid_module.CHUNK
+    assert len(f) > 2 * measures_module.CHUNK
     directed = Counter(zip(f.ravel().tolist(), f[:, (1, 2, 0)].ravel().tolist()))
     assert all(n == 1 and directed[(b, a)] == 1 for (a, b), n in directed.items())
     m = mesh_measures(v, f)

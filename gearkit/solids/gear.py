@@ -1,14 +1,16 @@
 """Gear solids from any generated profile: spur, helical, herringbone, double-helical, ring.
 
-The mesh is built directly (numpy) and handed to manifold3d, which checks it:
+The mesh is built directly (numpy) and checked with numpy (:class:`~gearkit.solids.Solid`):
 
 * **Side:** the tooth polyline of :mod:`gearkit.solids.surface`, repeated over the teeth, at
   every layer height turned by ``theta(z)``; each quad split along its planned diagonal.
-* **Caps:** an external gear's end face is cut into one cell per tooth (the tooth polyline
-  closed by the chord between its space centres, triangulated once and repeated) and a core
-  (the polygon of space centres, with the bore as a hole), so the cost stays linear in the
-  teeth. A ring's end face (outer circle, teeth as a hole) is triangulated whole.
+* **Caps:** the end faces of :mod:`gearkit.solids.section` (cells, one per tooth, and a core), so
+  the cost stays linear in the teeth. A ring's end face (outer circle, teeth as a hole) is
+  triangulated whole.
 * **Walls:** the bore (with keyway) and a ring's outer circle are straight prisms.
+
+A straight (spur) gear is one section swept (:mod:`gearkit.solids.extrusion`): the same mesh,
+checked and measured by its structure; a twisted one is checked as any mesh.
 
 Frame: axis z, from 0 to the face width; tooth 0 centred on +y at z = 0.
 """
@@ -16,12 +18,13 @@ from __future__ import annotations
 
 import math
 
-import manifold3d as m3
 import numpy as np
 
 from gearkit.accuracy import check_tol
-from gearkit.errors import GeometryError, SpecError, check_length
+from gearkit.errors import SpecError, check_length
 from gearkit.progress import Progress
+from gearkit.solids.extrusion import Wall, extruded
+from gearkit.solids.section import Section, rotate
 from gearkit.solids.solid import Recipe, Solid, SolidSpec, default_mesh_tol
 from gearkit.solids.surface import LayerPlan, helix_angle, plan_layers, reference_radius, tooth_polyline
 
@@ -59,119 +62,6 @@ def bore_points(diameter: float, keyway, tol: float) -> np.ndarray:
     return np.concatenate([[[half, top], [-half, top]], arc])
 
 
-def _rotate(p, angle):
-    if angle == 0.0:  # a spur gear's slices: no product (a large one may wake numpy's BLAS threads)
-        return p
-    c, s = math.cos(angle), math.sin(angle)
-    return p @ np.array([[c, s], [-s, c]])
-
-
-def _triangulate(polygons) -> np.ndarray:
-    tri = np.asarray(m3.triangulate([np.ascontiguousarray(p, dtype=np.float64) for p in polygons]), dtype=np.int64)
-    if len(tri) == 0:
-        raise GeometryError("an end face could not be triangulated")
-    return tri.reshape(-1, 3)
-
-
-def _zipper(outer, inner) -> np.ndarray:
-    """Triangles ``(k, 3)`` of the band between two closed CCW polygons around the origin whose
-    polar angles increase along them (a z-gon, a circle): indices ``< len(outer)`` are outer
-    vertices, the rest inner ones. Each triangle joins an edge of one polygon to the vertex of the
-    other whose angle is nearest, so none is a sliver however many vertices there are."""
-    def turned(p):
-        ang = np.arctan2(p[:, 1], p[:, 0])
-        k0 = int(np.argmin(ang))
-        ang = np.roll(ang, -k0)
-        ang = ang[0] + np.mod(ang - ang[0], 2.0 * math.pi)
-        return k0, np.append(ang, ang[0] + 2.0 * math.pi)
-    no, ni = len(outer), len(inner)
-    ko, ao = turned(outer)
-    ki, ai = turned(inner)
-    i = j = 0
-    tris = []
-    while i < no or j < ni:
-        if j == ni or (i < no and ao[i + 1] <= ai[j + 1]):
-            tris.append(((ko + i) % no, (ko + i + 1) % no, no + (ki + j) % ni))
-            i += 1
-        else:
-            tris.append(((ko + i) % no, no + (ki + j + 1) % ni, no + (ki + j) % ni))
-            j += 1
-    return np.asarray(tris, dtype=np.int64)
-
-
-class _Section:
-    """The transverse section of one gear: tooth polyline repeated over the teeth, end faces.
-
-    An external gear's end face (when each tooth's space centres see each other inside it) is
-    built from cells: one tooth down to a core polygon a tenth of a pitch below its space centres,
-    triangulated once and repeated, and the core (a fan from the axis, or a band to the bore).
-    Every triangle then spans at least a tenth of a pitch across, so none degenerates when written
-    in single precision (a cell closed by the chord between space centres met the root arc in
-    triangles thinner than a float32 step from z ~ 1000 on)."""
-
-    def __init__(self, poly, teeth: int, internal: bool):
-        self.tooth = poly.points  # (n + 1, 2)
-        self.n = poly.edges
-        self.z = teeth
-        self.internal = internal
-        ang = 2.0 * math.pi * np.arange(teeth) / teeth
-        c, s = np.cos(ang)[:, None], np.sin(ang)[:, None]
-        t = self.tooth[:-1]
-        self.outline = np.stack([c * t[None, :, 0] - s * t[None, :, 1],
-                                 s * t[None, :, 0] + c * t[None, :, 1]], -1).reshape(-1, 2)
-        self.count = teeth * self.n
-        self._cells = None
-        t = self.tooth
-        if not internal and (t[1:-1, 1] > t[0, 1]).all():  # the chord between space centres is inside
-            r_space = float(np.hypot(t[0, 0], t[0, 1]))
-            self.core_radius = r_space - 0.1 * 2.0 * r_space * math.sin(math.pi / teeth)
-            u0, u1 = t[0] / np.hypot(*t[0]), t[-1] / np.hypot(*t[-1])
-            cell = np.concatenate([t, [self.core_radius * u1, self.core_radius * u0]])
-            self._cells = _triangulate([cell])
-            self.inradius = self.core_radius * math.cos(math.pi / teeth)
-            # tooth k's cell corners: a tooth vertex c is outline vertex k n + c, a core vertex (c = n + 1,
-            # n + 2) core vertex k + 1 or k; the last tooth's far ends wrap round to vertex 0
-            cells = self._cells
-            self._on_tooth = cells <= self.n
-            self._stride = np.where(self._on_tooth, self.n, 1)
-            self._wrap = np.where(self._on_tooth, cells == self.n, cells == self.n + 1)
-
-    def face(self, mesh, theta: float, base: int, z: float, wall, wall_base: int) -> np.ndarray:
-        """Triangles (counter-clockwise seen from +z) of an end face at ``z``, teeth turned by ``theta``.
-
-        ``base``: index of the slice's first outline vertex; ``wall``: the CCW polygon of the
-        bore or groove (external gear: a hole, may be None) or of the rim or groove (ring),
-        whose vertices start at ``wall_base``. Core vertices are added to ``mesh``.
-        """
-        n, count = self.n, self.count
-        fits = wall is None or np.hypot(wall[:, 0], wall[:, 1]).max() < getattr(self, "inradius", 0.0)
-        if self._cells is not None and fits:
-            spaces = _rotate(self.outline[::n], theta)
-            core = spaces * (self.core_radius / np.hypot(spaces[:, 0], spaces[:, 1]))[:, None]
-            core_base = mesh.add(core, z)
-            cells = np.multiply.outer(np.arange(self.z), self._stride)  # (teeth, cell triangles, 3)
-            cells += np.where(self._on_tooth, base + self._cells, core_base + (self._cells == n + 1))
-            cells[-1] -= np.where(self._on_tooth, count, self.z) * self._wrap
-            cells = cells.reshape(-1, 3)
-            if wall is None:
-                centre = mesh.add(np.zeros((1, 2)), z)
-                j = np.arange(self.z)
-                fan = np.stack([core_base + j, core_base + (j + 1) % self.z, np.full(self.z, centre)], 1)
-                return np.concatenate([cells, fan])
-            tri = _zipper(core, wall)
-            ring = np.where(tri < self.z, core_base + tri, wall_base + (tri - self.z))
-            return np.concatenate([cells, ring])
-        turned = _rotate(self.outline, theta)
-        if self.internal:
-            tri = _triangulate([wall, turned[::-1]])
-            nw = len(wall)
-            return np.where(tri < nw, wall_base + tri, base + (count - 1 - (tri - nw)))
-        if wall is None:
-            return _triangulate([turned]) + base
-        tri = _triangulate([turned, wall[::-1]])
-        return np.where(tri < count, tri + base, wall_base + (len(wall) - 1 - (tri - count)))
-
-
 class _Mesh:
     """Vertices and faces accumulated by parts; indices are global."""
 
@@ -186,14 +76,14 @@ class _Mesh:
         self.size += len(points2d)
         return base
 
-    def band(self, sec: _Section, zs, thetas, diagonals) -> tuple:
+    def band(self, sec: Section, zs, thetas, diagonals) -> tuple:
         """Swept teeth through the slices; returns the first and last slice's base index."""
         j = np.arange(sec.count)
         jn = (j + 1) % sec.count
         with Progress("solid", len(zs), unit="layers") as bar:
-            bases = [self.add(_rotate(sec.outline, thetas[0]), zs[0])]
+            bases = [self.add(rotate(sec.outline, thetas[0]), zs[0])]
             for s in range(len(zs) - 1):
-                bases.append(self.add(_rotate(sec.outline, thetas[s + 1]), zs[s + 1]))
+                bases.append(self.add(rotate(sec.outline, thetas[s + 1]), zs[s + 1]))
                 diag = np.tile(diagonals[1 if thetas[s + 1] >= thetas[s] else -1], sec.z).astype(bool)
                 # each quad's two triangles, column by column into one array: (a, b, c) and (b, d, c) along
                 # diagonal 0, (a, b, d) and (a, d, c) along 1; a ring's reversed. Corners a, b (this slice's
@@ -339,7 +229,7 @@ def gear_solid(profile, spec: SolidSpec, tol: float | None = None, name: str = "
             raise SpecError(field, f"the outer diameter {2 * r_out:.6g} mm must lie in ({2 * r_root:.6g}, "
                             f"{2 * (r_root + 1e3 * m):.6g}] mm (the ring's root diameter, plus a rim up to 1000 modules)")
         outer = circle_points(r_out, tol)
-    sec = _Section(poly, profile.teeth, internal)
+    sec = Section(poly, profile.teeth, internal)
     n = plan.layers if k else 1
     info = {"kind": _kind(spec, beta, internal), "teeth": int(profile.teeth), "module": float(profile.module),
             "width": float(b), "helix_angle_deg": beta_deg, "hand": _hand(beta), "tol": tol,
@@ -347,6 +237,14 @@ def gear_solid(profile, spec: SolidSpec, tol: float | None = None, name: str = "
     wall = bore if bore is not None else outer
     if wall is not None:
         info["achieved"] = max(info["achieved"], _sag(wall, spec.bore / 2.0 if bore is not None else r_out))
+    recipe = Recipe("gear", (profile, spec, tol))
+    if k == 0.0:  # a straight gear: its section swept once, the same end face at both ends
+        extra, tri = sec.end_face(0.0, wall)
+        walls, points = [Wall(sec.count, internal, np.tile(plan.diagonals[1], sec.z).astype(bool))], [sec.outline]
+        if wall is not None:
+            walls.append(Wall(len(wall), not internal))
+            points.append(wall)
+        return extruded(np.concatenate(points + [extra]), tri, walls, 0.0, b, name, info, recipe)
     mesh = _Mesh()
     if spec.herringbone and gap > 0.0:
         zs = np.linspace(0.0, run, n + 1)
@@ -372,7 +270,7 @@ def gear_solid(profile, spec: SolidSpec, tol: float | None = None, name: str = "
         w0, w1 = mesh.wall(wall, 0.0, b, hole=not internal)
     mesh.cap(sec.face(mesh, 0.0, lo[0], 0.0, wall, w0), up=False)
     mesh.cap(sec.face(mesh, top, hi[1], b, wall, w1), up=True)
-    return mesh.solid(name, info, Recipe("gear", (profile, spec, tol)))
+    return mesh.solid(name, info, recipe)
 
 
 def _groove(profile, radii, wall, internal: bool, tol: float):

@@ -12,7 +12,7 @@ import manifold3d as m3
 import numpy as np
 
 from gearkit.errors import GeometryError, SpecError, check_fields, require
-from gearkit.progress import Progress
+from gearkit.solids.measures import CHUNK, RepairableMesh, columns, cross, gather, mesh_measures
 from gearkit.values import frozen
 
 
@@ -172,6 +172,17 @@ class Solid:
         solid._arrays = (v, f)
         return solid
 
+    @classmethod
+    def from_checked(cls, vertices, faces, measures: dict, name: str, info: dict,
+                     recipe: Recipe | None = None) -> "Solid":
+        """A solid of a triangle mesh its builder has already proved valid and measured as
+        :func:`mesh_measures` would (``measures``: its ``{volume, area, normals}``), kept as arrays
+        (:func:`gearkit.solids.extrusion.extruded`)."""
+        solid = cls(None, name, info, recipe)
+        solid._measures = measures
+        solid._arrays = (np.ascontiguousarray(vertices, dtype=np.float64), np.ascontiguousarray(faces, dtype=np.int64))
+        return solid
+
     @property
     def manifold(self):
         """The manifold3d ``Manifold`` (built from the arrays, and checked, on first use)."""
@@ -228,10 +239,10 @@ class Solid:
             return self._measures["normals"]
         if self._normals is None:  # a solid made by manifold3d: zero for a facet of no area, as written
             v, f = self.arrays()
-            single = _columns(v.astype(np.float32))
+            single = columns(v.astype(np.float32))
             self._normals = np.zeros((len(f), 3), dtype=np.float32)
             for s in range(0, len(f), CHUNK):
-                n = np.stack(_cross(_gather(single, _columns(f[s:s + CHUNK]))), 1)
+                n = np.stack(cross(gather(single, columns(f[s:s + CHUNK]))), 1)
                 length = np.sqrt(np.einsum("ij,ij->i", n, n))[:, None]
                 self._normals[s:s + CHUNK] = np.divide(n, length, out=np.zeros_like(n), where=length > 0)
         return self._normals
@@ -280,99 +291,6 @@ class Solid:
 
     def __repr__(self):
         return f"Solid({self.name!r}, faces={self.faces}, volume={self.volume:.6g} mm^3, achieved={self.achieved:.3g} mm)"
-
-
-class RepairableMesh(GeometryError):
-    """A mesh :func:`mesh_measures` refuses that manifold3d may still merge into a valid solid."""
-
-
-#: facets handled at once by the chunked mesh passes (bounds their temporary arrays)
-CHUNK = 1 << 15
-
-
-def mesh_measures(vertices, faces, what: str = "mesh") -> dict:
-    """Check a triangle mesh is a valid solid and measure it: ``{volume, area, normals}`` (mm^3,
-    mm^2, the facets' (m, 3) float32 unit normals as the single-precision vertices give them).
-
-    Valid: finite vertices, faces indexing them, every edge met by exactly one edge running the
-    other way (closed and consistently oriented: a sort of the edges proves it), no facet of zero
-    area once the vertices are rounded to single precision (as STL stores them), positive volume.
-    Otherwise :class:`GeometryError` naming ``what``. The facet passes run in chunks of
-    :data:`CHUNK` facets, so their temporaries stay small.
-    """
-    v = np.asarray(vertices, dtype=np.float64)
-    f = np.asarray(faces)
-    if v.ndim != 2 or v.shape[1] != 3 or f.ndim != 2 or f.shape[1] != 3:
-        raise GeometryError("a mesh needs (n, 3) vertices and (m, 3) faces")
-    if not len(f) or f.min() < 0 or f.max() >= len(v):
-        raise GeometryError(f"{what}: the mesh is not a valid solid (no faces, or faces naming missing vertices)")
-    if not np.isfinite(v).all():
-        raise GeometryError(f"{what}: the mesh is not a valid solid (non-finite vertices)")
-    with Progress("mesh check", 2 * len(f)) as bar:  # the edges' sort, then the facets
-        return _measures(v, f, what, bar)
-
-
-def _measures(v, f, what: str, bar) -> dict:
-    corners = tuple(f[:, k] for k in range(3))  # the facets' corner columns (views: no copy)
-    # each edge: its two ends and its way, one integer, an edge slot at a time; 32-bit where all fit (SIMD-sorted)
-    kind = np.int32 if 2 * len(v) * (len(v) + 1) < 2 ** 31 else np.int64
-    m, key, high = len(f), np.empty(3 * len(f), dtype=kind), np.empty(len(f), dtype=kind)
-    for slot, (ca, cb) in enumerate(zip(corners, corners[1:] + corners[:1])):
-        k = np.minimum(ca, cb, out=key[slot * m:(slot + 1) * m])
-        k *= 2 * len(v)
-        k += np.multiply(np.maximum(ca, cb, out=high), 2, out=high)
-        k += ca > cb
-    key.sort(kind="quicksort" if kind is np.int32 else "stable")  # (64-bit keys: long runs a merge sort takes whole)
-    if not _paired(key):
-        raise RepairableMesh(f"{what}: the mesh is not a valid solid (an edge without exactly one opposite edge)")
-    del key
-    bar.step(len(f))
-    exact, normals, volume, area = tuple(v[:, k] for k in range(3)), np.empty((len(f), 3), dtype=np.float32), 0.0, 0.0
-    for s in range(0, len(f), CHUNK):
-        chunk = tuple(c[s:s + CHUNK] for c in corners)
-        n = _cross(corner_points := _gather(exact, chunk))
-        volume += sum(float(np.einsum("i,i->", p, c)) for p, c in zip(corner_points[0], n)) / 6.0
-        area += 0.5 * float(np.sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sum())
-        del n  # (the rounded pass reuses the exact corners' arrays: fewer fresh pages at the peak)
-        for c in (c for p in corner_points for c in p):  # the same corners rounded to single precision, in place
-            c[...] = c.astype(np.float32)
-        n = _cross(corner_points)
-        length = np.sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2])
-        if not (length > 0.0).all():
-            raise RepairableMesh(f"{what}: the mesh has degenerate facets (zero area in single precision)")
-        for k in range(3):
-            normals[s:s + CHUNK, k] = n[k] / length
-        bar.step(len(chunk[0]))
-    if not volume > 0.0:
-        raise RepairableMesh(f"{what}: the solid is empty or inside out (volume {volume:.6g} mm^3)")
-    return {"volume": volume, "area": area, "normals": normals}
-
-
-def _paired(key) -> bool:
-    """Sorted edge keys pair up: each edge (an even key), then itself run the other way (key + 1); by chunks."""
-    pairs = key.reshape(-1, 2) if len(key) % 2 == 0 else np.array([[1, 1]])
-    return all((p[:, 0] & 1 == 0).all() and (p[:, 1] == p[:, 0] + 1).all()
-               for p in (pairs[s:s + CHUNK] for s in range(0, len(pairs), CHUNK)))
-
-
-def _columns(a):
-    """The three columns of an ``(n, 3)`` array as contiguous float64 (int64 for indices) arrays."""
-    kind = np.int64 if np.issubdtype(a.dtype, np.integer) else np.float64
-    return tuple(np.ascontiguousarray(a[:, k], dtype=kind) for k in range(3))
-
-
-def _gather(points, corners):
-    """The facets' corners ``((x, y, z) of the 1st, 2nd, 3rd)`` from point and corner index columns."""
-    return tuple(tuple(c[k] for c in points) for k in corners)
-
-
-def _cross(corner_points):
-    """The cross products of the facets' edges (twice the area along the normal), as columns, from
-    their corners (:func:`_gather`; the products as ``np.cross`` forms them)."""
-    p0, p1, p2 = corner_points
-    e1 = tuple(c - q for c, q in zip(p1, p0))
-    e2 = tuple(c - q for c, q in zip(p2, p0))
-    return (e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0])
 
 
 def manifold_from_arrays(vertices, faces):
