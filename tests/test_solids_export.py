@@ -40,6 +40,25 @@ def test_binary_stl_layout(tmp_path, gear):
     assert text.startswith("solid gear17\n") and text.rstrip().endswith("endsolid gear17")
 
 
+def test_binary_stl_records_are_each_facets_normal_and_corners_in_single_precision(tmp_path, gear):
+    """Read back with numpy's own record type: every facet, over several chunks and two parts, is its
+    float32 normal, its three float32 corners in order, and a zero attribute."""
+    spur = gear_solid(tooth_profile(GearSpec(150, 1.0)), SolidSpec(3.0), 1e-3, name="spur150")
+    assert spur.faces > 2 * mesh_export.CHUNK
+    data = write_mesh(tmp_path / "two.stl", [gear, spur]).read_bytes()
+    record = np.dtype([("normal", "<f4", (3,)), ("corners", "<f4", (3, 3)), ("attribute", "<u2")])
+    read = np.frombuffer(data, dtype=record, offset=84)
+    assert int(np.frombuffer(data[80:84], "<u4")[0]) == len(read) == gear.faces + spur.faces
+    at = 0
+    for part in (gear, spur):
+        v, f = part.arrays()
+        rows = read[at:at + len(f)]
+        assert np.array_equal(rows["corners"], v.astype(np.float32)[f])
+        assert np.array_equal(rows["normal"], part.normals())
+        at += len(f)
+    assert not read["attribute"].any()
+
+
 def test_assembly_obj_and_glb_keep_named_parts(tmp_path):
     asm = pair_assembly(PairSpec(14, 25, 1.0, 0.3, 0.0, thinning1=0.05, thinning2=0.05), width=4.0, tol=0.01)
     for ext in ("obj", "glb"):
@@ -57,13 +76,13 @@ def test_a_failed_export_leaves_no_file_and_keeps_the_old_one(tmp_path, gear, mo
     target = tmp_path / "g.stl"
     target.write_bytes(b"old")
 
-    real = mesh_export._triangle_chunks
+    real = mesh_export._stl_records
 
     def broken(parts, chunk=64):  # fails after the first chunk is written: a partial file exists then
         yield next(real(parts, chunk))
         raise RuntimeError("disk full")
 
-    monkeypatch.setattr(mesh_export, "_triangle_chunks", broken)
+    monkeypatch.setattr(mesh_export, "_stl_records", broken)
     with pytest.raises(RuntimeError):
         write_mesh(target, [gear])
     with pytest.raises(RuntimeError):

@@ -18,7 +18,7 @@ class RepairableMesh(GeometryError):
 
 
 #: facets handled at once by the chunked mesh passes (bounds their temporary arrays)
-CHUNK = 1 << 15
+CHUNK = 1 << 13
 
 
 def mesh_measures(vertices, faces, what: str = "mesh") -> dict:
