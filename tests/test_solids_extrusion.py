@@ -135,3 +135,14 @@ def test_a_thin_extrusion_still_has_a_height_in_single_precision():
     thin, thick = (gear_solid(prof, SolidSpec(width), 1e-3) for width in (0.01, 5.0))
     assert_measures_agree(thin, *thin.arrays())
     assert thin.volume / 0.01 == pytest.approx(thick.volume / 5.0, rel=REL)  # the same section
+
+
+def test_the_structure_check_reports_its_progress_over_every_facet(capsys, monkeypatch):
+    from gearkit.progress import Progress
+
+    monkeypatch.setattr(Progress, "mode", "on")
+    monkeypatch.setattr(Progress, "delay", 0.0)
+    monkeypatch.setattr(measures_module, "CHUNK", 256)
+    gear, spec, tol = STRAIGHT["keyway"]
+    solid = gear_solid(tooth_profile(gear), spec, tol)
+    assert f"mesh check [##############################] {solid.faces}/{solid.faces} facets" in capsys.readouterr().err

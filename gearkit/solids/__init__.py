@@ -4,7 +4,8 @@ Any generated profile (every family, through :class:`~gearkit.profile.ToothProfi
 a solid: spur, helical, herringbone / double-helical, ring gears (:func:`gear_solid`), rack bars
 (:func:`rack_solid`); bores with keyways. Pairs are placed at their centre distance, phased,
 and tested for 3D interference (:func:`pair_assembly`). A solid built from a triangle mesh is
-checked with numpy (closed, oriented, no facet of zero area in single precision, positive volume)
+checked with numpy (closed, oriented, no facet of zero area in single precision, positive volume;
+a straight gear by the structure of its swept section, :mod:`gearkit.solids.extrusion`)
 and handed to manifold3d only when a boolean asks for it; STL, OBJ (named parts), GLB (named nodes) and
 3MF are written with numpy a chunk at a time behind a progress bar (:func:`write_mesh`, atomic). The same ``tol`` (mm) bounds the deviation of every vertex and
 facet from the exact tooth surface, twist included, and every solid reports the deviation it

@@ -34,6 +34,7 @@ import numpy as np
 
 import gearkit.solids.measures as meshcheck
 from gearkit.errors import GeometryError
+from gearkit.progress import Progress
 from gearkit.solids.measures import cross, edges_paired
 from gearkit.solids.solid import Recipe, Solid
 from gearkit.values import frozen
@@ -149,44 +150,48 @@ def _closed(tri, walls, sizes, points: int) -> bool:
 def _measures(p, tri, walls, starts, z0: float, z1: float):
     """``{volume, area, normals}`` as :func:`~gearkit.solids.measures.mesh_measures` gives them (the
     normals to the bit), or None where a facet has no area in single precision. The loops' edges of
-    an ``outside`` wall run backwards in the section (:func:`_valid` held them to it)."""
+    an ``outside`` wall run backwards in the section (:func:`_closed` held them to it). The facets
+    go a chunk at a time behind a progress bar."""
     rim, faces = int(starts[-1]), 2 * int(starts[-1]) + 2 * len(tri)
     single = p.astype(np.float32).astype(np.float64)
     xs, ys = single[:, 0].copy(), single[:, 1].copy()
     s0, s1 = float(np.float32(z0)), float(np.float32(z1))
     normals = np.empty((faces, 3), dtype=np.float32)
     height, area, twice = z1 - z0, 0.0, 0.0
-    for wall, start in zip(walls, starts):
-        n, at = wall.size, 2 * int(start)
-        xa, ya, xe, ye = xs[start:start + n], ys[start:start + n], p[start:start + n, 0], p[start:start + n, 1]
-        xb, yb = np.roll(xa, -1), np.roll(ya, -1)
-        dx, dy = np.roll(xe, -1) - xe, np.roll(ye, -1) - ye
-        area += height * float(np.sqrt(dx * dx + dy * dy).sum())
-        diag = _diagonals(wall)
-        for s in range(0, n, meshcheck.CHUNK):
-            c = slice(s, s + meshcheck.CHUNK)
-            a0, b0, a1, b1 = (xa[c], ya[c], s0), (xb[c], yb[c], s0), (xa[c], ya[c], s1), (xb[c], yb[c], s1)
-            first, second = (a0, b0, b1), (a0, b1, a1)
-            if diag is not None:
-                d = diag[c]
-                first = (a0, b0, (np.where(d, xa[c], xb[c]), np.where(d, ya[c], yb[c]), s1))
-                second = ((np.where(d, xb[c], xa[c]), np.where(d, yb[c], ya[c]), s0), b1, a1)
-            for corners, row in ((first, at + s), (second, at + n + s)):
-                if not _unit(normals[row:row + len(xa[c])], cross(corners[::-1] if wall.outside else corners)):
+    with Progress("mesh check", faces, unit="facets") as bar:
+        for wall, start in zip(walls, starts):
+            n, at = wall.size, 2 * int(start)
+            xa, ya, xe, ye = xs[start:start + n], ys[start:start + n], p[start:start + n, 0], p[start:start + n, 1]
+            xb, yb = np.roll(xa, -1), np.roll(ya, -1)
+            dx, dy = np.roll(xe, -1) - xe, np.roll(ye, -1) - ye
+            area += height * float(np.sqrt(dx * dx + dy * dy).sum())
+            diag = _diagonals(wall)
+            for s in range(0, n, meshcheck.CHUNK):
+                c = slice(s, s + meshcheck.CHUNK)
+                a0, b0, a1, b1 = (xa[c], ya[c], s0), (xb[c], yb[c], s0), (xa[c], ya[c], s1), (xb[c], yb[c], s1)
+                first, second = (a0, b0, b1), (a0, b1, a1)
+                if diag is not None:
+                    d = diag[c]
+                    first = (a0, b0, (np.where(d, xa[c], xb[c]), np.where(d, ya[c], yb[c]), s1))
+                    second = ((np.where(d, xb[c], xa[c]), np.where(d, yb[c], ya[c]), s0), b1, a1)
+                for corners, row in ((first, at + s), (second, at + n + s)):
+                    if not _unit(normals[row:row + len(xa[c])], cross(corners[::-1] if wall.outside else corners)):
+                        return None
+                bar.step(2 * len(xa[c]))
+        columns = np.ascontiguousarray(tri.T)
+        xe, ye = p[:, 0].copy(), p[:, 1].copy()
+        for s in range(0, len(tri), meshcheck.CHUNK):
+            corners = tuple(c[s:s + meshcheck.CHUNK] for c in columns)
+            up = tuple((xs.take(c), ys.take(c)) for c in corners)
+            rows = len(corners[0])
+            for flat, z, row in ((up[::-1], s0, 2 * rim + s), (up, s1, 2 * rim + len(tri) + s)):
+                if not _unit(normals[row:row + rows], cross(tuple((x, y, z) for x, y in flat))):
                     return None
-    columns = np.ascontiguousarray(tri.T)
-    xe, ye = p[:, 0].copy(), p[:, 1].copy()
-    for s in range(0, len(tri), meshcheck.CHUNK):
-        corners = tuple(c[s:s + meshcheck.CHUNK] for c in columns)
-        up = tuple((xs.take(c), ys.take(c)) for c in corners)
-        rows = len(corners[0])
-        for flat, z, row in ((up[::-1], s0, 2 * rim + s), (up, s1, 2 * rim + len(tri) + s)):
-            if not _unit(normals[row:row + rows], cross(tuple((x, y, z) for x, y in flat))):
-                return None
-        (x0, y0), (x1, y1), (x2, y2) = ((xe.take(c), ye.take(c)) for c in corners)
-        cz = (x1 - x0) * (y2 - y0) - (y1 - y0) * (x2 - x0)
-        twice += float(cz.sum())
-        area += float(np.abs(cz).sum())  # both faces: half of twice the area, twice
+            (x0, y0), (x1, y1), (x2, y2) = ((xe.take(c), ye.take(c)) for c in corners)
+            cz = (x1 - x0) * (y2 - y0) - (y1 - y0) * (x2 - x0)
+            twice += float(cz.sum())
+            area += float(np.abs(cz).sum())  # both faces: half of twice the area, twice
+            bar.step(2 * rows)
     volume = height * 0.5 * twice
     if not volume > 0.0:
         return None
