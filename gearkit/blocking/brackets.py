@@ -52,59 +52,80 @@ def segment_roots(F, a, b, fa, fb, tol: float, which) -> np.ndarray:
             break
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             c = (l * fh - h * fl) / (fh - fl)
-        bis = ~((c > l) & (c < h)) | (stall >= 3)
-        c = np.where(bis, 0.5 * (l + h), c)
-        # a guard GUARD_FRACTION tol beyond a settling estimate, towards the end regula falsi has not
-        # moved (it comes at the root from one side): where the root lies between them the bracket closes
-        # now, where the estimate fell short the guard moves the same end a little farther
-        with np.errstate(invalid="ignore"):
+            bis = ~((c > l) & (c < h)) | (stall >= 3)
+            c = np.where(bis, 0.5 * (l + h), c)
+            # a guard GUARD_FRACTION tol beyond a settling estimate, towards the end regula falsi has not
+            # moved (it comes at the root from one side): where the root lies between them the bracket closes
+            # now, where the estimate fell short the guard moves the same end a little farther
             g = c + np.where(s == 1, 1.0, -1.0) * (GUARD_FRACTION * tol / sp)
             settled = np.abs(c - cp) <= GUARD_SETTLED * (h - l)
-            gi = np.flatnonzero((s != 0) & ~bis & settled & (g > l) & (g < h))
-        both = F(np.concatenate([aa + c[:, None] * dd, aa[gi] + g[gi, None] * dd[gi]]), np.concatenate([ww, ww[gi]]))
-        fc, fg = both[:act.size], both[act.size:]
-        cp_next = c.copy()
-        nan = np.isnan(fc)
-        zero = fc == 0
-        live = ~(nan | zero)
-        same_hi = live & ((fc > 0) == (fh > 0))
-        same_lo = live & ~same_hi
-        nh = nan & (np.abs(fh) >= np.abs(fl))
-        # Anderson-Bjorck: when the same end moves twice, scale the value kept at the other end
-        scale_l, scale_h = same_hi & (s == -1) & ~bis, same_lo & (s == 1) & ~bis
+            moving = ~bis
+            gi = np.flatnonzero((s != 0) & moving & settled & (g > l) & (g < h))
+        if gi.size:
+            both = F(np.concatenate([aa + c[:, None] * dd, aa[gi] + g[gi, None] * dd[gi]]),
+                     np.concatenate([ww, ww[gi]]))
+            fc, fg = both[:act.size], both[act.size:]
+        else:
+            fc = F(aa + c[:, None] * dd, ww)
+        cp = c  # (copied before a guard at a zero writes into c)
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            zero = fc == 0
+            pos = (fc > 0) == (fh > 0)
+            nan = np.isnan(fc)
+            if np.count_nonzero(nan):  # undefined inside: the half towards the end with the larger |F| is kept
+                live = ~(nan | zero)
+                same_hi = live & pos
+                same_lo = live & ~same_hi
+                nh = nan & (np.abs(fh) >= np.abs(fl))
+                new_h = np.where(same_hi | nh, c, h)
+                new_l = np.where(same_lo | (nan & ~nh), c, l)
+                s_new = np.where(bis | nan, 0, np.where(same_hi, -1, np.where(same_lo, 1, s)))
+            else:
+                live = ~zero
+                same_hi = live & pos
+                same_lo = live & ~same_hi
+                new_h = np.where(same_hi, c, h)
+                new_l = np.where(same_lo, c, l)
+                s_new = np.where(bis, 0, np.where(same_hi, -1, np.where(same_lo, 1, s)))
+            # Anderson-Bjorck: when the same end moves twice, scale the value kept at the other end
+            scale_l, scale_h = same_hi & (s == -1) & moving, same_lo & (s == 1) & moving
+            s = s_new
             m_hi = 1.0 - fc / fh
             m_lo = 1.0 - fc / fl
-        fl2 = np.where(same_lo, fc, np.where(scale_l, fl * np.where(m_hi > 0, m_hi, 0.5), fl))
-        fh2 = np.where(same_hi, fc, np.where(scale_h, fh * np.where(m_lo > 0, m_lo, 0.5), fh))
-        s = np.where(bis | nan, 0, np.where(same_hi, -1, np.where(same_lo, 1, s)))
-        new_h = np.where(same_hi | nh, c, h)
-        new_l = np.where(same_lo | (nan & ~nh), c, l)
-        # the guard: inside the bracket left by the estimate, it moves the end of its own sign
-        ok = np.isfinite(fg) & (g[gi] > new_l[gi]) & (g[gi] < new_h[gi])
-        gi, gv, fg = gi[ok], g[gi][ok], fg[ok]
-        g_hi = (fg > 0) == (fh2[gi] > 0)
-        g_zero = fg == 0
-        new_h[gi] = np.where(g_hi | g_zero, gv, new_h[gi])
-        fh2[gi] = np.where(g_hi | g_zero, fg, fh2[gi])
-        new_l[gi] = np.where(g_hi | g_zero, new_l[gi], gv)
-        fl2[gi] = np.where(g_hi | g_zero, fl2[gi], fg)
-        c[gi[g_zero]] = gv[g_zero]
-        zero[gi[g_zero]] = True
-        # a bracket the guard closed has two fresh ends: its root read between them (the chord's zero)
-        pair = np.flatnonzero(~g_hi & ~g_zero & np.isfinite(fc[gi]) & (fc[gi] != 0) & ((fc[gi] > 0) != (fg > 0)))
-        t_in = np.full(act.size, np.nan)
-        ci, cg, fci, fgi = c[gi[pair]], gv[pair], fc[gi[pair]], fg[pair]
-        t_in[gi[pair]] = ci + (cg - ci) * (fci / (fci - fgi))
-        width = new_h - new_l
-        stall = np.where((width <= 0.5 * (h - l)) | bis, 0, stall + 1)
+            fl2 = np.where(same_lo, fc, np.where(scale_l, fl * np.where(m_hi > 0, m_hi, 0.5), fl))
+            fh2 = np.where(same_hi, fc, np.where(scale_h, fh * np.where(m_lo > 0, m_lo, 0.5), fh))
+            t_in = None
+            if gi.size:  # the guard: inside the bracket left by the estimate, it moves the end of its own sign
+                gv = g[gi]
+                ok = np.isfinite(fg) & (gv > new_l[gi]) & (gv < new_h[gi])
+                if np.count_nonzero(ok) < ok.size:
+                    gi, gv, fg = gi[ok], gv[ok], fg[ok]
+                g_zero = fg == 0
+                up = ((fg > 0) == (fh2[gi] > 0)) | g_zero  # the guard moves the high end (or is a zero)
+                hi_i, lo_i = gi[up], gi[~up]
+                new_h[hi_i], fh2[hi_i] = gv[up], fg[up]
+                new_l[lo_i], fl2[lo_i] = gv[~up], fg[~up]
+                if np.count_nonzero(g_zero):
+                    c = c.copy()
+                    c[gi[g_zero]] = gv[g_zero]
+                    zero[gi[g_zero]] = True
+                # a bracket the guard closed has two fresh ends: its root read between them (the chord's zero)
+                fcg = fc[gi]
+                pair = np.flatnonzero(~up & np.isfinite(fcg) & (fcg != 0) & ((fcg > 0) != (fg > 0)))
+                if pair.size:
+                    t_in = np.full(act.size, np.nan)
+                    ci, cg, fci, fgi = c[gi[pair]], gv[pair], fcg[pair], fg[pair]
+                    t_in[gi[pair]] = ci + (cg - ci) * (fci / (fci - fgi))
+            width = new_h - new_l
+            stall = np.where((width <= 0.5 * (h - l)) | bis, 0, stall + 1)
         l, h, fl, fh = new_l, new_h, fl2, fh2
-        cp = cp_next
         closed = zero | (width * sp <= tol)
-        if closed.any():
-            t[act[zero]] = c[zero]
-            at = closed & ~zero & np.isfinite(t_in)
-            t[act[at]] = t_in[at]
+        if np.count_nonzero(closed):
+            if np.count_nonzero(zero):
+                t[act[zero]] = c[zero]
+            if t_in is not None:
+                at = closed & ~zero & np.isfinite(t_in)
+                t[act[at]] = t_in[at]
             i = act[closed]
             lo[i], hi[i], flo[i], fhi[i] = l[closed], h[closed], fl[closed], fh[closed]
             keep = ~closed
