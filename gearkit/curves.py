@@ -68,7 +68,7 @@ def inv(alpha):
     with np.errstate(invalid="ignore"):
         out = np.tan(a) - a
         small = np.abs(a) < _SERIES_LIMIT
-    if small.any():  # the series only where it is used (most calls have no small angle)
+    if np.count_nonzero(small):  # the series only where it is used (most calls have no small angle)
         s = a[small]
         s2 = s * s
         series = np.zeros_like(s)

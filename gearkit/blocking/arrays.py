@@ -364,7 +364,7 @@ def evaluator(field, names, window):
         which = np.asarray(which)
         with np.errstate(invalid="ignore", divide="ignore"):
             g = _Pair(field, p[:, 0].copy(), p[:, 1].copy())
-            if len(p) and (which == which[0]).all():  # one function (most calls): every point in its place
+            if len(p) and not np.count_nonzero(which != which[0]):  # one function (most calls): in place
                 return np.asarray(one(g, p, names[which[0]], None), dtype=float)
             out = np.empty(len(p))
             order = np.argsort(which, kind="stable")  # each function's points, in their order

@@ -36,17 +36,17 @@ def inv_inverse(v):
     ``inv`` is convex (the iterates fall monotonically), stopping at round-off."""
     a = np.minimum(np.cbrt(3.0 * v), np.arctan(v + np.pi / 2.0))
     # the iterates fall to the root from the right: none falls below SERIES_BELOW where every value is above its inv
-    series = bool((v < _INV_SERIES_BELOW).any())
+    series = bool(np.count_nonzero(v < _INV_SERIES_BELOW))  # (count_nonzero: one C call; .any() wraps one in Python)
     for _ in range(NEWTON):
         t = np.tan(a)
         f = t - a
         if series:
             small = a < SERIES_BELOW
-            if small.any():
+            if np.count_nonzero(small):
                 f = np.where(small, inv(a), f)
         step = (f - v) / (t * t)
         a = a - step
-        if not (np.abs(step) > 4e-15 * a).any():
+        if not np.count_nonzero(np.abs(step) > 4e-15 * a):
             break
     return a
 
@@ -115,7 +115,7 @@ def form_roll_lengths(field, which, x, rho_l, rb):
     if which == 2 and field.internal:
         return rho
     under = rho_l < 0
-    if not under.any():
+    if not np.count_nonzero(under):
         return rho
     rho = rho.copy()
     fit = field.form_interpolant(which) if field.x_ranges is not None else None

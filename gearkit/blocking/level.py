@@ -160,7 +160,7 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
     estimate = trust.copy()
     estimate[[k for k in kinked if k < n_curves]] = False
     for _ in range(MAX_ROUNDS):
-        parts = [(n, np.flatnonzero(st[3])) for n, st in enumerate(state) if st[3].any()]
+        parts = [(n, np.flatnonzero(st[3])) for n, st in enumerate(state) if np.count_nonzero(st[3])]
         if not parts:
             break
         A = np.concatenate([state[n][1][i] for n, i in parts])
