@@ -42,8 +42,8 @@ def inv_inverse(v):
         f = t - a
         if series:
             small = a < SERIES_BELOW
-            if np.count_nonzero(small):
-                f = np.where(small, inv(a), f)
+            if np.count_nonzero(small):  # inv (its series) at the small angles alone: f is tan a - a elsewhere
+                f[small] = inv(a[small])
         step = (f - v) / (t * t)
         a = a - step
         if not np.count_nonzero(np.abs(step) > 4e-15 * a):
