@@ -20,8 +20,9 @@ import makes tens of thousands of long-lived objects, and the collector would wa
 again and again as they pile up (about 10 ms of CPU per process); once the command's modules
 are in, they are frozen out of the collector's sight (``gc.freeze``) and it runs as usual. Its C
 allocator keeps the memory it frees for the next arrays (:func:`keep_freed_memory`) instead of
-handing it back to the system and faulting it in again. Once the command is done, such a process ends at once (:func:`end_process`): the exit functions run and the
-streams are flushed, but the interpreter does not free its modules and objects one by one.
+handing it back to the system and faulting it in again. Once the command is done, such a process
+ends at once (:func:`end_process`): the exit functions run and the streams are flushed, but the
+interpreter does not free its modules and objects one by one.
 """
 from __future__ import annotations
 

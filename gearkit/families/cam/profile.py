@@ -119,8 +119,7 @@ class CamProfile:
         scale = self.spec.prime_radius + self.spec.stroke
         if self.spec.contact == "flat":  # the arcs in the order of the boundary, joined along a corner's line
             self.planes = face_depth(self.motion, self.tool, self.start, self.corner_angles)
-            reach = scale + (self.spec.pivot_distance or 0.0) + (self.spec.arm_length or 0.0)
-            arcs, cuts = face_boundary(self.branch, self.planes.depth, 1e-13 * reach,
+            arcs, cuts = face_boundary(self.branch, self.planes.depth, 1e-13 * self._reach(),
                                        corner_lines(self.branch, self.motion, self.tool), scale)
             chain = [(span, edge if k + 1 == len(spans) else None) for spans, edge in arcs
                      for k, span in enumerate(spans)]
@@ -266,8 +265,13 @@ class CamProfile:
         size = spec.prime_radius + spec.stroke
         require(is_real(tol) and PRECISION * size <= tol <= size, "tol", f"{tol!r} mm is outside [{PRECISION * size:.6g}, "
                 f"{size:.6g}] mm (the cam's own precision 1e-9 (r0 + stroke) up to r0 + stroke)")
-        reach = size + abs(spec.offset) + (spec.pivot_distance or 0.0) + (spec.arm_length or 0.0)
-        return float(tol), ROUND_OFF * reach
+        return float(tol), ROUND_OFF * self._reach()
+
+    def _reach(self) -> float:
+        """The lengths the follower's pose spans, mm: the cam's size ``r0 + stroke``, the offset, the pivot
+        distance and the arm (the scale of the round-off in the cam's exact points)."""
+        spec = self.spec
+        return spec.prime_radius + spec.stroke + abs(spec.offset) + (spec.pivot_distance or 0.0) + (spec.arm_length or 0.0)
 
     def _gap(self) -> float:
         """The widest gap between a kept piece's end and the next one's start (the last's end and the first's
