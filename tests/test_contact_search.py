@@ -97,3 +97,20 @@ def test_the_mates_radius_alone_is_the_radius_of_both_coordinates(spec):
         # largest coordinate each
         roundoff = 8 * np.finfo(float).eps * np.abs(np.stack([dx, dy])).max()
         assert np.abs(rho - np.hypot(dx, dy)).max() <= roundoff
+
+
+def test_each_halfs_winner_by_reduction_is_the_sorts():
+    """The refinement's winner of each half (group): the first of its least values, a group of nans its first row.
+    Oracle: a stable sort by group then value, as before the reduction, on random groups (sorted, as the search
+    hands them over, and unsorted) with equal values, signed zeros, infinities and nans."""
+    from gearkit.contact.solver import _winners
+
+    rng = np.random.default_rng(11)
+    for trial in range(3000):
+        n = int(rng.integers(0, 40))
+        half = rng.integers(0, 8, n) if trial % 3 == 0 else np.sort(rng.integers(0, 8, n))
+        value = rng.choice([0.0, -0.0, 0.5, 1.0, np.inf, -np.inf, np.nan], n)
+        order = np.lexsort((value, half))
+        first = np.ones(n, bool)
+        first[1:] = half[order][1:] != half[order][:-1]
+        assert np.array_equal(_winners(value, half), order[first])

@@ -21,14 +21,17 @@ INSTANT_TOL = 1e-8
 
 class Cycle:
     """Bounds at driver angles ``phi`` (n,) over the slice shifts (S,), reduced per angle (the working
-    bound only with ``working_only``: the reverse one then keeps its search values)."""
+    bound only with ``working_only``: the reverse one then keeps its search values; ``near``: ``(cycle,
+    position)``, the minimisers start from another cycle's, ``phi`` at ``position`` on its grid)."""
 
-    def __init__(self, mesh, phi, shifts, contact_tol, working_only=False):
+    def __init__(self, mesh, phi, shifts, contact_tol, working_only=False, near=None):
         self.phi = np.asarray(phi, dtype=float)
         n, s = len(self.phi), len(shifts)
         # ``working_only``: the reverse bound keeps its search values (enough for :meth:`margin`)
         bounds = ((0,) if mesh.working == 1 else (1,)) if working_only else (0, 1)
-        b = solve(mesh, (self.phi[:, None] + shifts[None, :]).ravel(), contact_tol, bounds)
+        seeds = None if near is None else near[0].seeds() + (near[1],)
+        b = solve(mesh, (self.phi[:, None] + shifts[None, :]).ravel(), contact_tol, bounds, lanes=s, seeds=seeds)
+        self._rows = (b.row_code, b.row_t)
         kk = b.teeth.shape[1]
 
         def grid(a):
@@ -58,6 +61,14 @@ class Cycle:
         self.pid = 2 * self.teeth[..., None] + np.arange(2)
         self.contact_tol = contact_tol
         self.working, self.arm_scale = mesh.working, mesh.arm_scale
+
+    def seeds(self):
+        """The refined rows' codes, sorted, and their minimisers: starts for a cycle at angles between these
+        (``near`` of the constructor: this cycle and the angles' positions on its grid, float ``(n,)``)."""
+        if not hasattr(self, "_seeds"):
+            order = np.argsort(self._rows[0], kind="stable")
+            self._seeds = (self._rows[0][order], self._rows[1][order])
+        return self._seeds
 
     def margin(self, pid):
         """``sqrt(clearance beyond round-off) - sqrt(contact_tol)`` of pair ``pid[i]`` at angle ``i`` (its
@@ -140,7 +151,9 @@ def _instants(mesh, phi, ev, shifts, contact_tol, j, pid, start_in):
     for _ in range(_EXTRAPOLATE):
         c = {k: v[todo] for k, v in b.items()}
         x = _estimate(c, flat)
-        g = Cycle(mesh, x, shifts, contact_tol, working_only=True).margin(pid[todo])
+        at = j[todo]
+        near = (ev, at + (x - phi[at]) / (phi[at + 1] - phi[at]))  # starts from the steps either side
+        g = Cycle(mesh, x, shifts, contact_tol, working_only=True, near=near).margin(pid[todo])
         hit = g <= 0
         # Illinois: an end kept a second time in a row has its value halved
         c["w_out"] = np.where(hit, np.where(c["side"] > 0, 0.5 * c["w_out"], c["w_out"]), 1.0)

@@ -34,7 +34,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["minimise"]
+__all__ = ["minimise", "newton_from"]
 
 #: Brent iterations, Newton iterations (both converge long before)
 _MIN_ITER = 60
@@ -103,7 +103,34 @@ def minimise(task, a, b):
     return best_v, best_t
 
 
-def _newton(task, rows, width, lo, hi, x):
+def newton_from(task, a, b, x, iterations):
+    """Newton on the derivatives (a :attr:`smooth` task) in ``[a, b]`` from a start ``x`` close to the minimum, at
+    most ``iterations`` steps: ``(value, parameter, ok)``.
+
+    A start beyond an end is moved onto it. ``ok`` where the iteration converged to a minimum strictly inside
+    (farther than its tolerance from either end), or stayed on an end (``a``, or ``a + (b - a)`` as
+    :func:`minimise` spaces its probes) because the function rises from it there; a row that ends near an end
+    from inside starts once more from that end. Elsewhere (an evaluation not finite, no convergence) the caller
+    minimises afresh.
+    """
+    n = len(a)
+    width = b - a
+    end = a + width
+    x = np.minimum(np.maximum(x, a), end)
+    x, fx, done = _newton(task, np.arange(n), width, a.copy(), b.copy(), x, iterations)
+    tol = _NEWTON_TOL * width
+    ok = done & (((x > a + tol) & (x < b - tol)) | (x == a) | (x == end))
+    again = np.flatnonzero(~ok)
+    if again.size:  # once more from the nearer end, where the minimum may sit
+        e = np.where(x[again] - a[again] < end[again] - x[again], a[again], end[again])
+        x2, f2, d2 = _newton(task, again, width[again], a[again].copy(), b[again].copy(), e, 1)
+        settled = d2 & (x2 == e)
+        at = again[settled]
+        x[at], fx[at], ok[at] = e[settled], f2[settled], True
+    return fx, x, ok
+
+
+def _newton(task, rows, width, lo, hi, x, iterations=_NEWTON_ITER):
     """Safeguarded Newton on ``f' = 0`` in ``[lo, hi]`` from ``x``: ``(x, f(x), converged)``; a row whose
     evaluation is not finite is left (not converged) at its start."""
     x0 = x.copy()
@@ -112,7 +139,7 @@ def _newton(task, rows, width, lo, hi, x):
     done = np.zeros(rows.size, bool)
     failed = np.zeros(rows.size, bool)
     todo = np.arange(rows.size)
-    for _ in range(_NEWTON_ITER):
+    for _ in range(iterations):
         xt = x[todo]
         f, g, g1 = task.slope(xt, rows[todo])
         bad = ~(np.isfinite(f) & np.isfinite(g) & np.isfinite(g1))

@@ -15,7 +15,8 @@ left), the bounds that its boundary puts on the mate's position (see :mod:`geark
    bound overall.
 2. **Refinement**, one polyline interval at a time: the crossing of the tip circle by root finding
    (Illinois), the minimum after a few probes (:func:`~gearkit.contact.minimise.minimise`: Newton on
-   the tables' derivatives, Brent's method on the exact pieces), then each half's best evaluated on
+   the tables' derivatives, Brent's method on the exact pieces; at most driver angles Newton alone, from
+   the neighbouring angles' minima: :mod:`gearkit.contact.continuation`), then each half's best evaluated on
    the exact pieces, ``w`` by :meth:`HalfWidth.exact`. A smooth contact ends at a stationary point (the flanks touch
    tangentially); a corner contact at an interval end (the driver's corner) or at the tip
    crossing (the mate's corner).
@@ -28,6 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gearkit.contact.continuation import continued, driver_derivatives, row_key
 from gearkit.contact.minimise import minimise
 from gearkit.contact.search import search
 from gearkit.progress import Progress
@@ -64,6 +66,10 @@ class Bounds:
     rho2: np.ndarray
     corner1: np.ndarray
     corner2: np.ndarray
+    #: every refined row's ``code`` (its driver angle and what it minimises: :func:`~gearkit.contact.continuation.code`)
+    #: and minimiser, unordered: starts for a later solve between these angles (``seeds`` of :func:`solve`)
+    row_code: np.ndarray = None
+    row_t: np.ndarray = None
 
     @property
     def upper(self):
@@ -95,6 +101,12 @@ class _Task:
         # the driver half's own coordinates -> the mate's (``frame``: these rows' frames, made already)
         self.frame = mesh.frames(theta, sigma, phi) if frame is None else frame
 
+    def subset(self, rows):
+        """The same task over ``rows`` (int array) alone."""
+        interval = None if self.interval is None else self.interval[rows]
+        return _Task(self.mesh, self.phi[rows], self.theta[rows], self.sigma[rows], self.sb[rows], self.piece[rows],
+                     interval, self.frame[:, rows])
+
     @property
     def noise(self):
         """A bound of the error of :meth:`value` where it is read off tables without derivatives (not
@@ -115,7 +127,7 @@ class _Task:
         """The bound function on the tables and its first and second derivatives in ``t`` (only where
         :attr:`smooth`): the driver's and the mate's polynomials, differentiated through the frames."""
         mesh = self.mesh
-        p, d1, d2 = mesh.driver.table.derivatives(self.piece[rows], t)
+        p, d1, d2 = driver_derivatives(mesh.driver, self.piece, self.interval, t, rows)
         rho, r1, r2, u, u1, u2 = mesh.mate_derivatives(p, d1, d2, self.frame[:, rows])
         w, w1, w2 = mesh.mate.table.derivatives(rho)
         sb = self.sb[rows]
@@ -203,10 +215,11 @@ def _crossing(task, a, b):
     return np.where(gb <= 0, np.where((ga <= 0) & (ga > gb), a, b), a)
 
 
-def _refine(mesh, phi, theta, sigma, sb, m, fa, fb, half, frame):
+def _refine(mesh, phi, theta, sigma, sb, m, fa, fb, half, frame, along):
     """Minima of the bound function over polyline intervals ``m`` (one row each), the smallest kept
     per ``half`` (row indices ``sel``): on the tables, then the winners evaluated on the exact pieces.
-    ``frame``: the rows' :meth:`Mesh.frames`, made by the search."""
+    ``frame``: the rows' :meth:`Mesh.frames`, made by the search; ``along``: the rows' driver angles and what
+    they minimise, for :func:`~gearkit.contact.continuation.continued`. Also returns every row's minimiser."""
     drv = mesh.driver
     piece, a, b = drv.piece[m], drv.ta[m].copy(), drv.tb[m].copy()
     task = _Task(mesh, phi, theta, sigma, sb, piece, m, frame)
@@ -231,7 +244,7 @@ def _refine(mesh, phi, theta, sigma, sb, m, fa, fb, half, frame):
     if cross.any():
         lo[rows] = np.where(fa[rows], a[rows], inner)
         hi[rows] = np.where(fa[rows], inner, b[rows])
-    value, t = minimise(task, lo, hi)
+    value, t = continued(task, lo, hi, *along)
     sel = _winners(value, half)
     if mesh.tables:
         # a winner the tables place on the mate's tip circle (within 1e-9 of its radius) may lie a last bit
@@ -248,6 +261,7 @@ def _refine(mesh, phi, theta, sigma, sb, m, fa, fb, half, frame):
             sub.exact = True
             value[r], t[r] = minimise(sub, a[r], b[r])
             sel = _winners(value, half)
+    t_all = t
     phi, theta, sigma, sb, m, fa, fb = phi[sel], theta[sel], sigma[sel], sb[sel], m[sel], fa[sel], fb[sel]
     piece, a, b, t, at_tip = piece[sel], a[sel], b[sel], t[sel], at_tip[sel]
     task = _Task(mesh, phi, theta, sigma, sb, piece, frame=task.frame[:, sel])
@@ -278,15 +292,25 @@ def _refine(mesh, phi, theta, sigma, sb, m, fa, fb, half, frame):
     vel = mesh.mate_velocity(q)
     dot = np.einsum("ij,ij->i", normal, vel)
     normal = np.where((sb * dot > 0)[:, None], -normal, normal)
-    return sel, (value, q, normal, np.abs(dot), piece, k2, rho, corner1, corner2)
+    return sel, (value, q, normal, np.abs(dot), piece, k2, rho, corner1, corner2), t_all
 
 
 def _winners(value, half):
-    """Row of the least ``value`` of each ``half`` (group)."""
-    order = np.lexsort((value, half))
-    first = np.ones(order.size, bool)
-    first[1:] = half[order][1:] != half[order][:-1]
-    return order[first]
+    """Row of the least ``value`` of each ``half`` (group; the first of equal ones, a group of nans its first row).
+    The search hands the rows over sorted by half: each group's least by one reduction, not a sort."""
+    if half.size == 0 or np.any(half[1:] < half[:-1]):
+        order = np.lexsort((value, half))
+        first = np.ones(order.size, bool)
+        first[1:] = half[order][1:] != half[order][:-1]
+        return order[first]
+    start = np.flatnonzero(np.concatenate([[True], half[1:] != half[:-1]]))
+    group = np.cumsum(np.concatenate([[False], half[1:] != half[:-1]]))
+    hit = np.flatnonzero(value == np.fmin.reduceat(value, start)[group])
+    lead = np.ones(hit.size, bool)
+    lead[1:] = group[hit][1:] != group[hit][:-1]
+    out = start.copy()
+    out[group[hit[lead]]] = hit[lead]
+    return out
 
 
 def _mate_direction(mesh, tangent, phi, delta):
@@ -297,7 +321,7 @@ def _mate_direction(mesh, tangent, phi, delta):
     return np.stack([c * tangent[:, 0] - s * tangent[:, 1], s * tangent[:, 0] + c * tangent[:, 1]], -1)
 
 
-def solve(mesh, phi, contact_tol: float, bounds=(0, 1)) -> Bounds:
+def solve(mesh, phi, contact_tol: float, bounds=(0, 1), lanes: int = 1, seeds=None) -> Bounds:
     """Bounds on the mate's position from every driver half at driver angles ``phi`` ``(n,)``.
 
     Parameters
@@ -308,6 +332,12 @@ def solve(mesh, phi, contact_tol: float, bounds=(0, 1)) -> Bounds:
         Every half that may come within this of the extreme bound is refined.
     bounds : tuple of int
         The bounds refined (0 upper, 1 lower); the others keep their search values.
+    lanes : int
+        ``phi`` is a grid of driver angles by ``lanes`` (e.g. the slices of a helical pair) flattened: the
+        minimiser continues along the angles within each lane (:mod:`gearkit.contact.continuation`).
+    seeds : (codes, t, position) or None
+        Starts from an earlier solve: its rows (:attr:`Bounds.row_code`, :attr:`Bounds.row_t`, sorted by code) and
+        the position of each of these driver angles (``(n / lanes,)`` float) on its grid of angles.
     """
     phi = np.atleast_1d(np.asarray(phi, dtype=float))
     per_angle = len(mesh.offsets) * 4 * len(mesh.driver.points) // 2  # about half the halves are near
@@ -315,14 +345,14 @@ def solve(mesh, phi, contact_tol: float, bounds=(0, 1)) -> Bounds:
     parts = []
     with Progress("contact", len(phi), unit="positions") as bar:
         for i in range(0, len(phi), step):
-            parts.append(_solve_chunk(mesh, phi[i:i + step], contact_tol, bounds))
+            parts.append(_solve_chunk(mesh, phi[i:i + step], contact_tol, bounds, i, lanes, seeds))
             bar.update(min(i + step, len(phi)))
     if len(parts) == 1:
         return parts[0]
     return Bounds(*(np.concatenate([getattr(p, f) for p in parts]) for f in Bounds.__dataclass_fields__))
 
 
-def _solve_chunk(mesh, phi, contact_tol, bounds) -> Bounds:
+def _solve_chunk(mesh, phi, contact_tol, bounds, first=0, lanes=1, seeds=None) -> Bounds:
     teeth, theta = mesh.teeth(phi)
     n, kk = teeth.shape
     # only the driver halves with a sample inside the mate's tip circle are searched: the others
@@ -345,11 +375,16 @@ def _solve_chunk(mesh, phi, contact_tol, bounds) -> Bounds:
     rho2 = np.full(shape, np.nan)
     corner1 = np.zeros(shape, bool)
     corner2 = np.zeros(shape, bool)
+    row_code, row_t = np.zeros(0, np.int64), np.zeros(0)
     if i_n.size:
         sigma = np.where(i_h == 0, 1.0, -1.0)
-        sel, res = _refine(mesh, phi[i_n], theta[i_n, i_k], sigma, np.array([1.0, -1.0])[i_b], i_m, fa, fb, i_a * 2 + i_b,
-                           frame[:, i_a])
+        angle = (first + i_n) // lanes
+        key, span = row_key(mesh, teeth[i_n, i_k], i_h, i_b, i_m, (first + i_n) % lanes, lanes)
+        given = None if seeds is None else (seeds[0], seeds[1], seeds[2][angle])
+        sel, res, t = _refine(mesh, phi[i_n], theta[i_n, i_k], sigma, np.array([1.0, -1.0])[i_b], i_m, fa, fb,
+                              i_a * 2 + i_b, frame[:, i_a], (angle, key, span, given))
+        row_code, row_t = angle.astype(np.int64) * span + key, t
         at = (i_n[sel], i_k[sel], i_h[sel], i_b[sel])
         exact[at] = True
         value[at], point[at], normal[at], arm[at], piece1[at], piece2[at], rho2[at], corner1[at], corner2[at] = res
-    return Bounds(phi, teeth, value, exact, point, normal, arm, piece1, piece2, rho2, corner1, corner2)
+    return Bounds(phi, teeth, value, exact, point, normal, arm, piece1, piece2, rho2, corner1, corner2, row_code, row_t)

@@ -1,0 +1,169 @@
+"""The contact minimiser's continuation over driver angles gives the fresh minimiser's answers to round-off.
+
+:mod:`gearkit.contact.continuation` starts Newton's method at most driver angles from the minima of the
+neighbouring angles (and the contact ratio's instants from the grid's) instead of probing every interval
+afresh. Oracles: the fresh path itself (``newton_from`` refused for every row: each row is minimised
+exactly as before continuation), and for conjugate pairs zero transmission error and the formula contact
+ratio.
+
+Named tolerances (absolute: a conjugate pair's TE is itself round-off, so nothing is relative):
+
+* ``mesh.noise / mesh.arm_scale`` (rad; mm for a rack): the mesh's own statement of how well a contact's
+  position is known (round-off along the normal over the smallest arm). Both paths evaluate each final
+  contact on the same exact pieces at minimisers that agree to Newton's tolerance, whose values differ by
+  its square: TE, backlash and bounds agree within it.
+* ``LOCATE = 1e-6 m``: where a contact lies (as the contact tests). It is the argument of a minimum, known
+  to about the square root of round-off where the flanks nearly conform (the reverse flanks of the internal
+  46/49 pair: two starts settle 1e-5 m apart on a bound whose values agree within the position's round-off,
+  so bounds are compared by value); on the working contacts the two paths agree within 1e-12 m, Newton's
+  own tolerance.
+* ``TURN = 1e-5``: a contact normal (unit vector): that shift over the flank's smallest radius of curvature
+  (the cutter's tip rounding, 0.38 m, taken as 0.1 m).
+* ``RATIO = 1e-6``: the simulated contact ratio's own resolution (as the table tests): the instants a pair
+  parts solve ``sqrt(clearance) = sqrt(contact_tol)`` with the clearance at round-off.
+* ``FORMULA = 1e-3``: simulated against the formula contact ratio (as the contact tests).
+"""
+import numpy as np
+import pytest
+
+from gearkit.contact import continuation, pair_mesh, simulate
+from gearkit.contact.solver import solve
+from gearkit.families.involute import Modification, ShaperCutter
+from gearkit.pair import PairSpec, pair_geometry
+
+LOCATE = 1e-6
+TURN = 1e-5
+RATIO = 1e-6
+FORMULA = 1e-3
+STEPS = 200
+SHAPER = ShaperCutter(20, addendum=1.3)
+HELICAL = {"face_width": 20.0, "helix_angle_deg": 15.0, "slices": 4}
+
+#: (spec, pair_mesh keywords, simulate keywords, conjugate: TE zero and the formula contact ratio)
+PAIRS = {
+    "20/40 m=2": (PairSpec(20, 40, 2.0), {}, {}, True),
+    "shifted 18/41": (PairSpec(18, 41, 1.0, 0.3, -0.1), {}, {}, True),
+    "shifted 13/29": (PairSpec(13, 29, 1.0, 0.4, 0.1), {}, {}, True),
+    "undercut 12/24": (PairSpec(12, 24, 1.0), {}, {}, False),
+    "backlash 20/40": (PairSpec(20, 40, 1.0, center_distance=30.05), {}, {}, True),
+    "centre distance +0.03": (PairSpec(20, 40, 2.0), {"center_distance_deviation": 0.03}, {}, False),
+    "25/25 m=3": (PairSpec(25, 25, 3.0), {}, {}, True),
+    "40/20 speed-up": (PairSpec(40, 20, 1.0), {}, {}, True),
+    "17/1000": (PairSpec(17, 1000, 1.0), {}, {}, True),
+    "rack, x = 0.2": (PairSpec(20, None, 1.0, 0.2, kind="rack"), {}, {}, True),
+    "rack 13 m=1.5": (PairSpec(13, None, 1.5, kind="rack"), {}, {}, False),
+    "internal 46/49": (PairSpec(46, 49, 1.0, 0.0, 0.52, kind="internal", shift_convention="cutter", tool1=SHAPER,
+                                tool2=SHAPER), {}, {}, False),
+    "internal 20/60, interfering": (PairSpec(20, 60, 1.0, kind="internal", tool1=SHAPER, tool2=SHAPER), {}, {}, False),
+    "helical 20/40": (PairSpec(20, 40, 2.0, helix_angle_deg=15.0, face_width=20.0), {}, HELICAL, False),
+    "tip relief": (PairSpec(20, 40, 2.0), {"modifications": (Modification(tip_relief=0.01, tip_relief_diameter=42.0),
+                                                             None)}, {}, False),
+    "profile crowning": (PairSpec(20, 40, 2.0), {"modifications": (Modification(profile_crowning=0.005),) * 2}, {},
+                         False),
+}
+
+
+def _fresh(monkeypatch):
+    """Every row minimised afresh: continuation's Newton confirms none."""
+    def refuse(task, a, b, x, iterations):
+        return np.full(len(a), np.inf), x, np.zeros(len(a), bool)
+    monkeypatch.setattr(continuation, "newton_from", refuse)
+
+
+@pytest.mark.parametrize("name", list(PAIRS))
+def test_a_continued_cycle_is_the_fresh_cycle(name, monkeypatch):
+    spec, mesh_kw, sim_kw, conjugate = PAIRS[name]
+    mesh = pair_mesh(spec, **mesh_kw)
+    cont = simulate(mesh, STEPS, **sim_kw)
+    _fresh(monkeypatch)
+    fresh = simulate(mesh, STEPS, **sim_kw)
+    position = mesh.noise / mesh.arm_scale
+    r_w2 = 1.0 if mesh.kind == "rack" else mesh.pitch_radii[1]
+    assert np.abs(cont.transmission_error - fresh.transmission_error).max() <= position
+    assert np.abs(cont.backlash_angle - fresh.backlash_angle).max() <= position
+    assert abs(cont.backlash - fresh.backlash) <= position * r_w2
+    assert np.array_equal(cont.pairs_in_contact, fresh.pairs_in_contact)
+    assert cont.contact_ratio == pytest.approx(fresh.contact_ratio, abs=RATIO)
+    assert cont.total_contact_ratio == pytest.approx(fresh.total_contact_ratio, abs=RATIO)
+    for field in ("step", "slice", "tooth", "half"):
+        assert np.array_equal(cont.contacts[field], fresh.contacts[field]), field
+    assert np.abs(cont.contacts["point"] - fresh.contacts["point"]).max() <= LOCATE * spec.module
+    assert np.abs(cont.contacts["normal"] - fresh.contacts["normal"]).max() <= TURN
+    a, b = cont.interference, fresh.interference
+    assert (a.found, a.where) == (b.found, b.where)
+    assert abs(a.max_depth - b.max_depth) <= position * r_w2
+    if conjugate:  # the oracles: no transmission error, the formula contact ratio
+        assert np.abs(cont.transmission_error).max() <= position
+        assert cont.contact_ratio == pytest.approx(pair_geometry(spec).contact_ratio, abs=FORMULA)
+
+
+@pytest.mark.parametrize("name", ["20/40 m=2", "undercut 12/24", "rack, x = 0.2", "internal 46/49"])
+def test_continued_bounds_are_the_fresh_bounds(name, monkeypatch):
+    """Every refined bound of 401 driver angles over two pitches: the same halves refined, the same pieces and
+    corners (a minimum on an interval's end is settled on it exactly), values to round-off. (Not the points: on
+    the reverse flanks of the internal pair, which nearly conform, a bound's minimiser is known to 1e-5 m only;
+    the working contacts' points are compared in the cycle.)"""
+    spec = PAIRS[name][0]
+    mesh = pair_mesh(spec)
+    phi = np.linspace(-mesh.pitch1, mesh.pitch1, 401)
+    cont = solve(mesh, phi, 1e-12 * mesh.module)
+    _fresh(monkeypatch)
+    fresh = solve(mesh, phi, 1e-12 * mesh.module)
+    for field in ("teeth", "exact", "piece1", "piece2", "corner1", "corner2"):
+        assert np.array_equal(getattr(cont, field), getattr(fresh, field)), field
+    done = fresh.exact
+    assert np.abs(cont.value[done] - fresh.value[done]).max() <= mesh.noise / mesh.arm_scale
+    assert np.array_equal(cont.value[~done], fresh.value[~done])  # the search's values, untouched
+
+
+def test_continuation_confirms_most_rows():
+    """The point of continuation: of a 400-step cycle's refined rows, most are confirmed by Newton from their
+    start (the rest are the node angles, one in ``NODE_EVERY``, and the few a start does not settle)."""
+    calls = {"fresh": 0, "continued": 0}
+    minimise, newton_from = continuation.minimise, continuation.newton_from
+
+    def count_fresh(task, a, b):
+        calls["fresh"] += len(a)
+        return minimise(task, a, b)
+
+    def count_continued(task, a, b, x, iterations):
+        value, t, ok = newton_from(task, a, b, x, iterations)
+        calls["continued"] += int(ok.sum())
+        return value, t, ok
+
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(continuation, "minimise", count_fresh)
+        mp.setattr(continuation, "newton_from", count_continued)
+        simulate(pair_mesh(PairSpec(20, 40, 2.0)), 400)
+    assert calls["continued"] >= 4 * calls["fresh"]
+
+
+class _Quadratic:
+    """``(t - centre)^2`` per row, with its derivatives: a smooth task for the minimiser."""
+    smooth = True
+
+    def __init__(self, centre):
+        self.centre = centre
+
+    def value(self, t, rows=slice(None)):
+        return ((t - self.centre[rows]) ** 2,)
+
+    def slope(self, t, rows):
+        d = t - self.centre[rows]
+        return d * d, 2 * d, np.full_like(t, 2.0)
+
+
+def test_newton_from_settles_an_end_minimum_on_the_end_and_finds_an_inner_one():
+    from gearkit.contact.minimise import minimise, newton_from
+
+    a, b = np.zeros(4), np.full(4, 0.3)
+    centre = np.array([-0.5, 0.1, 0.9, 0.2])  # below, inside, above, inside
+    start = np.array([0.05, 0.25, 0.5, -1.0])  # inside, inside, beyond b, beyond a
+    task = _Quadratic(centre)
+    value, t, ok = newton_from(task, a, b, start, 6)
+    assert ok.all()
+    fresh_value, fresh_t = minimise(task, a, b)
+    assert t[0] == 0.0 and t[2] == a[2] + (b[2] - a[2])  # on the ends, exactly, as the probes place them
+    assert np.array_equal(t[[0, 2]], fresh_t[[0, 2]])
+    assert np.abs(t[[1, 3]] - centre[[1, 3]]).max() <= 1e-12 * 0.3
+    assert np.abs(value - fresh_value).max() <= 1e-24
