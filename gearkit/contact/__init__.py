@@ -20,7 +20,8 @@ How it works (:mod:`gearkit.contact.solver`): the mate's tooth is a function of 
 driver point at radius ``rho`` bounds the mate's turn by the half width of its space there; the
 bound is minimised over each driver flank — first on a polyline, then by Newton's method on the
 derivatives of tables of both teeth (:mod:`gearkit.contact.table`: every piece fitted once, since
-all teeth are turned copies of one, within 1e-12 of the outer radius), and each half's best contact is evaluated on the
+all teeth are turned copies of one, within 1e-12 of the outer radius; at most driver angles Newton starts from the
+neighbouring angles' minima, :mod:`gearkit.contact.continuation`), and each half's best contact is evaluated on the
 exact pieces (the mate's radius matched by the secant method), so the values reported are exact.
 Only the driver halves that reach the mate's tip circle are searched, so the work per driver angle
 does not grow with the tooth counts. ``Mesh(..., tables=False)`` works on the exact pieces
