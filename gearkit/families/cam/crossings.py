@@ -8,15 +8,42 @@ starts from the crossing of the sampled chords (near the samples, or farther out
 shallow and samples past it were kept), or from the closest pair of a dense resampling when a chord
 across a motion join is not the curve, and ends with Newton on the two curve parameters; a crossing
 next to the curve meeting itself (``wa = wb``, a swallowtail a few samples wide) is solved on the
-divided difference instead.
+divided difference instead. A kept arc of a roller turning about a velocity jump's corner ends where
+the envelope beside it comes out of the roller's circle about the corner (:func:`corner_cut`): one
+equation in one parameter, bracketed and bisected. A knife's cam is cut at the crossings of its
+scan's polyline, each refined by Newton (:func:`refine_crossing`).
 """
 from __future__ import annotations
+
+import math
 
 import numpy as np
 
 from gearkit.errors import GeometryError
 
-__all__ = ["refine_cut"]
+__all__ = ["corner_cut", "refine_crossing", "refine_cut"]
+
+
+def refine_crossing(f, wa, wb, lo_a, hi_a, lo_b, hi_b):
+    """Newton on ``f(wa) = f(wb)`` (a self-crossing of the exact curve) from a polyline's crossing, inside the
+    given windows: a knife's cam, cut at every crossing its scan finds."""
+    h = 1e-9
+    x = np.array([wa, wb], dtype=float)
+    lo, hi = np.array([lo_a, lo_b]), np.array([hi_a, hi_b])
+    for _ in range(50):
+        p = f(np.array([x[0] - h, x[0] + h, x[1] - h, x[1] + h, x[0], x[1]]))
+        g = p[4] - p[5]
+        jac = np.column_stack([(p[1] - p[0]) / (2 * h), -(p[3] - p[2]) / (2 * h)])
+        try:
+            step = np.linalg.solve(jac, g)
+        except np.linalg.LinAlgError:
+            break
+        new = np.clip(x - step, lo, hi)
+        if np.abs(new - x).max() < 1e-15:
+            x = new
+            break
+        x = new
+    return float(x[0]), float(x[1])
 
 
 def refine_cut(curve, w, e, b, da: int = 1, db: int = 1, meet: float | None = None):
@@ -134,3 +161,80 @@ def _newton(curve, wa, wb, h, divided: bool = False):
         if done:
             break
     return float(np.mod(x[0], 1.0)), float(np.mod(x[1], 1.0))
+
+
+def corner_cut(curve, w, e, b, circles, meet: float, reach: int = 64, per: int = 8):
+    """The crossing that ends a kept arc of a roller's corner (the roller turning about a velocity
+    jump's corner ``C`` of the pitch curve, on the circle ``|x - C| = R``) where the motion's envelope
+    beside it first runs inside that circle and then out across it (a swallowtail a few micrometres
+    deep), or None when neither the last kept sample ``e`` nor the first kept sample ``b`` of the cut
+    lies on a corner's arc.
+
+    The envelope beside the corner starts on the circle (the arc's end), so its signed distance from
+    the circle ``|curve(w) - C| - R`` is a function of one parameter whose first rise through zero
+    after it has dipped below is the crossing: bracketed on ``per`` points a sample step over the
+    neighbouring motion section, up to ``reach`` samples past the cut's far end (samples of a shallow
+    swallowtail lie within the keep test's slack and may have been kept), and bisected. The arc is
+    linear in the roller's contact angle, so its own parameter at the crossing follows from the
+    angle of ``x - C`` (a point of the circle off the arc, farther than ``meet`` from it, is no
+    crossing). ``circles`` are ``(k, C, R)``: the index of each corner section of ``curve``
+    (a :class:`~gearkit.families.cam.curve.CamCurve`), its centre and radius.
+    """
+    step, edges = w[1] - w[0], curve.edges
+    span = (w[b] - w[e]) % 1.0
+
+    def off(x):  # signed offset of x from the last kept sample along the cut (cyclic)
+        return (x - w[e] + 0.5) % 1.0 - 0.5
+    for k, centre, radius in circles:
+        w0, w1 = edges[k], edges[k + 1]
+        if off(w0) <= step and off(w1) >= -step and off(w1) <= span + step:  # e on the arc: the section after
+            far = min(edges[k + 2] if k + 2 < len(edges) else 1.0, w1 + span - off(w1) + reach * step)
+            x, after = _circle_exit(curve, w1, far, centre, radius, per * int(math.ceil((far - w1) / step))), True
+        elif off(w1) >= span - step and off(w0) <= span + step and off(w0) >= -step:  # b on the arc: before it
+            near = max(edges[k - 1] if k > 0 else 0.0, w0 - off(w0) - reach * step)
+            x, after = _circle_exit(curve, w0, near, centre, radius, per * int(math.ceil((w0 - near) / step))), False
+        else:
+            continue
+        if x is None:
+            continue
+        t = _arc_fraction(curve, w0, w1, centre, curve(np.array([x]))[0])
+        on_arc = w0 + t * (w1 - w0)
+        if np.hypot(*np.subtract(*curve(np.array([on_arc, x])))) <= meet:  # on the arc itself, not its circle
+            return (on_arc, x) if after else (x, on_arc)
+    return None
+
+
+def _circle_exit(curve, w0, w1, centre, radius, n):
+    """The first ``w`` from ``w0`` towards ``w1`` (either way) where ``curve`` comes out of the circle
+    about ``centre`` after it has run inside it (``n`` points bracket, bisection refines), or None."""
+    xs = np.linspace(w0, w1, max(n, 2) + 1)
+    h = np.hypot(*(curve(xs) - centre).T) - radius
+    noise = 64 * np.finfo(float).eps * (radius + float(np.hypot(*centre)))
+    inside = np.flatnonzero(h < -noise)
+    if len(inside) == 0:
+        return None
+    out = np.flatnonzero(h[inside[0]:] >= 0.0)
+    if len(out) == 0:
+        return None
+    j = inside[0] + int(out[0])
+    lo, hi = float(xs[j - 1]), float(xs[j])
+    for _ in range(64):
+        mid = 0.5 * (lo + hi)
+        if mid in (lo, hi):
+            break
+        if float(np.hypot(*(curve(np.array([mid]))[0] - centre))) - radius < 0.0:
+            lo = mid
+        else:
+            hi = mid
+    return hi
+
+
+def _arc_fraction(curve, w0, w1, centre, x):
+    """Where on the arc from ``curve(w0)`` to ``curve(w1)`` about ``centre`` (turning the short way,
+    linearly in its parameter) the point ``x`` lies, as a fraction in [0, 1]."""
+    a0, a1 = (np.arctan2(*(p - centre)[::-1]) for p in curve(np.array([w0, w1])))
+    ax = math.atan2(x[1] - centre[1], x[0] - centre[0])
+    sweep = (a1 - a0 + math.pi) % (2 * math.pi) - math.pi
+    if sweep == 0.0:
+        return 0.0
+    return float(np.clip(((ax - a0 + math.pi) % (2 * math.pi) - math.pi) / sweep, 0.0, 1.0))

@@ -25,7 +25,7 @@ import math
 import numpy as np
 
 from gearkit.errors import GeometryError
-from gearkit.families.cam.crossings import refine_cut
+from gearkit.families.cam.crossings import corner_cut, refine_cut
 from gearkit.families.cam.halfplanes import face_lines
 
 __all__ = ["roller_depth", "kept_runs", "FaceEdge", "corner_lines", "face_boundary"]
@@ -44,13 +44,15 @@ def roller_depth(pitch_points, radius: float, start: float, samples: int = 65536
     return lambda points: radius - edge_distances(points, pitch, closed=True)
 
 
-def kept_runs(curve, depth, slack: float, meet: float, samples: int = 16385):
+def kept_runs(curve, depth, slack: float, meet: float, circles=(), samples: int = 16385):
     """Where the roller's envelope ``curve`` (of ``w`` in [0, 1], one turn) bounds the cam: ``[(wa, wb),
     ...]``, the cuts from a kept arc's end ``wa`` to the next kept arc's start ``wb`` (cyclic, ``wb`` may
     be below ``wa``: the cut runs through ``w = 1``), each refined to the envelope's self-crossing, in
     the order the cam's boundary runs (:func:`_cam_cycle`; a crossing's ends within ``meet``, mm). A
     sample is kept where ``depth`` (:func:`roller_depth`) is at most ``slack`` (mm: the swept region's
-    own sampling error). Empty when the whole envelope bounds the cam."""
+    own sampling error). A cut from or to a roller's arc about a velocity jump's corner (``circles``,
+    :func:`~gearkit.families.cam.crossings.corner_cut`) is sought where the envelope beside it comes out
+    of that circle. Empty when the whole envelope bounds the cam."""
     w = np.linspace(0.0, 1.0, samples)
     keep = depth(curve(w)) <= slack
     keep[-1] = keep[0]  # w = 1 is w = 0
@@ -61,10 +63,10 @@ def kept_runs(curve, depth, slack: float, meet: float, samples: int = 16385):
     k = np.flatnonzero(keep[:-1])
     starts = [int(j) for j in k if not keep[j - 1 if j else samples - 2]]  # runs beginning at j
     ends = [int(j) for j in k if not keep[j + 1]]  # runs ending at j
-    return _cam_cycle(curve, w, keep, starts, ends, meet)
+    return _cam_cycle(curve, w, keep, starts, ends, meet, circles)
 
 
-def _cam_cycle(curve, w, keep, starts, ends, meet: float):
+def _cam_cycle(curve, w, keep, starts, ends, meet: float, circles=()):
     """The cuts of the kept runs that bound the cam, followed from run to run around it.
 
     A sample no roller covers lies on the boundary of the swept region, but not every such boundary
@@ -88,7 +90,7 @@ def _cam_cycle(curve, w, keep, starts, ends, meet: float):
     for _ in range(len(starts)):
         e = next((j for j in ends if j >= s), ends[0])
         for b in [j for j in starts if j > e] + [j for j in starts if j <= e]:
-            wa, wb = refine_cut(curve, w, e, b, meet=meet)
+            wa, wb = corner_cut(curve, w, e, b, circles, meet) or refine_cut(curve, w, e, b, meet=meet)
             pa, pb = curve(np.array([wa, wb]))
             if np.hypot(*(pa - pb)) <= meet:
                 break

@@ -22,6 +22,7 @@ from gearkit.boundary import Piece, next_crossing
 from gearkit.curves import cross2, polyline_self_intersections
 from gearkit.envelope import Branch, touching
 from gearkit.errors import GeometryError, is_real, require
+from gearkit.families.cam.crossings import refine_crossing
 from gearkit.families.cam.curve import AngleBranch, CamCurve, PitchCurve
 from gearkit.families.cam.faces import corner_lines, face_boundary, kept_runs, roller_depth
 from gearkit.families.cam.halfplanes import face_depth
@@ -33,27 +34,6 @@ __all__ = ["CamProfile", "cam_profile"]
 _TWO_PI = 2.0 * math.pi
 #: cam angles sampled to find the curve's shape, loops and extremes
 _SCAN = 4096
-
-
-def _refine(f, wa, wb, lo_a, hi_a, lo_b, hi_b):
-    """Newton on ``f(wa) = f(wb)`` (a self-crossing of the exact curve) inside the given windows."""
-    h = 1e-9
-    x = np.array([wa, wb], dtype=float)
-    lo, hi = np.array([lo_a, lo_b]), np.array([hi_a, hi_b])
-    for _ in range(50):
-        p = f(np.array([x[0] - h, x[0] + h, x[1] - h, x[1] + h, x[0], x[1]]))
-        g = p[4] - p[5]
-        jac = np.column_stack([(p[1] - p[0]) / (2 * h), -(p[3] - p[2]) / (2 * h)])
-        try:
-            step = np.linalg.solve(jac, g)
-        except np.linalg.LinAlgError:
-            break
-        new = np.clip(x - step, lo, hi)
-        if np.abs(new - x).max() < 1e-15:
-            x = new
-            break
-        x = new
-    return float(x[0]), float(x[1])
 
 
 class CamProfile:
@@ -98,17 +78,26 @@ class CamProfile:
 
     def _corners(self, scale):
         """Joins where the velocity jumps: ``(phi, pole before, pole after, weight)`` (tool frame), ``phi``
-        in ``[start, start + 2 pi)``: the first cam angle the law reads after the jump (:func:`_after_jump`)."""
-        out = []
+        in ``[start, start + 2 pi)``: the first cam angle the law reads after the jump (:func:`_after_jump`).
+        Jumps read at one angle (a dwell between them shorter than an ulp of it) are one jump, from the
+        velocity before the first to the velocity after the last: the cam angle does not move between them."""
+        out, phases = [], self.spec.motion.phases()
         for phi, dv, _, _ in self.spec.motion.jumps():
             if abs(dv) <= 1e-12 * scale:
                 continue
-            before = self.motion.tool_pole(np.array([phi - 1e-9]))[0]  # the law is linear there (constant velocity)
+            # within the phase ending at the jump (a dwell before it may be shorter than 1e-9 rad)
+            span = min((p[2] - p[1] for p in phases if abs((p[2] - phi + math.pi) % _TWO_PI - math.pi) < 1e-12),
+                       default=1e-9)
+            h = max(min(1e-9, 0.25 * span), 8 * np.spacing(_TWO_PI))
+            before = self.motion.tool_pole(np.array([phi - h]))[0]  # the law is linear there (constant velocity)
             after = self.motion.tool_pole(np.array([phi]))[0]
-            before = before + (before - self.motion.tool_pole(np.array([phi - 2e-9]))[0])  # extrapolated to phi
+            before = before + (before - self.motion.tool_pole(np.array([phi - 2 * h]))[0])  # extrapolated to phi
             at = _after_jump(self.spec.motion, phi + (_TWO_PI if phi < self.start else 0.0), phi)
+            same = [k for k, c in enumerate(out) if c[0] == at]
+            if same:  # the same corner: its pole before stays, its pole after is this jump's
+                before = out.pop(same[0])[1]
             out.append((at, before, after, float(np.linalg.norm(after - before)) / scale))
-        return out
+        return [c for c in out if c[3] > 1e-12]  # two jumps that cancel leave no corner
 
     def _trim(self):
         """The kept pieces in the order the cam's boundary runs (split where the curve has a break: a
@@ -125,7 +114,9 @@ class CamProfile:
                      for k, span in enumerate(spans)]
         else:  # every cut a crossing, in the order the cam's boundary runs
             depth = roller_depth(self.pitch_points, self.spec.roller_radius, self.start)
-            cuts = kept_runs(self.branch, depth, 1e-7 * scale, meet=1e-6 * scale)
+            circles = [(k, self.pitch_points([sec[1]])[0], self.spec.roller_radius)
+                       for k, sec in enumerate(self.branch.sections) if sec[0] == "corner"]
+            cuts = kept_runs(self.branch, depth, 1e-7 * scale, meet=1e-6 * scale, circles=circles)
             chain = []
             for (_, wb), (wa, _) in zip(cuts, cuts[1:] + cuts[:1]):
                 chain += [((wb, wa), None)] if wb < wa else [((wb, 1.0), None), ((0.0, wa), None)]
@@ -166,7 +157,7 @@ class CamProfile:
             ea, eb = int(ii[pick]), int(jj[pick])
             wa = w[ea] + ti[pick] * step
             wb = w[eb] + tj[pick] * step
-            wa, wb = _refine(self.branch, wa, wb, w[max(ea - 2, 0)], w[min(ea + 3, len(w) - 1)],
+            wa, wb = refine_crossing(self.branch, wa, wb, w[max(ea - 2, 0)], w[min(ea + 3, len(w) - 1)],
                              w[max(eb - 2, 0)], w[min(eb + 3, len(w) - 1)])
             pieces.append(Piece(self.spec.contact, self.branch, start, wa))
             loops.append((self._phi(wa), self._phi(wb)))
