@@ -3,7 +3,8 @@
 * **Ladder** (12/30 pair, every line and the region) at tol 1e-2 ... 1e-9 shift units: the achieved
   deviation is the larger of (a) the largest distance of the traced polylines from the exact lines,
   measured at every vertex and every chord's middle as the nearest zero of the margin on eight rays
-  (the chord's normal, the chord, the diagonals) solved to 1e-14, and (b) the largest distance of a
+  (the chord's normal, the chord, the diagonals) solved to 1e-14 (and, where none lies within tol / 16,
+  along the normal down to round-off: a strip narrower than the shortest ray beside a point), and (b) the largest distance of a
   much finer trace (tol 1e-10) from the traced lines (a piece missing: a gap), and (c) the largest
   distance of an exact zero found on scan lines across the window (no trace involved) from the traced
   lines (a piece every trace misses, the reference's too). The contract is
@@ -25,7 +26,7 @@ import numpy as np
 from gearkit.bench.topology import topology
 from gearkit.export import text_number
 
-__all__ = ["ladder_rows", "target_rows", "atlas_rows", "deviation", "scan_gap", "format_section"]
+__all__ = ["ladder_rows", "target_rows", "atlas_rows", "deviation", "polyline_deviation", "scan_gap", "format_section"]
 
 LADDER = (1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9)
 QUICK_LADDER = (1e-3, 1e-6)
@@ -36,6 +37,8 @@ RATIO_TARGET = 2.0  #: achieved / tol (issue 19)
 ROUND_OFF = 1e-12  #: |margin| taken as zero
 MEASURE_TOL = 1e-14  #: accuracy of the exact points the deviation is measured against
 RAY_ROUNDS = 10  #: ray lengths tol / 16 ... tol 4**8: the nearest zero first
+SHORT_RATIO = 8.0  #: below tol / 16, the normal is sampled at distances shrinking by this factor
+FLOOR = 1e-13  #: ... down to this fraction of the window's diagonal (round-off)
 ATLAS_GRID = (10, 20, 30, 40)
 SCANS = 80  #: scan lines per axis of the independent gap measure (:func:`scan_gap`)
 SCAN_SAMPLES = 800  #: samples per scan line
@@ -65,14 +68,33 @@ def deviation(contour) -> float:
     True
     """
     from gearkit.blocking.arrays import evaluator
-    from gearkit.blocking.brackets import segment_roots
-    from gearkit.blocking.edges import toward_edge
 
     names = [ln.name for ln in contour.lines] + ["region"]
     F = evaluator(contour.field, names, contour.window)
-    pts, nrm, ids = [], [], []
     polys = [(k, c) for k, ln in enumerate(contour.lines) for c in ln.components]
     polys += [(len(names) - 1, p) for p in contour.region]
+    return polyline_deviation(F, polys, contour.tol, _span(contour.window))
+
+
+def polyline_deviation(F, polys, tol: float, span: float) -> float:
+    """Largest distance of the polylines ``polys`` (``[(k, (n, 2))]``: function ``k`` of ``F``) from
+    the zero sets of their functions, at each vertex and chord middle: the nearest zero on eight rays
+    (the chord's normal, the chord, the diagonals) of lengths ``tol / 16`` ... ``tol * 4**8``, solved
+    to ``MEASURE_TOL``, and, where none lies within ``tol / 16``, along the normal at distances
+    shrinking to round-off (``span``: the window's diagonal): a strip narrower than ``tol / 16``
+    beside a point (both its zeros crossed by the shortest ray) is seen.
+
+    Examples
+    --------
+    >>> F = lambda p, k: 1e12 * p[:, 1] * (p[:, 1] - 1e-6) * (p[:, 1] - 0.3)  # zeros y = 0, 1e-6, 0.3
+    >>> line = np.array([[0.0, -1e-7], [1.0, -1e-7]])  # 1e-7 below the strip 0 < y < 1e-6
+    >>> bool(abs(polyline_deviation(F, [(0, line)], 1e-3, 1.0) - 1e-7) < 1e-12)
+    True
+    """
+    from gearkit.blocking.brackets import segment_roots
+    from gearkit.blocking.edges import toward_edge
+
+    pts, nrm, ids = [], [], []
     for k, c in polys:
         if len(c) < 2:
             continue
@@ -89,12 +111,18 @@ def deviation(contour) -> float:
     # |F| at round-off: on the zero set (also where F only touches zero, with no sign change near)
     todo = np.flatnonzero(np.isfinite(f0) & (np.abs(f0) > ROUND_OFF))
     # rays start short (a ray across a strip narrower than itself sees no sign change) and grow
-    r = contour.tol / 16
+    r = tol / 16
     T = np.column_stack([N[:, 1], -N[:, 0]])
     rays = [s * D for D in (N, T, (N + T) / np.sqrt(2), (N - T) / np.sqrt(2)) for s in (1.0, -1.0)]
-    for _ in range(RAY_ROUNDS):  # the nearest zero on 8 rays of growing length (the normal, the chord, diagonals)
+    for rnd in range(RAY_ROUNDS):  # the nearest zero on 8 rays of growing length (the normal, the chord, diagonals)
         if not todo.size:
             break
+        if rnd == 1:  # none within tol / 16: a strip narrower than that beside the point, along the normal
+            found_at = []
+            todo = todo[~_short_zero(F, P[todo], N[todo], f0[todo], K[todo], tol / 16, span, found_at)]
+            worst = max([worst] + found_at)
+            if not todo.size:
+                break
         best = np.full(todo.size, np.inf)
         for D in rays:
             end = P[todo] + r * D[todo]
@@ -123,6 +151,40 @@ def deviation(contour) -> float:
             est = np.abs(f0[todo]) / g
         worst = max(worst, float(np.nanmax(np.where(np.isfinite(est), est, r / 4))))
     return worst
+
+
+def _span(window) -> float:
+    """The window's diagonal."""
+    return float(np.hypot(window[1] - window[0], window[3] - window[2]))
+
+
+def _short_zero(F, P, N, f0, K, reach, span, found_at):
+    """True where a zero lies on the normal through ``P`` closer than ``reach``: samples at distances
+    shrinking by ``SHORT_RATIO`` from ``reach`` down to round-off on both sides (beside the no-pair edge
+    the margins vary as the cube root of the distance to it: a strip there may be 1e-6 wide at any
+    tol), the sign change nearest to ``P`` solved to ``MEASURE_TOL``; its largest distance is appended
+    to ``found_at``."""
+    from gearkit.blocking.brackets import segment_roots
+
+    n = max(1, int(np.ceil(np.log(reach / (FLOOR * span)) / np.log(SHORT_RATIO))))
+    d = reach * SHORT_RATIO ** -np.arange(n + 1)[::-1]  # ascending, up to reach
+    best = np.full(len(P), np.inf)
+    for s in (1.0, -1.0):
+        Q = P[:, None, :] + s * d[None, :, None] * N[:, None, :]
+        V = np.column_stack([f0, F(Q.reshape(-1, 2), np.repeat(K, d.size)).reshape(len(P), d.size)])
+        ch = np.isfinite(V[:, :-1]) & np.isfinite(V[:, 1:]) & ((V[:, :-1] > 0) != (V[:, 1:] > 0))
+        j = np.argmax(ch, axis=1)
+        r = np.flatnonzero(ch[np.arange(len(P)), j])
+        if not r.size:
+            continue
+        j = j[r]
+        lo = np.where((j > 0)[:, None], Q[r, np.maximum(j - 1, 0)], P[r])
+        root = segment_roots(F, lo, Q[r, j], V[r, j], V[r, j + 1], MEASURE_TOL, K[r])
+        best[r] = np.minimum(best[r], np.hypot(*(root - P[r]).T))
+    ok = np.isfinite(best)
+    if ok.any():
+        found_at.append(float(best[ok].max()))
+    return ok
 
 
 def scan_gap(contour, scans: int = SCANS, samples: int = SCAN_SAMPLES):
