@@ -154,16 +154,18 @@ class _Quadratic:
 
 
 def test_newton_from_settles_an_end_minimum_on_the_end_and_finds_an_inner_one():
-    from gearkit.contact.minimise import minimise, newton_from
+    """Oracle: the fresh minimiser on the same quadratics, and their centres."""
+    from gearkit.contact.minimise import _TRAVEL, minimise, newton_from
 
-    a, b = np.zeros(4), np.full(4, 0.3)
-    centre = np.array([-0.5, 0.1, 0.9, 0.2])  # below, inside, above, inside
-    start = np.array([0.05, 0.25, 0.5, -1.0])  # inside, inside, beyond b, beyond a
+    a, b = np.zeros(5), np.full(5, 0.3)
+    centre = np.array([-0.5, 0.1, 0.9, -0.2, 0.25])  # below, inside, above, below, inside
+    start = np.array([0.05, 0.11, 0.5, -1.0, 0.01])  # inside, near, beyond b, beyond a, far from its minimum
     task = _Quadratic(centre)
     value, t, ok = newton_from(task, a, b, start, 6)
-    assert ok.all()
+    assert ok.tolist() == [True, True, True, True, False]  # the last start travels more than _TRAVEL: afresh
+    assert abs(centre[4] - start[4]) > _TRAVEL * 0.3
     fresh_value, fresh_t = minimise(task, a, b)
-    assert t[0] == 0.0 and t[2] == a[2] + (b[2] - a[2])  # on the ends, exactly, as the probes place them
-    assert np.array_equal(t[[0, 2]], fresh_t[[0, 2]])
-    assert np.abs(t[[1, 3]] - centre[[1, 3]]).max() <= 1e-12 * 0.3
-    assert np.abs(value - fresh_value).max() <= 1e-24
+    assert t[0] == 0.0 and t[3] == 0.0 and t[2] == a[2] + (b[2] - a[2])  # on the ends, as the probes place them
+    assert np.array_equal(t[[0, 2, 3]], fresh_t[[0, 2, 3]])
+    assert abs(t[1] - centre[1]) <= 1e-12 * 0.3
+    assert np.abs(value[:4] - fresh_value[:4]).max() <= 1e-24

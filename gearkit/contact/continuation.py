@@ -12,9 +12,12 @@ function rising from the interval's end: the neighbour interval of a contact, a 
 confirmed by one evaluation on the end. The instants a pair enters or leaves contact, between two steps
 of a cycle, start every row from those two steps' minima (``given``).
 
-The fallback is the fresh minimisation: a row without a start, and any row
-:func:`~gearkit.contact.minimise.newton_from` does not confirm (an evaluation not finite, no convergence in
-``ITERATIONS`` steps). On the exact pieces, or on tables without derivatives, every row is minimised afresh.
+The fallback is the fresh minimisation: a row without a start, a row whose interval ends on a corner of the
+driver (a join of its pieces that is not smooth, where the bound can have a second minimum on the corner
+itself), and any row :func:`~gearkit.contact.minimise.newton_from` does not confirm (an evaluation not finite,
+no convergence in ``ITERATIONS`` steps, a minimum more than a quarter of the interval from its start: no
+continuation of it; on the cycloid pair 8/64 at 64 steps such a start would settle on a node beside a second,
+shallow minimum). On the exact pieces, or on tables without derivatives, every row is minimised afresh.
 
 The minima are those of the fresh path to round-off: the same stationary point found from another start
 (their parameters agree within Newton's tolerance, their values to the last bits), the same end where the
@@ -43,7 +46,7 @@ from gearkit.contact.minimise import minimise, newton_from
 __all__ = ["ITERATIONS", "NODE_EVERY", "continued", "driver_derivatives", "nodes", "row_key", "starts"]
 
 #: driver angles between two minimised afresh
-NODE_EVERY = 16
+NODE_EVERY = 8
 #: most Newton steps of a continued row before it is minimised afresh
 ITERATIONS = 6
 
@@ -93,9 +96,13 @@ def continued(task, lo, hi, step, key, span, given=None):
     if not task.smooth:
         return minimise(task, lo, hi)
     value, t = np.empty(len(lo)), np.empty(len(lo))
+    # next to a corner of the driver (a join of its pieces that is not smooth) the bound can have a second
+    # minimum, on the corner: those intervals are probed afresh
+    drv, m = task.mesh.driver, task.interval
+    corner = drv.corner_end[m] | drv.corner_end[m + 1]
     if given is None:
         step = step - step.min(initial=0)  # the first angle is a node
-        node = nodes(step)
+        node = nodes(step) | corner
         at = np.flatnonzero(node)
         if at.size:
             value[at], t[at] = minimise(task.subset(at), lo[at], hi[at])
@@ -113,6 +120,7 @@ def continued(task, lo, hi, step, key, span, given=None):
         off = np.arange(len(lo))
         before = np.floor(position)
         x = starts(code, t_given, span, before, before + 1, position - before, key)
+        x[corner] = np.nan
     go = np.isfinite(x)
     ok = np.zeros(len(off), bool)
     if go.any():

@@ -44,6 +44,8 @@ _GOLD = 0.3819660112501051
 _PROBES = 5
 #: Newton stops when its step (or its bracket) is below this fraction of the interval
 _NEWTON_TOL = 1e-12
+#: :func:`newton_from` confirms a minimum at most this fraction of the interval from its start
+_TRAVEL = 0.25
 
 
 def minimise(task, a, b):
@@ -110,21 +112,22 @@ def newton_from(task, a, b, x, iterations):
     A start beyond an end is moved onto it. ``ok`` where the iteration converged to a minimum strictly inside
     (farther than its tolerance from either end), or stayed on an end (``a``, or ``a + (b - a)`` as
     :func:`minimise` spaces its probes) because the function rises from it there; a row that ends near an end
-    from inside starts once more from that end. Elsewhere (an evaluation not finite, no convergence) the caller
+    from inside starts once more from that end. Elsewhere (an evaluation not finite, no convergence, a minimum
+    farther than ``_TRAVEL`` of the interval from the start: the start was no continuation of it) the caller
     minimises afresh.
     """
     n = len(a)
     width = b - a
     end = a + width
-    x = np.minimum(np.maximum(x, a), end)
-    x, fx, done = _newton(task, np.arange(n), width, a.copy(), b.copy(), x, iterations)
+    x0 = np.minimum(np.maximum(x, a), end)
+    x, fx, done = _newton(task, np.arange(n), width, a.copy(), b.copy(), x0, iterations)
     tol = _NEWTON_TOL * width
-    ok = done & (((x > a + tol) & (x < b - tol)) | (x == a) | (x == end))
+    ok = done & (((x > a + tol) & (x < b - tol)) | (x == a) | (x == end)) & (np.abs(x - x0) <= _TRAVEL * width)
     again = np.flatnonzero(~ok)
     if again.size:  # once more from the nearer end, where the minimum may sit
         e = np.where(x[again] - a[again] < end[again] - x[again], a[again], end[again])
         x2, f2, d2 = _newton(task, again, width[again], a[again].copy(), b[again].copy(), e, 1)
-        settled = d2 & (x2 == e)
+        settled = d2 & (x2 == e) & (np.abs(e - x0[again]) <= _TRAVEL * width[again])
         at = again[settled]
         x[at], fx[at], ok[at] = e[settled], f2[settled], True
     return fx, x, ok
