@@ -28,7 +28,7 @@ from gearkit.errors import GeometryError
 from gearkit.families.cam.crossings import corner_cut, refine_cut
 from gearkit.families.cam.halfplanes import face_lines
 
-__all__ = ["roller_depth", "kept_runs", "FaceEdge", "corner_lines", "face_boundary"]
+__all__ = ["roller_depth", "kept_runs", "turned_back", "FaceEdge", "corner_lines", "face_boundary"]
 
 
 def roller_depth(pitch_points, radius: float, start: float, samples: int = 65536):
@@ -50,11 +50,13 @@ def kept_runs(curve, depth, slack: float, meet: float, circles=(), samples: int 
     be below ``wa``: the cut runs through ``w = 1``), each refined to the envelope's self-crossing, in
     the order the cam's boundary runs (:func:`_cam_cycle`; a crossing's ends within ``meet``, mm). A
     sample is kept where ``depth`` (:func:`roller_depth`) is at most ``slack`` (mm: the swept region's
-    own sampling error). A cut from or to a roller's arc about a velocity jump's corner (``circles``,
-    :func:`~gearkit.families.cam.crossings.corner_cut`) is sought where the envelope beside it comes out
-    of that circle. Empty when the whole envelope bounds the cam."""
+    own sampling error) and the envelope does not run back along the roller there (:func:`turned_back`:
+    its own neighbours cover it, exactly, however shallow the loop). A cut from or to a roller's arc about
+    a velocity jump's corner (``circles``, :func:`~gearkit.families.cam.crossings.corner_cut`) is sought
+    where the envelope beside it comes out of that circle. Empty when the whole envelope bounds the cam."""
     w = np.linspace(0.0, 1.0, samples)
-    keep = depth(curve(w)) <= slack
+    pts, tangents, _ = curve.solve(w)
+    keep = (depth(pts) <= slack) & ~turned_back(pts, tangents)
     keep[-1] = keep[0]  # w = 1 is w = 0
     if keep.all():
         return []
@@ -64,6 +66,30 @@ def kept_runs(curve, depth, slack: float, meet: float, circles=(), samples: int 
     starts = [int(j) for j in k if not keep[j - 1 if j else samples - 2]]  # runs beginning at j
     ends = [int(j) for j in k if not keep[j + 1]]  # runs ending at j
     return _cam_cycle(curve, w, keep, starts, ends, meet, circles)
+
+
+def turned_back(pts, tangents):
+    """Which samples of the closed envelope ``pts`` (one turn, the last the first) run against the
+    roller's tangent ``tangents`` at their contact, compared with the first (the start angle, where the
+    envelope bounds the cam): the envelope point ``c + R_p n`` of a pitch curve ``c`` moves as
+    ``c' (1 - R_p k)`` (``k`` its convex curvature), so it turns back exactly where the roller is larger
+    than the radius of curvature, and about a concave corner of the pitch curve (a velocity jump), where
+    it sweeps the roller's arc the other way. Such a point lies inside the rollers of the cam angles
+    either side, at any depth: a loop shallower than the swept region's sampling error (the chords of its
+    pitch polyline read the boundary that much deep) is cut all the same. Read from the samples' central
+    differences (a loop narrower than a sample step is seen at most at one end of its tails, inside it too).
+
+    >>> t = np.linspace(0.0, 2.0 * np.pi, 9)
+    >>> pts = np.stack([np.cos(t), np.sin(t)], -1)
+    >>> tangents = np.stack([-np.sin(t), np.cos(t)], -1)
+    >>> tangents[3] *= -1.0
+    >>> turned_back(pts, tangents).nonzero()[0].tolist()
+    [3]
+    """
+    d = np.roll(pts[:-1], -1, axis=0) - np.roll(pts[:-1], 1, axis=0)  # central differences, cyclic
+    along = np.einsum("ij,ij->i", d, tangents[:-1])
+    back = along * along[0] < 0.0
+    return np.append(back, back[0])
 
 
 def _cam_cycle(curve, w, keep, starts, ends, meet: float, circles=()):
