@@ -217,20 +217,21 @@ def place_by_curvature(w, points, tol: float) -> np.ndarray:
     >>> bool(np.allclose(np.diff(placed), 1 / 25))
     True
     """
-    order = np.argsort(w, kind="stable")
-    w, p = np.asarray(w, dtype=float)[order], np.asarray(points, dtype=float)[order]
-    d = np.diff(p, axis=0)
+    w, p = np.asarray(w, dtype=float), np.asarray(points, dtype=float)
+    order = w.argsort(kind="stable")
+    w, p = w[order], p[order]
+    d = p[1:] - p[:-1]
     length = np.hypot(d[:, 0], d[:, 1])
     if len(length) < 2 or not length.max(initial=0.0) > 0.0:
         return np.array([0.0, 1.0])
     a, b = d[:-1], d[1:]
-    turn = np.arctan2(np.abs(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]), (a * b).sum(axis=1))
+    turn = np.arctan2(np.abs(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]), a[:, 0] * b[:, 0] + a[:, 1] * b[:, 1])  # (a b) summed
     mean = 0.5 * (length[:-1] + length[1:])
     with np.errstate(divide="ignore", invalid="ignore"):
         k = np.where((length[:-1] > 0) & (length[1:] > 0), turn / mean, 0.0)  # at the inner vertices
     root = np.sqrt(np.concatenate([k[:1], k, k[-1:]]))
-    n_of_s = np.concatenate([[0.0], np.cumsum(length * 0.5 * (root[:-1] + root[1:]))]) / math.sqrt(8.0 * tol)
+    n_of_s = np.concatenate([[0.0], np.add.accumulate(length * 0.5 * (root[:-1] + root[1:]))]) / math.sqrt(8.0 * tol)
     chords = max(1, math.ceil(n_of_s[-1] - 1e-9))
     placed = np.interp(np.linspace(0.0, n_of_s[-1], chords + 1), n_of_s, w)
     placed[0], placed[-1] = 0.0, 1.0
-    return placed[np.concatenate([[True], np.diff(placed) > 0.0])]  # sorted already (np.unique imports numpy.ma)
+    return placed[np.concatenate([[True], (placed[1:] - placed[:-1]) > 0.0])]  # sorted already (np.unique imports numpy.ma)

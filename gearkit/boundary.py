@@ -50,11 +50,11 @@ def _refine_crossing(fa, fb, wa, wb, bounds_a, bounds_b):
             break
         if not np.all(np.isfinite(step)):
             break
-        norm = np.linalg.norm(f)
+        norm = math.sqrt(f.dot(f))  # np.linalg.norm of a vector, without its dispatch
         for _ in range(40):
-            trial = np.clip(x - step, lo, hi)
+            trial = (x - step).clip(lo, hi)
             f_trial, on_a, near = gap(trial)
-            if np.linalg.norm(f_trial) < norm or not np.any(step):
+            if math.sqrt(f_trial.dot(f_trial)) < norm or not step.any():
                 break
             step = 0.5 * step
         else:
@@ -62,7 +62,7 @@ def _refine_crossing(fa, fb, wa, wb, bounds_a, bounds_b):
         moved = np.abs(trial - x).max()
         x, f, (pa, pb), at_x = trial, f_trial, near, on_a
         scale = 1.0 + float(np.abs(at_x).max())
-        if moved < 1e-16 or np.linalg.norm(f) <= 2e-16 * scale:
+        if moved < 1e-16 or math.sqrt(f.dot(f)) <= 2e-16 * scale:
             break
     if np.linalg.norm(f) > 1e-13 * (1.0 + float(np.abs(at_x).max())):
         x = np.array(zoom_crossing(fa, fb, x[0], x[1], bounds_a, bounds_b)[:2])
@@ -101,9 +101,10 @@ def _drop_coincident(pts, rel=1e-13):
         return pts
     eps = rel * float(np.abs(pts).max())
     keep = np.ones(len(pts), dtype=bool)
-    keep[1:] = np.linalg.norm(np.diff(pts, axis=0), axis=1) > eps
+    step = pts[1:] - pts[:-1]
+    keep[1:] = np.sqrt(np.add.reduce(step * step, axis=1)) > eps  # np.linalg.norm's sum, without its checks
     keep[-1] = True
-    kept = np.flatnonzero(keep)
+    kept = keep.nonzero()[0]
     if len(kept) > 2 and np.linalg.norm(pts[kept[-1]] - pts[kept[-2]]) <= eps:
         keep[kept[-2]] = False
     return pts[keep]
@@ -237,11 +238,13 @@ def trim_half_tooth(branches, teeth_or_angle, tip_radius: float, internal: bool,
     sections = _remove_loops(branches, pts, owner, ws, significant=1e-6 * detect_tol)
     pieces, joins = _pieces_of(branches, sections)
 
-    def psi(p):
-        return coords(p)[1]
+    def psi(p):  # the angle alone (polar_from_y's or linear_coords' second value, to the bit)
+        p = np.asarray(p, dtype=float)
+        return p[..., 0] if pitch is not None else np.arctan2(p[..., 0], p[..., 1])
 
-    def rho(p):
-        return coords(p)[0]
+    def rho(p):  # the radius alone (their first value)
+        p = np.asarray(p, dtype=float)
+        return p[..., 1] if pitch is not None else np.hypot(p[..., 0], p[..., 1])
 
     found = crossings_many(pieces, [(psi, half), (psi, 0.0), (rho, tip_radius)])
     marks = [(k, w, kind) for kind, hits in zip("SCR", found) for k, w in hits]

@@ -31,7 +31,8 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["angle_parts", "chord_distance", "interval_bounds", "leg_bound", "monotone_range", "round_off"]
+__all__ = ["angle_parts", "chord_distance", "fractions_of", "interval_bounds", "leg_bound", "monotone_range",
+           "point_distance", "round_off"]
 
 #: a leg's parts must reproduce its exact end tangent to this angle (rad): round-off of the parts
 CONSISTENT = 1e-9
@@ -50,12 +51,22 @@ def chord_distance(a, b, q):
     return _distance(a[..., 0], a[..., 1], b[..., 0] - a[..., 0], b[..., 1] - a[..., 1], q[..., 0], q[..., 1])
 
 
+def point_distance(ax, ay, dx, dy, qx, qy):
+    """:func:`chord_distance` on coordinates: points ``(qx, qy)`` from the segments from ``(ax, ay)`` along
+    ``(dx, dy)`` (all broadcast; laid out with the long axis last, every operation runs along it).
+
+    >>> float(point_distance(0.0, 0.0, 2.0, 0.0, np.array(1.0), np.array(-0.5)))
+    0.5
+    """
+    return _distance(ax, ay, dx, dy, qx, qy)
+
+
 def _distance(ax, ay, dx, dy, qx, qy):
     """:func:`chord_distance` on coordinates: points ``(qx, qy)`` from the segments from ``(ax, ay)``
     along ``(dx, dy)``."""
     dd = dx * dx + dy * dy
     with np.errstate(divide="ignore", invalid="ignore"):
-        t = np.clip(((qx - ax) * dx + (qy - ay) * dy) / dd, 0.0, 1.0)
+        t = (((qx - ax) * dx + (qy - ay) * dy) / dd).clip(0.0, 1.0)
     t = np.where(dd > 0, t, 0.0)
     fx, fy = qx - (ax + t * dx), qy - (ay + t * dy)
     return np.sqrt(fx * fx + fy * fy)
@@ -74,7 +85,7 @@ def _cos_sin(angle):
     starts or ends at the leg's own tangent, as it does wherever the parts turn one way."""
     angle = np.asarray(angle)
     turn = angle != 0.0
-    if turn.all():
+    if np.count_nonzero(turn) == turn.size:
         return np.cos(angle), np.sin(angle)
     return np.cos(angle, out=np.ones_like(angle), where=turn), np.sin(angle, out=np.zeros_like(angle), where=turn)
 
@@ -91,7 +102,8 @@ def leg_bound(a, b, ta, tb, dparts, chord_a, chord_b):
     cx, cy = chord_a[..., 0], chord_a[..., 1]
     dx, dy = chord_b[..., 0] - cx, chord_b[..., 1] - cy
     ends = np.maximum(_distance(cx, cy, dx, dy, a[..., 0], a[..., 1]), _distance(cx, cy, dx, dy, b[..., 0], b[..., 1]))
-    return _legs(a[..., 0], a[..., 1], b[..., 0], b[..., 1], np.asarray(ta, dtype=float), np.asarray(tb, dtype=float),
+    ta, tb = np.asarray(ta, dtype=float), np.asarray(tb, dtype=float)
+    return _legs(a[..., 0], a[..., 1], b[..., 0], b[..., 1], (ta[..., 0], ta[..., 1]), (tb[..., 0], tb[..., 1]),
                  monotone_range(np.asarray(dparts, dtype=float)), (cx, cy, dx, dy), ends)
 
 
@@ -103,12 +115,12 @@ def monotone_range(dparts):
 
 
 def _legs(ax, ay, bx, by, ta, tb, turn, chord, ends):
-    """:func:`leg_bound` on coordinates, given the range ``turn = (lo, hi, total)`` of each leg's tangent
-    angle and its total turn, and the larger distance ``ends`` of each leg's two ends from its chord
-    ``(x, y, dx, dy)`` (a walk shares them between its legs)."""
+    """:func:`leg_bound` on coordinates (the unit tangents ``ta``, ``tb`` too, as ``(x, y)`` pairs), given the
+    range ``turn = (lo, hi, total)`` of each leg's tangent angle and its total turn, and the larger distance
+    ``ends`` of each leg's two ends from its chord ``(x, y, dx, dy)`` (a walk shares them between its legs)."""
     lo, hi, total = turn
     width = hi - lo
-    tax, tay = ta[..., 0], ta[..., 1]
+    tax, tay = ta
     cx, cy = bx - ax, by - ay
     cos_lo, sin_lo = _cos_sin(lo)
     lox, loy = cos_lo * tax - sin_lo * tay, sin_lo * tax + cos_lo * tay
@@ -121,7 +133,7 @@ def _legs(ax, ay, bx, by, ta, tb, turn, chord, ends):
     lox, loy, hix, hiy = sense * lox, sense * loy, sense * hix, sense * hiy
     # cross(d_lo, d_hi): sin(width), which is sin(hi) where the range starts at the leg's tangent
     turned = lo != 0.0
-    swing = np.sin(width, out=np.array(sin_hi), where=turned) if turned.any() else sin_hi
+    swing = np.sin(width, out=np.array(sin_hi), where=turned) if np.count_nonzero(turned) else sin_hi
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         along_lo = np.where(swing > 0, (cx * hiy - cy * hix) / swing, 0.0)
         along_hi = np.where(swing > 0, (lox * cy - loy * cx) / swing, 0.0)
@@ -131,18 +143,18 @@ def _legs(ax, ay, bx, by, ta, tb, turn, chord, ends):
                          _distance(*chord, ax + along_hi * hix, ay + along_hi * hiy))
     narrow = width < NARROW
     bound = np.maximum(ends, corners)
-    if narrow.any():
+    if np.count_nonzero(narrow):
         bound = np.where(narrow, ends + 0.5 * length * np.tan(0.5 * np.minimum(width, 3.0)), bound)
     # the parts must reproduce the end tangent, the range stay below a half turn, the chord lie in the cone
     total = np.asarray(total)
     at_hi = total == hi  # parts turning one way: the total turn is an end of the range
     cos, sin = np.where(at_hi, cos_hi, cos_lo), np.where(at_hi, sin_hi, sin_lo)
     mixed = ~at_hi & (total != lo)
-    if mixed.any():
+    if np.count_nonzero(mixed):
         np.cos(total, out=cos, where=mixed)
         np.sin(total, out=sin, where=mixed)
     ex, ey = cos * tax - sin * tay, sin * tax + cos * tay
-    tbx, tby = tb[..., 0], tb[..., 1]
+    tbx, tby = tb
     ok = (np.abs(ex * tby - ey * tbx) <= CONSISTENT) & (ex * tbx + ey * tby > 0.0) & (width < 0.5 * np.pi)
     ok &= narrow | ((along_lo >= -slack) & (along_hi >= -slack))
     ok &= narrow | ~(length > 0) | (along_mid != 0.0)
@@ -172,22 +184,43 @@ def _walk_bound(rows, pts, tan, parts, q, tq, pq, span=None):
     as :func:`interval_bounds`."""
     n = len(rows)
 
-    def walk(at, inner, width):  # (width, n, probes + 2): each coordinate contiguous
+    def walk(at, inner, width):  # (width, probes + 2, n): each coordinate of a walk's point contiguous over the
+        # intervals, so that every operation runs along them (not along a walk's few points, interval by interval)
         return np.concatenate([at[rows, None], inner.reshape(n, -1, width), at[rows + 1, None]],
-                              axis=1).transpose(2, 0, 1).copy()
+                              axis=1).transpose(2, 1, 0).copy()
 
-    (px, py), t = walk(pts, q, 2), walk(tan, tq, 2).transpose(1, 2, 0)
+    (px, py), (tx, ty) = walk(pts, q, 2), walk(tan, tq, 2)
     walked = walk(parts, pq, parts.shape[-1])
     if span is None:
-        turn = monotone_range(np.diff(walked, axis=-1).transpose(1, 2, 0))
+        step = walked[:, 1:] - walked[:, :-1]  # (k, legs, n): the parts first, summed in their order
+        turn = _sum_first(np.minimum(step, 0.0)), _sum_first(np.maximum(step, 0.0)), _sum_first(step)
     else:
-        walked = walked.transpose(1, 2, 0)
-        turn = span(walked[:, :-1], walked[:, 1:], rows)
-    cx, cy = pts[rows, 0, None], pts[rows, 1, None]
-    chord = (cx, cy, pts[rows + 1, 0, None] - cx, pts[rows + 1, 1, None] - cy)
+        walked = walked.transpose(2, 1, 0)
+        turn = tuple(np.ascontiguousarray(np.broadcast_to(v, (n, walked.shape[1] - 1)).T)
+                     for v in span(walked[:, :-1], walked[:, 1:], rows))
+    cx, cy = pts[rows, 0], pts[rows, 1]
+    chord = (cx, cy, pts[rows + 1, 0] - cx, pts[rows + 1, 1] - cy)
     dist = _distance(*chord, px, py)  # each probe's distance, shared by the two legs it ends
-    return _legs(px[:, :-1], py[:, :-1], px[:, 1:], py[:, 1:], t[:, :-1], t[:, 1:], turn, chord,
-                 np.maximum(dist[:, :-1], dist[:, 1:])).max(axis=1)
+    return _legs(px[:-1], py[:-1], px[1:], py[1:], (tx[:-1], ty[:-1]), (tx[1:], ty[1:]), turn, chord,
+                 np.maximum(dist[:-1], dist[1:])).max(axis=0)
+
+
+def _sum_first(x):
+    """:func:`_sum_parts` over the first axis: ``x[0] + x[1] + ...``, added in order."""
+    total = x[0]
+    for j in range(1, len(x)):
+        total = total + x[j]
+    return total
+
+
+def fractions_of(lo, width, fractions):
+    """``lo + width * f`` for every interval and fraction ``f``, ``(m, j)``: ``lo[:, None] + width[:, None] *
+    fractions`` to the bit, computed along the intervals (``(j, m)``, a pass per operation) and turned.
+
+    >>> fractions_of(np.array([0.0, 1.0]), np.array([1.0, 2.0]), np.array([0.25, 0.5])).tolist()
+    [[0.25, 0.5], [1.5, 2.0]]
+    """
+    return np.ascontiguousarray((lo + width * np.asarray(fractions)[:, None]).T)
 
 
 def interval_bounds(turning, w, pts, tan, parts, tol, fractions, rows=None, probed=None, span=None):
@@ -208,10 +241,10 @@ def interval_bounds(turning, w, pts, tan, parts, tol, fractions, rows=None, prob
     its tangent's rate)."""
     rows = np.arange(len(w) - 1) if rows is None else rows
     lo, hi = w[rows], w[rows + 1]
-    probes = lo[:, None] + (hi - lo)[:, None] * fractions
+    probes = fractions_of(lo, hi - lo, fractions)
     q, tq, pq = turning(probes, rows) if probed is None else probed
     bound = _walk_bound(rows, pts, tan, parts, q, tq, pq, span)
-    near = np.flatnonzero((bound > tol) & (bound < RETRY * tol))
+    near = ((bound > tol) & (bound < RETRY * tol)).nonzero()[0]
     if len(near):
         fine = lo[near, None] + (hi - lo)[near, None] * np.linspace(0.0, 1.0, FINE + 1)[1:-1]
         bound[near] = np.minimum(bound[near], _walk_bound(rows[near], pts, tan, parts, *turning(fine, rows[near]),

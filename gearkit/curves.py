@@ -186,11 +186,11 @@ def polyline_self_intersections(points):
     hi = np.maximum(a, b)
     # an edge of no length (a repeated point) crosses nothing, and a run of them at one point would pair
     # each with every other in the sweep: only edges of some length take part
-    live = np.flatnonzero((a != b).any(axis=1))
-    order = live[np.argsort(lo[live, 0], kind="stable")]
-    lo_s, hi_s = lo[order], hi[order]
+    live = ((a[:, 0] != b[:, 0]) | (a[:, 1] != b[:, 1])).nonzero()[0]
+    lox, loy, hix, hiy = lo[:, 0], lo[:, 1], hi[:, 0], hi[:, 1]
+    order = live[lox[live].argsort(kind="stable")]
     # candidate pairs: x-ranges overlap (sweep over edges sorted by their left end)
-    reach = np.searchsorted(lo_s[:, 0], hi_s[:, 0], side="right")
+    reach = np.searchsorted(lox[order], hix[order], side="right")
     counts = reach - np.arange(len(order)) - 1
     counts = np.maximum(counts, 0)
     first = np.repeat(np.arange(len(order)), counts)
@@ -199,7 +199,7 @@ def polyline_self_intersections(points):
     ei, ej = order[first], order[second]
     swap = ei > ej
     ei, ej = np.where(swap, ej, ei), np.where(swap, ei, ej)
-    keep = (ej - ei > 1) & (lo[ei, 1] <= hi[ej, 1]) & (lo[ej, 1] <= hi[ei, 1])
+    keep = (ej - ei > 1) & (loy[ei] <= hiy[ej]) & (loy[ej] <= hiy[ei])
     ei, ej = ei[keep], ej[keep]
     d1 = b[ei] - a[ei]
     d2 = b[ej] - a[ej]

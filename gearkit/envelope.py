@@ -17,6 +17,7 @@ machine precision wherever it is asked.
 from __future__ import annotations
 
 import math
+from itertools import accumulate
 
 import numpy as np
 
@@ -109,7 +110,9 @@ class Branch:
 
 
 def _tool_parameters(branch, w):
-    w = np.atleast_1d(np.asarray(w, dtype=float))
+    w = np.asarray(w, dtype=float)
+    if not w.ndim:  # np.atleast_1d's reshape, without its dispatch
+        w = w.reshape(1)
     if branch.u1 == 1.0 and branch.u0 == 0.0 and math.copysign(1.0, branch.u0) == 1.0:
         # +0 (1 - w) + 1 w is w itself to the bit (+ 0.0: a -0 sums to +0 there too)
         return w + 0.0
@@ -124,7 +127,7 @@ def _parted(sizes, *arrays):
     """The arrays cut into consecutive parts of ``sizes``: one tuple per part."""
     if len(sizes) == 1:
         return [arrays]
-    ends = np.cumsum(sizes).tolist()
+    ends = list(accumulate(sizes))
     return [tuple(a[i - n:i] for a in arrays) for n, i in zip(sizes, ends)]
 
 

@@ -172,8 +172,7 @@ class RollingMotion:
             with np.errstate(divide="ignore", invalid="ignore"):
                 t = -p[:, 1] / n[:, 1]
             valid = np.abs(n[:, 1]) > 1e-14
-            hit = p + t[:, None] * n
-            s = np.where(valid, hit[:, 0], np.nan)
+            s = np.where(valid, p[:, 0] + t * n[:, 0], np.nan)  # where the normal line meets the x axis
             return s, valid
         rel = p - np.array([0.0, c])
         b = np.einsum("ij,ij->i", n, rel)

@@ -105,13 +105,15 @@ def crossings_many(pieces, searches, n=48, grids=None):
     round's points on all the pieces in one call where the pieces share their motion), so the roots are
     those each search finds alone."""
     grids = _grids(pieces, n) if grids is None else grids
-    found, brackets, asked = [[] for _ in searches], [], []
+    found, brackets, asked, values_of = [[] for _ in searches], [], [], {}
     for j, (func, target) in enumerate(searches):
         last = 0.0
         for k, (w, pts) in enumerate(grids):
             if pts is None:
                 continue
-            g = func(pts) - target
+            if (func, k) not in values_of:  # searches of one function (two levels of an angle) share its values
+                values_of[func, k] = func(pts)
+            g = values_of[func, k] - target
             if last * g[0] < 0:  # the sign flips exactly at the junction with the previous piece
                 found[j].append((k, float(w[0]), None))
             last = float(g[-1])

@@ -12,8 +12,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from gearkit.chords import angle_parts, interval_bounds, monotone_range, round_off
+from gearkit.chords import angle_parts, fractions_of, interval_bounds, monotone_range, round_off
 from gearkit.chords import chord_distance as _chord_deviation
+from gearkit.chords import point_distance as _chord_points
 
 __all__ = ["ATOM", "PROBE_MARGIN", "UNEVEN", "evaluate_curves", "first_samples", "first_turning", "first_turnings",
            "refine_sample", "refine_samples", "turn_curves"]
@@ -42,14 +43,17 @@ def _probe(evaluate, w, pts, tol, rows=None, probed=None):
     the probes (flat), where the caller evaluated them already."""
     rows = np.arange(len(w) - 1) if rows is None else rows
     lo, hi, a, b = w[rows], w[rows + 1], pts[rows, None, :], pts[rows + 1, None, :]
-    probes = lo[:, None] + (hi - lo)[:, None] * _PROBES
+    probes = fractions_of(lo, hi - lo, _PROBES)
     q = (evaluate(probes, rows) if probed is None else probed).reshape(len(lo), len(_PROBES), 2)
-    dev = _chord_deviation(a, b, q).max(axis=1)
-    walk = np.concatenate([a, q, b], axis=1)
-    legs = np.linalg.norm(np.diff(walk, axis=1), axis=-1)
-    length = legs.sum(axis=1)
-    speed = legs / _WIDTHS  # mean speed of each leg, against the interval's mean speed (its length)
-    uneven = (speed.max(axis=1) > UNEVEN * length) & (length > tol)
+    # the walk from a through the probes to b as (x or y, point, interval): every operation runs along the intervals
+    walk = np.concatenate([a, q, b], axis=1).transpose(2, 1, 0).copy()
+    (ax, bx), (ay, by) = walk[0, ::len(_PROBES) + 1], walk[1, ::len(_PROBES) + 1]
+    dev = _chord_points(ax, ay, bx - ax, by - ay, walk[0, 1:-1], walk[1, 1:-1]).max(axis=0)
+    step = walk[:, 1:] - walk[:, :-1]
+    legs = np.sqrt(step[0] * step[0] + step[1] * step[1])  # np.linalg.norm's sum of the two squares
+    length = np.ascontiguousarray(legs.T).sum(axis=1)  # each interval's legs added as a row, in their order
+    speed = legs / _WIDTHS[:, None]  # mean speed of each leg, against the interval's mean speed (its length)
+    uneven = (speed.max(axis=0) > UNEVEN * length) & (length > tol)
     return probes, q, dev, uneven
 
 
@@ -120,7 +124,7 @@ class _Curves:
 
     def _runs(self, rows):
         own = self.owner[rows]
-        cuts = np.flatnonzero(own[1:] != own[:-1]) + 1
+        cuts = (own[1:] != own[:-1]).nonzero()[0] + 1
         return zip(np.concatenate([[0], cuts]).tolist(), np.concatenate([cuts, [len(rows)]]).tolist(),
                    own[np.concatenate([[0], cuts])].tolist())
 
@@ -137,7 +141,7 @@ class _Curves:
         each curve called once, on its parameters in their order."""
         order = np.argsort(own, kind="stable")
         x, own = x[order], own[order]
-        cuts = np.flatnonzero(own[1:] != own[:-1]) + 1
+        cuts = (own[1:] != own[:-1]).nonzero()[0] + 1
         starts, ends = np.concatenate([[0], cuts]).tolist(), np.concatenate([cuts, [len(x)]]).tolist()
         curves, params = [self.curves[c] for c in own[starts].tolist()], [x[a:b] for a, b in zip(starts, ends)]
         back = np.empty_like(order)
@@ -225,7 +229,7 @@ def first_turnings(curves, ws):
 
 def _first_probes(w):
     """The first round's probes of the intervals of a sampling ``w``, flat (as the rounds place them)."""
-    return (w[:-1, None] + np.diff(w)[:, None] * _PROBES).ravel()
+    return fractions_of(w[:-1], w[1:] - w[:-1], _PROBES).ravel()
 
 
 def first_samples(curves, ws, more=None):
@@ -265,11 +269,11 @@ def refine_samples(curves, ws, ptss, tol: float, max_rounds: int = 60, max_split
         curves = _Curves(curves, owner[:-1])
         pts, margin = np.concatenate(ptss), PROBE_MARGIN
         probed = None if probed is None else np.concatenate(probed)
-    todo, kept = np.flatnonzero(owner[:-1] == owner[1:]), None  # the intervals to probe: within a curve
+    todo, kept = (owner[:-1] == owner[1:]).nonzero()[0], None  # the intervals to probe: within a curve
     for _ in range(max_rounds):
         curves.owner = owner[:-1]
         lo, hi = w[:-1], w[1:]
-        starts = np.flatnonzero(np.concatenate([[True], owner[1:] != owner[:-1]]))
+        starts = np.concatenate([[True], owner[1:] != owner[:-1]]).nonzero()[0]
         inside = owner[:-1] == owner[1:]
         if not len(todo):
             measured = kept[1]
@@ -285,16 +289,17 @@ def refine_samples(curves, ws, ptss, tol: float, max_rounds: int = 60, max_split
             # an interval below the parameter's resolution has no points but its ends and probes: a curve
             # that jumps there (an exact solution switching roots at the very end of its range) is
             # measured at them
-            atom = uneven & (hi - lo <= ATOM * np.maximum(np.abs(lo), np.abs(hi)).clip(1.0))
-            if atom.any():
+            atom = uneven & (hi - lo <= ATOM * np.maximum(np.abs(lo), np.abs(hi)).clip(1.0)) \
+                if np.count_nonzero(uneven) else None
+            if atom is not None and np.count_nonzero(atom):
                 dev[atom] = _chord_deviation(pts[:-1][atom, None], pts[1:][atom, None], q[atom]).max(axis=1)
                 uneven &= ~atom
         else:
             probes, q, dev, uneven = measured
         bad = (dev > margin * tol) & ~uneven
-        if not (bad.any() or uneven.any()):
+        if not (np.count_nonzero(bad) or np.count_nonzero(uneven)):
             return _split_up(w, pts, dev, probes, q, starts)
-        k = np.clip(np.ceil(1.1 * np.sqrt(dev[bad] / (margin * tol))), 2, max(2, max_split)).astype(int)
+        k = np.ceil(1.1 * np.sqrt(dev[bad] / (margin * tol))).clip(2, max(2, max_split)).astype(int)
         quarters = uneven & ~bad  # split at the probes already evaluated
         new_w = [probes[bad, _MID], probes[quarters].ravel()]
         new_p = [q[bad, _MID], q[quarters].reshape(-1, 2)]
@@ -302,7 +307,7 @@ def refine_samples(curves, ws, ptss, tol: float, max_rounds: int = 60, max_split
         if bound:
             new_t = [tq[bad, _MID], tq[quarters].reshape(-1, 2)]
             new_a = [pq[bad, _MID], pq[quarters].reshape(-1, parts.shape[-1])]
-        if (k > 2).any():  # the midpoint is already evaluated; other split points are new
+        if np.count_nonzero(k > 2):  # the midpoint is already evaluated; other split points are new
             many = k > 2
             kk = k[many]
             rows = np.repeat(np.arange(len(kk)), kk - 1)
@@ -311,7 +316,7 @@ def refine_samples(curves, ws, ptss, tol: float, max_rounds: int = 60, max_split
             keep = np.abs(frac - 0.5) > 1e-12
             a, h = lo[bad][many][rows][keep], (hi - lo)[bad][many][rows][keep]
             extra = a + h * frac[keep]
-            at = np.flatnonzero(bad)[many][rows][keep]  # the interval each new point splits
+            at = bad.nonzero()[0][many][rows][keep]  # the interval each new point splits
             new_w.append(extra)
             new_o.append(owner[:-1][at])
             # evaluated below, with the next round's probes (one call)
@@ -337,16 +342,16 @@ def refine_samples(curves, ws, ptss, tol: float, max_rounds: int = 60, max_split
         where = np.full(len(first), -1)  # -1: a new point dropped (its parameter a vertex's already)
         where[order] = np.arange(len(order))
         at = where[:n_old]  # the old vertices (all kept) in the new sampling
-        same = np.diff(at) == 1
+        same = (at[1:] - at[:-1]) == 1
         kept = at[:-1][same], tuple(m[same] for m in measured)
         fresh = owner[:-1] == owner[1:]
         fresh[kept[0]] = False
-        todo = np.flatnonzero(fresh)
+        todo = fresh.nonzero()[0]
         if extra is not None:  # the new split points and the next round's probes, in one call
             new = where[n_old + sum(len(v) for v in new_w[:-1]):]  # the new split points in the new sampling
             extra, new = extra[new >= 0], new[new >= 0]
             lo, hi = w[todo], w[todo + 1]
-            x = np.concatenate([extra, (lo[:, None] + (hi - lo)[:, None] * _PROBES).ravel()])
+            x = np.concatenate([extra, fractions_of(lo, hi - lo, _PROBES).ravel()])
             got = curves.evaluate_at(x, np.concatenate([owner[new], np.repeat(owner[todo], len(_PROBES))]), bound)
             e = len(extra)
             if bound:
@@ -355,15 +360,15 @@ def refine_samples(curves, ws, ptss, tol: float, max_rounds: int = 60, max_split
             else:
                 pts[new], probed = got[:e], got[e:]
     curves.owner = owner[:-1]
-    starts = np.flatnonzero(np.concatenate([[True], owner[1:] != owner[:-1]]))
+    starts = np.concatenate([[True], owner[1:] != owner[:-1]]).nonzero()[0]
     inside = owner[:-1] == owner[1:]
-    rows = np.flatnonzero(inside)
+    rows = inside.nonzero()[0]
     if bound:
         probes, q, _, _, dev = _scatter(len(w) - 1, rows,
                                         interval_bounds(curves.turning, w, pts, tan, parts, tol, _PROBES, rows,
                                                         span=curves.span))
         dev = np.where(inside, dev + _round_offs(pts, starts, owner), 0.0)
-        atom = ~np.isfinite(dev) & (np.diff(w) <= ATOM * np.maximum(np.abs(w[:-1]), np.abs(w[1:])).clip(1.0))
+        atom = ~np.isfinite(dev) & ((w[1:] - w[:-1]) <= ATOM * np.maximum(np.abs(w[:-1]), np.abs(w[1:])).clip(1.0))
         dev[atom] = _chord_deviation(pts[:-1][atom, None], pts[1:][atom, None], q[atom]).max(axis=1)
     else:
         probes, q, dev, _ = _scatter(len(w) - 1, rows, _probe(curves.points, w, pts, tol, rows))
@@ -374,7 +379,7 @@ def _round_offs(pts, starts, owner):
     """:func:`~gearkit.chords.round_off` of each curve's points, at each interval (of its first vertex)."""
     if len(starts) == 1:
         return round_off(pts)
-    ends = np.append(starts[1:], len(pts))
+    ends = np.concatenate([starts[1:], [len(pts)]])
     each = np.array([round_off(pts[a:b]) for a, b in zip(starts, ends)])
     return each[owner[:-1]]
 
@@ -382,6 +387,6 @@ def _round_offs(pts, starts, owner):
 def _split_up(w, pts, dev, probes, q, starts):
     """Each curve's ``(w, points, achieved, probes, q)`` out of the joint sampling."""
     out = []
-    for a, b in zip(starts, np.append(starts[1:], len(w))):
+    for a, b in zip(starts.tolist(), starts[1:].tolist() + [len(w)]):
         out.append((w[a:b], pts[a:b], float(dev[a:b - 1].max(initial=0.0)), probes[a:b - 1], q[a:b - 1]))
     return out

@@ -113,6 +113,14 @@ class Segment:
         ux, uy = np.divide(tx, norm), np.divide(ty, norm)
         return float(ux), float(uy), float(np.negative(uy)), float(ux)
 
+    @cached_property
+    def _line_vectors(self):
+        """:attr:`_line_frame` as two read-only ``(2,)`` arrays, the tangent and the normal (filled in at every point)."""
+        tx, ty, nx, ny = self._line_frame
+        tangent, normal = np.array([tx, ty]), np.array([nx, ny])
+        tangent.flags.writeable = normal.flags.writeable = False
+        return tangent, normal
+
     def _evaluate(self, u):
         """:meth:`evaluate`, and the primitive's parameter and (unnormalised) tangent it came from."""
         u = np.asarray(u, dtype=float)
@@ -129,10 +137,10 @@ class Segment:
             p[..., 0] = a11 * px + a12 * py + b1
             p[..., 1] = a21 * px + a22 * py + b2
         if self.kind == "line":  # one tangent and normal, filled in
-            tx, ty, nx, ny = self._line_frame
+            tangent, normal = self._line_vectors
             t, n = np.empty(shape), np.empty(shape)
-            t[...] = (tx, ty)
-            n[...] = (nx, ny)
+            t[...] = tangent
+            n[...] = normal
             return p, t, n, u, (t0x, t0y)
         tx = a11 * t0x + a12 * t0y
         ty = a21 * t0x + a22 * t0y
