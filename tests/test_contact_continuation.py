@@ -12,12 +12,12 @@ Named tolerances (absolute: a conjugate pair's TE is itself round-off, so nothin
   position is known (round-off along the normal over the smallest arm). Both paths evaluate each final
   contact on the same exact pieces at minimisers that agree to Newton's tolerance, whose values differ by
   its square: TE, backlash and bounds agree within it.
-* ``LOCATE = 1e-6 m``: where a contact lies (as the contact tests). It is the argument of a minimum, known
-  to about the square root of round-off where the flanks nearly conform (the reverse flanks of the internal
-  46/49 pair: two starts settle 1e-5 m apart on a bound whose values agree within the position's round-off,
-  so bounds are compared by value); on the working contacts the two paths agree within 1e-12 m, Newton's
-  own tolerance.
-* ``TURN = 1e-5``: a contact normal (unit vector): that shift over the flank's smallest radius of curvature
+* ``LOCATE = 1e-5 m``: where a contact lies. It is the argument of a minimum, known to about the square
+  root of round-off over the flanks' relative curvature: where they nearly conform (the reverse flanks of the
+  internal 46/49 pair, a helical slice entering contact) two starts settle up to a few 1e-6 m apart on bounds
+  whose values agree within the position's round-off, so bounds are compared by value; most working
+  contacts agree within 1e-12 m, Newton's own tolerance.
+* ``TURN = 1e-4``: a contact normal (unit vector): that shift over the flank's smallest radius of curvature
   (the cutter's tip rounding, 0.38 m, taken as 0.1 m).
 * ``RATIO = 1e-6``: the simulated contact ratio's own resolution (as the table tests): the instants a pair
   parts solve ``sqrt(clearance) = sqrt(contact_tol)`` with the clearance at round-off.
@@ -31,11 +31,11 @@ from gearkit.contact.solver import solve
 from gearkit.families.involute import Modification, ShaperCutter
 from gearkit.pair import PairSpec, pair_geometry
 
-LOCATE = 1e-6
-TURN = 1e-5
+LOCATE = 1e-5
+TURN = 1e-4
 RATIO = 1e-6
 FORMULA = 1e-3
-STEPS = 200
+STEPS = 400  # node angles 8 / 400 of a pitch apart: close (continuation.REACH)
 SHAPER = ShaperCutter(20, addendum=1.3)
 HELICAL = {"face_width": 20.0, "helix_angle_deg": 15.0, "slices": 4}
 
@@ -99,13 +99,13 @@ def test_a_continued_cycle_is_the_fresh_cycle(name, monkeypatch):
 
 @pytest.mark.parametrize("name", ["20/40 m=2", "undercut 12/24", "rack, x = 0.2", "internal 46/49"])
 def test_continued_bounds_are_the_fresh_bounds(name, monkeypatch):
-    """Every refined bound of 401 driver angles over two pitches: the same halves refined, the same pieces and
+    """Every refined bound of 801 driver angles over two pitches: the same halves refined, the same pieces and
     corners (a minimum on an interval's end is settled on it exactly), values to round-off. (Not the points: on
     the reverse flanks of the internal pair, which nearly conform, a bound's minimiser is known to 1e-5 m only;
     the working contacts' points are compared in the cycle.)"""
     spec = PAIRS[name][0]
     mesh = pair_mesh(spec)
-    phi = np.linspace(-mesh.pitch1, mesh.pitch1, 401)
+    phi = np.linspace(-mesh.pitch1, mesh.pitch1, 801)
     cont = solve(mesh, phi, 1e-12 * mesh.module)
     _fresh(monkeypatch)
     fresh = solve(mesh, phi, 1e-12 * mesh.module)

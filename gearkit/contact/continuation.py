@@ -1,8 +1,9 @@
 """Continuation over driver angles: the minimiser starts where the neighbouring angles' minima lie.
 
 The contact solver refines the same polyline intervals of the same driver halves at consecutive driver
-angles, and a minimum moves little from one angle to the next. So the rows of every ``NODE_EVERY``-th
-angle (and of the last) are minimised afresh (:func:`~gearkit.contact.minimise.minimise`: probes, then
+angles, and a minimum moves little from one angle to the next (where the angles lie :func:`close`: node
+angles at most ``REACH`` of a driver pitch apart; coarser grids are minimised afresh). So the rows of every
+``NODE_EVERY``-th angle (and of the last) are minimised afresh (:func:`~gearkit.contact.minimise.minimise`: probes, then
 Newton), and every other row that is minimised at a node angle too (the same driver tooth, half, bound
 and interval: its ``key``) starts Newton's method from there: the parameter interpolated linearly between
 the nodes before and after it, or the one node's parameter where only one has the row. A start is within
@@ -43,12 +44,22 @@ import numpy as np
 
 from gearkit.contact.minimise import minimise, newton_from
 
-__all__ = ["ITERATIONS", "NODE_EVERY", "continued", "driver_derivatives", "nodes", "row_key", "starts"]
+__all__ = ["ITERATIONS", "NODE_EVERY", "REACH", "close", "continued", "driver_derivatives", "nodes", "row_key",
+           "starts"]
 
 #: driver angles between two minimised afresh
 NODE_EVERY = 8
 #: most Newton steps of a continued row before it is minimised afresh
 ITERATIONS = 6
+#: starts at most this fraction of a driver pitch apart: a contact then moves along its flank by less than a
+#: polyline interval between them (a cycle of 24 steps, nodes a third of a pitch apart, settled a cycloid
+#: row on a second minimum its start lay next to)
+REACH = 1.0 / 32.0
+
+
+def close(spacing, pitch):
+    """Whether starts ``spacing`` (rad) apart are close enough for continuation (:data:`REACH` of ``pitch``)."""
+    return bool(spacing <= REACH * pitch)
 
 
 def row_key(mesh, tooth, half, bound, interval, lane, lanes):
@@ -79,7 +90,7 @@ def starts(code, t, span, before, after, frac, key):
     return np.where(found[0] & found[1], both, np.where(found[0], at[0], at[1]))
 
 
-def continued(task, lo, hi, step, key, span, given=None):
+def continued(task, lo, hi, step, key, span, given=None, fine=True):
     """:func:`~gearkit.contact.minimise.minimise` of ``task`` on ``[lo, hi]`` with continuation over the driver
     angles: ``(value, parameter)``.
 
@@ -92,8 +103,10 @@ def continued(task, lo, hi, step, key, span, given=None):
     given : (code, t, position) or None
         Rows solved before (``code`` sorted) and each row's position (float) on their grid of angles: every row
         starts there, none is a node.
+    fine : bool
+        The node angles lie :func:`close` (without ``given``; otherwise every row is minimised afresh).
     """
-    if not task.smooth:
+    if not task.smooth or (given is None and not fine):
         return minimise(task, lo, hi)
     value, t = np.empty(len(lo)), np.empty(len(lo))
     # next to a corner of the driver (a join of its pieces that is not smooth) the bound can have a second

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from gearkit.contact.continuation import close
 from gearkit.contact.solver import solve
 
 __all__ = ["Cycle", "INSTANT_TOL", "contact_ratio"]
@@ -147,12 +148,13 @@ def _instants(mesh, phi, ev, shifts, contact_tol, j, pid, start_in):
          "out3": np.full(len(j), np.nan), "g_out3": np.full(len(j), np.nan),
          "w_in": np.ones(len(j)), "w_out": np.ones(len(j)), "side": np.zeros(len(j))}
     xtol = INSTANT_TOL * (phi[-1] - phi[0])
+    fine = close(np.abs(np.diff(phi)).max(), mesh.pitch1)
     todo = np.arange(len(j))
     for _ in range(_EXTRAPOLATE):
         c = {k: v[todo] for k, v in b.items()}
         x = _estimate(c, flat)
         at = j[todo]
-        near = (ev, at + (x - phi[at]) / (phi[at + 1] - phi[at]))  # starts from the steps either side
+        near = (ev, at + (x - phi[at]) / (phi[at + 1] - phi[at])) if fine else None  # starts from the steps about
         g = Cycle(mesh, x, shifts, contact_tol, working_only=True, near=near).margin(pid[todo])
         hit = g <= 0
         # Illinois: an end kept a second time in a row has its value halved

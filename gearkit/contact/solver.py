@@ -29,7 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from gearkit.contact.continuation import continued, driver_derivatives, row_key
+from gearkit.contact.continuation import NODE_EVERY, close, continued, driver_derivatives, row_key
 from gearkit.contact.minimise import minimise
 from gearkit.contact.search import search
 from gearkit.progress import Progress
@@ -342,17 +342,19 @@ def solve(mesh, phi, contact_tol: float, bounds=(0, 1), lanes: int = 1, seeds=No
     phi = np.atleast_1d(np.asarray(phi, dtype=float))
     per_angle = len(mesh.offsets) * 4 * len(mesh.driver.points) // 2  # about half the halves are near
     step = max(1, _CHUNK // per_angle)
+    angles = phi[::lanes]
+    fine = angles.size > 1 and close(NODE_EVERY * np.abs(np.diff(angles)).max(), mesh.pitch1)
     parts = []
     with Progress("contact", len(phi), unit="positions") as bar:
         for i in range(0, len(phi), step):
-            parts.append(_solve_chunk(mesh, phi[i:i + step], contact_tol, bounds, i, lanes, seeds))
+            parts.append(_solve_chunk(mesh, phi[i:i + step], contact_tol, bounds, i, lanes, seeds, fine))
             bar.update(min(i + step, len(phi)))
     if len(parts) == 1:
         return parts[0]
     return Bounds(*(np.concatenate([getattr(p, f) for p in parts]) for f in Bounds.__dataclass_fields__))
 
 
-def _solve_chunk(mesh, phi, contact_tol, bounds, first=0, lanes=1, seeds=None) -> Bounds:
+def _solve_chunk(mesh, phi, contact_tol, bounds, first=0, lanes=1, seeds=None, fine=False) -> Bounds:
     teeth, theta = mesh.teeth(phi)
     n, kk = teeth.shape
     # only the driver halves with a sample inside the mate's tip circle are searched: the others
@@ -382,7 +384,7 @@ def _solve_chunk(mesh, phi, contact_tol, bounds, first=0, lanes=1, seeds=None) -
         key, span = row_key(mesh, teeth[i_n, i_k], i_h, i_b, i_m, (first + i_n) % lanes, lanes)
         given = None if seeds is None else (seeds[0], seeds[1], seeds[2][angle])
         sel, res, t = _refine(mesh, phi[i_n], theta[i_n, i_k], sigma, np.array([1.0, -1.0])[i_b], i_m, fa, fb,
-                              i_a * 2 + i_b, frame[:, i_a], (angle, key, span, given))
+                              i_a * 2 + i_b, frame[:, i_a], (angle, key, span, given, fine))
         row_code, row_t = angle.astype(np.int64) * span + key, t
         at = (i_n[sel], i_k[sel], i_h[sel], i_b[sel])
         exact[at] = True
