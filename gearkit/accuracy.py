@@ -178,8 +178,10 @@ def sample_curves(curves, tol: float, n_init: int = 5, max_rounds: int = 60, max
     start = first_samples(curves, [w0] * len(curves))  # the starts and their first probes in one evaluation
     pilot = refine_samples(curves, [w0] * len(curves), [s[0] for s in start], PILOT * tol, max_rounds, max_split,
                            probed=[s[1] for s in start])
-    placed = [place_by_curvature(np.concatenate([w, probes.ravel()]), np.concatenate([pts, q.reshape(-1, 2)]),
-                                 PLACE_AT * tol) for w, pts, _, probes, q in pilot]
+    placed = []
+    for w, pts, _, probes, q in pilot:
+        walk_w, walk_p, ordered = _walk_order(w, pts, probes, q)
+        placed.append(place_by_curvature(walk_w, walk_p, PLACE_AT * tol, ordered=ordered))
     turned = first_turnings(curves, placed)
     out = [None] * len(curves)
     for proven in (True, False):  # the curves bounded by their turning, then the ones probed
@@ -194,12 +196,24 @@ def sample_curves(curves, tol: float, n_init: int = 5, max_rounds: int = 60, max
     return out
 
 
-def place_by_curvature(w, points, tol: float) -> np.ndarray:
+def _walk_order(w, pts, probes, q):
+    """A sampling's vertices ``w`` and its intervals' probes as one polyline, its parameters and points: in the
+    order of the walk through every interval (vertex, its interval's probes, next vertex) where that order is
+    sorted, as :func:`place_by_curvature` sorts them (no two parameters equal: a stable sort's order is theirs),
+    else vertices then probes (sorted there): ``(w, points, ordered)``."""
+    walk_w = np.concatenate([np.concatenate([w[:-1, None], probes], axis=1).ravel(), w[-1:]])
+    if np.count_nonzero(walk_w[1:] > walk_w[:-1]) != len(walk_w) - 1:
+        return np.concatenate([w, probes.ravel()]), np.concatenate([pts, q.reshape(-1, 2)]), False
+    walk_p = np.concatenate([np.concatenate([pts[:-1, None], q], axis=1).reshape(-1, 2), pts[-1:]])
+    return walk_w, walk_p, True
+
+
+def place_by_curvature(w, points, tol: float, ordered: bool = False) -> np.ndarray:
     """Parameters of the fewest vertices whose chords deviate by about ``tol`` from a curve, from a
     dense polyline of it.
 
-    ``w`` (k,) and ``points`` (k, 2) are parameters and points of the curve (any order; ends at
-    w = 0 and 1 included). The curvature is estimated from the turning of the sorted polyline
+    ``w`` (k,) and ``points`` (k, 2) are parameters and points of the curve (any order, or
+    ``ordered``: strictly increasing in ``w``, not sorted again; ends at w = 0 and 1 included). The curvature is estimated from the turning of the sorted polyline
     (turn angle over the mean of the two edges at each vertex), ``N(s) = integral sqrt(k / (8
     tol)) ds`` is accumulated along it, and ``ceil(N)`` chords are placed at equal steps of N
     (parameters interpolated). Ends are kept exactly. A proposal: the caller checks the chords.
@@ -218,8 +232,9 @@ def place_by_curvature(w, points, tol: float) -> np.ndarray:
     True
     """
     w, p = np.asarray(w, dtype=float), np.asarray(points, dtype=float)
-    order = w.argsort(kind="stable")
-    w, p = w[order], p[order]
+    if not ordered:
+        order = w.argsort(kind="stable")
+        w, p = w[order], p[order]
     d = p[1:] - p[:-1]
     length = np.hypot(d[:, 0], d[:, 1])
     if len(length) < 2 or not length.max(initial=0.0) > 0.0:

@@ -67,7 +67,9 @@ def _distance(ax, ay, dx, dy, qx, qy):
     dd = dx * dx + dy * dy
     with np.errstate(divide="ignore", invalid="ignore"):
         t = (((qx - ax) * dx + (qy - ay) * dy) / dd).clip(0.0, 1.0)
-    t = np.where(dd > 0, t, 0.0)
+    positive = dd > 0
+    if np.count_nonzero(positive) != np.size(positive):  # (a chord of no length: its points measured from its end)
+        t = np.where(positive, t, 0.0)
     fx, fy = qx - (ax + t * dx), qy - (ay + t * dy)
     return np.sqrt(fx * fx + fy * fy)
 
@@ -81,13 +83,11 @@ def _sum_parts(x):
 
 
 def _cos_sin(angle):
-    """Cosine and sine of ``angle``, evaluated only where it is not 0 (there 1 and 0): a range that
-    starts or ends at the leg's own tangent, as it does wherever the parts turn one way."""
+    """Cosine and sine of ``angle``, 1 and +0 where it is 0 (either zero): a range that starts or ends at the
+    leg's own tangent, as it does wherever the parts turn one way. Taken everywhere (a masked evaluation of
+    half of them costs more): the cosine of 0 is 1, and ``+ 0.0`` turns the sine of -0 to +0 and no other."""
     angle = np.asarray(angle)
-    turn = angle != 0.0
-    if np.count_nonzero(turn) == turn.size:
-        return np.cos(angle), np.sin(angle)
-    return np.cos(angle, out=np.ones_like(angle), where=turn), np.sin(angle, out=np.zeros_like(angle), where=turn)
+    return np.cos(angle), np.sin(angle) + 0.0
 
 
 def leg_bound(a, b, ta, tb, dparts, chord_a, chord_b):
@@ -129,14 +129,18 @@ def _legs(ax, ay, bx, by, ta, tb, turn, chord, ends):
     half = 0.5 * (lo + hi)
     cos, sin = np.cos(half), np.sin(half)
     along_mid = cx * (cos * tax - sin * tay) + cy * (sin * tax + cos * tay)  # the chord on the range's middle
-    sense = np.where(along_mid < 0.0, -1.0, 1.0)
-    lox, loy, hix, hiy = sense * lox, sense * loy, sense * hix, sense * hiy
+    backwards = along_mid < 0.0
+    if np.count_nonzero(backwards):  # (elsewhere the sense is 1: a product by it changes no bit)
+        sense = np.where(backwards, -1.0, 1.0)
+        lox, loy, hix, hiy = sense * lox, sense * loy, sense * hix, sense * hiy
     # cross(d_lo, d_hi): sin(width), which is sin(hi) where the range starts at the leg's tangent
     turned = lo != 0.0
     swing = np.sin(width, out=np.array(sin_hi), where=turned) if np.count_nonzero(turned) else sin_hi
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        along_lo = np.where(swing > 0, (cx * hiy - cy * hix) / swing, 0.0)
-        along_hi = np.where(swing > 0, (lox * cy - loy * cx) / swing, 0.0)
+        along_lo, along_hi = (cx * hiy - cy * hix) / swing, (lox * cy - loy * cx) / swing
+    spread = swing > 0
+    if np.count_nonzero(spread) != spread.size:  # a cone of no width: no corner beyond the ends
+        along_lo, along_hi = np.where(spread, along_lo, 0.0), np.where(spread, along_hi, 0.0)
     length = np.sqrt(cx * cx + cy * cy)
     slack = 1e-12 * length
     corners = np.maximum(_distance(*chord, ax + along_lo * lox, ay + along_lo * loy),
@@ -158,7 +162,8 @@ def _legs(ax, ay, bx, by, ta, tb, turn, chord, ends):
     ok = (np.abs(ex * tby - ey * tbx) <= CONSISTENT) & (ex * tbx + ey * tby > 0.0) & (width < 0.5 * np.pi)
     ok &= narrow | ((along_lo >= -slack) & (along_hi >= -slack))
     ok &= narrow | ~(length > 0) | (along_mid != 0.0)
-    return np.where(ok & np.isfinite(bound), bound, np.inf)
+    ok &= np.isfinite(bound)
+    return bound if np.count_nonzero(ok) == ok.size else np.where(ok, bound, np.inf)
 
 
 #: an interval whose bound is below RETRY tol is bounded again on FINE legs before it is split
@@ -198,8 +203,8 @@ def _walk_bound(rows, pts, tan, parts, q, tq, pq, span=None):
         walked = walked.transpose(2, 1, 0)
         turn = tuple(np.ascontiguousarray(np.broadcast_to(v, (n, walked.shape[1] - 1)).T)
                      for v in span(walked[:, :-1], walked[:, 1:], rows))
-    cx, cy = pts[rows, 0], pts[rows, 1]
-    chord = (cx, cy, pts[rows + 1, 0] - cx, pts[rows + 1, 1] - cy)
+    cx, cy = px[0], py[0]  # the walks' first and last points: each interval's ends
+    chord = (cx, cy, px[-1] - cx, py[-1] - cy)
     dist = _distance(*chord, px, py)  # each probe's distance, shared by the two legs it ends
     return _legs(px[:-1], py[:-1], px[1:], py[1:], (tx[:-1], ty[:-1]), (tx[1:], ty[1:]), turn, chord,
                  np.maximum(dist[:-1], dist[1:])).max(axis=0)

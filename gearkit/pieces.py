@@ -34,7 +34,8 @@ class CircleArc:
 
     def turning(self, w):  # points, unit tangents, the tangent's angle -psi (linear): as Piece.turning
         psi = self.psi0 + np.asarray(w, dtype=float) * (self.psi1 - self.psi0)
-        return self(w), np.stack([np.cos(psi), -np.sin(psi)], -1), -psi[..., None]
+        sin, cos = np.sin(psi), np.cos(psi)  # the points' own (as __call__ takes them), taken once
+        return np.stack([self.radius * sin, self.radius * cos], -1), np.stack([cos, -sin], -1), -psi[..., None]
 
 
 @frozen
