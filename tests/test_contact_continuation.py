@@ -169,3 +169,37 @@ def test_newton_from_settles_an_end_minimum_on_the_end_and_finds_an_inner_one():
     assert np.array_equal(t[[0, 2, 3]], fresh_t[[0, 2, 3]])
     assert abs(t[1] - centre[1]) <= 1e-12 * 0.3
     assert np.abs(value[:4] - fresh_value[:4]).max() <= 1e-24
+
+
+class _CuspEnd:
+    """``(s - s0)^2`` with ``s = (1 - t)^2``: a flank parametrised from a cusp at ``t = 1`` (a cycloid's on the
+    pitch circle), whose slope is nil there while the minimum ``t = 1 - sqrt(s0)`` lies inside. The values carry
+    round-off of order one (``(1 + f) - 1``), as the bound's ``w - u`` does of its pitch-sized terms."""
+    smooth = True
+    roundoff = 16.0 * np.finfo(float).eps
+
+    def __init__(self, s0):
+        self.s0 = s0
+
+    def value(self, t, rows=slice(None)):
+        return ((1.0 + ((1 - t) ** 2 - self.s0[rows]) ** 2) - 1.0,)
+
+    def slope(self, t, rows):
+        s, ds = (1 - t) ** 2, -2 * (1 - t)
+        e = s - self.s0[rows]
+        return (1.0 + e * e) - 1.0, 2 * e * ds, 2 * ds * ds + 4 * e
+
+
+def test_an_end_with_a_nil_slope_is_no_minimum_where_the_function_falls_into_the_interval():
+    """Oracle: the closed-form minimiser ``1 - sqrt(s0)``. The probes' best is the end ``t = 1`` (value ``s0^2``);
+    both one-sided slope and Newton's derivative there are nil (round-off), so neither may settle on it."""
+    from gearkit.contact.minimise import minimise, newton_from
+
+    s0 = np.linspace(0.002, 0.01, 17)
+    a, b = np.zeros(17), np.ones(17)
+    task = _CuspEnd(s0)
+    value, t = minimise(task, a, b)
+    assert np.abs(t - (1 - np.sqrt(s0))).max() <= 1e-6  # the values' round-off, 1e-16, is flat over sqrt(1e-16)
+    assert value.max() <= 1e-15
+    _, _, ok = newton_from(task, a, b, b.copy(), 6)
+    assert not ok.any()  # the end is not confirmed: these rows are minimised afresh

@@ -18,7 +18,8 @@ driver (a join of its pieces that is not smooth, where the bound can have a seco
 itself), and any row :func:`~gearkit.contact.minimise.newton_from` does not confirm (an evaluation not finite,
 no convergence in ``ITERATIONS`` steps, a minimum more than a quarter of the interval from its start: no
 continuation of it; on the cycloid pair 8/64 at 64 steps such a start would settle on a node beside a second,
-shallow minimum). On the exact pieces, or on tables without derivatives, every row is minimised afresh.
+shallow minimum; an end where the function's second-order model does not rise over a quarter of the interval:
+a cycloid flank's end on the pitch circle has a nil slope, its parametrisation stationary at the cusp). On the exact pieces, or on tables without derivatives, every row is minimised afresh.
 
 The minima are those of the fresh path to round-off: the same stationary point found from another start
 (their parameters agree within Newton's tolerance, their values to the last bits), the same end where the

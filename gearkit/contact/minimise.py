@@ -8,7 +8,9 @@ row, ``task.value(t, rows)`` (values only) and, where the teeth are evaluated on
 
 1. **Probes.** The function is sampled at the interval's ends and at ``_PROBES`` interior points.
    The best sample brackets the minimum with its neighbours; an end sample is the minimum when the
-   function rises from it (second-order one-sided slope, step 1e-7 of the interval).
+   function rises from it (second-order one-sided slope, step 1e-7 of the interval, beyond its values'
+   noise and round-off: where a piece's parametrisation is stationary at its end, as on a cycloid's cusp
+   on the pitch circle, that slope is nil whichever way the function runs).
 2. **Newton** on the derivative (tables): from the best sample, steps ``-f'/f''`` kept inside the
    bracket, which every evaluation narrows by the sign of ``f'`` (bisection when a step would leave
    it or ``f''`` is not positive). Quadratic convergence: a handful of evaluations to round-off.
@@ -81,7 +83,9 @@ def minimise(task, a, b):
     at_a, at_b = j == 0, j == len(frac) - 1
     # an end is the minimum where the function rises from it by more than its values' noise over the
     # step can fake (values on tables carry their fitting error: a flat end is searched, not settled)
-    rise = 2.0 * getattr(task, "noise", 0.0) / h
+    # (and by more than the values' round-off: at an end where the piece's parametrisation is stationary, a cycloid's
+    # cusp on the pitch circle, the one-sided slope is nil whichever way the function runs, and round-off set its sign)
+    rise = (2.0 * getattr(task, "noise", 0.0) + getattr(task, "roundoff", 0.0)) / h
     settled = (width <= 0) | (at_a & ~(da < rise)) | (at_b & ~(db > -rise))
     rows = np.flatnonzero(~settled)
     if rows.size == 0:
@@ -122,15 +126,33 @@ def newton_from(task, a, b, x, iterations):
     x0 = np.minimum(np.maximum(x, a), end)
     x, fx, done = _newton(task, np.arange(n), width, a.copy(), b.copy(), x0, iterations)
     tol = _NEWTON_TOL * width
-    ok = done & (((x > a + tol) & (x < b - tol)) | (x == a) | (x == end)) & (np.abs(x - x0) <= _TRAVEL * width)
+    on_end = ((x == a) | (x == end)) & done
+    if on_end.any():
+        at = np.flatnonzero(on_end)
+        on_end[at] = _rises(task, at, x[at], np.where(x[at] == a[at], 1.0, -1.0), _TRAVEL * width[at])
+    ok = done & (((x > a + tol) & (x < b - tol)) | on_end) & (np.abs(x - x0) <= _TRAVEL * width)
     again = np.flatnonzero(~ok)
     if again.size:  # once more from the nearer end, where the minimum may sit
         e = np.where(x[again] - a[again] < end[again] - x[again], a[again], end[again])
         x2, f2, d2 = _newton(task, again, width[again], a[again].copy(), b[again].copy(), e, 1)
         settled = d2 & (x2 == e) & (np.abs(e - x0[again]) <= _TRAVEL * width[again])
+        if settled.any():
+            s = np.flatnonzero(settled)
+            settled[s] = _rises(task, again[s], e[s], np.where(e[s] == a[again[s]], 1.0, -1.0),
+                                _TRAVEL * width[again[s]])
         at = again[settled]
         x[at], fx[at], ok[at] = e[settled], f2[settled], True
     return fx, x, ok
+
+
+def _rises(task, rows, x, inward, span):
+    """Whether the function rises from the ends ``x`` of rows ``rows`` into the interval (``inward`` +1 from the
+    start, -1 from the end) over ``span`` by its second-order model: a slope into the interval not negative and not
+    undone by the curvature within ``span``. (A slope alone misleads where the piece's parametrisation is stationary
+    at its end, a cycloid's cusp on the pitch circle: the slope is nil there whichever way the function runs.)"""
+    _, g, g1 = task.slope(x, rows)
+    d = inward * g
+    return (d >= 0) & (d + 0.5 * g1 * span >= 0)
 
 
 def _newton(task, rows, width, lo, hi, x, iterations=_NEWTON_ITER):

@@ -118,6 +118,11 @@ class _Task:
         return 10.0 * self.mesh.table_deviation / self.mesh.arm_scale
 
     @property
+    def roundoff(self):
+        """The round-off of three values' one-sided difference (mate units): ``w`` and ``u`` a pitch each."""
+        return 16.0 * np.finfo(float).eps * abs(self.mesh.pitch2)
+
+    @property
     def smooth(self):
         """The bound function's derivatives are at hand (:meth:`slope`): on tables within their tolerance."""
         drv, mate = self.mesh.driver.table, self.mesh.mate.table
