@@ -168,7 +168,9 @@ def corner_cut(curve, w, e, b, circles, meet: float, reach: int = 64, per: int =
     jump's corner ``C`` of the pitch curve, on the circle ``|x - C| = R``) where the motion's envelope
     beside it first runs inside that circle and then out across it (a swallowtail a few micrometres
     deep), or None when neither the last kept sample ``e`` nor the first kept sample ``b`` of the cut
-    lies on a corner's arc.
+    lies on a corner's arc. An arc cut whole (a concave corner, the arc running back) but for a sample at
+    an end has no such exit: the envelopes either side of it cross, solved on their own stretches
+    (:func:`_sides_cross`).
 
     The envelope beside the corner starts on the circle (the arc's end), so its signed distance from
     the circle ``|curve(w) - C| - R`` is a function of one parameter whose first rise through zero
