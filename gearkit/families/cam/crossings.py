@@ -170,7 +170,8 @@ def corner_cut(curve, w, e, b, circles, meet: float, reach: int = 64, per: int =
     deep), or None when neither the last kept sample ``e`` nor the first kept sample ``b`` of the cut
     lies on a corner's arc. An arc cut whole (a concave corner, the arc running back) but for a sample at
     an end has no such exit: the envelopes either side of it cross, solved on their own stretches
-    (:func:`_sides_cross`).
+    (:func:`_sides_cross`); arcs whose motion section between them is shorter than a sample step (two
+    velocity jumps a dwell of a few ulps apart) are one gap, its sides those of the run (:func:`_runs`).
 
     The envelope beside the corner starts on the circle (the arc's end), so its signed distance from
     the circle ``|curve(w) - C| - R`` is a function of one parameter whose first rise through zero
@@ -187,29 +188,56 @@ def corner_cut(curve, w, e, b, circles, meet: float, reach: int = 64, per: int =
 
     def off(x):  # signed offset of x from the last kept sample along the cut (cyclic)
         return (x - w[e] + 0.5) % 1.0 - 0.5
-    for k, centre, radius in circles:
-        w0, w1 = edges[k], edges[k + 1]
-        # the arc cut but for a sample at an end (whose central difference straddles the break): its sides cross
+    for run in _runs(circles, edges, step):
+        # the arcs cut but for a sample at an end (whose central difference straddles the break): their sides cross
+        k0, k1 = run[0][0], run[-1][0]
+        w0, w1 = edges[k0], edges[k1 + 1]
         if -step < off(w0) <= reach * step and -step < span - off(w1) <= reach * step:
-            lo = max(edges[k - 1], w0 - off(w0) - reach * step)
-            hi = min(edges[k + 2] if k + 2 < len(edges) else 1.0, w1 + span - off(w1) + reach * step)
+            lo = max(edges[k0 - 1], w0 - off(w0) - reach * step)
+            hi = min(edges[k1 + 2] if k1 + 2 < len(edges) else 1.0, w1 + span - off(w1) + reach * step)
             wa, wb = _sides_cross(curve, lo, w0, w1, hi)
             if off(wa) <= step and span - off(wb) <= step and np.hypot(*np.subtract(*curve(np.array([wa, wb])))) <= meet:
                 return wa, wb
-        if off(w0) <= step and off(w1) >= -step and off(w1) <= span + step:  # e on the arc: the section after
-            far = min(edges[k + 2] if k + 2 < len(edges) else 1.0, w1 + span - off(w1) + reach * step)
-            x, after = _circle_exit(curve, w1, far, centre, radius, per * int(math.ceil((far - w1) / step))), True
-        elif off(w1) >= span - step and off(w0) <= span + step and off(w0) >= -step:  # b on the arc: before it
-            near = max(edges[k - 1] if k > 0 else 0.0, w0 - off(w0) - reach * step)
-            x, after = _circle_exit(curve, w0, near, centre, radius, per * int(math.ceil((w0 - near) / step))), False
+        for k, centre, radius in run:
+            hit = _arc_exit(curve, w, e, span, step, off, k, centre, radius, meet, reach, per)
+            if hit is not None:
+                return hit
+    return None
+
+
+def _runs(circles, edges, step):
+    """The corners ``circles`` grouped into runs of adjacent arcs: two corners whose motion section between
+    them is shorter than a sample step (a dwell of a few ulps of the cam angle between two velocity jumps)
+    are one gap in the envelope, whose sides are the sections before the first arc and after the last."""
+    runs = []
+    for c in circles:
+        if runs and c[0] == runs[-1][-1][0] + 2 and edges[c[0]] - edges[c[0] - 1] < step:
+            runs[-1].append(c)
         else:
-            continue
-        if x is None:
-            continue
-        t = _arc_fraction(curve, w0, w1, centre, curve(np.array([x]))[0])
-        on_arc = w0 + t * (w1 - w0)
-        if np.hypot(*np.subtract(*curve(np.array([on_arc, x])))) <= meet:  # on the arc itself, not its circle
-            return (on_arc, x) if after else (x, on_arc)
+            runs.append([c])
+    return runs
+
+
+def _arc_exit(curve, w, e, span, step, off, k, centre, radius, meet, reach, per):
+    """The crossing where the envelope beside corner ``k``'s arc comes out of its circle after the cut's
+    last kept sample ``e`` lies on the arc (the section after it) or its first kept one does (the section
+    before it), or None (:func:`corner_cut`)."""
+    edges = curve.edges
+    w0, w1 = edges[k], edges[k + 1]
+    if off(w0) <= step and off(w1) >= -step and off(w1) <= span + step:  # e on the arc: the section after
+        far = min(edges[k + 2] if k + 2 < len(edges) else 1.0, w1 + span - off(w1) + reach * step)
+        x, after = _circle_exit(curve, w1, far, centre, radius, per * int(math.ceil((far - w1) / step))), True
+    elif off(w1) >= span - step and off(w0) <= span + step and off(w0) >= -step:  # b on the arc: before it
+        near = max(edges[k - 1] if k > 0 else 0.0, w0 - off(w0) - reach * step)
+        x, after = _circle_exit(curve, w0, near, centre, radius, per * int(math.ceil((w0 - near) / step))), False
+    else:
+        return None
+    if x is None:
+        return None
+    t = _arc_fraction(curve, w0, w1, centre, curve(np.array([x]))[0])
+    on_arc = w0 + t * (w1 - w0)
+    if np.hypot(*np.subtract(*curve(np.array([on_arc, x])))) <= meet:  # on the arc itself, not its circle
+        return (on_arc, x) if after else (x, on_arc)
     return None
 
 
