@@ -69,8 +69,30 @@ ACCELERATION_JUMP = [
      (42.59445917143158, 67.20731476814215, 20.377810328596134, 67.20731476814215, "harmonic"), 1e-3),
 ]
 
+#: a dwell between a steep rise and return whose arc on the cam is 9e-5 rad wide, under a quarter of the kept samples'
+#: step: no sample of it was kept and the rise's and the return's arcs were joined at their crossing, 8.75 um outside
+#: the dwell's lines; with its neighbours (lift and arm 1e-6 apart, tol 1e-3 and 1e-5 r0)
+_NARROW_KW = dict(prime_radius=90.924628409045, pivot_distance=216.09747403229971, arm_length=304.88450930124304)
+_NARROW_MOTION = (216.09747403229971, 20.0, 34.33031085368909, 90.924628409045, "modified_trapezoid")
+NARROW_ARC = [(_NARROW_KW, _NARROW_MOTION, t) for t in (1e-4, 1e-3, 1e-5)] + [
+    (_NARROW_KW, (_NARROW_MOTION[0] * f,) + _NARROW_MOTION[1:], 1e-4) for f in (1 - 1e-6, 1 + 1e-6)] + [
+    (dict(_NARROW_KW, arm_length=_NARROW_KW["arm_length"] * f), _NARROW_MOTION, 1e-4) for f in (1 - 1e-6, 1 + 1e-6)]
+#: cam angles of the dwell's lines in the narrow arc's oracle (spaced 3e-5 rad: three across the arc)
+DWELL_LINES = 20001
 
-@pytest.mark.parametrize("kw, motion, tol_r0", STEEP + SHALLOW + SLIVER + ACCELERATION_JUMP)
+
+@pytest.mark.parametrize("kw, motion, tol_r0", NARROW_ARC)
+def test_a_dwell_arc_narrower_than_a_sample_is_kept(kw, motion, tol_r0):
+    spec = CamSpec(motion=MotionProgram.rise_dwell_return(*motion), **ROCKER, **kw)
+    out = cam_profile(spec).outline(tol_r0 * spec.prime_radius)
+    # the dwell's face is one line turning with the cam: every vertex lies inside all of its lines
+    _, a, b, _, _ = spec.motion.phases()[1]
+    n, h = face_half_planes(spec, np.linspace(a, b, DWELL_LINES))
+    reach = spec.prime_radius + spec.stroke + spec.pivot_distance + spec.arm_length
+    assert max(float((out[k:k + 1024] @ n.T - h).max()) for k in range(0, len(out), 1024)) <= INSIDE * reach
+
+
+@pytest.mark.parametrize("kw, motion, tol_r0", STEEP + SHALLOW + SLIVER + ACCELERATION_JUMP + NARROW_ARC)
 def test_steep_flat_rocker_cam_is_the_intersection_of_its_half_planes(kw, motion, tol_r0):
     spec = CamSpec(motion=MotionProgram.rise_dwell_return(*motion), **ROCKER, **kw)
     prof = cam_profile(spec)

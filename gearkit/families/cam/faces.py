@@ -28,7 +28,10 @@ from gearkit.errors import GeometryError
 from gearkit.families.cam.crossings import corner_cut, refine_cut
 from gearkit.families.cam.halfplanes import face_lines
 
-__all__ = ["roller_depth", "kept_runs", "turned_back", "FaceEdge", "corner_lines", "face_boundary"]
+__all__ = ["roller_depth", "kept_runs", "turned_back", "FaceEdge", "corner_lines", "face_boundary", "FINEST"]
+
+#: the densest sampling of a flat face's envelope (samples over one turn) that resolves a narrow kept arc
+FINEST = (1 << 20) + 1
 
 
 def roller_depth(pitch_points, radius: float, start: float, samples: int = 65536):
@@ -211,12 +214,31 @@ def face_boundary(curve, depth, slack: float, corners, scale: float, samples: in
     from a kept arc's end to the next one's start along ``w`` (cyclic: ``wb`` may be below ``wa``). One arc
     ``[((0, 1),), None]`` and no cut when the whole envelope bounds the cam.
 
+    A kept arc narrower than a sample step has no kept sample: its neighbours' crossing, joined past it,
+    lies off the cam (outside the lines of that arc's cam angles, beyond ``slack``). Every join is checked
+    against ``depth``, and the envelope is sampled again four times as densely until each lies on the cam
+    (a dwell's arc a quarter of a sample step wide, between a rise and a return whose arcs cross 9 um
+    outside it, was cut away whole).
+
     Raises
     ------
     GeometryError
         When no sample is kept, or a run's end meets the next run's start neither at a crossing nor
-        along a corner's face line.
+        along a corner's face line, or a join still lies off the cam at ``FINEST`` samples.
     """
+    while True:
+        arcs, cuts = _sampled_boundary(curve, depth, slack, corners, scale, samples)
+        ends = np.array(cuts, dtype=float).reshape(-1)
+        if not len(ends) or depth(curve(ends)).max() <= slack:
+            return arcs, cuts
+        if samples > FINEST:
+            raise GeometryError("a kept arc of the flat face's envelope narrower than "
+                                f"1/{FINEST - 1} of a turn was not resolved: its neighbours' crossing lies off the cam")
+        samples = 4 * (samples - 1) + 1
+
+
+def _sampled_boundary(curve, depth, slack: float, corners, scale: float, samples: int):
+    """:func:`face_boundary` from ``samples`` samples of ``w``, whatever its joins."""
     w = np.linspace(0.0, 1.0, samples)
     m, step = samples - 1, w[1] - w[0]
     keep = depth(curve(w[:-1])) <= slack
