@@ -41,8 +41,9 @@ def _spec(dwell=DWELL, roller=ROLLER, arm=ARM, follower="rocker"):
                    arm_length=arm)
 
 
-def check_against_swept_discs(spec, tol):
-    """The outline at ``tol`` against the roller's discs along its exact centre path; returns the profile."""
+def check_against_swept_discs(spec, tol, slack=0.0):
+    """The outline at ``tol`` against the roller's discs along its exact centre path; returns the profile.
+    ``slack`` (mm): how far inside a roller a vertex may lie besides the chords' sag."""
     prof = cam_profile(spec)
     out, achieved = prof.outline(tol), prof.achieved(tol)
     assert achieved <= tol
@@ -55,7 +56,7 @@ def check_against_swept_discs(spec, tol):
     chord = float(np.hypot(*np.diff(path, axis=0).T).max())
     sag = 2 * chord ** 2 / (8 * r)
     vertex = distances_to_polyline(out, path, closed=True)
-    assert np.abs(vertex - r).max() <= sag  # every vertex touches a roller and lies inside none
+    assert np.abs(vertex - r).max() <= sag + slack  # every vertex touches a roller and lies inside none
     closed = np.concatenate([out, out[:1]])
     mids = distances_to_polyline(0.5 * (closed[1:] + closed[:-1]), path, closed=True)
     assert mids.min() >= r - achieved * (1 + 1e-9) - sag
@@ -99,4 +100,6 @@ SCANNED = [
 @pytest.mark.parametrize("motion, kw", SCANNED)
 def test_a_kept_sample_at_the_arcs_end(motion, kw):
     spec = CamSpec(motion=MotionProgram.rise_dwell_return(*motion, "constant_velocity"), contact="roller", **kw)
-    check_against_swept_discs(spec, 1e-4 * spec.prime_radius)
+    # a swallowtail beside these arcs is shallower than the keep test's slack, 1e-7 (r0 + stroke), and stays
+    # in the outline: its vertices lie up to that much inside a roller (far below the tolerance asked here)
+    check_against_swept_discs(spec, 1e-4 * spec.prime_radius, slack=1e-7 * (spec.prime_radius + spec.stroke))

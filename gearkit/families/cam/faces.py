@@ -28,7 +28,7 @@ from gearkit.errors import GeometryError
 from gearkit.families.cam.crossings import corner_cut, refine_cut
 from gearkit.families.cam.halfplanes import face_lines
 
-__all__ = ["roller_depth", "kept_runs", "turned_back", "FaceEdge", "corner_lines", "face_boundary", "FINEST"]
+__all__ = ["roller_depth", "kept_runs", "FaceEdge", "corner_lines", "face_boundary", "FINEST"]
 
 #: the densest sampling of a flat face's envelope (samples over one turn) that resolves a narrow kept arc
 FINEST = (1 << 20) + 1
@@ -47,19 +47,17 @@ def roller_depth(pitch_points, radius: float, start: float, samples: int = 65536
     return lambda points: radius - edge_distances(points, pitch, closed=True)
 
 
-def kept_runs(curve, depth, pitch, slack: float, meet: float, circles=(), samples: int = 16385):
+def kept_runs(curve, depth, slack: float, meet: float, circles=(), samples: int = 16385):
     """Where the roller's envelope ``curve`` (of ``w`` in [0, 1], one turn) bounds the cam: ``[(wa, wb),
     ...]``, the cuts from a kept arc's end ``wa`` to the next kept arc's start ``wb`` (cyclic, ``wb`` may
     be below ``wa``: the cut runs through ``w = 1``), each refined to the envelope's self-crossing, in
     the order the cam's boundary runs (:func:`_cam_cycle`; a crossing's ends within ``meet``, mm). A
     sample is kept where ``depth`` (:func:`roller_depth`) is at most ``slack`` (mm: the swept region's
-    own sampling error) and the envelope does not run back along the roller there (:func:`turned_back`:
-    its own neighbours cover it, exactly, however shallow the loop). A cut from or to a roller's arc about
-    a velocity jump's corner (``circles``, :func:`~gearkit.families.cam.crossings.corner_cut`) is sought
-    where the envelope beside it comes out of that circle. Empty when the whole envelope bounds the cam."""
+    own sampling error). A cut from or to a roller's arc about a velocity jump's corner (``circles``,
+    :func:`~gearkit.families.cam.crossings.corner_cut`) is sought where the envelope beside it comes out
+    of that circle. Empty when the whole envelope bounds the cam."""
     w = np.linspace(0.0, 1.0, samples)
-    pts, tangents, phi = curve.solve(w)
-    keep = (depth(pts) <= slack) & ~turned_back(pts, tangents, _centre_steps(pts, tangents, phi, pitch))
+    keep = depth(curve(w)) <= slack
     keep[-1] = keep[0]  # w = 1 is w = 0
     if keep.all():
         return []
@@ -69,48 +67,6 @@ def kept_runs(curve, depth, pitch, slack: float, meet: float, circles=(), sample
     starts = [int(j) for j in k if not keep[j - 1 if j else samples - 2]]  # runs beginning at j
     ends = [int(j) for j in k if not keep[j + 1]]  # runs ending at j
     return _cam_cycle(curve, w, keep, starts, ends, meet, circles)
-
-
-def turned_back(pts, tangents, moves):
-    """Which samples of the closed envelope ``pts`` (one turn, the last the first) run along the roller's
-    tangent ``tangents`` at their contact the other way from the roller's centre there (``moves``: the
-    pitch curve's own step about each sample's cam angle, across a velocity jump's corner its chord): the
-    envelope point ``c + R_p n`` of a pitch curve ``c`` moves as ``c' (1 - R_p k)`` (``k`` its convex
-    curvature), so it turns back exactly where the roller is larger than the radius of curvature, and
-    about a concave corner of the pitch curve, where it sweeps the roller's arc against the centre's
-    motion. Such a point lies inside the rollers of the cam angles either side, at any depth: a loop
-    shallower than the swept region's sampling error (the chords of its pitch polyline read the
-    boundary that much deep) is cut all the same. Each sample is judged on its own (no reference
-    sample: the start angle's own sample may be turned back or sit on a corner), the envelope's motion
-    read from the samples' central differences (a loop narrower than a sample step is seen at most at
-    one end of its tails, inside it too).
-
-    >>> t = np.linspace(0.0, 2.0 * np.pi, 9)
-    >>> pts = np.stack([np.cos(t), np.sin(t)], -1)
-    >>> tangents = np.stack([-np.sin(t), np.cos(t)], -1)
-    >>> tangents[3] *= -1.0
-    >>> turned_back(pts, tangents, tangents).nonzero()[0].tolist()
-    [3]
-    """
-    d = np.roll(pts[:-1], -1, axis=0) - np.roll(pts[:-1], 1, axis=0)  # central differences, cyclic
-    back = np.einsum("ij,ij->i", d, tangents[:-1]) * np.einsum("ij,ij->i", moves[:-1], tangents[:-1]) < 0.0
-    return np.append(back, back[0])
-
-
-def _centre_steps(pts, tangents, phi, pitch):
-    """The roller centre's central differences at the envelope's samples (one turn, the last the first),
-    the centres read off the contacts one roller radius back along the normal (the pitch curve
-    ``pitch(phi)`` read once, for the radius and the normal's side); inside a velocity jump's corner,
-    where the centre stands still, the pitch curve's chord across the corner's cam angle instead."""
-    normals = np.stack([-tangents[:, 1], tangents[:, 0]], -1)
-    lever = pts[0] - pitch(phi[:1])[0]
-    centres = pts[:-1] - float(np.dot(lever, normals[0])) * normals[:-1]
-    steps = np.roll(centres, -1, axis=0) - np.roll(centres, 1, axis=0)
-    still = np.flatnonzero(np.roll(phi[:-1], -1) == np.roll(phi[:-1], 1))
-    if len(still):
-        step = 2.0 * np.pi / (len(phi) - 1)
-        steps[still] = pitch(phi[still] + step) - pitch(phi[still] - step)
-    return np.vstack([steps, steps[:1]])
 
 
 def _cam_cycle(curve, w, keep, starts, ends, meet: float, circles=()):

@@ -116,7 +116,7 @@ class CamProfile:
             depth = roller_depth(self.pitch_points, self.spec.roller_radius, self.start)
             circles = [(k, self.pitch_points([sec[1]])[0], self.spec.roller_radius)
                        for k, sec in enumerate(self.branch.sections) if sec[0] == "corner"]
-            cuts = kept_runs(self.branch, depth, self.pitch_points, 1e-7 * scale, meet=1e-6 * scale, circles=circles)
+            cuts = kept_runs(self.branch, depth, 1e-7 * scale, meet=1e-6 * scale, circles=circles)
             chain = []
             for (_, wb), (wa, _) in zip(cuts, cuts[1:] + cuts[:1]):
                 chain += [((wb, wa), None)] if wb < wa else [((wb, 1.0), None), ((0.0, wa), None)]
