@@ -90,6 +90,22 @@ def _cos_sin(angle):
     return np.cos(angle), np.sin(angle) + 0.0
 
 
+def _range_cos_sin(lo, hi):
+    """:func:`_cos_sin` of both ends of the ranges ``[lo, hi]`` (``lo <= 0 <= hi``): ``(cos lo, sin lo, cos hi,
+    sin hi)``. Where a leg turns one way one end is 0 (either zero) and ``lo + hi`` is the other to the bit, so
+    one cosine and one sine serve both ends; only where every leg does so (else each end taken on its own).
+
+    >>> lo, hi = np.array([0.0, -0.5, -0.0]), np.array([0.25, 0.0, 0.0])
+    >>> all(np.array_equal(u, v) for u, v in zip(_range_cos_sin(lo, hi), _cos_sin(lo) + _cos_sin(hi)))
+    True
+    """
+    at_lo = lo == 0.0
+    if np.count_nonzero(at_lo | (hi == 0.0)) != np.size(at_lo):
+        return _cos_sin(lo) + _cos_sin(hi)
+    cos, sin = _cos_sin(lo + hi)
+    return np.where(at_lo, 1.0, cos), np.where(at_lo, 0.0, sin), np.where(at_lo, cos, 1.0), np.where(at_lo, sin, 0.0)
+
+
 def leg_bound(a, b, ta, tb, dparts, chord_a, chord_b):
     """Bound of the distance from the segment ``chord_a``-``chord_b`` of the curve's leg from ``a`` to ``b``.
 
@@ -114,6 +130,36 @@ def monotone_range(dparts):
     return _sum_parts(np.minimum(dparts, 0.0)), _sum_parts(np.maximum(dparts, 0.0)), _sum_parts(dparts)
 
 
+def _along(cx, cy, tax, tay, half):
+    """The chords ``(cx, cy)`` on the directions of their ranges' middles: the tangents ``(tax, tay)`` turned by
+    ``half``."""
+    cos, sin = np.cos(half), np.sin(half)
+    return cx * (cos * tax - sin * tay) + cy * (sin * tax + cos * tay)
+
+
+#: the sign of a chord's component along its range's middle is proven where its size is above this multiple of
+#: the chord's coordinates: far above the round-off of :func:`_along` (a few ulps of them) and of the proof's sums
+SURE_SIGN = 1e-13
+
+
+def _backwards(cx, cy, tax, tay, half):
+    """Where :func:`_along` is negative, proven without its cosines and sines (None where any is not proven so,
+    NaN included): it is ``D cos h + X sin h`` with ``D`` the chord along the tangent and ``X`` across it, and
+    ``1 >= cos h >= 1 - h^2 / 2``, ``|sin h| <= |h|``, so where ``|D| (1 - h^2 / 2) - |X| |h|`` exceeds
+    ``SURE_SIGN`` of the chord's coordinates (their round-off) the computed value has the sign of ``D``.
+
+    >>> cx, cy, t = np.array([1.0, -1.0]), np.array([0.0, -0.05]), np.array([1.0, 0.0])
+    >>> _backwards(cx, cy, *t, np.array([0.1, 0.2])).tolist(), _backwards(cx, cy, *t, np.array([0.1, 1.5]))
+    ([False, True], None)
+    >>> (_along(cx, cy, *t, np.array([0.1, 1.5])) < 0).tolist()  # the second: backwards, but not proven so
+    [False, True]
+    """
+    along, across = cx * tax + cy * tay, cy * tax - cx * tay
+    low = np.abs(along) * (1.0 - 0.5 * half * half) - np.abs(across) * np.abs(half)
+    sure = low > SURE_SIGN * (np.abs(cx) + np.abs(cy))
+    return along < 0.0 if np.count_nonzero(sure) == np.size(sure) else None
+
+
 def _legs(ax, ay, bx, by, ta, tb, turn, chord, ends):
     """:func:`leg_bound` on coordinates (the unit tangents ``ta``, ``tb`` too, as ``(x, y)`` pairs), given the
     range ``turn = (lo, hi, total)`` of each leg's tangent angle and its total turn, and the larger distance
@@ -122,14 +168,14 @@ def _legs(ax, ay, bx, by, ta, tb, turn, chord, ends):
     width = hi - lo
     tax, tay = ta
     cx, cy = bx - ax, by - ay
-    cos_lo, sin_lo = _cos_sin(lo)
+    cos_lo, sin_lo, cos_hi, sin_hi = _range_cos_sin(lo, hi)
     lox, loy = cos_lo * tax - sin_lo * tay, sin_lo * tax + cos_lo * tay
-    cos_hi, sin_hi = _cos_sin(hi)
     hix, hiy = cos_hi * tax - sin_hi * tay, sin_hi * tax + cos_hi * tay
     half = 0.5 * (lo + hi)
-    cos, sin = np.cos(half), np.sin(half)
-    along_mid = cx * (cos * tax - sin * tay) + cy * (sin * tax + cos * tay)  # the chord on the range's middle
-    backwards = along_mid < 0.0
+    backwards, along_mid = _backwards(cx, cy, tax, tay, half), None  # (no chord is then 0 along it)
+    if backwards is None:
+        along_mid = _along(cx, cy, tax, tay, half)
+        backwards = along_mid < 0.0
     if np.count_nonzero(backwards):  # (elsewhere the sense is 1: a product by it changes no bit)
         sense = np.where(backwards, -1.0, 1.0)
         lox, loy, hix, hiy = sense * lox, sense * loy, sense * hix, sense * hiy
@@ -161,7 +207,8 @@ def _legs(ax, ay, bx, by, ta, tb, turn, chord, ends):
     tbx, tby = tb
     ok = (np.abs(ex * tby - ey * tbx) <= CONSISTENT) & (ex * tbx + ey * tby > 0.0) & (width < 0.5 * np.pi)
     ok &= narrow | ((along_lo >= -slack) & (along_hi >= -slack))
-    ok &= narrow | ~(length > 0) | (along_mid != 0.0)
+    if along_mid is not None:  # (else no chord is 0 along its range's middle: its sign is proven)
+        ok &= narrow | ~(length > 0) | (along_mid != 0.0)
     ok &= np.isfinite(bound)
     return bound if np.count_nonzero(ok) == ok.size else np.where(ok, bound, np.inf)
 

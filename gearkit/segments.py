@@ -23,6 +23,9 @@ import numpy as np
 from gearkit.values import frozen
 
 _IDENTITY = (1.0, 0.0, 0.0, 1.0, 0.0, 0.0)
+#: below this linear angle (rad) its round-off is far below an eighth of a turn: a segment's fixed quarter
+#: turns (:attr:`Segment._quarter`) are what rounding the tangent's own angle gives
+_QUARTER_SURE = 1e6
 
 
 @frozen
@@ -184,6 +187,20 @@ class Segment:
         angle = self._angle(ue, t0x, t0y)
         return None if angle is None else (p, t, angle)
 
+    @cached_property
+    def _quarter(self):
+        """The quarter turns from the linear angle to the tangent's, where the kind fixes them (else None): an
+        arc's tangent ``sign (-sin a, cos a)`` is ``a`` plus a quarter turn (``sign`` 1) or three (-1), an
+        involute's ``sign (cos a, sin a)`` is ``a`` plus none or two; the tangent's own angle, which
+        :meth:`_angle` rounds to the nearest quarter turn from ``a``, lies within round-off of that (while
+        ``|a| < _QUARTER_SURE``), so the rounding gives these numbers."""
+        d = self.data
+        if self.kind == "arc":
+            return 1.0 if d[4] >= d[3] else 3.0
+        if self.kind == "involute":
+            return 0.0 if d[6] >= d[5] else 2.0
+        return None
+
     def _angle(self, ue, t0x, t0y):
         """:meth:`turning`'s angle at the primitive's parameters ``ue`` and (unnormalised) tangents, or None."""
         d = self.data
@@ -198,9 +215,11 @@ class Segment:
             lin = -(s0 + ue * (s1 - s0)) * (kb + 0.5 / a)
         else:
             lin = np.zeros_like(ue)
-        # a line's tangent is one vector: its angle is taken once
-        turn = np.arctan2(t0y, t0x) if np.ndim(t0x) else np.full(ue.shape, np.arctan2(t0y, t0x))
-        quarter = np.mod(np.round((turn - lin) / (0.5 * math.pi)), 4.0)
+        quarter = self._quarter
+        if quarter is None or not np.abs(lin).max(initial=0.0) < _QUARTER_SURE:
+            # a line's tangent is one vector: its angle is taken once
+            turn = np.arctan2(t0y, t0x) if np.ndim(t0x) else np.full(ue.shape, np.arctan2(t0y, t0x))
+            quarter = np.mod(np.round((turn - lin) / (0.5 * math.pi)), 4.0)
         psi = lin + 0.5 * math.pi * quarter  # the primitive's tangent angle, continuous
         a11, a12, a21, a22 = self.affine[:4]
         if a11 * a22 - a12 * a21 < 0:  # a reflection: A e(psi) = (A diag(1, -1)) e(-psi)
