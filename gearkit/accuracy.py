@@ -234,7 +234,7 @@ def place_by_curvature(w, points, tol: float, ordered: bool = False) -> np.ndarr
     w, p = np.asarray(w, dtype=float), np.asarray(points, dtype=float)
     if not ordered:
         order = w.argsort(kind="stable")
-        w, p = w[order], p[order]
+        w, p = w[order], p.take(order, axis=0)
     d = p[1:] - p[:-1]
     length = np.hypot(d[:, 0], d[:, 1])
     if len(length) < 2 or not length.max(initial=0.0) > 0.0:

@@ -126,7 +126,7 @@ def _sample_chain(branches, tol):
     for k, ((w, p, *_), s) in enumerate(zip(refined, start)):
         w, p = np.concatenate([w, _ENDS]), np.concatenate([p, s[2]])
         order = np.argsort(w, kind="stable")
-        w, p = w[order], p[order]
+        w, p = w[order], p.take(order, axis=0)
         pts.append(p)
         owner.append(np.full(len(w), k))
         ws.append(w)

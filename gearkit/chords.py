@@ -32,7 +32,7 @@ from __future__ import annotations
 import numpy as np
 
 __all__ = ["angle_parts", "chord_distance", "fractions_of", "interval_bounds", "leg_bound", "monotone_range",
-           "point_distance", "round_off"]
+           "point_distance", "put_rows", "round_off"]
 
 #: a leg's parts must reproduce its exact end tangent to this angle (rad): round-off of the parts
 CONSISTENT = 1e-9
@@ -238,7 +238,9 @@ def _walk_bound(rows, pts, tan, parts, q, tq, pq, span=None):
 
     def walk(at, inner, width):  # (width, probes + 2, n): each coordinate of a walk's point contiguous over the
         # intervals, so that every operation runs along them (not along a walk's few points, interval by interval)
-        return np.concatenate([at[rows, None], inner.reshape(n, -1, width), at[rows + 1, None]],
+        # (rows taken whole: indexing the first axis of a 2-d array copies it point by point)
+        return np.concatenate([at.take(rows, axis=0)[:, None], inner.reshape(n, -1, width),
+                               at.take(rows + 1, axis=0)[:, None]],
                               axis=1).transpose(2, 1, 0).copy()
 
     (px, py), (tx, ty) = walk(pts, q, 2), walk(tan, tq, 2)
@@ -273,6 +275,23 @@ def fractions_of(lo, width, fractions):
     [[0.25, 0.5], [1.5, 2.0]]
     """
     return np.ascontiguousarray((lo + width * np.asarray(fractions)[:, None]).T)
+
+
+def put_rows(out, rows, values):
+    """``out[rows] = values`` (``out`` C-contiguous, ``rows`` integers), each row of a multi-dimensional ``out``
+    copied whole as one item of a row-sized type (indexing its first axis copies it element by element).
+
+    >>> out = np.zeros((4, 2, 2))
+    >>> put_rows(out, np.array([3, 1]), np.arange(8.0).reshape(2, 2, 2))
+    >>> out[:, 0].tolist()
+    [[0.0, 0.0], [4.0, 5.0], [0.0, 0.0], [0.0, 1.0]]
+    """
+    if out.ndim == 1 or not len(rows) or not out.strides[0] or not out.flags.c_contiguous:
+        out[rows] = values
+        return
+    row = np.dtype((np.void, out.strides[0]))
+    values = np.ascontiguousarray(values, dtype=out.dtype).reshape(len(rows), -1)
+    out.reshape(len(out), -1).view(row)[:, 0][rows] = values.view(row)[:, 0]
 
 
 def interval_bounds(turning, w, pts, tan, parts, tol, fractions, rows=None, probed=None, span=None):

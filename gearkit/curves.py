@@ -201,10 +201,11 @@ def polyline_self_intersections(points):
     ei, ej = np.where(swap, ej, ei), np.where(swap, ei, ej)
     keep = (ej - ei > 1) & (loy[ei] <= hiy[ej]) & (loy[ej] <= hiy[ei])
     ei, ej = ei[keep], ej[keep]
-    d1 = b[ei] - a[ei]
-    d2 = b[ej] - a[ej]
+    ai, aj = a.take(ei, axis=0), a.take(ej, axis=0)  # rows whole (indexing copies a 2-d array point by point)
+    d1 = b.take(ei, axis=0) - ai
+    d2 = b.take(ej, axis=0) - aj
     den = cross2(d1, d2)
-    r = a[ej] - a[ei]
+    r = aj - ai
     with np.errstate(divide="ignore", invalid="ignore"):
         ti = cross2(r, d2) / den
         tj = cross2(r, d1) / den

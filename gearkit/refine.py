@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from gearkit.chords import angle_parts, fractions_of, interval_bounds, monotone_range, round_off
+from gearkit.chords import angle_parts, fractions_of, interval_bounds, monotone_range, put_rows, round_off
 from gearkit.chords import chord_distance as _chord_deviation
 from gearkit.chords import point_distance as _chord_points
 
@@ -42,7 +42,8 @@ def _probe(evaluate, w, pts, tol, rows=None, probed=None):
     gives the points at parameters ``x`` ``(m, j)`` of the intervals ``rows``; ``probed``: the points at
     the probes (flat), where the caller evaluated them already."""
     rows = np.arange(len(w) - 1) if rows is None else rows
-    lo, hi, a, b = w[rows], w[rows + 1], pts[rows, None, :], pts[rows + 1, None, :]
+    # rows taken whole (``take``): indexing the first axis of a 2-d array copies it point by point
+    lo, hi, a, b = w[rows], w[rows + 1], pts.take(rows, axis=0)[:, None], pts.take(rows + 1, axis=0)[:, None]
     probes = fractions_of(lo, hi - lo, _PROBES)
     q = (evaluate(probes, rows) if probed is None else probed).reshape(len(lo), len(_PROBES), 2)
     # the walk from a through the probes to b as (x or y, point, interval): every operation runs along the intervals
@@ -63,9 +64,9 @@ def _scatter(n, rows, fresh, at=None, old=None):
     out = []
     for j, f in enumerate(fresh):
         both = np.zeros((n,) + f.shape[1:], dtype=f.dtype)
-        both[rows] = f
+        put_rows(both, rows, f)
         if at is not None:
-            both[at] = old[j]
+            put_rows(both, at, old[j])
         out.append(both)
     return tuple(out)
 
@@ -147,10 +148,10 @@ class _Curves:
         back = np.empty_like(order)
         back[order] = np.arange(len(order))
         if not turning:
-            return np.concatenate(evaluate_curves(curves, params))[back]
+            return np.concatenate(evaluate_curves(curves, params)).take(back, axis=0)
         out = turn_curves(curves, params)
         joined = out[0] if len(out) == 1 and out[0][2].shape[1] == self.parts else _joined(out, self.parts)
-        return tuple(v[back] for v in joined)
+        return tuple(v.take(back, axis=0) for v in joined)
 
     def _span(self, pa, pb, rows):
         """Each leg's turn range (:func:`~gearkit.chords.interval_bounds`' ``span``): its curve's own ``span``,
@@ -335,9 +336,10 @@ def refine_samples(curves, ws, ptss, tol: float, max_rounds: int = 60, max_split
         w, owner = w[order], owner[order]
         first = np.concatenate([[True], (w[1:] != w[:-1]) | (owner[1:] != owner[:-1])])
         order, w, owner = order[first], w[first], owner[first]
-        pts = pts[order]
+        pts = pts.take(order, axis=0)
         if bound:
-            tan, parts = np.concatenate([tan] + new_t)[order], np.concatenate([parts] + new_a)[order]
+            tan = np.concatenate([tan] + new_t).take(order, axis=0)
+            parts = np.concatenate([parts] + new_a).take(order, axis=0)
         # an interval with the same two ends is measured the same: only the new ones are probed again
         where = np.full(len(first), -1)  # -1: a new point dropped (its parameter a vertex's already)
         where[order] = np.arange(len(order))
@@ -355,10 +357,12 @@ def refine_samples(curves, ws, ptss, tol: float, max_rounds: int = 60, max_split
             got = curves.evaluate_at(x, np.concatenate([owner[new], np.repeat(owner[todo], len(_PROBES))]), bound)
             e = len(extra)
             if bound:
-                pts[new], tan[new], parts[new] = got[0][:e], got[1][:e], got[2][:e]
+                for into, value in zip((pts, tan, parts), got):
+                    put_rows(into, new, value[:e])
                 probed = tuple(v[e:] for v in got)
             else:
-                pts[new], probed = got[:e], got[e:]
+                put_rows(pts, new, got[:e])
+                probed = got[e:]
     curves.owner = owner[:-1]
     starts = np.concatenate([[True], owner[1:] != owner[:-1]]).nonzero()[0]
     inside = owner[:-1] == owner[1:]
