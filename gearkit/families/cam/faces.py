@@ -75,9 +75,23 @@ def _cam_cycle(curve, w, keep, starts, ends, meet: float, circles=()):
     A sample no roller covers lies on the boundary of the swept region, but not every such boundary
     bounds the cam: a roller far larger than the rise is steep (a lift of several prime radii over a
     short rise) sweeps a finger whose outer side the envelope also traces, uncovered and outside the
-    cam. Each run's end meets exactly one run's start (the swept region's boundary has two arcs at a
-    corner), so the runs fall into cycles, and the cam's is the one through the kept sample nearest
-    the axis (the first point of the swept region any ray from the axis meets there lies on the cam).
+    cam, and a large roller on a short steep rise may pinch the cam's nose off, leaving an island of
+    uncovered envelope beyond the neck that no shaft holds. Each run's end meets exactly one run's start
+    (the swept region's boundary has two arcs at a corner), so the runs fall into cycles, and the cam's
+    is the one through the kept sample nearest the axis (the first point of the swept region any ray
+    from the axis meets there lies on the cam).
+
+    The crossing that ends a run lies by it: the envelope between the crossings that start and end a run
+    bounds the swept region, so no covered sample lies between them, and past the run's end the envelope
+    runs inside the region until it comes out at a later run's start (a run of samples within the slack
+    inside a loop lies past the loop's crossing). Newton started from a chords' crossing far out (a
+    shallow crossing), or a corner's circle left far from the run, may settle on another crossing that
+    meets as well: a large roller on a short steep rise pinched the cam's nose off at a neck, and the
+    crossing of the island's tip beyond it, or of two of the island's arcs, was taken for the neck's; a
+    constant-velocity rocker's one run was joined to itself where the envelope left a corner's circle
+    far past the run's start. So a crossing counts only where its ends lie by the run it leaves and by the
+    run it enters (:func:`_by_run`), every run's start is tried, and of the crossings that count the first
+    past the run's start is taken (one within a sample of the run's last kept sample ends the search).
 
     Raises
     ------
@@ -88,22 +102,58 @@ def _cam_cycle(curve, w, keep, starts, ends, meet: float, circles=()):
     radius = np.hypot(*curve(w[kept]).T)
     j0 = int(kept[np.argmin(radius)])
     starts, ends = sorted(starts), sorted(ends)
+    runs = {s: next((j for j in ends if j >= s), ends[0]) for s in starts}  # start -> end
     first = max((s for s in starts if s <= j0), default=starts[-1])
     cuts, s = [], first
     for _ in range(len(starts)):
-        e = next((j for j in ends if j >= s), ends[0])
+        e = runs[s]
+        since = cuts[-1][1] if cuts else w[(s - 1) % (len(w) - 1)]  # where the run began
+        found = []
         for b in [j for j in starts if j > e] + [j for j in starts if j <= e]:
-            wa, wb = corner_cut(curve, w, e, b, circles, meet) or refine_cut(curve, w, e, b, meet=meet)
-            pa, pb = curve(np.array([wa, wb]))
-            if np.hypot(*(pa - pb)) <= meet:
+            for wa, wb in _candidates(curve, w, e, b, circles, meet):
+                pa, pb = curve(np.array([wa, wb]))
+                if np.hypot(*(pa - pb)) > meet or not _by_run(w, keep, s, e, wa):
+                    continue
+                entered = [r for r in starts if _by_run(w, keep, r, runs[r], wb)]
+                if entered:  # by two runs a sample apart: the one whose start is nearer
+                    nearest = min(entered, key=lambda r: abs((w[r] - wb + 0.5) % 1.0 - 0.5))
+                    found.append(((wa - since) % 1.0, wa, wb, nearest))
+                    break
+            if found and found[-1][0] <= (w[e + 1] - since) % 1.0:
                 break
-        else:
-            raise GeometryError(f"the roller's envelope leaves the cam at w = {w[e]:.6g} where it meets no other kept arc")
+        if not found:
+            raise GeometryError(f"the roller's envelope leaves the cam at w = {w[e]:.6g} where it meets no other "
+                                "kept arc")
+        _, wa, wb, s = min(found)
         cuts.append((wa, wb))  # the run the crossing enters: a run of a kept sample inside a loop is passed by
-        s = min(starts, key=lambda j: abs((w[j] - wb + 0.5) % 1.0 - 0.5))
         if s == first:
             return cuts
     raise GeometryError("the arcs of the roller's envelope that no roller covers do not close around the cam axis")
+
+
+def _candidates(curve, w, e, b, circles, meet):
+    """The crossings from the last kept sample ``e`` to the first kept sample ``b``: where the envelope beside
+    a corner's arc comes out of its circle, if it does, then the envelope's own crossing."""
+    hit = corner_cut(curve, w, e, b, circles, meet)
+    if hit is not None:
+        yield hit
+    yield refine_cut(curve, w, e, b, meet=meet)
+
+
+def _by_run(w, keep, s, e, x, reach: int = 64) -> bool:
+    """``x`` lies by the kept run from sample ``s`` to ``e`` (cyclic): between the covered samples either side
+    of it, or up to ``reach`` samples beyond one of them with no kept sample between. The crossing of a
+    stretch covered by less than the slack's few times over (a roller's arc about a slight concave corner)
+    is solved to within ``meet`` of the envelope meeting itself, which may lie a few samples into it."""
+    n, step = len(w) - 1, w[1] - w[0]
+    lo, hi = (s - 1) % n, (e + 1) % n
+    span = (w[hi] - w[lo]) % 1.0 or 1.0  # a run of all samples but one: the whole turn
+    if (x - w[lo]) % 1.0 <= span:
+        return True
+    after, ahead = (x - w[hi]) % 1.0 / step, (w[lo] - x) % 1.0 / step  # samples beyond the run's either side
+    if after <= reach:
+        return not keep[(hi + np.arange(1, int(after) + 1)) % n].any()
+    return ahead <= reach and not keep[(lo - np.arange(1, int(ahead) + 1)) % n].any()
 
 
 class FaceEdge:
