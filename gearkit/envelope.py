@@ -131,13 +131,16 @@ def _parted(sizes, *arrays):
     return [tuple(a[i - n:i] for a in arrays) for n, i in zip(sizes, ends)]
 
 
-def solve_together(branches, ws):
+def solve_together(branches, ws, carry: bool = True):
     """``(points, s, valid)`` of each branch (one motion and root, along the tool) at its parameters ``ws``,
-    as :meth:`Branch.solve` gives them without normals: contact, pose and turn into the blank once for all."""
+    as :meth:`Branch.solve` gives them without normals: contact, pose and turn into the blank once for all
+    (``carry=False``: the contact alone, the points None)."""
     first = branches[0]
     tool = [br.segment.evaluate(_tool_parameters(br, w)) for br, w in zip(branches, ws)]
     p, n = _joined([t[0] for t in tool]), _joined([t[2] for t in tool])
     s, valid = first.motion.contact(p, n, first.root)
+    if not carry:
+        return [(None, *part) for part in _parted([len(t[0]) for t in tool], s, valid)]
     q = first.motion.carry(p, np.where(valid, s, 0.0))[0]
     return _parted([len(t[0]) for t in tool], q, s, valid)
 
@@ -249,10 +252,10 @@ def chain_branches(chain, motion: RollingMotion, root: str = "near", return_root
     """
     out = []
     wholes = [Branch(seg, motion, root=root) for seg in chain]
-    solved = solve_together(wholes, [_RUN_GRID] * len(wholes)) if wholes else []
+    solved = solve_together(wholes, [_RUN_GRID] * len(wholes), carry=False) if wholes else []  # where valid
     for seg, whole, (_, _, valid) in zip(chain, wholes, solved):
         for a, b in _valid_runs(whole, valid):
-            out.append(Branch(seg, motion, a, b, root))
+            out.append(whole if (a, b) == (0.0, 1.0) else Branch(seg, motion, a, b, root))
     if return_root is None:
         return tuple(out)
     back = chain_branches(chain, motion, return_root)

@@ -124,8 +124,9 @@ class Segment:
         tangent.flags.writeable = normal.flags.writeable = False
         return tangent, normal
 
-    def _evaluate(self, u):
-        """:meth:`evaluate`, and the primitive's parameter and (unnormalised) tangent it came from."""
+    def _evaluate(self, u, normals: bool = True):
+        """:meth:`evaluate`, and the primitive's parameter and (unnormalised) tangent it came from (``normals=False``:
+        the normals None, for :meth:`turning`)."""
         u = np.asarray(u, dtype=float)
         if self.reverse:
             u = 1.0 - u
@@ -141,8 +142,11 @@ class Segment:
             p[..., 1] = a21 * px + a22 * py + b2
         if self.kind == "line":  # one tangent and normal, filled in
             tangent, normal = self._line_vectors
-            t, n = np.empty(shape), np.empty(shape)
+            t = np.empty(shape)
             t[...] = tangent
+            if not normals:
+                return p, t, None, u, (t0x, t0y)
+            n = np.empty(shape)
             n[...] = normal
             return p, t, n, u, (t0x, t0y)
         tx = a11 * t0x + a12 * t0y
@@ -153,6 +157,8 @@ class Segment:
         t = np.empty(shape)
         np.divide(tx, norm, out=t[..., 0])
         np.divide(ty, norm, out=t[..., 1])
+        if not normals:
+            return p, t, None, u, (t0x, t0y)
         n = np.empty(shape)
         np.negative(t[..., 1], out=n[..., 0])
         n[..., 1] = t[..., 0]
@@ -181,7 +187,7 @@ class Segment:
         >>> bool(np.allclose(np.diff(ang), np.pi / 2, rtol=0, atol=1e-12))
         True
         """
-        p, t, _, ue, (t0x, t0y) = self._evaluate(u)
+        p, t, _, ue, (t0x, t0y) = self._evaluate(u, normals=False)
         if self.kind == "line" and ue.size > 1:  # one tangent: its angle taken once, and filled in
             return p, t, np.full(ue.shape, self._angle(ue.ravel()[:1], t0x, t0y)[0])
         angle = self._angle(ue, t0x, t0y)
