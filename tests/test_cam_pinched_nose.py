@@ -8,8 +8,8 @@ Two fuzz-found rockers had that crossing taken from the wrong pair:
   past a neck where the two flanks' envelopes cross, an island of uncovered envelope that no shaft holds.
   Newton from the chords' crossing far out settled on the island's crossings, past a whole kept run, and the
   runs did not close around the axis (GeometryError on a valid cam);
-* a constant-velocity rocker whose one kept run was joined back to itself at the exit of a corner's roller
-  circle far from the run's start: the outline kept the whole swallowtail beyond, 4.3 mm inside a roller.
+* constant-velocity rockers whose kept runs were joined at the exit of a corner's roller circle far from
+  the run entered: the outline kept the swallowtail beyond, 4.3 mm (and a stretch 51 mm) inside a roller.
 
 Oracle, none of it the product's envelope: the roller centre written out from the spec's frames
 (:func:`test_cam_bounds.pitch_curve`) and the rollers' discs about it
@@ -31,9 +31,12 @@ from gearkit.families.cam import CamSpec, MotionProgram
 R0, ROLLER, PIVOT, ARM = 79.06439517241856, 39.91753973151403, 118.59659275862784, 59.29829637931392
 #: lift (mm of the roller centre's arc), rise, far dwell and return (degrees)
 LIFT, RISE, DWELL, RETURN = 47.438637103451136, 20.0, 28.200489191833114, 20.0
-#: the sweep's constant-velocity rocker (prime radius, roller, pivot, arm; lift, rise, dwell, return)
-CV = ((15.250848821808606, 7.672217269941743, 33.230195948187635, 20.918578779305637),
-      (10.473036322470314, 22.860452306830492, 18.23934762484577, 34.611408221106345))
+#: the sweep's constant-velocity rockers (prime radius, roller, pivot, arm; lift, rise, dwell, return): their
+#: outlines kept a swallowtail 4.3 mm and a stretch 51 mm inside a roller
+CV = [((15.250848821808606, 7.672217269941743, 33.230195948187635, 20.918578779305637),
+       (10.473036322470314, 22.860452306830492, 18.23934762484577, 34.611408221106345)),
+      ((86.44246224559137, 51.37354930535577, 197.3331362983138, 274.38722874099716),
+       (61.53250555508405, 26.115452373176545, 55.292509829274245, 24.06409391655079))]
 #: centres of the offset oracle over a turn
 OFFSETS = 40001
 
@@ -44,8 +47,8 @@ def _pinched(roller=ROLLER):
                    arm_length=ARM)
 
 
-def _constant_velocity():
-    (r0, roller, pivot, arm), motion = CV
+def _constant_velocity(which):
+    (r0, roller, pivot, arm), motion = CV[which]
     return CamSpec(r0, MotionProgram.rise_dwell_return(*motion, "constant_velocity"), follower="rocker",
                    contact="roller", roller_radius=roller, pivot_distance=pivot, arm_length=arm)
 
@@ -92,9 +95,10 @@ def test_neighbours_of_the_pinched_nose(roller, tol_r0):
     assert not off.any() or np.hypot(*exact[off].T).min() > np.hypot(*out.T).max()  # only an island beyond
 
 
+@pytest.mark.parametrize("which", range(len(CV)))
 @pytest.mark.parametrize("tol_r0", [1e-3, 1e-4, 1e-5])
-def test_a_single_kept_run_is_joined_at_its_own_ends(tol_r0):
-    spec = _constant_velocity()
+def test_constant_velocity_runs_are_joined_at_their_own_ends(tol_r0, which):
+    spec = _constant_velocity(which)
     tol = tol_r0 * spec.prime_radius
     # the swallowtail beside the corners' arcs is cut, but for loops shallower than the keep test's slack
     out = check_against_swept_discs(spec, tol, slack=1e-7 * (spec.prime_radius + spec.stroke)).outline(tol)
