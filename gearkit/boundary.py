@@ -165,7 +165,7 @@ def next_crossing(ii, jj, ti, tj, pos_e: int, pos_f: float):
     mask = (ii > pos_e) | ((ii == pos_e) & (ti > pos_f))
     if not mask.any():
         return None
-    cand = np.flatnonzero(mask & (ii == ii[mask].min()))
+    cand = (mask & (ii == ii[mask].min())).nonzero()[0]
     return int(cand[np.lexsort((tj[cand], jj[cand]))[-1]])
 
 

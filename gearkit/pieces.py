@@ -119,11 +119,11 @@ def crossings_many(pieces, searches, n=48, grids=None):
                 found[j].append((k, float(w[0]), None))
             last = float(g[-1])
             sgn = np.sign(g)
-            for i in np.flatnonzero(sgn[:-1] * sgn[1:] < 0):
+            for i in (sgn[:-1] * sgn[1:] < 0).nonzero()[0]:  # (flatnonzero's result, without its wrapping)
                 found[j].append((k, None, len(brackets)))  # the root's place: filled in below
                 brackets.append((float(w[i]), float(w[i + 1]), float(g[i]), float(g[i + 1])))
                 asked.append((j, k))
-            for i in np.flatnonzero(g == 0):
+            for i in (g == 0).nonzero()[0]:
                 found[j].append((k, float(w[i]), None))
 
     def values(which, xs):
