@@ -235,15 +235,19 @@ def overhead(repeats: int = 21):
 def cam_ladder(quick: bool, repeats: int):
     """The digest's cam (cycloidal rise 20 mm over 60 deg, dwell 60, return 60; translating roller
     R_p = 10 mm, r0 = 56.7702 mm): generate + sample at each tol (mm), the achieved deviation measured
-    by dense re-evaluation of the exact envelope pieces against the outline."""
+    by dense re-evaluation of the exact envelope pieces against the outline. Tols below a roller's floor,
+    2e-7 (r0 + stroke) = 1.5e-5 mm here, are refused by the cam and left out."""
     try:
         from gearkit.families.cam import CamSpec, MotionProgram, cam_profile
+        from gearkit.families.cam.profile import ROLLER_FLOOR
     except ImportError:
         return []
     spec = CamSpec(56.7702, MotionProgram.rise_dwell_return(20.0, 60.0, 60.0, 60.0), roller_radius=10.0)
     generate = getattr(cam_profile, "__wrapped__", cam_profile)
     rows = []
     for tol in (LADDER_TOLS[::2] if quick else LADDER_TOLS):
+        if tol < ROLLER_FLOOR * (spec.prime_radius + spec.stroke):
+            continue
         def run():
             prof = generate(spec)
             return prof, prof.outline(tol)

@@ -197,7 +197,10 @@ def run(args) -> int:
             if value is not None:
                 raise SpecError(flag, "applies to a mesh output only (-o .stl .obj .glb)")
     spec = spec_from_args(args)
-    result = check_cam(spec, tol_from(args.tol, None))
+    try:
+        result = check_cam(spec, tol_from(args.tol, None))
+    except SpecError as exc:  # a tol below the cam's floor is found by the profile: named as the flag
+        raise _as_flag(exc) from None
     tol = result.values["tolerance"]["requested"]
     out = result.to_dict()
     prof = cam_profile(spec)

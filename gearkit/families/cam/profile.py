@@ -34,6 +34,13 @@ __all__ = ["CamProfile", "cam_profile"]
 _TWO_PI = 2.0 * math.pi
 #: cam angles sampled to find the curve's shape, loops and extremes
 _SCAN = 4096
+#: a roller's keep test (:func:`~gearkit.families.cam.faces.kept_runs`) keeps envelope points up to this
+#: deep in the swept region, in (r0 + stroke): the sampling error of the region it measures them against.
+#: A loop (swallowtail) shallower than that stays in the outline, so its reported deviation adds it
+KEEP_SLACK = 1e-7
+#: the finest tol of a roller cam's outline, in (r0 + stroke): the keep slack and as much again for the
+#: chords (a tol below it could not be told from the loops the keep test leaves in)
+ROLLER_FLOOR = 2 * KEEP_SLACK
 
 
 class CamProfile:
@@ -116,7 +123,7 @@ class CamProfile:
             depth = roller_depth(self.pitch_points, self.spec.roller_radius, self.start)
             circles = [(k, self.pitch_points([sec[1]])[0], self.spec.roller_radius)
                        for k, sec in enumerate(self.branch.sections) if sec[0] == "corner"]
-            cuts = kept_runs(self.branch, depth, 1e-7 * scale, meet=1e-6 * scale, circles=circles)
+            cuts = kept_runs(self.branch, depth, KEEP_SLACK * scale, meet=1e-6 * scale, circles=circles)
             chain = []
             for (_, wb), (wa, _) in zip(cuts, cuts[1:] + cuts[:1]):
                 chain += [((wb, wa), None)] if wb < wa else [((wb, 1.0), None), ((0.0, wa), None)]
@@ -248,15 +255,20 @@ class CamProfile:
         return len(self.loops) > len(self.corner_loops)
 
     # -- sampled geometry ----------------------------------------------------------------
-    def _tol(self, tol) -> tuple:
-        """``tol`` checked against the cam's size ``r0 + stroke`` (``SpecError`` below ``PRECISION`` of it, the
-        geometry's own precision, or above it), and the round-off allowance of the cam's exact points: they
-        are computed through the follower's pose, whose lengths reach the pivot (``ROUND_OFF`` of those)."""
+    def _tol(self, tol, pitch: bool = False) -> tuple:
+        """``tol`` checked against the cam's size ``r0 + stroke`` (``SpecError`` below its floor or above the size),
+        the round-off allowance of the cam's exact points (they are computed through the follower's pose, whose
+        lengths reach the pivot: ``ROUND_OFF`` of those) and how deep in the swept region the kept pieces may
+        lie (a roller's ``KEEP_SLACK``, else 0). The floor is ``PRECISION`` of the size, the geometry's own
+        precision, or for a roller's outline (not its ``pitch`` curve) ``ROLLER_FLOOR`` of it."""
         spec = self.spec
         size = spec.prime_radius + spec.stroke
-        require(is_real(tol) and PRECISION * size <= tol <= size, "tol", f"{tol!r} mm is outside [{PRECISION * size:.6g}, "
-                f"{size:.6g}] mm (the cam's own precision 1e-9 (r0 + stroke) up to r0 + stroke)")
-        return float(tol), ROUND_OFF * self._reach()
+        roller = spec.contact == "roller" and not pitch
+        floor, why = (ROLLER_FLOOR, "a roller cam's 2e-7 (r0 + stroke), twice how deep in a roller its outline may "
+                      "keep a loop,") if roller else (PRECISION, "the cam's own precision 1e-9 (r0 + stroke)")
+        require(is_real(tol) and floor * size <= tol <= size, "tol", f"{tol!r} mm is outside [{floor * size:.6g}, "
+                f"{size:.6g}] mm ({why} up to r0 + stroke)")
+        return float(tol), ROUND_OFF * self._reach(), KEEP_SLACK * size if roller else 0.0
 
     def _reach(self) -> float:
         """The lengths the follower's pose spans, mm: the cam's size ``r0 + stroke``, the offset, the pivot
@@ -272,13 +284,13 @@ class CamProfile:
         return float(np.hypot(*(np.roll(ends[:, 1], 1, axis=0) - ends[:, 0]).T).max())
 
     def _sample(self, tol: float):
-        tol, slack = self._tol(tol)
+        tol, slack, keep = self._tol(tol)
         key = ("outline", tol)
         if key not in self._cache:
             gap = self._gap()
-            if gap >= tol - 2 * slack:
+            if gap >= tol - 2 * slack - keep:
                 raise GeometryError(f"the cam's kept pieces meet only within {gap:.3g} mm, not within tol {tol:.3g} mm")
-            done = sample_curves(list(self.pieces), tol - 2 * slack - gap, n_init=33)
+            done = sample_curves(list(self.pieces), tol - 2 * slack - gap - keep, n_init=33)
             pts = np.concatenate([pts if k == 0 else pts[1:] for k, (_, pts, _) in enumerate(done)])
             pts = pts[:-1][::-1]  # closed: drop the repeated start; counter-clockwise
             # a vertex within round-off of the one before it is the same point: a knife's corner (the tip stands
@@ -288,26 +300,27 @@ class CamProfile:
             same = step <= slack
             pts = pts[~same]
             self._cache[key] = (np.ascontiguousarray(pts), max(dev for _, _, dev in done) + gap + slack
-                                + float(step[same].sum()))
+                                + float(step[same].sum()) + keep)
         return self._cache[key]
 
     def outline(self, tol: float = 1e-3):
         """Closed profile, ``(n, 2)`` float64, counter-clockwise, no vertex within round-off of the one before it
-        (nor the last of the first); every chord within ``tol`` (mm, in ``[1e-9, 1] (r0 + stroke)``) of the exact
-        envelope."""
+        (nor the last of the first); every chord within ``tol`` (mm, in ``[1e-9, 1] (r0 + stroke)``, a roller's in
+        ``[2e-7, 1] (r0 + stroke)``) of the exact envelope and of the region the follower leaves uncovered."""
         return self._sample(tol)[0]
 
     def achieved(self, tol: float = 1e-3) -> float:
         """A proven bound (mm) of the largest chord deviation of :meth:`outline` at ``tol`` from the exact
         pieces (:mod:`gearkit.families.cam.turns`: the tangent's turn over every leg, bounded by the law),
-        plus the widest gap where one kept piece hands over to the next and the steps to the vertices merged with
-        the one before them."""
+        plus the widest gap where one kept piece hands over to the next, the steps to the vertices merged with
+        the one before them and, for a roller, the keep slack (``KEEP_SLACK (r0 + stroke)``: how deep in another
+        roller a loop the keep test leaves in may lie), so it bounds the outline's distance from the cam."""
         return self._sample(tol)[1]
 
     def pitch_outline(self, tol: float = 1e-3):
         """Closed pitch curve, counter-clockwise, and a proven bound of its chords' deviation (each phase
         of the program sampled as its own piece: the curve has a corner where the velocity jumps)."""
-        tol, slack = self._tol(tol)
+        tol, slack, _ = self._tol(tol, pitch=True)
         turns = CamTurns(self.spec, pitch=True)
         done = sample_curves([PitchCurve(self.motion, self.reference, turns, p0, p1)
                               for _, p0, p1, _, _ in self.spec.motion.phases()], tol - slack, n_init=33)
