@@ -33,6 +33,16 @@ def pitch_curve(spec, phi):
     return np.stack([c * x + n * y, -n * x + c * y], -1)
 
 
+def centres_for(spec, tol: float, share: float = 0.1) -> int:
+    """Enough roller centres (a power of two, 2^12 to 2^20) that the sag of their polyline, ``2 L^2 / (8 R)``
+    for its longest chord ``L``, stays within ``share`` of ``tol`` (the path's length read off 4096 of them,
+    the longest chord taken as twice the mean)."""
+    path = pitch_curve(spec, np.linspace(0.0, 2 * math.pi, 4097))
+    length = float(np.hypot(*np.diff(path, axis=0).T).sum())
+    chord = math.sqrt(4 * spec.roller_radius * share * tol) / 2
+    return 1 << min(max(math.ceil(math.log2(max(length / chord, 1.0))), 12), 20)
+
+
 def check_swept_discs(spec, out, achieved, centres: int = CENTRES):
     """Assert that the closed outline ``out`` of a roller cam is the boundary the swept discs leave, to
     within ``achieved`` (mm): every vertex at most a roller radius from the centre path and inside no disc

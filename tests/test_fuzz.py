@@ -7,8 +7,10 @@ must give either
 - a valid result: finite; the profile sampled to ``tol`` reports an achieved deviation within
   ``tol`` and at least the real one (a proven bound, every family), and the real one is within
   ``tol``, measured independently by dense re-evaluation of the exact pieces (``fuzzkit.true_deviation``); the outline closes without
-  crossing itself (racks); a pointed tip has thickness 0, never a negative one; the summary is
-  strict JSON; or
+  crossing itself (racks); a cam's outline bounds what its follower leaves of the blank, to within
+  the reported deviation (a flat face's half-planes; a roller's discs along its centre path, written
+  from the spec alone in tests/camoracle.py) at tols down to the cam's floor; a pointed tip has
+  thickness 0, never a negative one; the summary is strict JSON; or
 - a ``SpecError`` that names a field and says why.
 
 Anything else is a defect (tests/fuzzkit.py counts the outcomes). Numpy floating-point warnings are
@@ -271,9 +273,16 @@ def cam_kwargs(draw):
     return draw(maybe_hostile(kw)), motion
 
 
+#: the finest tol of a cam's outline, in (r0 + stroke): a roller's (twice the keep test's slack, the depth
+#: in a roller of a loop its outline may keep) and a knife's or flat face's (the geometry's own precision)
+CAM_FLOOR = {"roller": 2e-7, "knife": 1e-9, "flat": 1e-9}
+
+
 @fuzz_settings(20)
-@given(drawn=cam_kwargs(), tol_m=st.sampled_from([1e-3, 1e-4, 1e-5]))
+@given(drawn=cam_kwargs(), tol_m=st.sampled_from([1e-3, 1e-4, 1e-5, 1e-6, 1e-7]))
 def _cam(drawn, tol_m):
+    from camoracle import centres_for, check_swept_discs
+
     from gearkit.families.cam import CamSpec, MotionProgram, cam_profile
 
     kw, motion = drawn
@@ -282,12 +291,15 @@ def _cam(drawn, tol_m):
         return cam_profile(CamSpec(motion=MotionProgram.rise_dwell_return(*motion), **kw))
 
     def check(prof):
-        tol = tol_m * prof.spec.prime_radius
-        out = prof.outline(tol)
+        spec = prof.spec  # tol_m r0, down to the floor (a hair above it: the range is closed)
+        tol = max(tol_m * spec.prime_radius, (1 + 1e-9) * CAM_FLOOR[spec.contact] * (spec.prime_radius + spec.stroke))
+        out, achieved = prof.outline(tol), prof.achieved(tol)
         closed = np.concatenate([out[::-1], out[-1:]])  # the pieces' own order, closed
-        _check_bound(out, prof.achieved(tol), true_deviation(prof.pieces, closed), tol)
-        if prof.spec.contact == "flat":  # the cam is the intersection of the face's half-planes
-            check_flat_cam(prof.spec, out, tol)
+        _check_bound(out, achieved, true_deviation(prof.pieces, closed), tol)
+        if spec.contact == "flat":  # the cam is the intersection of the face's half-planes
+            check_flat_cam(spec, out, tol)
+        elif spec.contact == "roller":  # the cam is what the roller's discs along its centre path leave
+            check_swept_discs(spec, out, achieved, centres_for(spec, tol))
     run("cam", (kw, motion, tol_m), build, check)
 
 
