@@ -286,10 +286,12 @@ def put_rows(out, rows, values):
     >>> out[:, 0].tolist()
     [[0.0, 0.0], [4.0, 5.0], [0.0, 0.0], [0.0, 1.0]]
     """
-    if out.ndim == 1 or not len(rows) or not out.strides[0] or not out.flags.c_contiguous:
+    size = out.itemsize * (out.size // len(out)) if len(out) else 0  # bytes a row (not strides[0]: a first
+    # axis of one row may have any stride in a contiguous array)
+    if out.ndim == 1 or not len(rows) or not size or not out.flags.c_contiguous:
         out[rows] = values
         return
-    row = np.dtype((np.void, out.strides[0]))
+    row = np.dtype((np.void, size))
     values = np.ascontiguousarray(values, dtype=out.dtype).reshape(len(rows), -1)
     out.reshape(len(out), -1).view(row)[:, 0][rows] = values.view(row)[:, 0]
 
