@@ -293,7 +293,7 @@ def _join_runs(curve, w, runs, corners, scale, step):
         (c, e), dn = runs[nxt], info[nxt][0]
         leave, arrive = (b if d > 0 else a), (c if dn > 0 else e)
         wa, wb = refine_cut(curve, w, leave % m, arrive % m, d, dn, meet=1e-9 * scale)
-        joins.append(_bridge(curve, (wa, wb), corners, scale, step))
+        joins.append(_bridge(curve, (wa, wb), (leave % m / m, arrive % m / m), corners, scale, step))
     arcs, dropped = [], set()
     for i, k in enumerate(order):
         (a, b), d = runs[k], info[k][0]
@@ -322,15 +322,20 @@ def _spans(entry, leave):
     return tuple(sp for sp in out if sp[0] != sp[1])
 
 
-def _bridge(curve, cut, corners, scale: float, step: float):
+def _bridge(curve, cut, kept, corners, scale: float, step: float):
     """A join ``(wa, wb)`` of :func:`face_boundary` whose ends do not meet (no self-crossing of the
     envelope there): the straight stretch of the cam between them along a corner's face line.
 
     ``corners`` are ``(n, h, e0, e1)``: the face line at each velocity jump and the ``w`` range of
-    its corner section. An end within the section's reach snaps to the section's nearer end (the
-    face's slide at the jump runs along the same line), any other end to the envelope's crossing
-    with the line. Returns ``(wa, wb, edge)``; ``edge`` is None when the cut's ends meet (within
-    ``1e-6 scale``); the step is :func:`face_boundary`'s sampling step.
+    its corner section. With no crossing to find, Newton's ends ``(wa, wb)`` settle anywhere along
+    the envelope past the kept arcs, so the line and the stretch are read off the arcs' own ends,
+    ``kept`` (the ``w`` of the last kept sample of one arc and the first of the next): the line leaves
+    each within the chord of a sample step either side of it (the envelope crosses the line between
+    the kept sample and the cut one beside it, or enters the cam at the corner section's end a step
+    away). An end within the section's reach snaps to the section's nearer end (the face's slide at
+    the jump runs along the same line), any other end to the envelope's crossing with the line
+    beside its kept sample. Returns ``(wa, wb, edge)``; ``edge`` is None when the cut's ends meet
+    (within ``1e-6 scale``); the step is :func:`face_boundary`'s sampling step.
 
     Raises
     ------
@@ -341,12 +346,15 @@ def _bridge(curve, cut, corners, scale: float, step: float):
     pa, pb = curve(np.array([wa, wb]))
     if np.hypot(*(pa - pb)) <= 1e-6 * scale:
         return wa, wb, None
-    off = [abs(pa @ n - h) + abs(pb @ n - h) for n, h, _, _ in corners]
-    if not off or min(off) > 1e-2 * scale:
+    ka, kb = np.asarray(kept, dtype=float)
+    side = curve(np.mod(np.array([ka - step, ka, ka + step, kb - step, kb, kb + step]), 1.0))
+    reach = [max(np.hypot(*(side[i] - side[i + 1])), np.hypot(*(side[i + 1] - side[i + 2]))) for i in (0, 3)]
+    off = [max(abs(side[1] @ n - h) / reach[0], abs(side[4] @ n - h) / reach[1]) for n, h, _, _ in corners]
+    if not off or min(off) > 1.0 + 1e-9:
         raise GeometryError("a kept arc of the flat face's envelope meets the next one neither at a crossing nor along a corner's face line")
     n, h, e0, e1 = corners[int(np.argmin(off))]
     ends = []
-    for w in (wa, wb):
+    for w in (ka, kb):
         if e0 - 8 * step <= w <= e1 + 8 * step:
             ends.append(float(e0 if abs(w - e0) <= abs(w - e1) else e1))
             continue
