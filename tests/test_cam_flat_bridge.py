@@ -5,7 +5,7 @@ velocity jump there). No self-crossing of the envelope joins the two arcs, and N
 settled 0.67 mm off that line, past the 1e-2 (r0 + stroke) the line was sought within: the 10 000-spec cam
 fuzz's GeometryError ("a kept arc of the flat face's envelope meets the next one neither at a crossing nor along
 a corner's face line") on a valid cam. The line is read off the kept arcs' own ends now. That rocker at three
-tolerances, and its neighbours (far dwell 0, 1e-6, 0.5 and 3 degrees; lift 1e-6 and 10 % either way).
+tolerances, and its neighbours (far dwell 0, 1e-6, 0.5 and 3 degrees; lift 1e-6 and 10 % either way), and a sibling.
 
 Oracles, none of them the product's envelope or trimming code: the face's lines written out from the frames of
 :class:`CamSpec` (``fuzzkit.face_half_planes``) and scipy's intersection of 65 536 of their half-planes
@@ -34,14 +34,17 @@ KW = dict(prime_radius=38.907650314666384, follower="rocker", contact="flat", pi
 #: lift (mm), rise, far dwell, return (degrees)
 LIFT, RISE, DWELL, RETURN = 23.34459018879983, 109.58766694459987, 1.5, 20.000000000000004
 
-CASES = [((LIFT, RISE, DWELL, RETURN), t) for t in (1e-3, 1e-4, 1e-5)] + [
-    ((LIFT, RISE, d, RETURN), 1e-4) for d in (0.0, 1e-6, 0.5, 3.0)] + [
-    ((LIFT * f, RISE, DWELL, RETURN), 1e-4) for f in (1 - 1e-6, 1 + 1e-6, 0.9, 1.1)]
+CASES = [(KW, (LIFT, RISE, DWELL, RETURN), t) for t in (1e-3, 1e-4, 1e-5)] + [
+    (KW, (LIFT, RISE, d, RETURN), 1e-4) for d in (0.0, 1e-6, 0.5, 3.0)] + [
+    (KW, (LIFT * f, RISE, DWELL, RETURN), 1e-4) for f in (1 - 1e-6, 1 + 1e-6, 0.9, 1.1)] + [
+    # a sibling from a sweep of 100 flat rockers with 20-40 degree returns: no dwell, return psi' = -1.01
+    (dict(KW, prime_radius=165.08155009224944, pivot_distance=348.76621918583555, arm_length=436.9144173166428),
+     (168.07913719572693, 126.96351171061875, 0.0, 21.839922630556142), 1e-4)]
 
 
-@pytest.mark.parametrize("motion, tol_r0", CASES)
-def test_steep_return_is_bridged_along_its_end_face_line(motion, tol_r0):
-    spec = CamSpec(motion=MotionProgram.rise_dwell_return(*motion, "constant_velocity"), **KW)
+@pytest.mark.parametrize("kw, motion, tol_r0", CASES)
+def test_steep_return_is_bridged_along_its_end_face_line(kw, motion, tol_r0):
+    spec = CamSpec(motion=MotionProgram.rise_dwell_return(*motion, "constant_velocity"), **kw)
     prof = cam_profile(spec)
     tol = tol_r0 * spec.prime_radius
     out, achieved = prof.outline(tol), prof.achieved(tol)
