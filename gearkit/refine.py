@@ -15,6 +15,7 @@ import numpy as np
 from gearkit.chords import angle_parts, fractions_of, interval_bounds, monotone_range, put_rows, round_off
 from gearkit.chords import chord_distance as _chord_deviation
 from gearkit.chords import point_distance as _chord_points
+from gearkit.errors import GeometryError
 
 __all__ = ["ATOM", "PROBE_MARGIN", "UNEVEN", "evaluate_curves", "first_samples", "first_turning", "first_turnings",
            "refine_sample", "refine_samples", "turn_curves"]
@@ -34,6 +35,8 @@ PROBE_MARGIN = 0.9
 UNEVEN = 2.5
 #: a parameter interval this short (relative) holds no curve points but its ends and probes
 ATOM = 1e-13
+#: unproven intervals a round may hold: each splits at its probes, so ones that stay unproven would multiply for ever
+UNPROVEN_LIMIT = 1 << 16
 
 
 def _probe(evaluate, w, pts, tol, rows=None, probed=None):
@@ -212,8 +215,7 @@ def refine_sample(evaluate, w, pts, tol: float, max_rounds: int = 60, max_split:
     """
     turned = first_turning(evaluate, w) if bound else None
     if turned is None:
-        pts = evaluate(w) if pts is None else pts
-        return refine_samples([evaluate], [w], [pts], tol, max_rounds, max_split)[0]
+        return refine_samples([evaluate], [w], [evaluate(w) if pts is None else pts], tol, max_rounds, max_split)[0]
     return refine_samples([evaluate], [w], None, tol, max_rounds, max_split, turned=[turned])[0]
 
 
@@ -298,6 +300,8 @@ def refine_samples(curves, ws, ptss, tol: float, max_rounds: int = 60, max_split
         else:
             probes, q, dev, uneven = measured
         bad = (dev > margin * tol) & ~uneven
+        if (unproven := np.count_nonzero(uneven)) > UNPROVEN_LIMIT:
+            raise GeometryError(f"the curve's turn between samples is not bounded: {unproven} chords (over {UNPROVEN_LIMIT}) unproven after splitting")
         if not (np.count_nonzero(bad) or np.count_nonzero(uneven)):
             return _split_up(w, pts, dev, probes, q, starts)
         k = np.ceil(1.1 * np.sqrt(dev[bad] / (margin * tol))).clip(2, max(2, max_split)).astype(int)

@@ -33,7 +33,7 @@ import numpy as np
 
 from gearkit.families.cam.laws import jerk_bound, law_shape
 
-__all__ = ["CamTurns", "extent"]
+__all__ = ["CamTurns", "extent", "sin_range"]
 
 #: a leg's end angles must agree with its rate range to this angle (rad): round-off of the angles
 CONSISTENT = 1e-9
@@ -50,6 +50,20 @@ def extent(ya, yb, dlo, dhi, h):
         th = np.where(gap > 0, np.clip(np.divide(yb - ya - dlo * h, gap, where=gap > 0, out=np.zeros_like(gap)), 0, h), 0)
         tl = np.where(gap > 0, np.clip(np.divide(ya - yb + dhi * h, gap, where=gap > 0, out=np.zeros_like(gap)), 0, h), 0)
     return np.minimum(np.minimum(ya, yb), ya + dlo * tl), np.maximum(np.maximum(ya, yb), ya + dhi * th)
+
+
+def sin_range(lo, hi):
+    """Range ``(lo, hi)`` of ``sin`` over each interval ``[lo, hi]`` of angles (any place, rad): its values at
+    the ends, and 1 or -1 where the interval holds a crest or a trough.
+
+    >>> [tuple(round(float(v), 12) for v in sin_range(np.array(a), np.array(b))) for a, b in
+    ...  [(0.0, 0.5), (-0.5, 0.0), (1.0, 2.0), (-2.0, -1.0), (-1.0, 7.0)]]
+    [(0.0, 0.479425538604), (-0.479425538604, 0.0), (0.841470984808, 1.0), (-1.0, -0.841470984808), (-1.0, 1.0)]
+    """
+    a, b = np.sin(lo), np.sin(hi)
+    crest = np.floor((hi - 0.5 * math.pi) / (2 * math.pi)) * (2 * math.pi) + 0.5 * math.pi >= lo
+    trough = np.floor((hi + 0.5 * math.pi) / (2 * math.pi)) * (2 * math.pi) - 0.5 * math.pi >= lo
+    return np.where(trough, -1.0, np.minimum(a, b)), np.where(crest, 1.0, np.maximum(a, b))
 
 
 def _mul(x, y):
@@ -151,12 +165,10 @@ class CamTurns:
         else:
             arm, l0, rho = spec.arm_length, spec.pivot_distance, self.rho
             psi = (spec.psi0 + lift[0] / arm, spec.psi0 + lift[1] / arm)
-            ok &= (psi[0] > 0) & (psi[1] < math.pi)
+            # the formula holds at any arm angle: at rest the arm may point straight through the cam's
+            # axis (Psi0 = 0, l - l0 = r0) and a leg's lift range dip below it
             psi = (np.where(ok, psi[0], 1.0), np.where(ok, psi[1], 1.0))
-            sin_lo = np.minimum(np.sin(psi[0]), np.sin(psi[1]))
-            sin = (sin_lo, np.where((psi[0] <= 0.5 * math.pi) & (0.5 * math.pi <= psi[1]), 1.0,
-                                    np.maximum(np.sin(psi[0]), np.sin(psi[1]))))
-            cos = (np.cos(psi[1]), np.cos(psi[0]))
+            sin, cos = sin_range(psi[0], psi[1]), sin_range(psi[0] + 0.5 * math.pi, psi[1] + 0.5 * math.pi)
             c = (rho + rho * vel[0] / arm, rho + rho * vel[1] / arm)
             # cross(Y, Y') = -c^2 s'/l + l0 rho s'' sin(Psi)/l + l0 (c s') cos(Psi)/l, with c s' = rho (s' + s'^2/l)
             cross = _add(_add(_scale(-1.0 / arm, _mul(_sq(c), vel)), _scale(l0 * rho / arm, _mul(acc, sin))),
