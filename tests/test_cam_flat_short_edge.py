@@ -80,3 +80,32 @@ def test_a_dent_a_spike_and_a_second_turn_are_not_convex():
     assert convex_dents(spike)[0].min() < -0.1
     dent, winding = convex_dents(np.concatenate([ring, ring]))
     assert dent.min() > 0.0 and winding == 2
+
+
+#: constant-velocity rockers with lifts of 1e-4 mm or so (a sweep's siblings): the face's slides along its line at
+#: the velocity jumps about cam angle 0 (and at a 1e-6 or 1e-8 degree dwell) are a sixth of a sample step wide and
+#: fold, 1e-9 to 4e-8 mm outside the cam and back, with every sample kept: the fold went uncut
+FOLDS = [((6.539762333839532, 17.101923666922126, 10.090473573201985),
+          (0.0003218040992005135, 133.58248336930353, 1e-08, 118.61727099439513)),
+         ((4.606682903032246, 6.92407573594996, 2.3071582688722496),
+          (8.836816373038924e-05, 53.45090782943877, 0.0, 141.50038049893953)),
+         ((5.740909064592631, 10.246838403621304, 8.955572128872431),
+          (0.00013080969039075388, 72.70631367466137, 0.001, 101.28147483177388)),
+         ((21.542151308638108, 62.97568469725222, 49.42689327718606),
+          (0.0002703735246265625, 75.85242799527698, 1e-06, 16.045263866279704))]
+
+
+@pytest.mark.parametrize("tol_r0", [1e-4, 1e-6])
+@pytest.mark.parametrize("sizes, motion", FOLDS)
+def test_a_fold_narrower_than_a_sample_step_is_cut(sizes, motion, tol_r0):
+    r0, pivot, arm = sizes
+    spec = CamSpec(motion=MotionProgram.rise_dwell_return(*motion, "constant_velocity"), prime_radius=r0,
+                   follower="rocker", contact="flat", pivot_distance=pivot, arm_length=arm)
+    prof = cam_profile(spec)
+    tol = tol_r0 * r0
+    out = prof.outline(tol)
+    assert prof.achieved(tol) <= tol
+    check_flat_cam(spec, out, tol, LINES)
+    hull = ConvexHull(out)
+    inside = -(out @ hull.equations[:, :2].T + hull.equations[:, 2])
+    assert inside.min(axis=1).max() <= ON_HULL * (r0 + spec.stroke + pivot + arm)

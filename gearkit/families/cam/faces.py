@@ -221,10 +221,13 @@ def face_boundary(curve, depth, slack: float, corners, scale: float, samples: in
     ``[((0, 1),), None]`` and no cut when the whole envelope bounds the cam.
 
     A kept arc narrower than a sample step has no kept sample: its neighbours' crossing, joined past it,
-    lies off the cam (outside the lines of that arc's cam angles, beyond ``slack``). Every join is checked
-    against ``depth``, and the envelope is sampled again four times as densely until each lies on the cam
-    (a dwell's arc a quarter of a sample step wide, between a rise and a return whose arcs cross 9 um
-    outside it, was cut away whole).
+    lies off the cam (outside the lines of that arc's cam angles, beyond ``slack``). A section narrower than
+    a sample step has no sample either: a fold in it goes uncut (the slides along the face line at the
+    velocity jumps at cam angle 0 of a constant-velocity rocker with a lift of 3e-4 mm, a sixth of a step
+    wide, ran 4e-8 mm outside the cam and back with every sample kept). Every join, and the middle of every
+    section on a kept arc, is checked against ``depth``, and the envelope is sampled again four times as
+    densely until each lies on the cam (a dwell's arc a quarter of a sample step wide, between a rise and a
+    return whose arcs cross 9 um outside it, was cut away whole).
 
     Raises
     ------
@@ -232,15 +235,25 @@ def face_boundary(curve, depth, slack: float, corners, scale: float, samples: in
         When no sample is kept, or a run's end meets the next run's start neither at a crossing nor
         along a corner's face line, or a join still lies off the cam at ``FINEST`` samples.
     """
+    edges = np.asarray(getattr(curve, "edges", (0.0, 1.0)), dtype=float)  # a curve of one section: no narrow one
+    middles = 0.5 * (edges[:-1] + edges[1:]) % 1.0  # a section narrower than a sample step has none
     while True:
         arcs, cuts = _sampled_boundary(curve, depth, slack, corners, scale, samples)
         ends = np.array(cuts, dtype=float).reshape(-1)
-        if not len(ends) or depth(curve(ends)).max() <= slack:
+        probe = np.concatenate([ends, middles[_on_arcs(arcs, middles)]])
+        if not len(probe) or depth(curve(probe)).max() <= slack:
             return arcs, cuts
         if samples > FINEST:
             raise GeometryError("a kept arc of the flat face's envelope narrower than "
                                 f"1/{FINEST - 1} of a turn was not resolved: its neighbours' crossing lies off the cam")
         samples = 4 * (samples - 1) + 1
+
+
+def _on_arcs(arcs, w):
+    """Which of ``w`` lie on the kept arcs ``arcs`` (:func:`face_boundary`'s), strictly inside a stretch."""
+    spans = np.array([sp for spans, _ in arcs for sp in spans], dtype=float).reshape(-1, 2)
+    lo, hi = spans.min(axis=1), spans.max(axis=1)
+    return ((w[:, None] > lo) & (w[:, None] < hi)).any(axis=1)
 
 
 def _sampled_boundary(curve, depth, slack: float, corners, scale: float, samples: int):
