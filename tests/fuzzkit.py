@@ -246,10 +246,15 @@ def convex_dents(outline):
     return dent, winding
 
 
+#: :func:`check_flat_cam`'s lines per line step about each velocity jump, and the steps either side they span
+JUMP_LINES, JUMP_REACH = 100, 6
+
+
 def check_flat_cam(spec, outline, tol, lines: int = 1 << 16):
     """A flat face's cam is the intersection of its half-planes (:func:`face_half_planes` at ``lines``
-    cam angles and at every velocity jump): the outline (counter-clockwise) must lie inside every one
-    (round-off of its points, computed through lengths up to the pivot), turn one way (a convex cam: no
+    cam angles and at every velocity jump, ``JUMP_LINES`` times as dense within ``JUMP_REACH`` steps of
+    each jump): the outline (counter-clockwise) must lie inside every one (round-off of its points,
+    computed through lengths up to the pivot), turn one way (a convex cam: no
     vertex behind its neighbours' chord by more than that round-off, :func:`convex_dents`), and
     enclose the area of their polygon within its perimeter times ``tol`` plus the polygon's own excess
     (each vertex between two lines ``delta`` apart stands out by at most ``D (k delta)^2 / 8``: ``D`` the
@@ -257,14 +262,20 @@ def check_flat_cam(spec, outline, tol, lines: int = 1 << 16):
     the face turns). Returns ``(area of the outline, area of the polygon, allowed difference)``."""
     from scipy.spatial import ConvexHull, HalfspaceIntersection
 
-    phi = np.concatenate([np.linspace(0.0, 2 * math.pi, lines, endpoint=False),
-                          [p for p, dv, _, _ in spec.motion.jumps() if dv != 0.0]])
+    jumps = np.array([p for p, dv, _, _ in spec.motion.jumps() if dv != 0.0])
+    phi = np.concatenate([np.linspace(0.0, 2 * math.pi, lines, endpoint=False), jumps])
     n, h = face_half_planes(spec, phi)
     reach = spec.prime_radius + spec.stroke + (spec.pivot_distance or 0.0) + (spec.arm_length or 0.0)
     slack = 1e-12 * reach
     sparse = slice(None, None, max(lines // 4096, 1))
+    # about each velocity jump, where a small lift's slide folds within a fraction of a line step of it: lines
+    # JUMP_LINES times as dense as the whole turn's over JUMP_REACH of its steps either side
+    near = (jumps[:, None] + np.linspace(-JUMP_REACH, JUMP_REACH, 2 * JUMP_REACH * JUMP_LINES + 1)
+            * 2 * math.pi / lines).reshape(-1)
+    nj, hj = face_half_planes(spec, near) if len(near) else (np.zeros((0, 2)), np.zeros(0))
+    nv, hv = np.concatenate([n[sparse], nj]), np.concatenate([h[sparse], hj])
     for lo in range(0, len(outline), 1024):
-        worst = float((outline[lo:lo + 1024] @ n[sparse].T - h[sparse]).max())
+        worst = float((outline[lo:lo + 1024] @ nv.T - hv).max())
         assert worst <= slack, f"an outline vertex lies {worst:.3g} mm outside a half-plane of the face"
     dent, winding = convex_dents(outline)
     assert dent.min() >= -slack, f"the outline turns back by {-dent.min():.3g} mm: not a convex cam"

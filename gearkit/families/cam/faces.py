@@ -210,8 +210,8 @@ def face_boundary(curve, depth, slack: float, corners, scale: float, samples: in
     joined to the next, and the stretches of ``w`` cut away.
 
     A sample is kept where ``depth`` (:meth:`~gearkit.families.cam.halfplanes.HalfPlanes.depth`) is at
-    most ``slack`` (mm: round-off; the polygon of sampled lines holds the whole cam, so a swallowtail's
-    sliver is cut however shallow). The runs of kept samples are ordered by their polar angles; each run's
+    most ``slack`` (mm: round-off; the polygon of sampled lines, dense about the velocity jumps, holds the
+    whole cam, so a swallowtail's sliver is cut however shallow). The runs of kept samples are ordered by their polar angles; each run's
     end meets the next run's start at the envelope's crossing (sought again from a dense resampling when
     Newton's ends stay apart: a cusp at an acceleration jump), or along a corner's face line (:func:`_bridge`;
     ``corners`` of :func:`corner_lines`). Returns ``(arcs, cuts)``: ``arcs`` ``[(spans, edge)]``, the
@@ -238,11 +238,13 @@ def face_boundary(curve, depth, slack: float, corners, scale: float, samples: in
     edges = np.asarray(getattr(curve, "edges", (0.0, 1.0)), dtype=float)  # a curve of one section: no narrow one
     middles = 0.5 * (edges[:-1] + edges[1:]) % 1.0  # a section narrower than a sample step has none
     while True:
-        arcs, cuts = _sampled_boundary(curve, depth, slack, corners, scale, samples)
-        ends = np.array(cuts, dtype=float).reshape(-1)
-        probe = np.concatenate([ends, middles[_on_arcs(arcs, middles)]])
-        if not len(probe) or depth(curve(probe)).max() <= slack:
-            return arcs, cuts
+        found = _sampled_boundary(curve, depth, slack, corners, scale, samples)
+        if found is not None:
+            arcs, cuts = found
+            ends = np.array(cuts, dtype=float).reshape(-1)
+            probe = np.concatenate([ends, middles[_on_arcs(arcs, middles)]])
+            if not len(probe) or depth(curve(probe)).max() <= slack:
+                return arcs, cuts
         if samples > FINEST:
             raise GeometryError("a kept arc of the flat face's envelope narrower than "
                                 f"1/{FINEST - 1} of a turn was not resolved: its neighbours' crossing lies off the cam")
@@ -257,7 +259,8 @@ def _on_arcs(arcs, w):
 
 
 def _sampled_boundary(curve, depth, slack: float, corners, scale: float, samples: int):
-    """:func:`face_boundary` from ``samples`` samples of ``w``, whatever its joins."""
+    """:func:`face_boundary` from ``samples`` samples of ``w``, whatever its joins; None when a join's kept
+    samples lie within two steps of each other below ``FINEST`` samples (:func:`_join_runs`)."""
     w = np.linspace(0.0, 1.0, samples)
     m, step = samples - 1, w[1] - w[0]
     keep = depth(curve(w[:-1])) <= slack
@@ -270,7 +273,10 @@ def _sampled_boundary(curve, depth, slack: float, corners, scale: float, samples
     last = np.where(last < first[0], last + m, last) if last[0] < first[0] else last
     runs = sorted(zip(first.tolist(), np.sort(last).tolist()))  # (first, last), last >= first (unwrapped)
     for _ in range(len(runs)):
-        arcs, dropped = _join_runs(curve, w, runs, corners, scale, step)
+        joined = _join_runs(curve, w, runs, corners, scale, step, resolved=samples >= FINEST)
+        if joined is None:
+            return None
+        arcs, dropped = joined
         if not dropped:
             break
         runs = [r for k, r in enumerate(runs) if k not in dropped]
@@ -281,11 +287,17 @@ def _sampled_boundary(curve, depth, slack: float, corners, scale: float, samples
     return [(_spans(entry, leave), edge) for entry, leave, edge in arcs], cuts
 
 
-def _join_runs(curve, w, runs, corners, scale, step):
+def _join_runs(curve, w, runs, corners, scale, step, resolved: bool = True):
     """The runs' arcs joined around the cam: ``[(entry, leave, edge)]`` in boundary order (``entry`` and
     ``leave`` the arc's ends as walked, each ``(w, turns)``; ``edge`` the straight stretch to the next
     arc or None) and the indices of runs left with no arc (both joins past each other: a run of a sample
-    or two)."""
+    or two).
+
+    None, unless ``resolved``, when the kept samples a join leaves and arrives at lie within two steps of
+    each other: the cut is one sample wide, its crossing lies on the chords either side of that sample,
+    which the crossing's search passes over as touching (a constant-velocity rocker lifting 2e-3 mm with
+    no dwell: the end of its rise, the slide back at the jump to the return and the return's start within
+    one step about w = 0, a crossing not found apart from the curve itself)."""
     m = len(w) - 1
 
     def polar(j):
@@ -305,6 +317,8 @@ def _join_runs(curve, w, runs, corners, scale, step):
         (a, b), d = runs[k], info[k][0]
         (c, e), dn = runs[nxt], info[nxt][0]
         leave, arrive = (b if d > 0 else a), (c if dn > 0 else e)
+        if not resolved and min((arrive - leave) % m, (leave - arrive) % m) <= 2:
+            return None
         wa, wb = refine_cut(curve, w, leave % m, arrive % m, d, dn, meet=1e-9 * scale)
         joins.append(_bridge(curve, (wa, wb), (leave % m / m, arrive % m / m), corners, scale, step))
     arcs, dropped = [], set()

@@ -28,6 +28,8 @@ LINES = 65536
 #: a face whose line misses the cam by less than this fraction of r0 + stroke touches it (round-off of
 #: the support, computed through points up to a few r0 + stroke from the axis)
 ROUND_OFF = 1e-9
+#: lines per line step about each velocity jump, and the steps either side they span (:func:`face_depth`)
+CORNER_LINES, CORNER_REACH = 64, 4
 
 
 def face_lines(motion, tool, phi):
@@ -98,8 +100,24 @@ class HalfPlanes:
 
 def face_depth(motion, tool, start: float, corners=(), samples: int = LINES):
     """:class:`HalfPlanes` of ``samples`` face positions over one turn from cam angle ``start``, and of the
-    face at each of ``corners`` (cam angles of the velocity jumps, where the face slides along one line)."""
-    phi = np.concatenate([start + np.linspace(0.0, 2.0 * math.pi, samples, endpoint=False), np.asarray(corners, float)])
+    face at each of ``corners`` (cam angles of the velocity jumps, where the face slides along one line)
+    and ``CORNER_LINES`` times as densely within ``CORNER_REACH`` of their steps either side of each.
+
+    Between two of its lines ``delta`` apart the polygon stands out of the cam by up to ``D (k delta)^2 / 8``
+    (``D`` its diameter, ``k`` how much faster than the cam the face turns): 1e-8 mm on a 30 mm cam at
+    65 536 lines, which a point there reads as inside. A smooth arc's envelope lies on the cam whatever that
+    excess, but the fold of a slide at a velocity jump of a small lift is as shallow: a constant-velocity
+    rocker lifting 1e-3 mm, with a 0.001-degree dwell between its rise and return, slides back along the
+    face by 8e-4 mm at each jump and its dwell's arc, both within a sixth of a line step of the jumps, ran up
+    to 7e-9 mm outside the cam, inside that polygon, and were kept. A fold reaches past the jump by about
+    its slide over the cam's radius; where that is less than ``CORNER_REACH`` steps, the lines there are
+    ``CORNER_LINES`` times as dense (the excess ``CORNER_LINES^2`` times smaller: 1e-12 of the cam's size);
+    where it is more, the fold is ``CORNER_REACH^2`` times deeper than the excess."""
+    step = 2.0 * math.pi / samples
+    dense = np.linspace(-CORNER_REACH, CORNER_REACH, 2 * CORNER_REACH * CORNER_LINES + 1) * step
+    near = [c + dense for c in np.asarray(corners, float)]
+    phi = np.concatenate([start + np.linspace(0.0, 2.0 * math.pi, samples, endpoint=False), np.asarray(corners, float),
+                          *near])
     return HalfPlanes(*face_lines(motion, tool, phi))
 
 
