@@ -132,3 +132,78 @@ def test_across_sees_a_zero_closer_to_the_edge_than_its_floor(delta):
     assert c >= 0
     zero = 0.5 - delta  # along the normal from Q
     assert s[c] <= zero <= s[c + 1] and s[c + 1] - s[c] <= max(delta, 1e-12)
+
+
+@pytest.mark.parametrize("slope", [0.0, 0.6, -1.5])
+def test_a_line_meeting_the_no_pair_edge_reaches_it(slope):
+    """F = x - 0.3 - slope y, undefined below y = 0.0137 (the edge inside a row of cells, as the
+    no-pair edge lies): the grid masks every cell with an undefined corner, so marching squares end
+    the line a cell short of the edge; it is carried on to the edge, where it ends within 2 tol of
+    the closed-form point (0.3 + slope y_e, y_e), every vertex on the line (|F| / |grad F|)."""
+    tol, y_e = 1e-6, 0.0137
+    F = lambda p, k: np.where(p[:, 1] >= y_e, p[:, 0] - 0.3 - slope * p[:, 1], np.nan)  # noqa: E731
+    xs = np.linspace(-1.0, 1.0, 9) + 0.011
+    ys = np.linspace(0.0, 1.0, 9)
+    gx, gy = np.meshgrid(xs, ys)
+    values = F(np.column_stack([gx.ravel(), gy.ravel()]), None).reshape(gx.shape)
+    px, py = padded_grid(xs, ys)
+    lines = zero_lines(F, [(px, py, pad(values, np.nan))], tol)[0]
+    assert len(lines) == 1
+    q = lines[0]
+    assert np.all(np.abs(F(q, None)) / math.hypot(1.0, slope) <= CONTRACT * tol)
+    end = np.array([0.3 + slope * y_e, y_e])
+    assert np.hypot(*(q[np.argmin(q[:, 1])] - end)) <= CONTRACT * tol
+
+
+def test_a_line_beside_the_edge_whose_margin_has_a_root_there_is_left_as_the_grid_has_it():
+    """F = cbrt(y - y_e) - 0.02 (x + 1): a margin that varies as the cube root of the distance to the
+    edge (as those reading the working pressure angle do) has a zero set that meets the edge
+    tangentially, at x = -1 far from where its grid piece ends; it is not carried along the edge (at
+    every tol alike): the traced line is the grid's, every vertex on the line (closed form
+    y = y_e + (0.02 (x + 1)) ** 3)."""
+    y_e = 0.0137
+    F = lambda p, k: np.where(p[:, 1] >= y_e, np.cbrt(p[:, 1] - y_e) - 0.02 * (p[:, 0] + 1.0), np.nan)  # noqa: E731
+    xs = np.linspace(-1.0, 1.0, 9) + 0.011
+    ys = np.linspace(0.0, 0.05, 9)
+    gx, gy = np.meshgrid(xs, ys)
+    values = F(np.column_stack([gx.ravel(), gy.ravel()]), None).reshape(gx.shape)
+    px, py = padded_grid(xs, ys)
+    ends = []
+    for tol in (1e-3, 1e-7):
+        lines = zero_lines(F, [(px, py, pad(values, np.nan))], tol)[0]
+        for q in lines:
+            exact_y = y_e + (0.02 * (q[:, 0] + 1.0)) ** 3
+            assert np.all(np.abs(q[:, 1] - exact_y) <= CONTRACT * tol)
+        ends.append(sorted(float(q[i, 0]) for q in lines for i in (0, -1)))
+    assert ends[0] == pytest.approx(ends[1], abs=1e-2)  # the same pieces at both tolerances
+
+
+TIP_EDGE_LINES = ("pointing.1", "tip_thickness.1=0.25", "tip_thickness.1=0.4")
+SCAN_ROWS = 9  #: scan lines x2 = const within SCAN_HEIGHT of the window's bottom
+SCAN_HEIGHT = 0.25  #: (shift units) where these lines run down to the no-pair edge
+SCAN_STEPS = 200  #: samples per scan line
+
+
+@pytest.mark.parametrize("tol", [1e-2, 1e-5])
+def test_12_30_lines_reach_the_edge_where_the_tip_of_gear_2_meets_its_base_circle(tol):
+    """12/30: pointing.1 and the tip-thickness lines of gear 1 run down to the edge of the no-pair
+    area where d_a2 = d_b2 (tip shortening), and stopped 0.07 to 0.13 short of it. Oracle: the exact
+    zeros of the scalar margins (the check's own functions) on scan lines x2 = const across the
+    bottom of the window, every sign change between neighbouring samples solved by brentq; every one
+    lies within 2 tol of the traced line."""
+    spec = PairSpec(12, 30, 1.0)
+    c = blocking_contour(spec, tol=tol, lines=list(TIP_EDGE_LINES))
+    x1_lo, x1_hi, x2_lo, _ = c.window
+    xs = np.linspace(x1_lo, x1_hi, SCAN_STEPS + 1)
+    seen = 0
+    for name in TIP_EDGE_LINES:
+        zeros = []
+        for x2 in x2_lo + SCAN_HEIGHT * (np.arange(SCAN_ROWS) + 0.5) / SCAN_ROWS:
+            f = lambda x1: c.field.margin(name, x1, x2)  # noqa: E731
+            v = np.array([f(x1) for x1 in xs])
+            ok = np.isfinite(v[:-1]) & np.isfinite(v[1:]) & ((v[:-1] > 0) != (v[1:] > 0))
+            zeros += [[brentq(f, xs[i], xs[i + 1], xtol=1e-14), x2] for i in np.flatnonzero(ok)]
+        assert zeros, name
+        seen += len(zeros)
+        assert _nearest(np.array(zeros), c.line(name).components).max() <= CONTRACT * tol, name
+    assert seen >= 2 * SCAN_ROWS

@@ -28,13 +28,15 @@ FLOOR = 1e-13  #: the smallest sample distance, relative to the window's size
 SPLITS = 15  #: points per round of the multisection for the edge of the defined area
 
 
-def edge_point(F, a, b, which, span):
-    """The last defined point from ``a`` (defined) towards ``b`` (undefined), to ``span * FLOOR``."""
+def edge_point(F, a, b, which, span, within=None):
+    """The last defined point from ``a`` (defined) towards ``b`` (undefined), to ``span * FLOOR``
+    (or to ``within``, a length, where that is enough)."""
     a, b = a.copy(), b.copy()
     n = len(a)
     t = np.arange(1, SPLITS + 1) / (SPLITS + 1)
+    close = FLOOR * span if within is None else max(float(within), FLOOR * span)
     for _ in range(40):
-        if not n or np.max(np.hypot(*(b - a).T)) <= FLOOR * span:
+        if not n or np.max(np.hypot(*(b - a).T)) <= close:
             break
         P = a[:, None, :] + t[None, :, None] * (b - a)[:, None, :]
         v = F(P.reshape(-1, 2), np.repeat(which, SPLITS)).reshape(n, SPLITS)

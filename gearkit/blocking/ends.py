@@ -1,10 +1,18 @@
-"""Where the grid cut a traced line short of a saddle: continuation to the saddle.
+"""Where the grid cut a traced line short: continuation to a saddle, or to the no-pair edge it crosses.
 
 Marching squares cut a crossing of two branches of a zero set (a saddle of ``F``) inside its grid
 cell, and the chords that cross the cell find no zero across them: the four arms stop short of
-the saddle (12/30: interference.1 up to 6e-3 short of its saddle at (x1, x2) = (1, -1)). Here every
-open end inside the window (not on its frame, not beside the no-pair area, where a line ends at
-the area's edge) is carried along its line by predictor-corrector continuation until
+the saddle (12/30: interference.1 up to 6e-3 short of its saddle at (x1, x2) = (1, -1)). The grid
+also masks every cell with a corner in the no-pair area, so a line that runs into that area's
+edge ends up to a cell short of it (12/30: pointing.1 and gear 1's tip-thickness lines 0.07 to
+0.13 short of the edge where gear 2's tip meets its base circle). Here every open end inside the
+window (not on its frame) is carried along its line by predictor-corrector continuation; an end
+beside the no-pair area only when its line crosses the edge (:func:`_into_edge`: its tangent meets
+the edge within ``EDGE_REACH`` cells at more than ``EDGE_DEG`` to it, ``F`` is regular there, and
+the front gets no farther than ``EDGE_BUDGET`` times that distance). A margin that varies as the
+cube or square root of the distance to the edge (those reading the working pressure angle, or a
+tip at its base circle) has lines that meet the edge tangentially, along it for up to the whole
+window: those ends are left as the grid has them, at every tol alike. A front goes on until
 
 * it meets another end of the same function heading back along it: the two join. The arms of a
   saddle join in the pairs ``F`` connects (a step never flips the side on which ``F`` is positive,
@@ -35,6 +43,19 @@ __all__ = ["extend_ends"]
 TURN_DEG = 30.0  #: a step turning more than this is halved
 MAX_STEP_CELLS = 2.0  #: longest step, in grid cell diagonals (the chords are refined afterwards)
 MAX_STEPS = 400  #: steps of one front
+EDGE_REACH = 3.0  #: an end beside the no-pair area is carried on when its tangent meets the area's edge
+#: within this many grid cell diagonals ...
+EDGE_DEG = 20.0  #: ... at more than this angle to the edge (a line running along the edge is left as the
+#: grid has it, at every tol alike)
+EDGE_PROBE = 1e-4  #: ... and where ``F`` is regular at the edge (at the edge points of the rays either side of
+#: the tangent, up from the edge from this fraction of the reach)
+EDGE_GROWTH = 3.0  #: ... its differences over D, 4 D, 16 D from the edge grow by more than this (4 where
+#: F is smooth; 4 ** (1/3) and 2 where it varies as the cube or square root of the distance to the edge,
+#: as the margins that read the working pressure angle or a tip at its base circle do: their lines
+#: meet the edge tangentially)
+EDGE_FLAT = 1e-12  #: ... (differences at round-off: F does not vary up from the edge, regular)
+EDGE_BUDGET = 2.0  #: ... and carried no farther than this times its distance to the edge along the tangent
+EDGE_FAN_DEG = 10.0  #: the edge's direction there: from its points on rays this far either side of the tangent
 
 
 def extend_ends(F, lines, grids, tol, measure=()):
@@ -64,7 +85,7 @@ def extend_ends(F, lines, grids, tol, measure=()):
     vtol = tol / 4
     eps = max(vtol, 1e-9 * span)
     recs = [[k, np.asarray(p, float), np.asarray(g, float), [], []] for k, p, g in lines]
-    starts = []
+    starts, edge_ends = [], []
     for r, (k, p, g, _, _) in enumerate(recs):
         if k in measure or len(p) < 2 or np.array_equal(p[0], p[-1]):
             continue
@@ -73,19 +94,64 @@ def extend_ends(F, lines, grids, tol, measure=()):
                 continue  # on the window's frame
             i = int((a[0] - xs[0]) // (xs[1] - xs[0]))
             j = int((a[1] - ys[0]) // (ys[1] - ys[0]))
-            if not np.all(np.isfinite(grids[k][2][max(j - 1, 0):j + 3, max(i - 1, 0):i + 3])):
-                continue  # beside the no-pair area: not a saddle (see the notes)
             t = (a - b) / np.hypot(*(a - b))
+            if not np.all(np.isfinite(grids[k][2][max(j - 1, 0):j + 3, max(i - 1, 0):i + 3])):
+                edge_ends.append((r, end, a, t))  # beside the no-pair area: carried on only into its edge
+                continue
             starts.append((r, end, a, t))
+    starts += _into_edge(F, edge_ends, recs, EDGE_REACH * cell, span)
     front, joins = [], []
     geo = (span, vtol, MAX_STEP_CELLS * cell, lo, hi, tol)
     _run(F, front, _fronts(F, starts, recs, eps, geo[2]), recs, joins, geo)
     return _assemble(recs, joins)
 
 
+def _into_edge(F, ends, recs, reach, span) -> list:
+    """The ``ends`` (rec, end, point, tangent) beside the no-pair area whose line crosses the area's
+    edge: the tangent meets the edge within ``reach`` at more than ``EDGE_DEG`` to it (the edge's
+    points on the tangent and on rays ``EDGE_FAN_DEG`` either side of it), and ``F`` is regular
+    there (see ``EDGE_GROWTH``). Each is returned with the length its front may run
+    (``EDGE_BUDGET`` times its distance to the edge). Nothing here depends on tol: the same ends
+    are carried on at every tol."""
+    if not ends:
+        return []
+    P = np.array([e[2] for e in ends])
+    T = np.array([e[3] for e in ends])
+    K = np.array([recs[e[0]][0] for e in ends])
+    fan = math.radians(EDGE_FAN_DEG)
+    rays = []
+    for ang in (0.0, fan, -fan):
+        c, s = math.cos(ang), math.sin(ang)
+        rays.append(np.column_stack([c * T[:, 0] - s * T[:, 1], s * T[:, 0] + c * T[:, 1]]))
+    A, D, KK = np.tile(P, (3, 1)), np.concatenate(rays), np.tile(K, 3)
+    B = A + reach * D
+    out = np.isnan(F(B, KK))
+    E = np.full(A.shape, np.nan)
+    if out.any():  # the three rays' edge points in one multisection
+        E[out] = edge_point(F, A[out], B[out], KK[out], span, EDGE_PROBE ** 2 * reach)
+    hits = np.split(E, 3)
+    along = hits[1] - hits[2]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        sin = np.abs(T[:, 0] * along[:, 1] - T[:, 1] * along[:, 0]) / np.hypot(*along.T)
+    ok = np.isfinite(hits[0][:, 0]) & np.isfinite(sin) & (sin > math.sin(math.radians(EDGE_DEG)))
+    if ok.any():  # F regular at the edge beside the line: differences over D, 4 D, 16 D up from it
+        i = np.flatnonzero(ok)
+        n_e = np.column_stack([-along[i, 1], along[i, 0]]) / np.hypot(*along[i].T)[:, None]
+        n_e *= np.where(np.einsum("ij,ij->i", n_e, P[i] - hits[0][i]) > 0, 1.0, -1.0)[:, None]
+        d = EDGE_PROBE * reach * 4.0 ** np.arange(3)
+        Q = np.concatenate([h[i][:, None, :] + d[None, :, None] * n_e[:, None, :] for h in hits[1:]])
+        V = F(Q.reshape(-1, 2), np.repeat(np.tile(K[i], 2), d.size)).reshape(2 * len(i), d.size)
+        step = np.abs(np.diff(V, axis=1))
+        regular = step[:, 1] + EDGE_FLAT * (1.0 + np.abs(V[:, 0])) >= EDGE_GROWTH * step[:, 0]
+        ok[i] = np.all(np.isfinite(V), axis=1).reshape(2, -1).all(axis=0) & regular.reshape(2, -1).all(axis=0)
+    run = EDGE_BUDGET * np.hypot(*(hits[0] - P).T)
+    return [e + (float(b),) for e, o, b in zip(ends, ok, run) if o]
+
+
 def _fronts(F, starts, recs, eps, hmax) -> list:
-    """Fronts ``[rec, end, point, tangent, sigma, step]`` for ``starts`` (rec, end, point, tangent):
-    sigma is the sign of ``F`` to the left of the direction of travel (0: unknown)."""
+    """Fronts ``[rec, end, point, tangent, sigma, step, budget]`` for ``starts`` (rec, end, point,
+    tangent[, budget]): sigma is the sign of ``F`` to the left of the direction of travel (0:
+    unknown); a front that runs farther than its budget (inf: none) is given up."""
     if not starts:
         return []
     P0 = np.array([s[2] for s in starts])
@@ -95,8 +161,8 @@ def _fronts(F, starts, recs, eps, hmax) -> list:
     V = F(np.concatenate([P0 + eps * N0, P0 - eps * N0]), np.tile(K0, 2)).reshape(2, -1)
     sig = np.where(np.isfinite(V[0]) & np.isfinite(V[1]), np.sign(V[0] - V[1]),
                    np.where(np.isfinite(V[0]), np.sign(V[0]), -np.sign(V[1])))
-    return [[r, end, a.copy(), t.copy(), float(s) if np.isfinite(s) else 0.0, hmax]
-            for (r, end, a, t), s in zip(starts, sig)]
+    return [[r, end, st[2].copy(), st[3].copy(), float(s) if np.isfinite(s) else 0.0, hmax,
+             st[4] if len(st) > 4 else math.inf] for st, s in zip(starts, sig) for r, end in [st[:2]]]
 
 
 def _run(F, front, new, recs, joins, geo):
@@ -187,7 +253,7 @@ def _step(F, front, act, active, recs, joins, vtol, span, hmax, turn, lo, hi):
     Q = P + np.array([front[i][5] for i in act])[:, None] * T
     out = np.flatnonzero(np.isnan(F(Q, np.array([recs[front[i][0]][0] for i in act]))))
     if out.size:  # the prediction left the defined area: the step ends just before its edge
-        E = edge_point(F, P[out], Q[out], np.array([recs[front[act[r]][0]][0] for r in out]), span)
+        E = edge_point(F, P[out], Q[out], np.array([recs[front[act[r]][0]][0] for r in out]), span, vtol / 4)
         for r, q in zip(out, E):
             f = front[act[r]]
             f[5] = float(np.dot(q - P[r], T[r]))
@@ -226,6 +292,11 @@ def _step(F, front, act, active, recs, joins, vtol, span, hmax, turn, lo, hi):
                 active[i] = False
             continue
         if _collides(i, r, L, front, active, recs, joins, 8 * vtol):
+            continue
+        f[6] -= L
+        if f[6] < 0:  # carried towards the edge farther than it lay: not a line that meets it there
+            recs[f[0]][3 + f[1]].clear()
+            active[i], f[4] = False, 0.0
             continue
         recs[f[0]][3 + f[1]].append(r)
         f[2], f[3] = r, d / L
