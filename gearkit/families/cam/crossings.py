@@ -69,8 +69,8 @@ def refine_cut(curve, w, e, b, da: int = 1, db: int = 1, meet: float | None = No
         best = (w[e], w[b])
     h = 0.5 * (w[1] - w[0])
     wa, wb = _newton(curve, *best, h=h)
-    if meet is not None and np.hypot(*np.subtract(*curve(np.array([wa, wb])))) > meet:
-        wa, wb = _newton(curve, *_dense_start(curve, w, ja, jb), h=h)
+    if meet is not None:
+        wa, wb = _settle(curve, w, e, b, da, db, ja, jb, (wa, wb), meet, h)
     if _same(wa, wb, h):  # Newton fell to the curve meeting itself, wa = wb: a swallowtail a few samples wide
         start = best if not _same(*best, h) else (w[e] + da * h, w[b] - db * h)
         wa, wb = _newton(curve, *start, h=h, divided=True)
@@ -79,22 +79,73 @@ def refine_cut(curve, w, e, b, da: int = 1, db: int = 1, meet: float | None = No
     return wa, wb
 
 
+def _settle(curve, w, e, b, da, db, ja, jb, found, meet: float, h: float):
+    """The crossing of :func:`refine_cut` once Newton from the chords' crossing has settled at ``found``: when
+    its ends lie apart (beyond a thousandth of ``meet``: a crossing solves to round-off) or on the curve
+    meeting itself, Newton again from the resampled polylines' crossing about the cut's samples
+    (:func:`_dense_start`), then from the chords' crossing up to 64 samples past them (:func:`_far_cross`) and
+    the resampled crossing there: the ends that meet best.
+
+    Samples inside a loop shallower than the keep test's slack are kept, and the loop's crossing lies past
+    them: a roller just larger than the pitch curve's radius of curvature after an acceleration jump runs back
+    along its envelope at a few thousandths of its speed, and its kept samples lay seven steps short of the
+    crossing. Newton on two stretches that run side by side within the meet may also stop short of their
+    crossing within it (1.8e-5 mm apart, 0.7 of the meet), taken for a crossing into the wrong run."""
+    def gap(x):
+        return np.inf if _same(*x, h) else float(np.hypot(*np.subtract(*curve(np.array(x)))))
+
+    def better(best, start):
+        return min([best, _newton(curve, *start(), h=h)], key=gap) if gap(best) > 1e-3 * meet else best
+    best = better(found, lambda: _dense_start(curve, w, ja, jb))
+    far = _far_cross(curve, w, e, b, da, db) if gap(best) > 1e-3 * meet else None
+    if far is not None:
+        n = len(w) - 1
+        ka, kb = int(np.floor(far[0] * n)), int(np.floor(far[1] * n))
+        best = better(best, lambda: far)
+        best = better(best, lambda: _dense_start(curve, w, (ka + da * np.arange(-1, 3)) % n,
+                                                 (kb + db * np.arange(-1, 3)) % n))
+    return best
+
+
 def _same(wa: float, wb: float, h: float) -> bool:  # within a sixteenth of a sample step 2 h (cyclic): one point
     return abs((wa - wb + 0.5) % 1.0 - 0.5) < h / 8
 
 
 def _dense_start(curve, w, ja, jb, per: int = 128):
-    """The closest pair ``(wa, wb)`` of the curve resampled ``per`` times a sample step along the
-    samples ``ja`` and ``jb`` (each walked in its own direction, consecutive samples)."""
+    """The crossing ``(wa, wb)`` of the curve's polylines resampled ``per`` times a sample step along the
+    samples ``ja`` and ``jb`` (each walked in its own direction, consecutive samples), the one nearest the
+    middle of both where they cross more than once, or their closest pair of points where they do not.
+
+    The closest pair alone misses a crossing of two stretches that run at speeds far apart and at a small
+    angle: at an acceleration jump where the roller turns from smaller to larger than the pitch curve's
+    radius of curvature, the envelope runs back at a few thousandths of its speed before the jump (a
+    swallowtail 1e-4 mm long), and points of the slow stretch as far as twenty sample steps from the
+    crossing lay within the fast stretch's resampled spacing of it, past the reach of Newton."""
     f = np.arange(per) / per
 
     def dense(j):
         a, b = w[j[:-1]], w[j[1:]]
         b = np.where(np.abs(b - a) > 0.5, b + np.sign(a - b), b)  # a step across w = 1
-        return np.mod((a[:, None] + f[None, :] * (b - a)[:, None]).ravel(), 1.0)
+        return np.mod(np.append((a[:, None] + f[None, :] * (b - a)[:, None]).ravel(), b[-1]), 1.0)
     xa, xb = dense(ja), dense(jb)
     pa, pb = curve(xa), curve(xb)
-    gap = np.hypot(pa[:, None, 0] - pb[None, :, 0], pa[:, None, 1] - pb[None, :, 1])
+    d1, d2 = (pa[1:] - pa[:-1])[:, None, :], (pb[1:] - pb[:-1])[None, :, :]
+    r = pb[None, :-1, :] - pa[:-1, None, :]
+    den = d1[..., 0] * d2[..., 1] - d1[..., 1] * d2[..., 0]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = (r[..., 0] * d2[..., 1] - r[..., 1] * d2[..., 0]) / den
+        u = (r[..., 0] * d1[..., 1] - r[..., 1] * d1[..., 0]) / den
+    hit = (den != 0.0) & (t >= 0.0) & (t <= 1.0) & (u >= 0.0) & (u <= 1.0)
+    near = 2.0 * (w[1] - w[0]) / per  # chords a resampled step or two apart, or shared: the curve meeting itself
+    same = np.abs((xa[:, None] - xb[None, :] + 0.5) % 1.0 - 0.5) <= near
+    hit &= ~same[:-1, :-1]
+    if hit.any():
+        i, k = np.nonzero(hit)
+        c = int(np.argmin(np.abs(i - len(xa) // 2) + np.abs(k - len(xb) // 2)))
+        i, k = int(i[c]), int(k[c])
+        return (float(xa[i] + t[i, k] * ((xa[i + 1] - xa[i] + 0.5) % 1.0 - 0.5)),
+                float(xb[k] + u[i, k] * ((xb[k + 1] - xb[k] + 0.5) % 1.0 - 0.5)))
+    gap = np.where(same, np.inf, np.hypot(pa[:, None, 0] - pb[None, :, 0], pa[:, None, 1] - pb[None, :, 1]))
     i, k = np.unravel_index(int(np.argmin(gap)), gap.shape)
     return float(xa[i]), float(xb[k])
 

@@ -83,8 +83,9 @@ def _cam_cycle(curve, w, keep, starts, ends, meet: float, circles=()):
 
     The crossing that ends a run lies by it: the envelope between the crossings that start and end a run
     bounds the swept region, so no covered sample lies between them, and past the run's end the envelope
-    runs inside the region until it comes out at a later run's start (a run of samples within the slack
-    inside a loop lies past the loop's crossing). Newton started from a chords' crossing far out (a
+    runs inside the region until it comes out at a later run's start (samples within the slack inside a
+    shallow loop are kept, and may lie either side of the loop's crossing: :func:`refine_cut` seeks it past
+    them). Newton started from a chords' crossing far out (a
     shallow crossing), or a corner's circle left far from the run, may settle on another crossing that
     meets as well: a large roller on a short steep rise pinched the cam's nose off at a neck, and the
     crossing of the island's tip beyond it, or of two of the island's arcs, was taken for the neck's; a
