@@ -290,3 +290,24 @@ def check_flat_cam(spec, outline, tol, lines: int = 1 << 16):
     allowed = hull.area * (tol + excess)  # hull.area is the polygon's perimeter in 2-D
     assert abs(area - hull.volume) <= allowed, f"outline area {area:.9g} against the half-planes' {hull.volume:.9g}"
     return area, float(hull.volume), allowed
+
+
+#: a flat cam's vertex stands off the outline's convex hull by round-off only, of the lengths up to the pivot
+ON_HULL = 1e-12
+
+
+def check_flat_outline(prof, tol, lines: int = 1 << 16):
+    """A flat face's cam outline at ``tol``: its reported deviation within ``tol``, inside the face's half-planes
+    and convex (:func:`check_flat_cam`), and every vertex on the outline's convex hull (scipy's) within
+    ``ON_HULL`` of the lengths up to the pivot. Returns the outline."""
+    from scipy.spatial import ConvexHull
+
+    spec = prof.spec
+    out = prof.outline(tol)
+    assert prof.achieved(tol) <= tol
+    check_flat_cam(spec, out, tol, lines)
+    reach = spec.prime_radius + spec.stroke + (spec.pivot_distance or 0.0) + (spec.arm_length or 0.0)
+    hull = ConvexHull(out)
+    inside = -(out @ hull.equations[:, :2].T + hull.equations[:, 2])  # distance inside each hull edge's line
+    assert inside.min(axis=1).max() <= ON_HULL * reach
+    return out

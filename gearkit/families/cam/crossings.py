@@ -129,13 +129,7 @@ def _dense_start(curve, w, ja, jb, per: int = 128):
         return np.mod(np.append((a[:, None] + f[None, :] * (b - a)[:, None]).ravel(), b[-1]), 1.0)
     xa, xb = dense(ja), dense(jb)
     pa, pb = curve(xa), curve(xb)
-    d1, d2 = (pa[1:] - pa[:-1])[:, None, :], (pb[1:] - pb[:-1])[None, :, :]
-    r = pb[None, :-1, :] - pa[:-1, None, :]
-    den = d1[..., 0] * d2[..., 1] - d1[..., 1] * d2[..., 0]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        t = (r[..., 0] * d2[..., 1] - r[..., 1] * d2[..., 0]) / den
-        u = (r[..., 0] * d1[..., 1] - r[..., 1] * d1[..., 0]) / den
-    hit = (den != 0.0) & (t >= 0.0) & (t <= 1.0) & (u >= 0.0) & (u <= 1.0)
+    t, u, hit = _chords_crossing(pa, pb)
     near = 2.0 * (w[1] - w[0]) / per  # chords a resampled step or two apart, or shared: the curve meeting itself
     same = np.abs((xa[:, None] - xb[None, :] + 0.5) % 1.0 - 0.5) <= near
     hit &= ~same[:-1, :-1]
@@ -158,20 +152,27 @@ def _far_cross(curve, w, e, b, da: int, db: int, reach: int = 64):
     k = np.arange(-reach, reach + 1)
     ja, jb = (e + da * k) % n, (b + db * k) % n
     pa, pb = curve(w[ja]), curve(w[jb])
-    d1, d2 = (pa[1:] - pa[:-1])[:, None, :], (pb[1:] - pb[:-1])[None, :, :]
-    r = pb[None, :-1, :] - pa[:-1, None, :]
-    den = d1[..., 0] * d2[..., 1] - d1[..., 1] * d2[..., 0]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        t = (r[..., 0] * d2[..., 1] - r[..., 1] * d2[..., 0]) / den
-        u = (r[..., 0] * d1[..., 1] - r[..., 1] * d1[..., 0]) / den
-    apart = np.abs((ja[:-1, None] - jb[None, :-1] + n // 2) % n - n // 2) > 1  # not one chord, nor two that touch
-    hit = apart & (den != 0.0) & (t >= 0.0) & (t <= 1.0) & (u >= 0.0) & (u <= 1.0)
+    t, u, hit = _chords_crossing(pa, pb)
+    hit &= np.abs((ja[:-1, None] - jb[None, :-1] + n // 2) % n - n // 2) > 1  # not one chord, nor two that touch
     if not hit.any():
         return None
     i, j = np.nonzero(hit)
     c = int(np.argmin(np.abs(i - reach) + np.abs(j - reach)))
     step = w[1] - w[0]
     return w[ja[i[c]]] + da * t[i[c], j[c]] * step, w[jb[j[c]]] + db * u[i[c], j[c]] * step
+
+
+def _chords_crossing(pa, pb):
+    """Where each chord of the polyline ``pa`` crosses each of ``pb``: ``(t, u, hit)``, arrays of shape
+    ``(len(pa) - 1, len(pb) - 1)``, the crossing at ``t`` along the first chord and ``u`` along the second
+    (fractions), ``hit`` where both lie in [0, 1] (parallel chords never cross)."""
+    d1, d2 = (pa[1:] - pa[:-1])[:, None, :], (pb[1:] - pb[:-1])[None, :, :]
+    r = pb[None, :-1, :] - pa[:-1, None, :]
+    den = d1[..., 0] * d2[..., 1] - d1[..., 1] * d2[..., 0]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = (r[..., 0] * d2[..., 1] - r[..., 1] * d2[..., 0]) / den
+        u = (r[..., 0] * d1[..., 1] - r[..., 1] * d1[..., 0]) / den
+    return t, u, (den != 0.0) & (t >= 0.0) & (t <= 1.0) & (u >= 0.0) & (u <= 1.0)
 
 
 def _chord_cross(p0, p1, q0, q1):
