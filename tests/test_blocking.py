@@ -244,3 +244,26 @@ def test_atlas_cell_equals_the_single_contour():
     ring = PairSpec(46, 49, 1.0, kind="internal", shift_convention="cutter", tool1=SHAPER, tool2=SHAPER)
     with pytest.raises(SpecError, match="ring needs more teeth"):  # no cell is a pair: said, not empty
         blocking_atlas([50], [49], ring, workers=1, **opts)
+
+
+def test_no_pair_area_is_drawn_to_its_own_edge_not_the_grids():
+    """The grey no-pair area of a picture ends where the tight mesh ends: for an external spur pair
+    where inv alpha_w = inv alpha + 2 (x1 + x2) tan alpha / (z1 + z2) reaches the field's 1e-9, a
+    straight line x1 + x2 = S. In a window only that line crosses, the drawn area is the triangle
+    below it (area by formula) and every vertex off the window's border lies on the line."""
+    from gearkit.blocking.plot import _no_pair
+
+    z1, z2, alpha = 12, 30, math.radians(20.0)
+    inv_a = math.tan(alpha) - alpha
+    s = (1e-9 - inv_a) * (z1 + z2) / (2 * math.tan(alpha))  # -0.8599...
+    c = blocking_contour(PairSpec(z1, z2, 1.0), tol=1e-3, window=(-1.0, 0.0, -1.0, 0.0), lines=["undercut.1"])
+    verts, codes = _no_pair(c)
+    ring = verts[:-1] if codes[-1] == 79 else verts  # the closing vertex repeats the first
+    assert (codes[1:-1] == 2).all() and codes[0] == 1  # one area, one outline
+    x, y = ring[:, 0], ring[:, 1]
+    area = 0.5 * abs(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1)))
+    assert area == pytest.approx(1.0 - s ** 2 / 2, abs=1e-12)  # u + v < 2 + S in the unit square
+    border = (np.abs(x + 0.5) > 0.5 - 1e-15) | (np.abs(y + 0.5) > 0.5 - 1e-15)
+    inner = ~border
+    assert inner.sum() >= 50  # the grid's edge crossings along the line
+    assert np.abs(x[inner] + y[inner] - s).max() < 1e-10

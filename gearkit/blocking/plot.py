@@ -63,21 +63,61 @@ def _label_spot(comp, placed, avoid, lo, hi, gap):
     return best
 
 
-NO_PAIR_GRID = 300  #: pixels per side of the "no pair" shading
+NO_PAIR_GRID = 121  #: nodes per side of the grid the no-pair area is first found on
+NO_PAIR_SPLITS = 40  #: bisections of a grid edge that crosses the area's edge (to 1e-12 of a cell)
 
 
 def _no_pair(contour):
-    """(NO_PAIR_GRID, NO_PAIR_GRID) mask of the window where no pair exists, or None where one exists
-    everywhere."""
+    """The window's no-pair area as ``(vertices, codes)`` of a matplotlib path, or None where a pair
+    exists everywhere: the cells of a node grid filled where no pair exists, each vertex of that
+    area's boundary moved from the middle of its grid edge onto the area's edge, found by bisection
+    along that grid edge, so the drawn edge is the area's own and not the grid's staircase.
+
+    >>> from gearkit.blocking import blocking_contour
+    >>> from gearkit.pair import PairSpec
+    >>> verts, codes = _no_pair(blocking_contour(PairSpec(12, 30, 1.0), tol=1e-3))
+    >>> verts.shape[1], int(codes[0])  # a path of points, starting with a move
+    (2, 1)
+    """
+    import contourpy
     from gearkit.blocking.arrays import margins
 
     x0, x1, y0, y1 = contour.window
-    h = 0.5 / NO_PAIR_GRID
-    u = np.linspace(h, 1 - h, NO_PAIR_GRID)
-    gx, gy = np.meshgrid(x0 + (x1 - x0) * u, y0 + (y1 - y0) * u)
+    n = NO_PAIR_GRID
+    xs, ys = np.linspace(x0, x1, n), np.linspace(y0, y1, n)
     name = contour.field.hard[0]
-    bad = np.isnan(margins(contour.field, gx.ravel(), gy.ravel(), [name])[name]).reshape(gx.shape)
-    return bad.astype(float) if bad.any() else None
+
+    def undefined(px, py):
+        return np.isnan(margins(contour.field, px, py, [name])[name])
+
+    gx, gy = np.meshgrid(xs, ys)
+    bad = undefined(gx.ravel(), gy.ravel()).reshape(gx.shape)
+    if not bad.any():
+        return None
+    points, codes = contourpy.contour_generator(xs, ys, bad.astype(float), fill_type="OuterCode").filled(0.5, 2.0)
+    if not points:
+        return None
+    verts, codes = np.concatenate(points), np.concatenate(codes)
+    # a vertex between a node where a pair exists and one where none does lies in its grid edge's middle
+    fx, fy = (verts[:, 0] - x0) / (x1 - x0) * (n - 1), (verts[:, 1] - y0) / (y1 - y0) * (n - 1)
+    ix, iy = np.floor(fx).astype(int), np.floor(fy).astype(int)
+    mid_x = (np.abs(fx - ix - 0.5) < 1e-6) & (np.abs(fy - np.rint(fy)) < 1e-6)  # on a grid edge along x
+    mid_y = (np.abs(fy - iy - 0.5) < 1e-6) & (np.abs(fx - np.rint(fx)) < 1e-6)  # on a grid edge along y
+    ja, ia = np.where(mid_x, np.rint(fy), iy).astype(int), np.where(mid_y, np.rint(fx), ix).astype(int)
+    jb, ib = ja + mid_y, ia + mid_x
+    sel = np.flatnonzero((mid_x | mid_y))
+    ja, ia, jb, ib = ja[sel], ia[sel], jb[sel], ib[sel]
+    cross = bad[ja, ia] != bad[jb, ib]
+    sel, ja, ia, jb, ib = sel[cross], ja[cross], ia[cross], jb[cross], ib[cross]
+    a_first = ~bad[ja, ia]  # order each edge from its node with a pair (a) to its node without (b)
+    a = np.where(a_first[:, None], np.c_[xs[ia], ys[ja]], np.c_[xs[ib], ys[jb]])
+    b = np.where(a_first[:, None], np.c_[xs[ib], ys[jb]], np.c_[xs[ia], ys[ja]])
+    for _ in range(NO_PAIR_SPLITS):
+        m = 0.5 * (a + b)
+        out = undefined(m[:, 0], m[:, 1])
+        a, b = np.where(out[:, None], a, m), np.where(out[:, None], m, b)
+    verts[sel] = 0.5 * (a + b)
+    return verts, codes
 
 
 def figure(contour, recommendation=None, marked=None):
@@ -104,8 +144,7 @@ def figure(contour, recommendation=None, marked=None):
         handles.append(Patch(facecolor="#fde0b2", edgecolor="none", label="admissible (check passes)"))
     nopair = _no_pair(contour)
     if nopair is not None:  # where no pair exists the lines end: say why
-        ax.imshow(nopair, extent=(x0, x1, y0, y1), origin="lower", aspect="auto", interpolation="nearest",
-                  cmap=matplotlib.colors.ListedColormap(["#00000000", "#d9d9d9"]), vmin=0, vmax=1, zorder=0)
+        ax.add_patch(PathPatch(Path(*nopair), facecolor="#d9d9d9", edgecolor="none", zorder=0))
         handles.append(Patch(facecolor="#d9d9d9", edgecolor="none", label="no pair (no tight mesh or no tooth)"))
     lo, hi = np.array([x0, y0]), np.array([x1, y1])
     gap = LABEL_GAP * float(np.hypot(*(hi - lo)))
