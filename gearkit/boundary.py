@@ -19,7 +19,7 @@ import math
 
 import numpy as np
 
-from gearkit.accuracy import sample_curves
+from gearkit.accuracy import sample_pieces
 from gearkit.curves import polar_from_y, polyline_self_intersections, zoom_crossing
 from gearkit.errors import GeometryError
 from gearkit.pieces import CircleArc, Piece, TipLine, crossings_many, linear_coords
@@ -85,7 +85,7 @@ class HalfTooth:
     def sample(self, tol: float):
         """Points from tip to space centre with every chord within ``tol``; and the achieved deviation."""
         chunks, worst = [], 0.0
-        for k, (_, pts, dev) in enumerate(sample_curves(self.pieces, tol)):
+        for k, (_, pts, dev) in enumerate(sample_pieces(self.pieces, tol)):
             chunks.append(pts if k == 0 else pts[1:])
             worst = max(worst, dev)
         return _drop_coincident(np.concatenate(chunks)), worst
@@ -112,9 +112,10 @@ def _drop_coincident(pts, rel=1e-13):
 
 # Parameters graded geometrically towards both ends of every branch: a loop much smaller than the sampling
 # tolerance sits next to a branch junction, so grading the ends resolves loops down to ~1e-13 of the range;
-# evaluated with the 17 uniform samples each branch's detection polyline is refined from.
+# evaluated with the 49 uniform samples each branch's detection polyline is refined from (enough that one round
+# of refinement at the detection tolerance settles a tooth's branches, where 17 took two or three).
 _GRADED = np.geomspace(1e-13, 0.05, 90)
-_START, _ENDS = np.linspace(0.0, 1.0, 17), np.concatenate([_GRADED, 1.0 - _GRADED])
+_START, _ENDS = np.linspace(0.0, 1.0, 49), np.concatenate([_GRADED, 1.0 - _GRADED])
 
 
 def _sample_chain(branches, tol):

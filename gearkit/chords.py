@@ -32,7 +32,7 @@ from __future__ import annotations
 import numpy as np
 
 __all__ = ["angle_parts", "chord_distance", "fractions_of", "interval_bounds", "leg_bound", "monotone_range",
-           "point_distance", "put_rows", "round_off"]
+           "point_distance", "put_rows", "round_off", "round_offs"]
 
 #: a leg's parts must reproduce its exact end tangent to this angle (rad): round-off of the parts
 CONSISTENT = 1e-9
@@ -296,7 +296,7 @@ def put_rows(out, rows, values):
     out.reshape(len(out), -1).view(row)[:, 0][rows] = values.view(row)[:, 0]
 
 
-def interval_bounds(turning, w, pts, tan, parts, tol, fractions, rows=None, probed=None, span=None):
+def interval_bounds(turning, w, pts, tan, parts, tol, fractions, rows=None, probed=None, span=None, more=None):
     """Probes of a sampling's intervals (at ``fractions`` of each) with their tangents and angle parts,
     and each interval's proven deviation bound: the largest :func:`leg_bound` of the legs between its ends
     and probes (``inf``: not proven). ``turning`` as :func:`angle_parts` returns it (called with the
@@ -311,12 +311,18 @@ def interval_bounds(turning, w, pts, tan, parts, tol, fractions, rows=None, prob
     ``span``: where the parts are not monotone, the curve's own range of each leg's tangent angle,
     ``span(parts_a, parts_b, rows) -> (lo, hi, total)`` from the parts at the legs' ends (``(m, legs, k)``
     each, of the intervals ``rows``; see :func:`monotone_range`), proven by the curve (e.g. from bounds of
-    its tangent's rate)."""
+    its tangent's rate). ``more``: fractions probed besides, only in the intervals ``fractions`` do not
+    bound within ``tol``, each then bounded over the legs through all of its probes and given the lower
+    of its two bounds (both proven); the probes returned are those at ``fractions`` alone."""
     rows = np.arange(len(w) - 1) if rows is None else rows
     lo, hi = w[rows], w[rows + 1]
     probes = fractions_of(lo, hi - lo, fractions)
     q, tq, pq = turning(probes, rows) if probed is None else probed
     bound = _walk_bound(rows, pts, tan, parts, q, tq, pq, span)
+    if more is not None and len(unproven := (~(bound <= tol)).nonzero()[0]):
+        bound[unproven] = np.minimum(bound[unproven], _more_bound(turning, rows[unproven], lo[unproven],
+                                                                  hi[unproven], pts, tan, parts, fractions,
+                                                                  (q, tq, pq), unproven, more, span))
     near = ((bound > tol) & (bound < RETRY * tol)).nonzero()[0]
     if len(near):
         fine = lo[near, None] + (hi - lo)[near, None] * np.linspace(0.0, 1.0, FINE + 1)[1:-1]
@@ -326,7 +332,32 @@ def interval_bounds(turning, w, pts, tan, parts, tol, fractions, rows=None, prob
     return (probes, q.reshape(m, -1, 2), tq.reshape(m, -1, 2), pq.reshape(m, -1, k), bound)
 
 
+def _more_bound(turning, rows, lo, hi, pts, tan, parts, fractions, probed, at, more, span):
+    """:func:`_walk_bound` of the intervals ``rows`` (``lo`` to ``hi``) over the legs through their probes at
+    ``fractions`` (``probed``: every interval's, flat; those of the intervals ``at`` taken) and at ``more``
+    (evaluated here), the probes in the order of their fractions."""
+    every = np.concatenate([np.asarray(fractions, dtype=float), np.asarray(more, dtype=float)])
+    order = np.argsort(every, kind="stable")
+    extra = turning(fractions_of(lo, hi - lo, more), rows)
+    m, j = len(rows), len(fractions)
+    walk = []
+    for old, new in zip(probed, extra):
+        old = old.reshape(-1, j, old.shape[-1])[at]
+        walk.append(np.concatenate([old, new.reshape(m, -1, old.shape[-1])], axis=1)[:, order].reshape(-1, old.shape[-1]))
+    return _walk_bound(rows, pts, tan, parts, *walk, span)
+
+
 def round_off(pts) -> float:
     """The allowance a proven bound adds for the round-off of the exact points ``pts``: ``ROUND_OFF``
     of their largest coordinate."""
     return ROUND_OFF * float(np.abs(pts).max(initial=0.0))
+
+
+def round_offs(pts, starts, owner):
+    """:func:`round_off` of each of several curves' points, one after another (curve ``owner[i]`` the one of
+    point ``i``, ``starts`` each curve's first point), at each interval (as its first point's curve)."""
+    if len(starts) == 1:
+        return round_off(pts)
+    ends = np.concatenate([starts[1:], [len(pts)]])
+    each = np.array([round_off(pts[a:b]) for a, b in zip(starts, ends)])
+    return each[owner[:-1]]

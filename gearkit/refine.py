@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from gearkit.chords import angle_parts, fractions_of, interval_bounds, monotone_range, put_rows, round_off
+from gearkit.chords import angle_parts, fractions_of, interval_bounds, monotone_range, put_rows, round_offs
 from gearkit.chords import chord_distance as _chord_deviation
 from gearkit.chords import point_distance as _chord_points
 from gearkit.errors import GeometryError
@@ -25,6 +25,8 @@ __all__ = ["ATOM", "PROBE_MARGIN", "UNEVEN", "evaluate_curves", "first_samples",
 _PROBES = np.array([0.125, 0.25, 0.5, 0.75, 0.875])
 _MID = 2
 _WIDTHS = np.diff(np.concatenate([[0.0], _PROBES, [1.0]]))
+#: the probes of ``middle=True`` (:func:`refine_samples`): each interval's middle, its quarters where needed
+_MIDDLE, _QUARTERS = np.array([0.5]), np.array([0.25, 0.75])
 
 #: an interval is accepted when its probed deviation is within this fraction of tol: between the
 #: probes a chord's deviation can run above the largest probed one (by ~5 % where the curvature
@@ -225,14 +227,16 @@ def first_turning(curve, w):
     return first_turnings([curve], [w])[0]
 
 
-def first_turnings(curves, ws):
-    """:func:`first_turning` of several curves (those of one ``joint`` key in one call)."""
-    return turn_curves(curves, [np.concatenate([w, _first_probes(w)]) for w in ws])
+def first_turnings(curves, ws, middle: bool = False):
+    """:func:`first_turning` of several curves (those of one ``joint`` key in one call); ``middle``: the
+    probes of :func:`refine_samples` with ``middle=True`` (each interval's middle)."""
+    fractions = _MIDDLE if middle else _PROBES
+    return turn_curves(curves, [np.concatenate([w, _first_probes(w, fractions)]) for w in ws])
 
 
-def _first_probes(w):
+def _first_probes(w, fractions=_PROBES):
     """The first round's probes of the intervals of a sampling ``w``, flat (as the rounds place them)."""
-    return fractions_of(w[:-1], w[1:] - w[:-1], _PROBES).ravel()
+    return fractions_of(w[:-1], w[1:] - w[:-1], fractions).ravel()
 
 
 def first_samples(curves, ws, more=None):
@@ -245,7 +249,7 @@ def first_samples(curves, ws, more=None):
 
 
 def refine_samples(curves, ws, ptss, tol: float, max_rounds: int = 60, max_split: int = 16, turned=None,
-                   probed=None):
+                   probed=None, middle: bool = False):
     """:func:`refine_sample` of several curves at once: ``[(w, points, achieved, probes, q)]``, one per curve,
     each to the last bit what the curve gets alone.
 
@@ -253,8 +257,13 @@ def refine_samples(curves, ws, ptss, tol: float, max_rounds: int = 60, max_split
     sampling; ``probed``: each curve's points at the first round's probes, where the caller evaluated them
     with :func:`first_samples`), or None with ``turned`` given: each curve's :func:`first_turning` at its
     ``w`` (proven bounds; every curve must give angle parts).
+
+    ``middle=True`` (``turned`` by :func:`first_turnings` with ``middle=True``): each interval is bounded over
+    the legs through its middle (two turning evaluations a vertex, not six), and through its quarter points
+    too only where those do not prove ``tol`` (the lower proven bound kept); the probes: the middles.
     """
     bound = turned is not None
+    fractions, mid, more = (_MIDDLE, 0, _QUARTERS) if middle else (_PROBES, _MID, None)
     sizes = [len(w) for w in ws]
     owner = np.repeat(np.arange(len(ws)), sizes)
     w = np.concatenate(ws)
@@ -281,13 +290,13 @@ def refine_samples(curves, ws, ptss, tol: float, max_rounds: int = 60, max_split
         if not len(todo):
             measured = kept[1]
         else:
-            measured = (interval_bounds(curves.turning, w, pts, tan, parts, tol, _PROBES, todo, probed, curves.span)
-                        if bound else _probe(curves.points, w, pts, tol, todo, probed))
+            measured = (interval_bounds(curves.turning, w, pts, tan, parts, tol, fractions, todo, probed, curves.span,
+                                        more) if bound else _probe(curves.points, w, pts, tol, todo, probed))
             probed = None
             measured = _scatter(len(lo), todo, measured, *(kept or (None, None)))
         if bound:
             probes, q, tq, pq, dev = measured
-            dev = np.where(inside, dev + _round_offs(pts, starts, owner), 0.0)
+            dev = np.where(inside, dev + round_offs(pts, starts, owner), 0.0)
             uneven = ~np.isfinite(dev)
             # an interval below the parameter's resolution has no points but its ends and probes: a curve
             # that jumps there (an exact solution switching roots at the very end of its range) is
@@ -306,12 +315,12 @@ def refine_samples(curves, ws, ptss, tol: float, max_rounds: int = 60, max_split
             return _split_up(w, pts, dev, probes, q, starts)
         k = np.ceil(1.1 * np.sqrt(dev[bad] / (margin * tol))).clip(2, max(2, max_split)).astype(int)
         quarters = uneven & ~bad  # split at the probes already evaluated
-        new_w = [probes[bad, _MID], probes[quarters].ravel()]
-        new_p = [q[bad, _MID], q[quarters].reshape(-1, 2)]
-        new_o = [owner[:-1][bad], np.repeat(owner[:-1][quarters], len(_PROBES))]
+        new_w = [probes[bad, mid], probes[quarters].ravel()]
+        new_p = [q[bad, mid], q[quarters].reshape(-1, 2)]
+        new_o = [owner[:-1][bad], np.repeat(owner[:-1][quarters], len(fractions))]
         if bound:
-            new_t = [tq[bad, _MID], tq[quarters].reshape(-1, 2)]
-            new_a = [pq[bad, _MID], pq[quarters].reshape(-1, parts.shape[-1])]
+            new_t = [tq[bad, mid], tq[quarters].reshape(-1, 2)]
+            new_a = [pq[bad, mid], pq[quarters].reshape(-1, parts.shape[-1])]
         if np.count_nonzero(k > 2):  # the midpoint is already evaluated; other split points are new
             many = k > 2
             kk = k[many]
@@ -357,8 +366,8 @@ def refine_samples(curves, ws, ptss, tol: float, max_rounds: int = 60, max_split
             new = where[n_old + sum(len(v) for v in new_w[:-1]):]  # the new split points in the new sampling
             extra, new = extra[new >= 0], new[new >= 0]
             lo, hi = w[todo], w[todo + 1]
-            x = np.concatenate([extra, fractions_of(lo, hi - lo, _PROBES).ravel()])
-            got = curves.evaluate_at(x, np.concatenate([owner[new], np.repeat(owner[todo], len(_PROBES))]), bound)
+            x = np.concatenate([extra, fractions_of(lo, hi - lo, fractions).ravel()])
+            got = curves.evaluate_at(x, np.concatenate([owner[new], np.repeat(owner[todo], len(fractions))]), bound)
             e = len(extra)
             if bound:
                 for into, value in zip((pts, tan, parts), got):
@@ -373,23 +382,14 @@ def refine_samples(curves, ws, ptss, tol: float, max_rounds: int = 60, max_split
     rows = inside.nonzero()[0]
     if bound:
         probes, q, _, _, dev = _scatter(len(w) - 1, rows,
-                                        interval_bounds(curves.turning, w, pts, tan, parts, tol, _PROBES, rows,
-                                                        span=curves.span))
-        dev = np.where(inside, dev + _round_offs(pts, starts, owner), 0.0)
+                                        interval_bounds(curves.turning, w, pts, tan, parts, tol, fractions, rows,
+                                                        span=curves.span, more=more))
+        dev = np.where(inside, dev + round_offs(pts, starts, owner), 0.0)
         atom = ~np.isfinite(dev) & ((w[1:] - w[:-1]) <= ATOM * np.maximum(np.abs(w[:-1]), np.abs(w[1:])).clip(1.0))
         dev[atom] = _chord_deviation(pts[:-1][atom, None], pts[1:][atom, None], q[atom]).max(axis=1)
     else:
         probes, q, dev, _ = _scatter(len(w) - 1, rows, _probe(curves.points, w, pts, tol, rows))
     return _split_up(w, pts, dev, probes, q, starts)
-
-
-def _round_offs(pts, starts, owner):
-    """:func:`~gearkit.chords.round_off` of each curve's points, at each interval (of its first vertex)."""
-    if len(starts) == 1:
-        return round_off(pts)
-    ends = np.concatenate([starts[1:], [len(pts)]])
-    each = np.array([round_off(pts[a:b]) for a, b in zip(starts, ends)])
-    return each[owner[:-1]]
 
 
 def _split_up(w, pts, dev, probes, q, starts):

@@ -225,12 +225,13 @@ def _bump(w):
     return np.stack([t + w, 0.1 * (1 - t * t)], -1)
 
 
-@pytest.mark.parametrize("bound", [False, True], ids=["probed", "proven"])
-def test_refinement_probes_each_interval_once_and_carries_what_a_fresh_probe_gives(monkeypatch, bound):
+@pytest.mark.parametrize("bound,middle", [(False, False), (True, False), (True, True)],
+                         ids=["probed", "proven", "proven through the middle"])
+def test_refinement_probes_each_interval_once_and_carries_what_a_fresh_probe_gives(monkeypatch, bound, middle):
     """A round probes only the intervals the round before made (an interval's probes and measures
     depend on its two ends alone): over all rounds no interval is probed twice, and the probes the
     sampling ends with are, to the last bit, those a fresh probe of its final intervals gives. The
-    proven path on a flank of the cycloid disc (its pin walk ends in a square root: many rounds),
+    proven paths on a flank of the cycloid disc (its pin walk ends in a square root: many rounds),
     the probed one on a narrow bump."""
     import gearkit.refine as acc
     from gearkit.chords import angle_parts
@@ -251,12 +252,19 @@ def test_refinement_probes_each_interval_once_and_carries_what_a_fresh_probe_giv
     curve = cyc.disc_profile(cyc.DriveSpec(12, 11, 40.0, 3.0, 1.5)).half.pieces[0] if bound else _bump
     tol = 1e-3 * (1.5 if bound else 1.0)
     w0 = np.linspace(0.0, 1.0, 5)
-    w, pts, achieved, probes, q = acc.refine_sample(curve, w0, None if bound else curve(w0), tol, bound=bound)
+    if middle:
+        w, pts, achieved, probes, q = acc.refine_samples([curve], [w0], None, tol, middle=True,
+                                                         turned=acc.first_turnings([curve], [w0], middle=True))[0]
+    else:
+        w, pts, achieved, probes, q = acc.refine_sample(curve, w0, None if bound else curve(w0), tol, bound=bound)
     assert bool(achieved <= tol)
     distinct = len(set(probed))
     assert len(probed) == distinct, f"{len(probed) - distinct} intervals probed again"
     assert distinct > len(w) - 1  # several rounds: intervals of earlier rounds were split and left alone
-    if bound:
+    if middle:
+        fresh = measure(angle_parts(curve.turning), w, *angle_parts(curve.turning)(w), tol, acc._MIDDLE,
+                        more=acc._QUARTERS)
+    elif bound:
         fresh = measure(angle_parts(curve.turning), w, *angle_parts(curve.turning)(w), tol, acc._PROBES)
     else:
         fresh = measure(lambda x, rows: curve(np.ravel(x)), w, pts, tol)
@@ -348,3 +356,94 @@ def test_curves_sampled_together_get_what_each_gets_alone_and_stay_within_tol():
         assert np.array_equal(w, alone[0]) and np.array_equal(pts, alone[1]) and achieved == alone[2]
         dense = curve(np.linspace(0.0, 1.0, 200_001))
         assert distances_to_polyline(dense, pts).max() <= tol and achieved <= tol
+
+
+def test_pieces_sampled_together_get_what_each_gets_alone_and_stay_within_the_bound_they_report():
+    """:func:`gearkit.accuracy.sample_pieces` places each piece's vertices from its exact turn on a grid
+    and accepts them through each chord's middle; every interval is still measured on its own, so a
+    piece keeps, to the last bit, the vertices and bound it gets alone. Oracle: each piece evaluated
+    densely (the independent measure) lies within the reported deviation of its polyline, which is
+    within tol (a probed curve's reported deviation is measured at its probes, not a bound: held to tol).
+    The mix: a tooth's pieces (a tip arc with one angle part, envelope branches with two),
+    a cycloid disc's pin envelope (its walk ends in a square root), a curve with no ``turning`` and
+    one whose ``turning`` gives none (both sampled as :func:`~gearkit.accuracy.sample_curves` does)."""
+    from gearkit.accuracy import sample_curves, sample_pieces
+    from gearkit.families import cycloidal as cyc
+    from gearkit.families.involute import GearSpec, tooth_profile
+
+    tol = 1e-4
+    turned = list(tooth_profile(GearSpec(8, 1.0)).half.pieces)
+    turned += list(cyc.disc_profile(cyc.DriveSpec(12, 11, 40.0, 3.0, 1.5)).half.pieces)
+    curves = turned[:3] + [_bump, _Probed()] + turned[3:]
+    together = sample_pieces(curves, tol)
+    for k, (curve, (w, pts, achieved)) in enumerate(zip(curves, together)):
+        alone = sample_pieces([curve], tol)[0]
+        assert np.array_equal(w, alone[0]) and np.array_equal(pts, alone[1]) and achieved == alone[2]
+        if k in (3, 4):  # no turning: as the pilot-placed sampling places it
+            assert np.array_equal(pts, sample_curves([curve], tol)[0][1])
+        dense = curve(np.linspace(0.0, 1.0, 200_001))
+        measured = distances_to_polyline(dense, pts).max()
+        assert measured <= (tol if k in (3, 4) else achieved) and achieved <= tol, (k, measured, achieved)
+
+
+def test_a_tooth_is_placed_from_its_turn_and_each_chord_proven_through_its_middle(monkeypatch):
+    """The pieces' turning is taken on the 65-point grid, then at the vertices and the chords' middles,
+    and at quarter points only where a chord's middle does not prove tol: about two evaluations a
+    vertex besides the grid (the pilot-placed sampling takes about six, and its pilot more). Counted on
+    the z = 40 tooth at 1e-6 m, whose reported deviation still bounds the measured one (dense oracle)."""
+    from gearkit import envelope, pieces
+    from gearkit.accuracy import TURN_GRID, sample_pieces
+    from gearkit.families.involute import GearSpec, tooth_profile
+
+    half = tooth_profile(GearSpec(40, 1.0)).half
+    asked = []
+    for module, name in ((envelope, "turning_together"), (pieces.CircleArc, "turning")):
+        real = getattr(module, name)
+
+        def spy(*args, real=real, name=name):
+            asked.append(sum(len(w) for w in args[1]) if name == "turning_together" else len(args[1]))
+            return real(*args)
+        monkeypatch.setattr(module, name, spy)
+    tol = 1e-6
+    sampled = sample_pieces(half.pieces, tol)
+    vertices = sum(len(w) for w, _, _ in sampled)
+    grid = len(TURN_GRID) * len(half.pieces)
+    assert asked[0] == grid or sum(asked[:2]) == grid  # the grid first (the tip arc on its own)
+    assert sum(asked) - grid <= 2.2 * vertices, (sum(asked) - grid, vertices)
+    for piece, (w, pts, achieved) in zip(half.pieces, sampled):
+        dense = piece(np.linspace(0.0, 1.0, 100_001))
+        assert distances_to_polyline(dense, pts).max() <= achieved <= tol
+
+
+def test_quarter_points_are_probed_only_where_the_middle_does_not_prove_tol_and_the_lower_bound_is_kept():
+    """:func:`gearkit.chords.interval_bounds` with ``more``: the legs through a chord's middle bound it; only
+    where that bound exceeds tol are the quarter points evaluated, and the chord keeps the lower of its
+    bound through the middle and its bound through the middle and quarters (each found here on its own).
+    On the flank and fillet of a z = 12 gear, whose chords' farthest points lie off their middles.
+    Oracle: each chord's deviation measured on a dense evaluation of its stretch, below every bound."""
+    from gearkit.chords import RETRY, angle_parts, chord_distance, interval_bounds
+    from gearkit.families.involute import GearSpec, tooth_profile
+
+    for piece in tooth_profile(GearSpec(12, 2.0)).half.pieces[1:3]:
+        calls = []
+
+        def turning(x, rows=None, piece=piece):
+            calls.append(np.size(x))
+            return angle_parts(piece.turning)(x)
+        w = np.array([0.0, 0.02, 0.06, 0.1, 0.2, 0.4, 0.7, 1.0])
+        pts, tan, parts = turning(w)
+        middle = interval_bounds(turning, w, pts, tan, parts, 0.0, np.array([0.5]))[-1]
+        quarters = interval_bounds(turning, w, pts, tan, parts, 0.0, np.array([0.25, 0.5, 0.75]))[-1]
+        sag = [chord_distance(pts[i], pts[i + 1], piece(np.linspace(w[i], w[i + 1], 20_001))).max()
+               for i in range(len(w) - 1)]
+        assert np.all(sag <= quarters) and np.all(quarters < middle), piece.label
+        for tol in (0.5 * (middle[3] + middle[4]), 0.5 * (middle[4] + quarters[4]), 1.0):
+            calls.clear()
+            both = interval_bounds(turning, w, pts, tan, parts, tol, np.array([0.5]), more=np.array([0.25, 0.75]))
+            unproven = middle > tol
+            assert calls[:2] == [len(w) - 1] + ([2 * np.count_nonzero(unproven)] if unproven.any() else [])
+            kept = np.where(unproven, np.minimum(middle, quarters), middle)
+            retried = (kept > tol) & (kept < RETRY * tol)  # bounded again on finer legs (more proof): never higher
+            assert np.array_equal(both[-1][~retried], kept[~retried])
+            assert np.all(both[-1][retried] <= kept[retried]) and np.all(sag <= both[-1])
+            assert both[0].shape == (len(w) - 1, 1)  # the probes returned: the middles alone

@@ -22,7 +22,7 @@ import math
 
 import numpy as np
 
-from gearkit.accuracy import sample_curves
+from gearkit.accuracy import sample_pieces
 from gearkit.errors import GeometryError, SpecError
 from gearkit.refine import evaluate_curves
 from gearkit.values import frozen
@@ -61,7 +61,7 @@ def _half(half, tol: float):
     """Half tooth (tip -> space centre) with the exact sub-points of every edge."""
     pts, fine = [], []
     sub = np.linspace(0.0, 1.0, FINE + 1)
-    sampled = sample_curves(half.pieces, tol)  # all pieces in one refinement: each as it samples alone
+    sampled = sample_pieces(half.pieces, tol)  # all pieces in one refinement: each as it samples alone
     ws = [(w[:-1, None] + (w[1:] - w[:-1])[:, None] * sub[None, :]).ravel() for w, _, _ in sampled]
     for k, ((w, p, _), exact) in enumerate(zip(sampled, evaluate_curves(half.pieces, ws))):
         fine.append(exact.reshape(len(w) - 1, FINE + 1, 2))
