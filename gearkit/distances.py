@@ -8,7 +8,8 @@ how the tests, the bench and the checks read an outline's accuracy:
 * :func:`nearest`: the nearest of a set of points to each query, by a blocked direct search (no
   tree to build and no scipy import for the few thousand points of a tooth);
 * :func:`distances_to_polyline`: each point's distance to a polyline, through the edges at its
-  nearest vertices (a k-d tree finds them above ``_DIRECT`` point pairs);
+  nearest vertices (a k-d tree finds them above ``_DIRECT`` point pairs), and through every edge
+  where a long edge might pass nearer;
 * :func:`polyline_deviation`: the largest of those distances;
 * :func:`edge_distances`: each point's distance to the nearest of all the edges of a long polyline,
   for points far from it compared with its own size (where a k-d tree visits most of it per point).
@@ -69,7 +70,13 @@ def nearest(points, queries, k: int = 1, block: int = 1 << 17):
 
 
 def distances_to_polyline(points, polyline, closed: bool = False, neighbours: int = 6):
-    """Distance of each point to a (dense) polyline, via its nearest vertices' edges.
+    """Distance of each point to a polyline: exact, through the edges at its nearest vertices.
+
+    Each point is measured against the edges at its ``neighbours`` nearest vertices. An edge at none
+    of them has both ends at least ``d_k`` away (the farthest of those vertices), so it lies at least
+    ``sqrt(d_k^2 - (L/2)^2)`` away, ``L`` its length: where an edge is long enough to pass nearer
+    than the distance found (an unevenly sampled polyline), the point is measured against every
+    edge that long (or against all, :func:`edge_distances`, when they are many).
 
     Parameters
     ----------
@@ -80,17 +87,27 @@ def distances_to_polyline(points, polyline, closed: bool = False, neighbours: in
     Returns
     -------
     (k,) float64, mm
+
+    Examples
+    --------
+    A long edge passing by a point whose six nearest vertices lie bunched far off:
+
+    >>> line = [[-100.0, 1.0], [100.0, 1.0]] + [[float(i), -5.0] for i in range(8)]
+    >>> distances_to_polyline([[0.0, 0.0]], line).tolist()
+    [1.0]
     """
     a = np.asarray(polyline, dtype=float)
     q = np.asarray(points, dtype=float)
     n = len(a)
+    k = min(neighbours, n)
     if n * len(q) <= _DIRECT:  # small: a direct search, no tree to build (and no scipy import)
-        _, idx = nearest(a, q, k=min(neighbours, n))
+        dist, idx = nearest(a, q, k=k)
     else:
         from scipy.spatial import cKDTree
 
-        _, idx = cKDTree(a).query(q, k=min(neighbours, n))
+        dist, idx = cKDTree(a).query(q, k=k)
     idx = np.atleast_2d(idx.T).T if idx.ndim == 1 else idx
+    dist = np.atleast_2d(dist.T).T if dist.ndim == 1 else dist
     best = np.full(len(q), np.inf)
     for col in range(idx.shape[1]):
         for off in (0, -1):
@@ -102,6 +119,25 @@ def distances_to_polyline(points, polyline, closed: bool = False, neighbours: in
                 i = np.clip(i, 0, n - 2)
                 j = i + 1
             best = np.minimum(best, _chord_deviation(a[i], a[j], q))
+    if k < n:  # an edge not looked at has both ends at least d_k away: it lies no nearer than best
+        ring = np.concatenate([a, a[:1]]) if closed else a  # unless it is longer than 2 sqrt(d_k^2 - best^2)
+        length = np.hypot(*np.diff(ring, axis=0).T)
+        d_k = dist.max(axis=1)
+        longest = 2.0 * np.sqrt(np.maximum(d_k * d_k - best * best, 0.0))
+        todo = np.flatnonzero(longest < length.max())
+        if todo.size:  # such an edge within best of a point has an end within sqrt(best^2 + (L/2)^2) of it
+            reach = np.sqrt(best[todo] ** 2 + 0.25 * length.max() ** 2)[:, None]
+            lo, hi = (q[todo] - reach).min(axis=0), (q[todo] + reach).max(axis=0)
+            inside = ((ring >= lo) & (ring <= hi)).all(axis=1)
+            e = np.flatnonzero((inside[:-1] | inside[1:]) & (length > longest[todo].min()))  # might lie nearer
+            if e.size and e.size * todo.size <= _DIRECT:
+                step = max(1, (1 << 18) // e.size)
+                for s in range(0, todo.size, step):
+                    t = todo[s:s + step]
+                    d = _chord_deviation(ring[e][None], ring[e + 1][None], q[t][:, None]).min(axis=1)
+                    best[t] = np.minimum(best[t], d)
+            elif e.size:  # many: every edge, pruned by spans (none: the distances found stand)
+                best[todo] = np.minimum(best[todo], edge_distances(q[todo], a, closed, upper=best[todo]))
     return best
 
 
@@ -139,7 +175,7 @@ def _spans(x, y, length, size):
     return ends, 0.5 * np.diff(length[ends]), dev
 
 
-def edge_distances(points, polyline, closed: bool = False, block: int = 1024):
+def edge_distances(points, polyline, closed: bool = False, block: int = 1024, upper=None):
     """Distance of each point to the nearest of all the edges of a polyline, by spans of edges.
 
     The edges are grouped in spans of ``4^k`` edges, ``4^(k-1)``, ... down to single edges. A
@@ -160,6 +196,8 @@ def edge_distances(points, polyline, closed: bool = False, block: int = 1024):
     points : (k, 2) float64
     polyline : (n, 2) float64
     closed : bool, the last vertex joins the first
+    upper : (k,) float64 or None, distances each point is known not to exceed (the length of a path
+        to some edge): spans beyond them are dropped from the first level on
 
     Returns
     -------
@@ -188,8 +226,10 @@ def edge_distances(points, polyline, closed: bool = False, block: int = 1024):
     levels = [_spans(x, y, length, size) for size in sizes]
     margin = 1e-12 * max(float(np.abs(a).max()), float(np.abs(q).max(initial=0.0)))  # round-off of a distance
     out = np.empty(len(q))
+    known = np.full(len(q), np.inf) if upper is None else np.asarray(upper, dtype=float) + margin
     for s in range(0, len(q), block):
-        out[s:s + block] = _nearest_edges(q[s:s + block, 0], q[s:s + block, 1], x, y, sizes, levels, margin)
+        out[s:s + block] = _nearest_edges(q[s:s + block, 0], q[s:s + block, 1], x, y, sizes, levels, margin,
+                                          known[s:s + block])
     return out
 
 
@@ -198,19 +238,20 @@ def edge_distances(points, polyline, closed: bool = False, block: int = 1024):
 _PAIRS = 1 << 19
 
 
-def _nearest_edges(qx, qy, x, y, sizes, levels, margin):
-    """:func:`edge_distances` of one block of points ``(qx, qy)``, the spans' ``levels`` made."""
+def _nearest_edges(qx, qy, x, y, sizes, levels, margin, upper):
+    """:func:`edge_distances` of one block of points ``(qx, qy)``, the spans' ``levels`` made, each
+    point's distance known to be at most ``upper``."""
     n = len(qx)
     first = len(levels[0][0]) - 1
     pi, k = np.repeat(np.arange(n), first), np.tile(np.arange(first), n)  # every top span, by point
-    upper = np.full(n, np.inf)
+    upper = upper.copy()
     for level, (ends, half, dev) in enumerate(levels):
         if level:  # split the spans left into the next level's (grouped by point still)
             fan = sizes[level - 1] // sizes[level]
             if n > 1 and len(k) * fan > _PAIRS:
                 h = n // 2
-                return np.concatenate([_nearest_edges(qx[:h], qy[:h], x, y, sizes, levels, margin),
-                                       _nearest_edges(qx[h:], qy[h:], x, y, sizes, levels, margin)])
+                return np.concatenate([_nearest_edges(qx[:h], qy[:h], x, y, sizes, levels, margin, upper[:h]),
+                                       _nearest_edges(qx[h:], qy[h:], x, y, sizes, levels, margin, upper[h:])])
             k = (k[:, None] * fan + np.arange(fan)).ravel()
             pi = np.repeat(pi, fan)
             inside = k < len(ends) - 1

@@ -447,3 +447,32 @@ def test_quarter_points_are_probed_only_where_the_middle_does_not_prove_tol_and_
             assert np.array_equal(both[-1][~retried], kept[~retried])
             assert np.all(both[-1][retried] <= kept[retried]) and np.all(sag <= both[-1])
             assert both[0].shape == (len(w) - 1, 1)  # the probes returned: the middles alone
+
+
+def test_distances_to_polyline_are_exact_on_unevenly_sampled_polylines():
+    """Oracle: every edge measured (brute force). Polylines as uneven as an adaptive sampling leaves
+    them (runs of close vertices beside single long chords, a short edge bunch far from a long edge
+    passing near a point): the nearest vertices' edges alone would read 1.5 to 100 times too far for
+    many points; the exact fallback must give the brute force's distance for all of them."""
+    from gearkit.chords import chord_distance
+    from gearkit.distances import distances_to_polyline
+
+    rng = np.random.default_rng(7)
+    worse = 0
+    for trial in range(40):
+        n = int(rng.integers(8, 400))
+        steps = np.where(rng.uniform(size=n) < 0.05, rng.uniform(5.0, 50.0, n), rng.uniform(0.01, 0.2, n))
+        t = np.cumsum(steps) / steps.sum() * 2.0 * np.pi * rng.uniform(0.3, 1.0)
+        line = np.stack([np.cos(t) * (1 + 0.2 * np.sin(5 * t)), np.sin(t)], -1) * 10.0 ** rng.uniform(-2, 2)
+        q = line[rng.integers(0, n, 300)] + rng.normal(size=(300, 2)) * np.abs(line).max() * 0.05
+        for closed in (False, True):
+            a = np.concatenate([line, line[:1]]) if closed else line
+            each = chord_distance(a[:-1][None], a[1:][None], q[:, None])
+            brute = each.min(axis=1)
+            got = distances_to_polyline(q, line, closed=closed)
+            assert np.allclose(got, brute, rtol=1e-12, atol=1e-13 * np.abs(line).max()), (trial, closed)
+            # points whose nearest edge touches none of their six nearest vertices (the case the fallback serves)
+            six = np.argsort(np.hypot(*(line[None] - q[:, None]).transpose(2, 0, 1)), axis=1)[:, :6]
+            e = np.argmin(each, axis=1)
+            worse += int(((six != e[:, None]) & (six != (e[:, None] + 1) % len(line))).all(axis=1).sum())
+    assert worse >= 100  # the polylines are uneven enough that the nearest vertices alone mislead
