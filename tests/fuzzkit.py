@@ -307,7 +307,14 @@ def check_flat_outline(prof, tol, lines: int = 1 << 16):
     assert prof.achieved(tol) <= tol
     check_flat_cam(spec, out, tol, lines)
     reach = spec.prime_radius + spec.stroke + (spec.pivot_distance or 0.0) + (spec.arm_length or 0.0)
-    hull = ConvexHull(out)
-    inside = -(out @ hull.equations[:, :2].T + hull.equations[:, 2])  # distance inside each hull edge's line
-    assert inside.min(axis=1).max() <= ON_HULL * reach
+    hull = ConvexHull(out).vertices  # counter-clockwise in 2-D, as the outline runs: the same cyclic order
+    first = int(np.argmin(hull))
+    idx = np.roll(hull, -first)
+    assert (np.diff(idx) > 0).all(), "the outline's convex hull visits its vertices out of their order"
+    # each vertex against the hull edge spanning it (a floor tol's outline has some 1e5 vertices: not all edges)
+    k = np.searchsorted(idx, np.arange(len(out)), side="right") - 1
+    a, b = out[idx[k]], out[idx[(k + 1) % len(idx)]]
+    d, r = b - a, out - a
+    inside = (d[:, 0] * r[:, 1] - d[:, 1] * r[:, 0]) / np.hypot(*d.T)  # left of the edge: inside
+    assert inside.max() <= ON_HULL * reach
     return out

@@ -21,7 +21,7 @@ import numpy as np
 
 from gearkit.errors import GeometryError
 
-__all__ = ["corner_cut", "refine_crossing", "refine_cut"]
+__all__ = ["corner_cut", "refine_crossing", "refine_cut", "sides_crossing"]
 
 
 def refine_crossing(f, wa, wb, lo_a, hi_a, lo_b, hi_b):
@@ -222,7 +222,7 @@ def corner_cut(curve, w, e, b, circles, meet: float, reach: int = 64, per: int =
     deep), or None when neither the last kept sample ``e`` nor the first kept sample ``b`` of the cut
     lies on a corner's arc. An arc cut whole (a concave corner, the arc running back) but for a sample at
     an end has no such exit: the envelopes either side of it cross, solved on their own stretches
-    (:func:`_sides_cross`); arcs whose motion section between them is shorter than a sample step (two
+    (:func:`sides_crossing`); arcs whose motion section between them is shorter than a sample step (two
     velocity jumps a dwell of a few ulps apart) are one gap, its sides those of the run (:func:`_runs`).
 
     The envelope beside the corner starts on the circle (the arc's end), so its signed distance from
@@ -247,7 +247,7 @@ def corner_cut(curve, w, e, b, circles, meet: float, reach: int = 64, per: int =
         if -step < off(w0) <= reach * step and -step < span - off(w1) <= reach * step:
             lo = max(edges[k0 - 1], w0 - off(w0) - reach * step)
             hi = min(edges[k1 + 2] if k1 + 2 < len(edges) else 1.0, w1 + span - off(w1) + reach * step)
-            wa, wb = _sides_cross(curve, lo, w0, w1, hi)
+            wa, wb = sides_crossing(curve, lo, w0, w1, hi)
             if off(wa) <= step and span - off(wb) <= step and np.hypot(*np.subtract(*curve(np.array([wa, wb])))) <= meet:
                 return wa, wb
         for k, centre, radius in run:
@@ -293,7 +293,7 @@ def _arc_exit(curve, w, e, span, step, off, k, centre, radius, meet, reach, per)
     return None
 
 
-def _sides_cross(curve, lo, w0, w1, hi):
+def sides_crossing(curve, lo, w0, w1, hi):
     """The crossing ``curve(wa) = curve(wb)`` of the envelope's stretches either side of a corner's arc,
     ``wa`` in ``[lo, w0]`` (before the arc, which starts at ``w0``) and ``wb`` in ``[w1, hi]`` (after it):
     Newton with each side's differences taken within its own stretch, so it never reads the arc, whose

@@ -16,7 +16,9 @@ keeps only the envelope's points on the boundary of the intersection. Its bounda
 holds the axis, so the kept arcs follow each other around it in the order of their polar angles
 (not of the cam angle: an arc of the face turning back relative to the cam lies between arcs of
 other phases, and may run the other way); each meets the next where the envelope crosses itself,
-or, at a velocity jump, along the face line of that cam angle (the face slides along it).
+or, at a velocity jump, along the face line of that cam angle (the face slides along it). A slide that runs
+back along the line, the way against the boundary, is a fold even where every sample beside it is kept: the
+arcs either side of it overlap along the line and meet at their crossing.
 """
 from __future__ import annotations
 
@@ -26,9 +28,10 @@ import numpy as np
 
 from gearkit.errors import GeometryError
 from gearkit.families.cam.crossings import corner_cut, refine_cut
+from gearkit.families.cam.faceline import bridge, slides_back
 from gearkit.families.cam.halfplanes import face_lines
 
-__all__ = ["roller_depth", "kept_runs", "FaceEdge", "corner_lines", "face_boundary", "FINEST"]
+__all__ = ["roller_depth", "kept_runs", "corner_lines", "face_boundary", "FINEST"]
 
 #: the densest sampling of a flat face's envelope (samples over one turn) that resolves a narrow kept arc
 FINEST = (1 << 20) + 1
@@ -157,43 +160,6 @@ def _by_run(w, keep, s, e, x, reach: int = 64) -> bool:
     return ahead <= reach and not keep[(lo - np.arange(1, int(ahead) + 1)) % n].any()
 
 
-class FaceEdge:
-    """A straight stretch of the cam along one face line, from ``p0`` to ``p1``: an exact curve of
-    ``w`` in [0, 1]."""
-
-    def __init__(self, p0, p1):
-        self.p0 = np.asarray(p0, dtype=float)
-        self.p1 = np.asarray(p1, dtype=float)
-
-    def __call__(self, w):
-        w = np.atleast_1d(np.asarray(w, dtype=float))
-        return self.p0[None, :] + w[:, None] * (self.p1 - self.p0)[None, :]
-
-    def turning(self, w):
-        """Points, the unit tangent (one direction: a straight edge turns by nothing) and one constant part."""
-        pts, d = self(w), self.p1 - self.p0
-        length = float(np.hypot(*d))
-        tangent = d / length if length > 0 else np.array([1.0, 0.0])
-        return pts, np.broadcast_to(tangent, pts.shape).copy(), np.zeros((len(pts), 1))
-
-
-def _on_line(curve, n, h, w, step):
-    """The ``w`` within ``8 step`` of ``w`` nearest to it where the curve crosses the line
-    ``n . x = h`` (bisection on a bracketing pair of 65 samples), or None."""
-    ws = np.mod(w + np.linspace(-8.0, 8.0, 65) * step, 1.0)
-    g = curve(ws) @ n - h
-    flips = np.flatnonzero(np.sign(g[:-1]) != np.sign(g[1:]))
-    if len(flips) == 0:
-        return None
-    k = int(flips[np.argmin(np.abs(flips - 31.5))])
-    lo, hi, glo = w + (k - 32) * step / 4.0, w + (k - 31) * step / 4.0, g[k]
-    for _ in range(60):
-        mid = 0.5 * (lo + hi)
-        gm = float(curve(np.array([mid % 1.0]))[0] @ n - h)
-        lo, hi, glo = (mid, hi, gm) if np.sign(gm) == np.sign(glo) else (lo, mid, glo)
-    return float((0.5 * (lo + hi)) % 1.0)
-
-
 def corner_lines(curve, motion, tool):
     """``(n, h, e0, e1)`` of each corner section of the envelope ``curve`` (a velocity jump): the face
     line at its cam angle and the section's ``w`` range."""
@@ -212,13 +178,15 @@ def face_boundary(curve, depth, slack: float, corners, scale: float, samples: in
 
     A sample is kept where ``depth`` (:meth:`~gearkit.families.cam.halfplanes.HalfPlanes.depth`) is at
     most ``slack`` (mm: round-off; the polygon of sampled lines, dense about the velocity jumps, holds the
-    whole cam, so a swallowtail's sliver is cut however shallow). The runs of kept samples are ordered by their polar angles; each run's
-    end meets the next run's start at the envelope's crossing (sought again from a dense resampling when
-    Newton's ends stay apart: a cusp at an acceleration jump), or along a corner's face line (:func:`_bridge`;
-    ``corners`` of :func:`corner_lines`). Returns ``(arcs, cuts)``: ``arcs`` ``[(spans, edge)]``, the
-    stretches ``(w0, w1)`` of one kept arc in the order they are walked (``w1 < w0`` where it runs against
-    ``w``; split at ``w = 1``) and the :class:`FaceEdge` to the next arc or None; ``cuts`` ``[(wa, wb)]``,
-    from a kept arc's end to the next one's start along ``w`` (cyclic: ``wb`` may be below ``wa``). One arc
+    whole cam, so a swallowtail's sliver is cut however shallow). The runs of kept samples are ordered by
+    their polar angles; each run's end meets the next run's start at the envelope's crossing (sought again
+    from a dense resampling when Newton's ends stay apart: a cusp at an acceleration jump), or along a
+    corner's face line (:func:`~gearkit.families.cam.faceline.bridge`; ``corners`` of
+    :func:`corner_lines`). Returns ``(arcs, cuts)``: ``arcs`` ``[(spans,
+    edge)]``, the stretches ``(w0, w1)`` of one kept arc in the order they are walked (``w1 < w0`` where it
+    runs against ``w``; split at ``w = 1``) and the :class:`~gearkit.families.cam.faceline.FaceEdge` to the
+    next arc or None; ``cuts`` ``[(wa, wb)]``, from a kept arc's end to the next one's start along ``w``
+    (cyclic: ``wb`` may be below ``wa``). One arc
     ``[((0, 1),), None]`` and no cut when the whole envelope bounds the cam.
 
     A kept arc narrower than a sample step has no kept sample: its neighbours' crossing, joined past it,
@@ -228,7 +196,9 @@ def face_boundary(curve, depth, slack: float, corners, scale: float, samples: in
     wide, ran 4e-8 mm outside the cam and back with every sample kept). Every join, and the middle of every
     section on a kept arc, is checked against ``depth``, and the envelope is sampled again four times as
     densely until each lies on the cam (a dwell's arc a quarter of a sample step wide, between a rise and a
-    return whose arcs cross 9 um outside it, was cut away whole).
+    return whose arcs cross 9 um outside it, was cut away whole). A velocity jump's slide back along the face
+    on a kept arc, too shallow a fold for ``depth``, is cut at the crossing of the arcs either side of it
+    (:func:`~gearkit.families.cam.faceline.slides_back`).
 
     Raises
     ------
@@ -245,7 +215,7 @@ def face_boundary(curve, depth, slack: float, corners, scale: float, samples: in
             ends = np.array(cuts, dtype=float).reshape(-1)
             probe = np.concatenate([ends, middles[_on_arcs(arcs, middles)]])
             if not len(probe) or depth(curve(probe)).max() <= slack:
-                return arcs, cuts
+                return slides_back(curve, arcs, cuts, corners, scale)
         if samples > FINEST:
             raise GeometryError("a kept arc of the flat face's envelope narrower than "
                                 f"1/{FINEST - 1} of a turn was not resolved: its neighbours' crossing lies off the cam")
@@ -321,7 +291,7 @@ def _join_runs(curve, w, runs, corners, scale, step, resolved: bool = True):
         if not resolved and min((arrive - leave) % m, (leave - arrive) % m) <= 2:
             return None
         wa, wb = refine_cut(curve, w, leave % m, arrive % m, d, dn, meet=1e-9 * scale)
-        joins.append(_bridge(curve, (wa, wb), (leave % m / m, arrive % m / m), corners, scale, step))
+        joins.append(bridge(curve, (wa, wb), (leave % m / m, arrive % m / m), corners, scale, step))
     arcs, dropped = [], set()
     for i, k in enumerate(order):
         (a, b), d = runs[k], info[k][0]
@@ -348,47 +318,3 @@ def _spans(entry, leave):
     else:
         out = [(x, 0.0)] + [(1.0, 0.0)] * (j - k - 1) + [(1.0, y)]
     return tuple(sp for sp in out if sp[0] != sp[1])
-
-
-def _bridge(curve, cut, kept, corners, scale: float, step: float):
-    """A join ``(wa, wb)`` of :func:`face_boundary` whose ends do not meet (no self-crossing of the
-    envelope there): the straight stretch of the cam between them along a corner's face line.
-
-    ``corners`` are ``(n, h, e0, e1)``: the face line at each velocity jump and the ``w`` range of
-    its corner section. With no crossing to find, Newton's ends ``(wa, wb)`` settle anywhere along
-    the envelope past the kept arcs, so the line and the stretch are read off the arcs' own ends,
-    ``kept`` (the ``w`` of the last kept sample of one arc and the first of the next): the line leaves
-    each within the chord of a sample step either side of it (the envelope crosses the line between
-    the kept sample and the cut one beside it, or enters the cam at the corner section's end a step
-    away). An end within the section's reach snaps to the section's nearer end (the face's slide at
-    the jump runs along the same line), any other end to the envelope's crossing with the line
-    beside its kept sample. Returns ``(wa, wb, edge)``; ``edge`` is None when the cut's ends meet
-    (within ``1e-6 scale``); the step is :func:`face_boundary`'s sampling step.
-
-    Raises
-    ------
-    GeometryError
-        When the ends meet no corner's line (the half-plane model has no other straight stretch).
-    """
-    wa, wb = cut
-    pa, pb = curve(np.array([wa, wb]))
-    if np.hypot(*(pa - pb)) <= 1e-6 * scale:
-        return wa, wb, None
-    ka, kb = np.asarray(kept, dtype=float)
-    side = curve(np.mod(np.array([ka - step, ka, ka + step, kb - step, kb, kb + step]), 1.0))
-    reach = [max(np.hypot(*(side[i] - side[i + 1])), np.hypot(*(side[i + 1] - side[i + 2]))) for i in (0, 3)]
-    off = [max(abs(side[1] @ n - h) / reach[0], abs(side[4] @ n - h) / reach[1]) for n, h, _, _ in corners]
-    if not off or min(off) > 1.0 + 1e-9:
-        raise GeometryError("a kept arc of the flat face's envelope meets the next one neither at a crossing nor along a corner's face line")
-    n, h, e0, e1 = corners[int(np.argmin(off))]
-    ends = []
-    for w in (ka, kb):
-        if e0 - 8 * step <= w <= e1 + 8 * step:
-            ends.append(float(e0 if abs(w - e0) <= abs(w - e1) else e1))
-            continue
-        on = _on_line(curve, n, h, w, step)
-        if on is None:
-            raise GeometryError("the flat face's envelope does not reach a corner's face line at a cut")
-        ends.append(on)
-    pa, pb = curve(np.array(ends))
-    return ends[0], ends[1], FaceEdge(pa, pb)
