@@ -8,7 +8,9 @@ middle, ``slide^2 / (8 r)`` inside the line. For a rocker lifting 1e-5 r0 over a
 cut it by some 4e-11 mm, below the keep test's slack, so every sample there was kept and the outline walked
 forward to the jump, back along the slide and forward again ("the outline turns back by 5.18e-07 mm: not a
 convex cam" at tol 1e-4 r0, its tangent's winding 0). Such a slide is now cut out at the crossing of the arcs
-either side of it. The spec from 1e-3 r0 down to the floor 1e-9 (r0 + stroke), and siblings from a sweep about
+either side of it: each arc cut where it passes the slide's middle along the line, then Newton from there where
+the arcs' angle stands above their round-off. A fold just deeper than the slack is cut the same way before the
+middles of the sections on kept arcs are checked (the corner's middle read as off the cam at every sampling). The spec from 1e-3 r0 down to the floor 1e-9 (r0 + stroke), and siblings from a sweep about
 it (lift 1e-6 to 1e-3 r0, dwell 0 to 10 degrees, rise 20 and 60 degrees, two pivots, rocker and translating
 faces): each failed before.
 
@@ -44,6 +46,13 @@ CASES = [(ROCKER, FUZZ, t) for t in (1e-3, 1e-4, 1e-5, 1e-6, 1e-7, None)] + [
     (ROCKER, (1e-6 * R0, 60.0, 10.0, FUZZ[3]), 1e-6),
     (TRANSLATING, (1e-6 * R0, 60.0, 0.0, FUZZ[3]), 1e-4),
     (TRANSLATING, (1e-6 * R0, 20.0, 10.0, FUZZ[3]), 1e-6),
+    # the fold's depth just over the keep slack: the dwell's corner's middle read as off the cam at every sampling
+    # (GeometryError: a kept arc narrower than 1/1048576 of a turn not resolved)
+    (TRANSLATING, (1e-6 * R0, 60.0, 1e-3, FUZZ[3]), 1e-4),
+    (TRANSLATING, (1e-6 * R0, 60.0, 1e-3, FUZZ[3]), None),
+    # a slide of 2e-6 mm: Newton alone on the arcs 1e-7 rad apart wandered to its bounds (GeometryError)
+    (ROCKER, (5e-7 * R0, 60.0, 1e-3, FUZZ[3]), 1e-4),
+    (ROCKER, (5e-7 * R0, 60.0, 1e-3, FUZZ[3]), 1e-6),
 ]
 
 

@@ -293,13 +293,15 @@ def _arc_exit(curve, w, e, span, step, off, k, centre, radius, meet, reach, per)
     return None
 
 
-def sides_crossing(curve, lo, w0, w1, hi):
+def sides_crossing(curve, lo, w0, w1, hi, start=None):
     """The crossing ``curve(wa) = curve(wb)`` of the envelope's stretches either side of a corner's arc,
     ``wa`` in ``[lo, w0]`` (before the arc, which starts at ``w0``) and ``wb`` in ``[w1, hi]`` (after it):
     Newton with each side's differences taken within its own stretch, so it never reads the arc, whose
     parameter runs the roller's contact angle over a sample step's length of ``w`` a few micrometres long
-    (a tangent the motion's thousands of times shorter)."""
-    x = np.array([w0 - 0.5 * min(w0 - lo, w1 - w0), w1 + 0.5 * min(hi - w1, w1 - w0)])
+    (a tangent the motion's thousands of times shorter). From ``start`` ``(wa, wb)`` if given, else half
+    the arc's width of ``w`` out from its ends."""
+    x = np.array([w0 - 0.5 * min(w0 - lo, w1 - w0), w1 + 0.5 * min(hi - w1, w1 - w0)] if start is None else start,
+                 dtype=float)
     lo_x, hi_x = np.array([lo, w1]), np.array([w0, hi])
     d = np.array([-1.0, 1.0]) * min(1e-9, 0.25 * (w0 - lo), 0.25 * (hi - w1))  # inward: back from w0, on from w1
     for _ in range(50):

@@ -204,21 +204,28 @@ def face_boundary(curve, depth, slack: float, corners, scale: float, samples: in
     ------
     GeometryError
         When no sample is kept, or a run's end meets the next run's start neither at a crossing nor
-        along a corner's face line, or a join still lies off the cam at ``FINEST`` samples.
+        along a corner's face line, or a join still lies off the cam, or the arcs either side of a slide
+        back do not meet, at ``FINEST`` samples.
     """
     edges = np.asarray(getattr(curve, "edges", (0.0, 1.0)), dtype=float)  # a curve of one section: no narrow one
     middles = 0.5 * (edges[:-1] + edges[1:]) % 1.0  # a section narrower than a sample step has none
     while True:
         found = _sampled_boundary(curve, depth, slack, corners, scale, samples)
-        if found is not None:
-            arcs, cuts = found
-            ends = np.array(cuts, dtype=float).reshape(-1)
-            probe = np.concatenate([ends, middles[_on_arcs(arcs, middles)]])
-            if not len(probe) or depth(curve(probe)).max() <= slack:
-                return slides_back(curve, arcs, cuts, corners, scale)
+        # the joins on the cam, then the slides back cut out (the middle of one lies off the cam by its fold's depth)
+        why = "a kept arc of the flat face's envelope narrower than 1/{} of a turn was not resolved: its neighbours' " \
+            "crossing lies off the cam"
+        if found is not None and (not found[1] or depth(curve(np.reshape(found[1], -1))).max() <= slack):
+            folded = slides_back(curve, *found, corners, scale)
+            if folded is None:
+                why = "the arcs of the flat face's envelope either side of a slide back along the face at a velocity " \
+                    "jump do not meet at 1/{} of a turn"
+            else:
+                arcs, cuts = folded
+                probe = np.concatenate([np.reshape(cuts, -1), middles[_on_arcs(arcs, middles)]])
+                if not len(probe) or depth(curve(probe)).max() <= slack:
+                    return arcs, cuts
         if samples > FINEST:
-            raise GeometryError("a kept arc of the flat face's envelope narrower than "
-                                f"1/{FINEST - 1} of a turn was not resolved: its neighbours' crossing lies off the cam")
+            raise GeometryError(why.format(FINEST - 1))
         samples = 4 * (samples - 1) + 1
 
 
