@@ -269,11 +269,12 @@ def cam_kwargs(draw):
     # to the cam put its kept arcs out of the order of the cam angle
     lift = draw(st.one_of(st.floats(0.02, 0.6), st.floats(0.6, 4.0)))
     dwell = st.floats(0.0, 60.0)
-    if contact == "flat" and follower == "rocker" and draw(st.booleans()):
-        # tiny lifts (1e-5 to 1e-3 r0), with and without near-zero dwells: a constant-velocity law's slides
-        # along the face at its velocity jumps fold within a fraction of a line step of the jump, as shallow
-        # as the excess of the half-planes' polygon there, and a dwell of 1e-3 degrees lies between two such
-        lift = 10.0 ** draw(st.floats(-5.0, -3.0))
+    if contact == "flat" and draw(st.booleans()):
+        # tiny lifts (1e-6 to 1e-3 r0; rockers and translating faces), with and without near-zero dwells: a
+        # constant-velocity law's slides along the face at its velocity jumps fold within a fraction of a line
+        # step of the jump, as shallow as the excess of the half-planes' polygon there, and a dwell of 1e-3
+        # degrees lies between two such; a slide back a few micrometres long lies inside a kept arc
+        lift = 10.0 ** draw(st.floats(-6.0, -3.0))
         dwell = st.one_of(dwell, st.sampled_from([0.0, 1e-12, 1e-6, 1e-3, 1e-2]))
     motion = (lift * r0, draw(st.floats(20.0, 150.0)), draw(dwell), draw(st.floats(20.0, 150.0)), law)
     return draw(maybe_hostile(kw)), motion
