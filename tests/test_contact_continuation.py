@@ -203,3 +203,45 @@ def test_an_end_with_a_nil_slope_is_no_minimum_where_the_function_falls_into_the
     assert value.max() <= 1e-15
     _, _, ok = newton_from(task, a, b, b.copy(), 6)
     assert not ok.any()  # the end is not confirmed: these rows are minimised afresh
+
+
+
+class _KnotEnd:
+    """``k (t - centre)^2`` whose value on ``t = 1`` is read off the next table polynomial: a joint mismatch
+    ``jump`` (the tables' fitting error, a few 1e-14 on a bound) on the end alone, the derivatives smooth. The
+    internal 46/49 pair's flank has such a knot on a polyline interval's end, its bound's minimum 0.8 % of the
+    interval inside and 7e-10 below the end (``k`` 1.1e-5 over the interval): a one-sided difference over 1e-7
+    of the interval read the jump as the bound falling into the end."""
+    smooth = True
+    roundoff = 16.0 * np.finfo(float).eps * 0.13  # a mate pitch of 2 pi / 49 rad
+    k = 1.1e-5
+
+    def __init__(self, centre, jump):
+        self.centre, self.jump = centre, jump
+
+    def slope(self, t, rows):
+        d = t - self.centre[rows]
+        return self.k * d * d + np.where(t == 1.0, self.jump[rows], 0.0), 2 * self.k * d, np.full_like(t, 2 * self.k)
+
+    def value(self, t, rows=slice(None)):
+        rows = np.arange(len(self.centre))[rows] if isinstance(rows, slice) else rows
+        return (self.slope(t, rows)[0],)
+
+
+def test_a_table_knot_on_an_end_is_no_end_minimum():
+    """Oracle: the quadratics' centres, inside the interval by 0.2 .. 1 % of it; a 1.6e-14 mismatch on the end
+    (as the 46/49 pair's table has on its flank at parameter 0.5) settled the fresh minimiser on the end, up to
+    1e-9 above the minimum, while the continued Newton found the centre. Rows whose centre lies beyond the end
+    keep it."""
+    from gearkit.contact.minimise import minimise, newton_from
+
+    centre = np.concatenate([1.0 - np.geomspace(0.002, 0.01, 7), [1.01, 1.2]])
+    jump = np.concatenate([np.full(7, -1.6e-14), [0.0, -1.6e-14]])
+    a, b = np.zeros(9), np.ones(9)
+    task = _KnotEnd(centre, jump)
+    value, t = minimise(task, a, b)
+    assert np.abs(t[:7] - centre[:7]).max() <= 1e-12
+    assert value[:7].max() <= 1e-28
+    assert t[7:].tolist() == [1.0, 1.0]
+    _, t_cont, ok = newton_from(task, a, b, np.minimum(centre, 1.0) - 0.001, 6)
+    assert ok.all() and np.abs(t_cont - t).max() <= 1e-12

@@ -10,7 +10,9 @@ row, ``task.value(t, rows)`` (values only) and, where the teeth are evaluated on
    The best sample brackets the minimum with its neighbours; an end sample is the minimum when the
    function rises from it (second-order one-sided slope, step 1e-7 of the interval, beyond its values'
    noise and round-off: where a piece's parametrisation is stationary at its end, as on a cycloid's cusp
-   on the pitch circle, that slope is nil whichever way the function runs).
+   on the pitch circle, that slope is nil whichever way the function runs) and, on tables with derivatives,
+   when the derivatives on the end agree (an end on a knot of the tables is read off the next polynomial:
+   the joint's mismatch over that step can fake a rise).
 2. **Newton** on the derivative (tables): from the best sample, steps ``-f'/f''`` kept inside the
    bracket, which every evaluation narrows by the sign of ``f'`` (bisection when a step would leave
    it or ``f''`` is not positive). Quadratic convergence: a handful of evaluations to round-off.
@@ -86,7 +88,17 @@ def minimise(task, a, b):
     # (and by more than the values' round-off: at an end where the piece's parametrisation is stationary, a cycloid's
     # cusp on the pitch circle, the one-sided slope is nil whichever way the function runs, and round-off set its sign)
     rise = (2.0 * getattr(task, "noise", 0.0) + getattr(task, "roundoff", 0.0)) / h
-    settled = (width <= 0) | (at_a & ~(da < rise)) | (at_b & ~(db > -rise))
+    end_a, end_b = at_a & ~(da < rise), at_b & ~(db > -rise)
+    if task.smooth:
+        # the one-sided difference reads an end that is a knot of the tables off the next polynomial and the points
+        # inside off this one: their joint's mismatch (within the tables' tolerance, a few 1e-14 on the value) over
+        # the step can fake a rise; an end is settled only where the derivatives agree (:func:`_rises`, as
+        # :func:`newton_from` confirms an end), else searched (the search keeps the end where nothing is lower)
+        for end, at, inward in ((end_a, a, 1.0), (end_b, b, -1.0)):
+            e = np.flatnonzero(end)
+            if e.size:
+                end[e] = _rises(task, e, at[e], inward, _TRAVEL * width[e])
+    settled = (width <= 0) | end_a | end_b
     rows = np.flatnonzero(~settled)
     if rows.size == 0:
         return best_v, best_t
