@@ -373,4 +373,13 @@ def evaluator(field, names, window):
                 sel = order[lo + 1:hi + 1]
                 out[sel] = one(g, p, names[which[sel[0]]], sel)
         return out
+
+    def many(p, which):
+        """Functions ``names[w]`` for every ``w`` in ``which`` at all the points ``p``: ``(len(which), n)``,
+        from one evaluation of the pair formulas."""
+        p = np.asarray(p, dtype=float).reshape(-1, 2)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            g = _Pair(field, p[:, 0].copy(), p[:, 1].copy())
+            return np.array([one(g, p, names[w], None) for w in which], dtype=float).reshape(len(which), len(p))
+    F.many = many
     return F

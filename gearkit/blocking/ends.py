@@ -12,7 +12,8 @@ the edge within ``EDGE_REACH`` cells at more than ``EDGE_DEG`` to it, ``F`` is r
 the front gets no farther than ``EDGE_BUDGET`` times that distance). A margin that varies as the
 cube or square root of the distance to the edge (those reading the working pressure angle, or a
 tip at its base circle) has lines that meet the edge tangentially, along it for up to the whole
-window: those ends are left as the grid has them, at every tol alike. A front goes on until
+window: those ends are not carried on here (the band beside the edge is traced on its own lattice,
+:mod:`~gearkit.blocking.band`, and its pieces joined to them before). A front goes on until
 
 * it meets another end of the same function heading back along it: the two join. The arms of a
   saddle join in the pairs ``F`` connects (a step never flips the side on which ``F`` is positive,

@@ -20,6 +20,11 @@ where undefined); every step below evaluates all the points it needs, of all the
    polyline lies within about ``tol + tol / 4`` of its curve, and the number of vertices is what
    the curvature needs at that tolerance: coarser tolerances cost less.
 
+The band beside the area where ``F`` is undefined, whose cells the grid masks, is traced on a
+lattice of its own and joined to the grid's lines (:mod:`~gearkit.blocking.band`); at the end, an
+open component lying wholly within ``2 tol`` of another of the same curve is dropped (one line at
+that tol).
+
 ``F`` may have kinks (e.g. the smallest of several margins); a corner of a zero set is approached
 by splitting the chords beside it until they pass within ``tol``.
 """
@@ -27,8 +32,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from gearkit.blocking.band import band_lines, once
 from gearkit.blocking.brackets import NearestBracket, segment_roots
 from gearkit.blocking.corners import corner_splits
+from gearkit.blocking.edges import toward_edge
 from gearkit.blocking.ends import extend_ends
 from gearkit.blocking.grid import bridge_pieces, edge_nodes
 from gearkit.blocking.onsets import onset_vertices
@@ -56,13 +63,15 @@ JUMP_FALL = 0.5  #: ... and |F| there above this fraction of the smaller |F| at 
 #: solver keeps the better end: a real zero is far below it at any tol, a pole or a jump is not)
 
 
-def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), kinked=(), onsets=((), ())) -> list:
+def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), kinked=(), onsets=((), ()),
+               many=None, band=None) -> list:
     """Every component of ``F_k = 0`` seen by the grids ``grids[k] = (xs, ys, values)`` (``values[j, i]``
     at ``(xs[i], ys[j])``, NaN where undefined): a list (one entry per ``k``) of ``(n, 2)`` polylines
     within about ``1.25 tol`` of the zero set; a closed one repeats its first vertex last. A piece of
     one grid cell that does not cross the grid's inner frame (the window of a grid padded by one ring)
     is dropped: it ends on both sides beside undefined nodes. ``onsets``: ``(((axis, x), ...), curves)``,
-    lines ``x_axis = x`` where the curves listed have a kink (:mod:`~gearkit.blocking.onsets`)."""
+    lines ``x_axis = x`` where the curves listed have a kink (:mod:`~gearkit.blocking.onsets`). ``many``
+    and ``band``: see :func:`~gearkit.blocking.band.band_lines`."""
     import contourpy
 
     raw, owner, edges = [], [], []
@@ -113,6 +122,8 @@ def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), 
         if closed and not np.array_equal(q[0], q[-1]):
             q, g, jmp = np.vstack([q, q[:1]]), np.append(g, g[0]), np.append(jmp, jmp[0])
         lines += [(k, q[lo:hi], g[lo:hi]) for lo, hi in _runs(~jmp) if hi - lo >= 2]
+    # the band beside the no-pair area, where the grid masks every cell (band)
+    lines = band_lines(F, lines, grids, tol, measure, many, band)
     lines = bridge_pieces(lines, grids, measure, BRIDGE_CELLS, BRIDGE_COS)
     # a run of one chord off the frame, bridged to none: a speck (see above)
     lines = [(k, q, g) for k, q, g in lines if len(q) >= 3 or k in measure or _on_frame(q, *grids[k][:2])]
@@ -121,7 +132,7 @@ def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), 
     # lines the grid cut short of their ends (a saddle): carried on to them (ends)
     lines = extend_ends(F, lines, grids, tol, measure)
     lines = densify(F, onset_vertices(F, lines, *onsets, vtol), tol, max_step, measure, kinked)
-    for k, q in (ln[:2] for ln in lines):
+    for k, q in once(lines, tol, measure):
         out[k].append(q)
     return out
 
@@ -195,6 +206,10 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
             end = mm + sgn * 0.5 * Lm[:, None] * nm_
             fe = F(end, km)
             best.consider(np.arange(meas.size), mm, f0, end, fe)
+            edge = np.flatnonzero(np.isnan(fe) & trust[km])
+            if edge.size:  # into the no-pair area: the zero nearest the middle among samples from its edge up
+                lo_e, flo_e, hi_e, fhi_e = toward_edge(F, mm[edge], f0[edge], end[edge], km[edge])
+                best.consider(edge, lo_e, flo_e, hi_e, fhi_e)
         wide = np.flatnonzero(~best.have & (trust[km] | WIDE_REGION))
         if wide.size:
             tg = np.column_stack([nm_[wide, 1], -nm_[wide, 0]])

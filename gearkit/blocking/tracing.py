@@ -4,7 +4,8 @@ One grid (``GRID`` x ``GRID`` nodes, padded by a ring outside the window) gives 
 topology; the region's grid is ``REGION_REFINE`` times finer along the hard lines (thin parts of
 the region, lines close together). All lines and the region are then solved and refined together,
 in batches, by :func:`~gearkit.blocking.level.zero_lines` (see there for the accuracy: every vertex
-within ``tol / 4``, every chord within ``tol`` of its line).
+within ``tol / 4``, every chord within ``tol`` of its line); the band beside the no-pair area, where
+the grid masks every cell, on a lattice of its own (:mod:`~gearkit.blocking.band`).
 
 >>> from gearkit.pair import PairSpec
 >>> f = PairField(PairSpec(13, 16, 1.0))
@@ -32,6 +33,7 @@ __all__ = ["Traced", "trace", "empty_reason", "GRID", "REGION_REFINE"]
 
 GRID = 49  #: nodes per side of the grid that gives every line and the region its topology
 REGION_REFINE = 4  #: the region's grid is this much finer along the hard lines
+NO_BAND = ("sliding",)  #: lines left as the grid has them beside the no-pair area
 
 
 @dataclass(frozen=True)
@@ -72,6 +74,10 @@ def trace(field: PairField, window, names, tol: float, max_step: float | None = 
     def F(p, which):
         count[0] += len(p)
         return F0(p, which)
+
+    def many(p, which):
+        count[0] += len(p) * len(which)
+        return F0.many(p, which)
     with Progress("blocking", 4, unit="stages") as bar:  # the grid, the region's cells, the lines, the polygons
         xs = np.linspace(window[0], window[1], GRID)
         ys = np.linspace(window[2], window[3], GRID)
@@ -97,8 +103,12 @@ def trace(field: PairField, window, names, tol: float, max_step: float | None = 
         bar.update(2)
         # the form circles break their slope where a gear starts to undercut: so do the lines reading them
         onsets = (undercut_onsets(field), {k for k, n in enumerate(ids) if not n.startswith("undercut.")})
+        # the band beside the no-pair area (:mod:`~gearkit.blocking.band`) of an external pair: every line but the
+        # sliding one, whose margin has a pole there and legs that dip to the edge and cross beside it (neither
+        # is traced there yet, nor an internal pair's band, whose edge has a third part)
+        band = set() if field.internal else {k for k, n in enumerate(names) if n not in NO_BAND}
         traced = zero_lines(F, curves, tol, max_step, measure=(len(ids) - 1,) if region else (), kinked=kinked,
-                            onsets=onsets)
+                            onsets=onsets, many=many, band=band)
         bar.update(3)
         polygons = None
         if region:

@@ -1,0 +1,80 @@
+"""Issue 19: lines inside the band beside the no-pair area, where the grid masks every cell
+(gearkit.blocking.band).
+
+Lines that meet the no-pair edge tangentially in (x1, x2) (the margins reading alpha_w vary as the
+cube root of the distance to the edge, those reading gear 2's tip at its base circle as the square
+root) ran inside the band of masked cells and were cut short there by up to 0.54 shift units.
+Oracle: the exact zeros of the scalar margins (the check's own pair geometry, ``PairField.margin``)
+on columns x1 = const, each sampled from the no-pair edge upwards (the edge found by bisection on
+where the scalar margin is defined, then distances from it growing geometrically from 1e-12), every
+sign change solved by brentq; each zero must lie within 2 tol of the traced line. A sign change
+where |F| does not fall (a pole of the sliding margin) is none.
+"""
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+
+from gearkit.blocking import blocking_contour
+from gearkit.distances import distances_to_polyline
+from gearkit.pair import PairSpec
+
+CONTRACT = 2.0  #: achieved / tol (issue 19)
+COLUMNS = 80  #: columns x1 = const across the window
+EDGE_BISECTIONS = 60  #: bisections locating the no-pair edge on a column (to round-off)
+DISTANCES = np.geomspace(1e-12, 0.4, 160)  #: samples above the edge (shift units)
+FALL = 0.5  #: a solved sign change is a zero when |F| fell below this fraction of its ends'
+
+
+def _edge_zeros(field, name, window):
+    """Exact zeros of ``name`` on columns rising from the no-pair edge (see the module notes)."""
+    x1s = np.linspace(window[0], window[1], COLUMNS + 2)[1:-1]
+    zeros = []
+    for x1 in x1s:
+        f = lambda x2: field.margin(name, x1, x2)  # noqa: E731
+        lo, hi = window[2], window[3]
+        if not np.isnan(f(lo)) or np.isnan(f(hi)):
+            continue  # no edge crossing this column from below (undefined below, defined above)
+        for _ in range(EDGE_BISECTIONS):
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if np.isnan(f(mid)) else (lo, mid)
+        ys = hi + DISTANCES
+        ys = ys[ys <= window[3]]
+        v = np.array([f(y) for y in ys])
+        for i in np.flatnonzero(np.isfinite(v[:-1]) & np.isfinite(v[1:]) & ((v[:-1] > 0) != (v[1:] > 0))):
+            y = brentq(f, ys[i], ys[i + 1], xtol=1e-15, rtol=1e-15)
+            if abs(f(y)) <= FALL * min(abs(v[i]), abs(v[i + 1])):
+                zeros.append([x1, y])
+    return np.array(zeros).reshape(-1, 2)
+
+
+def _farthest(zeros, components):
+    return float(np.min([distances_to_polyline(zeros, q) for q in components], axis=0).max())
+
+
+CASES = [  # (z1, z2, line, tol): cut short in the band by 0.04 .. 0.38 before
+    (12, 30, "interference.1", 1e-3),
+    (12, 30, "contact_ratio_tip=1", 1e-3),
+    (12, 30, "contact_ratio_tip=1.2", 1e-6),
+    (20, 40, "contact_ratio_tip=1", 1e-4),
+    (20, 40, "contact_ratio=1", 1e-4),
+]
+
+
+@pytest.mark.parametrize("z1, z2, name, tol", CASES)
+def test_a_line_running_along_the_no_pair_edge_is_traced_to_tol(z1, z2, name, tol):
+    c = blocking_contour(PairSpec(z1, z2, 1.0), tol=tol, lines=[name])
+    zeros = _edge_zeros(c.field, name, c.window)
+    assert len(zeros) >= 3, name  # the oracle sees the line beside the edge
+    assert _farthest(zeros, c.line(name).components) <= CONTRACT * tol
+
+
+def test_the_band_adds_no_duplicate_trace():
+    """12/30 at tol 1e-4: no two components of one line run along each other (each zero traced once:
+    the band's pieces are cut where they enter the grid's cells and joined to the grid's lines)."""
+    from gearkit.bench.topology import duplicates
+    from gearkit.blocking.arrays import evaluator
+
+    c = blocking_contour(PairSpec(12, 30, 1.0), tol=1e-4)
+    F = evaluator(c.field, [ln.name for ln in c.lines], c.window)
+    for k, ln in enumerate(c.lines):
+        assert duplicates(list(ln.components), c.tol, F, k) == 0, ln.name
