@@ -13,7 +13,7 @@ import math
 import numpy as np
 
 from gearkit.refine import evaluate_curves, first_samples, first_turnings, refine_sample, refine_samples, turn_curves
-from gearkit.errors import check_fields, is_real, require
+from gearkit.errors import GeometryError, check_fields, is_real, require
 from gearkit.values import frozen
 
 
@@ -268,13 +268,18 @@ def place_by_turn(w, points, parts, tol: float) -> np.ndarray:
         return np.array([0.0, 1.0])
     angle = np.asarray(parts, dtype=float).reshape(len(points), -1).sum(axis=1)
     n_of_s = np.concatenate([[0.0], np.add.accumulate(np.sqrt(np.abs(angle[1:] - angle[:-1]) * length))])
-    n_of_s /= math.sqrt(8.0 * tol)
     if not np.isfinite(n_of_s[-1]):
-        raise ValueError("place_by_turn: the curve's points or angle parts are not finite")
+        raise GeometryError("a tooth piece's points or tangent angles are not finite: its vertices cannot be placed")
+    return _equal_steps(w, n_of_s / math.sqrt(8.0 * tol))
+
+
+def _equal_steps(w, n_of_s):
+    """``ceil(N)`` chords at equal steps of ``N(s)`` (given at the sorted parameters ``w``, ends 0 and 1):
+    their ends' parameters, interpolated, the ends kept exactly."""
     chords = max(1, math.ceil(n_of_s[-1] - 1e-9))
     placed = np.interp(np.linspace(0.0, n_of_s[-1], chords + 1), n_of_s, w)
     placed[0], placed[-1] = 0.0, 1.0
-    return placed[np.concatenate([[True], (placed[1:] - placed[:-1]) > 0.0])]
+    return placed[np.concatenate([[True], (placed[1:] - placed[:-1]) > 0.0])]  # sorted already (np.unique imports numpy.ma)
 
 
 def _walk_order(w, pts, probes, q):
@@ -327,7 +332,4 @@ def place_by_curvature(w, points, tol: float, ordered: bool = False) -> np.ndarr
         k = np.where((length[:-1] > 0) & (length[1:] > 0), turn / mean, 0.0)  # at the inner vertices
     root = np.sqrt(np.concatenate([k[:1], k, k[-1:]]))
     n_of_s = np.concatenate([[0.0], np.add.accumulate(length * 0.5 * (root[:-1] + root[1:]))]) / math.sqrt(8.0 * tol)
-    chords = max(1, math.ceil(n_of_s[-1] - 1e-9))
-    placed = np.interp(np.linspace(0.0, n_of_s[-1], chords + 1), n_of_s, w)
-    placed[0], placed[-1] = 0.0, 1.0
-    return placed[np.concatenate([[True], (placed[1:] - placed[:-1]) > 0.0])]  # sorted already (np.unique imports numpy.ma)
+    return _equal_steps(w, n_of_s)
