@@ -64,14 +64,14 @@ def _label_spot(comp, placed, avoid, lo, hi, gap):
 
 
 NO_PAIR_GRID = 121  #: nodes per side of the grid the no-pair area is first found on
-NO_PAIR_SPLITS = 40  #: bisections of a grid edge that crosses the area's edge (to 1e-12 of a cell)
 
 
 def _no_pair(contour):
     """The window's no-pair area as ``(vertices, codes)`` of a matplotlib path, or None where a pair
     exists everywhere: the cells of a node grid filled where no pair exists, each vertex of that
-    area's boundary moved from the middle of its grid edge onto the area's edge, found by bisection
-    along that grid edge, so the drawn edge is the area's own and not the grid's staircase.
+    area's boundary moved from the middle of its grid edge onto the area's edge (found along that
+    grid edge by :func:`~gearkit.blocking.edges.edge_point`), so the drawn edge is the area's own and
+    not the grid's staircase.
 
     >>> from gearkit.blocking import blocking_contour
     >>> from gearkit.pair import PairSpec
@@ -80,18 +80,15 @@ def _no_pair(contour):
     (2, 1)
     """
     import contourpy
-    from gearkit.blocking.arrays import margins
+    from gearkit.blocking.arrays import evaluator
+    from gearkit.blocking.edges import edge_point
 
     x0, x1, y0, y1 = contour.window
     n = NO_PAIR_GRID
     xs, ys = np.linspace(x0, x1, n), np.linspace(y0, y1, n)
-    name = contour.field.hard[0]
-
-    def undefined(px, py):
-        return np.isnan(margins(contour.field, px, py, [name])[name])
-
+    F = evaluator(contour.field, [contour.field.hard[0]], None)  # NaN where no pair exists
     gx, gy = np.meshgrid(xs, ys)
-    bad = undefined(gx.ravel(), gy.ravel()).reshape(gx.shape)
+    bad = np.isnan(F(np.column_stack([gx.ravel(), gy.ravel()]), np.zeros(gx.size, dtype=int))).reshape(gx.shape)
     if not bad.any():
         return None
     points, codes = contourpy.contour_generator(xs, ys, bad.astype(float), fill_type="OuterCode").filled(0.5, 2.0)
@@ -105,18 +102,14 @@ def _no_pair(contour):
     mid_y = (np.abs(fy - iy - 0.5) < 1e-6) & (np.abs(fx - np.rint(fx)) < 1e-6)  # on a grid edge along y
     ja, ia = np.where(mid_x, np.rint(fy), iy).astype(int), np.where(mid_y, np.rint(fx), ix).astype(int)
     jb, ib = ja + mid_y, ia + mid_x
-    sel = np.flatnonzero((mid_x | mid_y))
+    sel = np.flatnonzero(mid_x | mid_y)
     ja, ia, jb, ib = ja[sel], ia[sel], jb[sel], ib[sel]
     cross = bad[ja, ia] != bad[jb, ib]
     sel, ja, ia, jb, ib = sel[cross], ja[cross], ia[cross], jb[cross], ib[cross]
     a_first = ~bad[ja, ia]  # order each edge from its node with a pair (a) to its node without (b)
     a = np.where(a_first[:, None], np.c_[xs[ia], ys[ja]], np.c_[xs[ib], ys[jb]])
     b = np.where(a_first[:, None], np.c_[xs[ib], ys[jb]], np.c_[xs[ia], ys[ja]])
-    for _ in range(NO_PAIR_SPLITS):
-        m = 0.5 * (a + b)
-        out = undefined(m[:, 0], m[:, 1])
-        a, b = np.where(out[:, None], a, m), np.where(out[:, None], m, b)
-    verts[sel] = 0.5 * (a + b)
+    verts[sel] = edge_point(F, a, b, np.zeros(len(a), dtype=int), float(np.hypot(x1 - x0, y1 - y0)))
     return verts, codes
 
 
