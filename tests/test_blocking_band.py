@@ -57,6 +57,11 @@ CASES = [  # (z1, z2, line, tol): cut short in the band by 0.04 .. 0.38 before
     (12, 30, "contact_ratio_tip=1.2", 1e-6),
     (20, 40, "contact_ratio_tip=1", 1e-4),
     (20, 40, "contact_ratio=1", 1e-4),
+    # the sliding line (its margin |zeta1| - |zeta2| traced as the zeros of its two factors): 0.54 short on
+    # 12/30 and 0.69 on 20/40 before
+    (12, 30, "sliding", 1e-3),
+    (13, 16, "sliding", 1e-4),
+    (20, 40, "sliding", 1e-4),
 ]
 
 

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from gearkit.blocking.tracing import LEGS
+
 __all__ = ["topology", "duplicates"]
 
 
@@ -55,18 +57,38 @@ def _sides_of_a_sliver(F, k, v, w, tol):
         return apart & np.isfinite(vals[0]) & (np.isfinite(vals[1]) | np.isfinite(vals[2])) & flips[0] & flips[1]
 
 
-def duplicates(polylines, tol: float, F=None, k: int = 0) -> int:
+def _leg(F, legs, q) -> int:
+    """Which of the functions ``legs`` of ``F`` vanishes on the polyline ``q`` (-1 without legs): the one
+    whose median |value| at its vertices is least."""
+    if not legs:
+        return -1
+    return int(np.argmin([np.nanmedian(np.abs(F(q, np.full(len(q), w)))) for w in legs]))
+
+
+def duplicates(polylines, tol: float, F=None, k: int = 0, legs=()) -> int:
     """Components most of whose vertices lie within ``2 tol`` of another component on the same zeros
     (traced twice); with ``F`` (function ``k`` of an evaluator), vertices that lie on the other side of
     a sliver from their nearest points (:func:`_sides_of_a_sliver`) do not count: a sliver narrower
-    than ``2 tol`` has two lines."""
+    than ``2 tol`` has two lines. A line whose function is a product (``legs``: the functions of ``F``
+    that are its factors, e.g. the sliding line's ``|a| - |b|``, zero where ``a - b`` or ``a + b`` is)
+    has a component on each factor's zeros: two components on different factors are two lines however
+    close they run.
+
+    Examples
+    --------
+    >>> F = lambda p, k: np.where(np.asarray(k) == 1, p[:, 1], p[:, 1] - 1e-9)  # two legs 1e-9 apart
+    >>> a, b = np.array([[0.0, 0.0], [0.5, 0.0], [1.0, 0.0]]), np.array([[0.0, 1e-9], [0.5, 1e-9], [1.0, 1e-9]])
+    >>> duplicates([a, b], 1e-3), duplicates([a, b], 1e-3, F, 0, legs=(1, 2))
+    (2, 0)
+    """
     from gearkit.distances import distances_to_polyline
 
     count = 0
+    on = [_leg(F, legs, q) for q in polylines] if F is not None else [-1] * len(polylines)
     for i, q in enumerate(polylines):
         inner = q[1:-1] if len(q) > 2 else q
         for j, r in enumerate(polylines):
-            if i == j:
+            if i == j or on[i] != on[j]:
                 continue
             close = distances_to_polyline(inner, r) <= 2 * tol
             if F is not None and np.mean(close) > 0.5 and len(r) > 1:
@@ -98,7 +120,13 @@ def topology(contour, reference) -> dict:
 
     pairs = [(ln.components, reference.line(ln.name).components) for ln in contour.lines]
     pairs.append((contour.region, reference.region))
-    F = evaluator(contour.field, [ln.name for ln in contour.lines] + ["region"], contour.window)
+    names = [ln.name for ln in contour.lines] + ["region"]
+    legs = [[] for _ in names]
+    for k, ln in enumerate(contour.lines):
+        for f in LEGS.get(ln.name, ()):
+            legs[k].append(len(names))
+            names.append(f)
+    F = evaluator(contour.field, names, contour.window)
     gap = extra = 0.0
     loops, loops_ref, dup = 0, 0, 0
     for k, (mine, ref) in enumerate(pairs):
@@ -107,5 +135,5 @@ def topology(contour, reference) -> dict:
         extra = max(extra, _far(_probe_points(mine), ref))
         loops += sum(1 for q in mine if len(q) > 2 and np.array_equal(q[0], q[-1]))
         loops_ref += sum(1 for q in ref if len(q) > 2 and np.array_equal(q[0], q[-1]))
-        dup += duplicates(mine, contour.tol, F, k)
+        dup += duplicates(mine, contour.tol, F, k, legs[k])
     return {"gap": gap, "extra": extra, "loops": (loops, loops_ref), "duplicates": dup}

@@ -31,8 +31,9 @@ from gearkit.pair.internal import SWEEP_RESOLUTION
 from gearkit.pair.sweep import SWEEP_ENOUGH, sweep_depth
 from gearkit.pair.tooling import graded_tip_radius, half_angle
 
-__all__ = ["margins", "evaluator", "sliding_ends"]
+__all__ = ["margins", "evaluator", "sliding_ends", "SLIDING_LEGS"]
 
+SLIDING_LEGS = ("sliding.same", "sliding.opposite")  #: the factors of the sliding margin (:meth:`_Pair.sliding_factors`)
 PLUNGE_SAMPLES = 97  #: samples of the plunge-trimming gap (over a quarter wave of the shaper's corner: at
 #: most two extrema), then Newton on the derivative from the smallest; the check samples 801
 
@@ -177,16 +178,26 @@ class _Pair:
         z1, z2 = self.sliding_ends()
         return z1 - z2
 
+    def _path_ends(self):
+        """(i = z2 / z1, u and rho (the roll lengths of gear 1 and 2) at the start and the end of the
+        real path: u0, rho0, u1, rho1)."""
+        u0, u1, g = self.lo, self.hi, self.g_line
+        rho0, rho1 = (u0 + g, u1 + g) if self.internal else (g - u0, g - u1)
+        return self.z2 / self.z1, u0, rho0, u1, rho1
+
     def sliding_ends(self):
         """(|zeta1| at the start of the real path, |zeta2| at its end)."""
-        ratio = self.z2 / self.z1
+        ratio, u0, rho0, u1, rho1 = self._path_ends()
         with np.errstate(invalid="ignore", divide="ignore"):
-            u0, u1 = self.lo, self.hi
-            rho0 = u0 + self.g_line if self.internal else self.g_line - u0
-            rho1 = u1 + self.g_line if self.internal else self.g_line - u1
-            z1 = 1.0 - rho0 / (ratio * u0)
-            z2 = 1.0 - ratio * u1 / rho1
-            return np.abs(z1), np.abs(z2)
+            return np.abs(1.0 - rho0 / (ratio * u0)), np.abs(1.0 - ratio * u1 / rho1)
+
+    def sliding_factors(self):
+        """The factors of |zeta1| - |zeta2|: zeta1 - zeta2 and zeta1 + zeta2, each times
+        ``u0 rho1 / g**2`` (g = N1N2): smooth, pole-free, zero on the sliding line's two legs,
+        which cross where both slidings vanish (a saddle of the absolute form)."""
+        ratio, u0, rho0, u1, rho1 = self._path_ends()
+        d = ratio * self.g_line ** 2
+        return (ratio * ratio * u0 * u1 - rho0 * rho1) / d, (2 * ratio * u0 * rho1 - rho0 * rho1 - ratio * ratio * u0 * u1) / d
 
     def exit_jamming(self):
         """:func:`~gearkit.pair.internal.exit_jamming_margin`, arrays (rad)."""
@@ -293,6 +304,8 @@ class _Pair:
             return at(self.tip_thickness(int(base[-1]))) / mn - float(level)
         if base == "sliding":
             return at(self.sliding())
+        if base in SLIDING_LEGS:
+            return at(self.sliding_factors()[SLIDING_LEGS.index(base)])
         if base == "exit_jamming":
             return at(self.exit_jamming())
         if base == "trimming.plunge":

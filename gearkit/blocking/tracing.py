@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from gearkit.blocking.arrays import evaluator
+from gearkit.blocking.arrays import SLIDING_LEGS, evaluator
 from gearkit.blocking.arrays import margins as array_margins
 from gearkit.blocking.field import PairField
 from gearkit.blocking.grid import refine_grid, sign_cells
@@ -33,7 +33,7 @@ __all__ = ["Traced", "trace", "empty_reason", "GRID", "REGION_REFINE"]
 
 GRID = 49  #: nodes per side of the grid that gives every line and the region its topology
 REGION_REFINE = 4  #: the region's grid is this much finer along the hard lines
-NO_BAND = ("sliding",)  #: lines left as the grid has them beside the no-pair area
+LEGS = {"sliding": SLIDING_LEGS}  #: lines traced as the zeros of their factors (one smooth function a leg)
 
 
 @dataclass(frozen=True)
@@ -66,7 +66,9 @@ def trace(field: PairField, window, names, tol: float, max_step: float | None = 
     """Trace the lines ``names`` of ``field`` (any margin name, see
     :meth:`~gearkit.blocking.field.PairField.margin`) in ``window`` and, with ``region=True``, the
     admissible region; ``max_step`` caps the chords (None: the tolerance alone)."""
-    names = list(names)
+    wanted = list(names)
+    # a line whose margin is |a| - |b| is traced as the zeros of its two smooth factors a - b and a + b
+    names = [f for n in wanted for f in LEGS.get(n, (n,))]
     count = [0]
     ids = names + (["region"] if region else [])
     F0 = evaluator(field, ids, window)
@@ -103,10 +105,9 @@ def trace(field: PairField, window, names, tol: float, max_step: float | None = 
         bar.update(2)
         # the form circles break their slope where a gear starts to undercut: so do the lines reading them
         onsets = (undercut_onsets(field), {k for k, n in enumerate(ids) if not n.startswith("undercut.")})
-        # the band beside the no-pair area (:mod:`~gearkit.blocking.band`) of an external pair: every line but the
-        # sliding one, whose margin has a pole there and legs that dip to the edge and cross beside it (neither
-        # is traced there yet, nor an internal pair's band, whose edge has a third part)
-        band = set() if field.internal else {k for k, n in enumerate(names) if n not in NO_BAND}
+        # the band beside the no-pair area (:mod:`~gearkit.blocking.band`) of an external pair: every line (an
+        # internal pair's band, whose edge has a third part, is not traced there yet)
+        band = set() if field.internal else set(range(len(names)))
         traced = zero_lines(F, curves, tol, max_step, measure=(len(ids) - 1,) if region else (), kinked=kinked,
                             onsets=onsets, many=many, band=band)
         bar.update(3)
@@ -115,4 +116,5 @@ def trace(field: PairField, window, names, tol: float, max_step: float | None = 
             polygons = orient_loops(traced[-1], window, tol)
             if not polygons:
                 reason = empty_reason(field, F, len(ids) - 1, window, xs, ys, rvals)
-    return Traced({n: traced[k] for k, n in enumerate(names)}, polygons, reason, count[0])
+    lines = {n: [q for f in LEGS.get(n, (n,)) for q in traced[names.index(f)]] for n in wanted}
+    return Traced(lines, polygons, reason, count[0])

@@ -1,0 +1,78 @@
+"""Issue 19: the line of equal specific sliding, |zeta1| = |zeta2| at the ends of the path.
+
+Its margin |zeta1| - |zeta2| is zero where either factor zeta1 - zeta2 or zeta1 + zeta2 is: two legs,
+which cross where both slidings vanish (a saddle of the absolute form, no sign change along either
+leg there) and which both run along the no-pair edge. It is traced as the zeros of the two factors,
+each a smooth function (gearkit.blocking.arrays: ``_Pair.sliding_factors``). Oracles: the specific
+slidings of the scalar pair geometry (``PairField.point``, the check's own, with the generated form
+circles), the sign of
+|zeta1| - |zeta2| against the product of the factors, and the exact zeros of the scalar margin on
+circles around the 12/30 crossing (solved by brentq along the circle).
+"""
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+
+from gearkit.blocking import blocking_contour
+from gearkit.blocking.arrays import evaluator
+from gearkit.blocking.field import PairField
+from gearkit.distances import distances_to_polyline
+from gearkit.pair import PairSpec
+
+CONTRACT = 2.0  #: achieved / tol (issue 19)
+CROSSING_12_30 = (0.38812051, -1.2461073)  #: where the legs cross, 1.95e-3 (in x1 + x2) above the no-pair edge
+ANGLES = 1440  #: samples on a circle around it
+
+
+@pytest.mark.parametrize("z1, z2", [(12, 30), (13, 16), (20, 40), (17, 60)])
+def test_the_factors_have_the_sign_of_the_sliding_margin(z1, z2):
+    """sign(|zeta1| - |zeta2|) = sign((zeta1 - zeta2)(zeta1 + zeta2)), and the factors are that product
+    times a square: their product has the margin's sign at every point where a pair exists."""
+    field = PairField(PairSpec(z1, z2, 1.0))
+    rng = np.random.default_rng(z1 * 100 + z2)
+    w = blocking_contour(PairSpec(z1, z2, 1.0), tol=1e-2, lines=["sliding"]).window
+    pts = np.column_stack([rng.uniform(w[0], w[1], 300), rng.uniform(w[2], w[3], 300)])
+    F = evaluator(field, ["sliding.same", "sliding.opposite"], w)
+    same, opposite = F(pts, np.zeros(len(pts), int)), F(pts, np.ones(len(pts), int))
+    checked = 0
+    for p, a, b in zip(pts, same, opposite):
+        pt = field.point(*p)
+        if not pt.valid:  # no pair at this point: the arrays say so too
+            assert np.isnan(a) and np.isnan(b)
+            continue
+        s = pt.geometry((True, True)).specific_sliding  # the generated form circles, as the check reads them
+        margin = abs(s["start"][0]) - abs(s["end"][1])
+        if abs(margin) < 1e-9:
+            continue
+        assert np.sign(a * b) == np.sign(margin), (p, a, b, margin)
+        checked += 1
+    assert checked >= 150
+
+
+def _circle_zeros(field, centre, radius):
+    """Exact zeros of the scalar sliding margin on the circle of ``radius`` around ``centre``."""
+    def f(t):
+        return field.margin("sliding", centre[0] + radius * np.cos(t), centre[1] + radius * np.sin(t))
+    t = np.linspace(0.0, 2 * np.pi, ANGLES + 1)
+    v = np.array([f(a) for a in t])
+    out = []
+    for i in np.flatnonzero(np.isfinite(v[:-1]) & np.isfinite(v[1:]) & ((v[:-1] > 0) != (v[1:] > 0))):
+        a = brentq(f, t[i], t[i + 1], xtol=1e-15, rtol=1e-15)
+        if abs(f(a)) <= 0.5 * min(abs(v[i]), abs(v[i + 1])):  # a zero, not a pole
+            out.append([centre[0] + radius * np.cos(a), centre[1] + radius * np.sin(a)])
+    return np.array(out).reshape(-1, 2)
+
+
+@pytest.mark.parametrize("tol", [1e-3, 1e-4, 1e-6])
+def test_the_legs_crossing_beside_the_no_pair_edge_are_traced_through_it(tol):
+    """12/30: the four arms of the crossing, 1.95e-3 above the no-pair edge, each reach it: the exact zeros
+    on circles of radius 2e-2 down to 5 tol around it all lie within 2 tol of the traced line."""
+    c = blocking_contour(PairSpec(12, 30, 1.0), tol=tol, lines=["sliding"])
+    comps = c.line("sliding").components
+    for radius in (2e-2, 5e-3, 1e-3, 5 * tol):
+        if radius < 5 * tol:
+            continue
+        zeros = _circle_zeros(c.field, CROSSING_12_30, radius)
+        assert len(zeros) >= 3, radius  # the arms the circle meets where a pair exists
+        far = np.min([distances_to_polyline(zeros, q) for q in comps], axis=0)
+        assert far.max() <= CONTRACT * tol, (radius, far.max())
