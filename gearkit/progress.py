@@ -109,6 +109,13 @@ class Progress:
             Progress._closed = self.stream
         return False
 
+    @classmethod
+    def forget(cls) -> None:
+        """For a worker process forked while a bar was open: that bar (copied into the worker) is the
+        parent's, so bars opened here neither move it nor draw their own (the parent draws the work's
+        one bar)."""
+        cls.mode, cls._depth, cls._drawing = "off", 0, None
+
     def update(self, done: int) -> None:
         """``done`` of the ``total`` steps are finished (redraws when due)."""
         self.done = done

@@ -200,6 +200,10 @@ def test_cli_json_and_export(tmp_path, capsys):
     assert main(["blocking", "--z1", "13", "--z2", "16", "--mark", "1.5,0", "--points", "40"]) == 1
     assert main(["blocking", "--z1", "13", "--z2", "16", "-o", str(tmp_path / "x.txt")]) == 2
     assert main(["blocking", "--z1", "46", "--z2", "49", "--internal"]) == 2
+    capsys.readouterr()
+    # a mark that is no number is bad input (exit 2, one line), not a point outside the region (exit 1)
+    assert main(["blocking", "--z1", "13", "--z2", "16", "--mark", "nan,0.3", "--points", "40"]) == 2
+    assert capsys.readouterr().err.strip() == "gearkit blocking: error: --mark: 'nan,0.3': every number must be finite"
 
 
 # ------------------------------------------------------------------------------ criteria, CLI help, atlas
@@ -223,6 +227,10 @@ def test_cli_help_states_the_ring_shift_sign(capsys):
     assert main(["blocking", "--help"]) == 0
     text = " ".join(capsys.readouterr().out.split())
     assert "x2 > 0 moves the ring's teeth outward" in text
+    # the ring's x2 is read as `gearkit check` reads it by default, by the tooth thickness (it said the
+    # shaper's radial setting, which check reads only with --ring-shift cutter)
+    assert "read as 'gearkit check' reads it by default (ISO 21771" in text
+    assert "(every ring) is the cutter's radial setting" not in text
 
 
 def test_atlas_cell_equals_the_single_contour():

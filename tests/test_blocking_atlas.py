@@ -2,6 +2,12 @@
 index, a contact sheet), resumable and deterministic, on a local process pool and on a Dask cluster
 started here (the same cell function)."""
 import json
+import os
+import re
+import signal
+import subprocess
+import sys
+import time
 
 import pytest
 
@@ -88,3 +94,85 @@ def test_contact_sheet_title_is_not_cut_off(local):
     ink = img.min(axis=2) < 0.5  # dark pixels: text and outlines
     assert not ink[:, 0].any() and not ink[:, -1].any()
     assert ink[: img.shape[0] // 5].any()  # the title is there, at the top
+
+
+def test_bad_contour_options_and_an_absent_scheduler_write_nothing(tmp_path, capsys, monkeypatch):
+    """A tolerance out of range (or NaN) is one error before any work (it wrote a dataset of failed
+    cells, or crashed on NaN), an unreachable scheduler too (it left the folder behind); an empty
+    range says it is empty."""
+    from gearkit.blocking import atlas
+
+    monkeypatch.setattr(atlas, "DASK_TIMEOUT", 0.5)
+    for extra, field in ((["--tol", "5"], "tol"), (["--tol", "nan"], "tol"),
+                         (["--scheduler", "tcp://127.0.0.1:1"], "scheduler")):
+        out = tmp_path / "a"
+        assert main(ARGS + extra + ["-o", str(out), "--no-progress"]) == 2
+        err = capsys.readouterr().err.strip().splitlines()
+        assert len(err) == 1 and err[0].startswith(f"gearkit atlas: error: {field}:"), err
+        assert not out.exists()
+    assert main(["atlas", "--z1", "10:5:1", "--z2", "30", "-o", str(tmp_path / "a")]) == 2
+    assert "'10:5:1' is empty" in capsys.readouterr().err
+    assert main(["atlas", "--z1", "10:20:0", "--z2", "30", "-o", str(tmp_path / "a")]) == 2
+    assert "the step must be a positive integer" in capsys.readouterr().err
+
+
+#: ``gearkit`` with the atlas' cell function replaced: every cell but z1 = 12 runs ten minutes
+SLOW_CELLS = """
+import sys, time
+import gearkit.blocking.atlas as atlas
+real = atlas.atlas_cell
+def cell(template, z1, z2, options, criterion="balanced"):
+    if z1 != 12:
+        time.sleep(600)
+    return real(template, z1, z2, options, criterion)
+atlas.atlas_cell = cell
+from gearkit.cli import main
+sys.exit(main(sys.argv[1:]))
+"""
+
+
+@pytest.mark.parametrize("group", [True, False], ids=["ctrl-c", "sigint-to-the-parent"])
+def test_an_interrupt_stops_every_cell_and_the_run_resumes(tmp_path, group):
+    """Ctrl-C (SIGINT to the process group) or SIGINT to the parent alone, once the first cell is on
+    disk while the workers run ten-minute cells: exit 130 with one line saying what is kept, the
+    workers stopped (the pool ran every queued cell on before exiting), no partial file, no index or
+    sheet; the same command then computes only the missing cells."""
+    out = tmp_path / "a"
+    args = ["atlas", "--z1", "12,13,14,15", "--z2", "30", "--tol", "1e-3", "--workers", "2", "-o", str(out)]
+    proc = subprocess.Popen([sys.executable, "-c", SLOW_CELLS, *args], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True, start_new_session=True)
+    first = out / "cells" / "z1-012_z2-030.json"
+    try:
+        for _ in range(2400):  # the first cell (its worker starts the slow ones next)
+            if first.exists() or proc.poll() is not None:
+                break
+            time.sleep(0.05)
+        assert first.exists()
+        (os.killpg if group else os.kill)(proc.pid, signal.SIGINT)
+        _, err = proc.communicate(timeout=60)  # not ten minutes: the cells running are stopped
+    finally:
+        if proc.poll() is None:
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.wait()
+    assert proc.returncode == 130
+    assert err.strip().splitlines() == [f"gearkit atlas: interrupted; 1 of 4 cells are in {out / 'cells'}/ "
+                                        "(the same command resumes)"]
+    assert sorted(p.relative_to(out).as_posix() for p in out.rglob("*")) == [
+        "atlas.json", "cells", "cells/z1-012_z2-030.json"]
+    kept = first.stat().st_mtime_ns
+    assert main(args[:-4] + ["--workers", "1", "--no-progress", "-o", str(out)]) == 0
+    assert first.stat().st_mtime_ns == kept
+    assert len(json.loads((out / "index.json").read_text())["cells"]) == 4
+
+
+def test_only_the_parent_draws_the_bar(tmp_path):
+    """Workers forked while the bar is open draw none (each drew its stale copy, '0/4 cells', between
+    the parent's): the counts on stderr only grow, and no cell's own bar shows."""
+    script = ("import sys\nfrom gearkit.progress import Progress\nProgress.delay = 0.0\n"
+              "from gearkit.cli import main\nsys.exit(main(sys.argv[1:]))")
+    r = subprocess.run([sys.executable, "-c", script, "--progress", *ARGS, "--workers", "2",
+                        "-o", str(tmp_path / "a")], capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0, r.stderr
+    counts = [int(n) for n in re.findall(r"\] (\d+)/4 cells", r.stderr)]
+    assert counts and counts == sorted(counts) and counts[-1] == 4, r.stderr
+    assert "blocking [" not in r.stderr

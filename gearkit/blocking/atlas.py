@@ -1,8 +1,9 @@
 """An atlas of blocking contours: one contour per (z1, z2) cell, computed in parallel.
 
 Printed atlases cover a grid of tooth numbers for one tool; :func:`blocking_atlas` computes the
-same grid for any pair template (tool, pressure angle, helix angle, external or internal) with
-:class:`concurrent.futures.ProcessPoolExecutor`. Each cell is the contour
+same grid for any pair template (tool, pressure angle, helix angle, external or internal) on a
+pool of local processes (:class:`multiprocessing.pool.Pool`: Ctrl-C or an error stops it at once,
+no cell runs on). Each cell is the contour
 :func:`~gearkit.blocking.blocking_contour` returns for the template with ``teeth1 = z1``,
 ``teeth2 = z2``; a worker sends it back without its evaluation caches (they are rebuilt on demand).
 
@@ -21,8 +22,8 @@ from __future__ import annotations
 
 import json
 import os
+import signal
 import time
-from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass, replace
 from pathlib import Path
 
@@ -108,21 +109,16 @@ def blocking_atlas(z1s, z2s, template: PairSpec | None = None, *, workers: int |
     require(isinstance(template, PairSpec), "template", "must be a PairSpec")
     n = (os.cpu_count() or 1) if workers is None else workers
     require(isinstance(n, int) and n >= 1, "workers", f"{workers!r} must be a positive integer or None")
+    _check_options(options)
     jobs = [(z1, z2) for z1 in z1s for z2 in z2s]
-    results = []
+    results = {}
     with Progress("atlas", len(jobs), unit="cells") as bar:
-        if n == 1 or len(jobs) == 1:
-            for z1, z2 in jobs:
-                results.append(_cell(template, z1, z2, options))
-                bar.step()
-        else:
-            with ProcessPoolExecutor(max_workers=min(n, len(jobs))) as pool:
-                futures = [pool.submit(_cell, template, z1, z2, options) for z1, z2 in jobs]
-                for _ in as_completed(futures):
-                    bar.step()
-                results = [f.result() for f in futures]
+        def sink(result):
+            results[result[:2]] = result
+            bar.step()
+        _run_local(_cell, [(template, z1, z2, options) for z1, z2 in jobs], n, sink)
     cells, errors = {}, {}
-    for z1, z2, contour, err in results:
+    for z1, z2, contour, err in (results[job] for job in jobs):
         if contour is None:
             errors[(z1, z2)] = err
         else:
@@ -169,33 +165,70 @@ def _dump(obj) -> str:
     return json.dumps(obj, sort_keys=True, allow_nan=False, separators=(",", ":"))
 
 
-def _run_local(jobs, template, options, criterion, workers, sink):
+def _worker_start() -> None:
+    """Start of a local worker process: Ctrl-C and termination are the parent's to handle (it stops
+    the pool: a worker ignores SIGINT and ends quietly on SIGTERM), and a progress bar the parent
+    had open when it forked is the parent's (the worker draws none)."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    Progress.forget()
+
+
+def _call(job):
+    fn, args = job
+    return fn(*args)
+
+
+def _run_local(fn, jobs, workers: int, sink) -> None:
+    """``sink(fn(*args))`` for every ``args`` of ``jobs``: in this process when ``workers`` is 1 or
+    there is one job, else on a pool of ``workers`` local processes, each result as it comes (in any
+    order). Ctrl-C, termination, an error in a job or in ``sink`` stops the pool at once (its workers
+    are terminated: no job runs on after the exception) and is raised here.
+
+    >>> out = []
+    >>> _run_local(pow, [(2, 3), (3, 2)], 2, out.append)
+    >>> sorted(out)
+    [8, 9]
+    """
     if workers == 1 or len(jobs) <= 1:
-        for z1, z2 in jobs:
-            sink(atlas_cell(template, z1, z2, options, criterion))
+        for args in jobs:
+            sink(fn(*args))
         return
-    with ProcessPoolExecutor(max_workers=min(workers, len(jobs))) as pool:
-        futures = [pool.submit(atlas_cell, template, z1, z2, options, criterion) for z1, z2 in jobs]
-        for fut in as_completed(futures):
-            sink(fut.result())
+    import multiprocessing
 
-
-def _run_dask(jobs, template, options, criterion, scheduler, sink):
+    pool = multiprocessing.Pool(min(workers, len(jobs)), initializer=_worker_start)
     try:
-        from distributed import Client, as_completed as dask_completed
+        for result in pool.imap_unordered(_call, [(fn, args) for args in jobs]):
+            sink(result)
+        pool.close()
+    except BaseException:
+        pool.terminate()
+        raise
+    finally:
+        pool.join()
+
+
+def _dask_client(scheduler):
+    try:
+        from distributed import Client
     except ImportError:
         raise SpecError("scheduler", "the distributed path needs dask.distributed: pip install 'gearkit[dask]'") from None
     try:
-        client = Client(scheduler, timeout=DASK_TIMEOUT)
+        return Client(scheduler, timeout=DASK_TIMEOUT)
     except (OSError, TimeoutError) as exc:
         raise SpecError("scheduler", f"no Dask scheduler answers at {scheduler!r} ({exc})") from None
+
+
+def _run_dask(jobs, template, options, criterion, client, sink):
+    from distributed import as_completed as dask_completed
+
+    futures = client.map(atlas_cell, [template] * len(jobs), [z for z, _ in jobs], [z for _, z in jobs],
+                         [options] * len(jobs), [criterion] * len(jobs), pure=False)
     try:
-        futures = client.map(atlas_cell, [template] * len(jobs), [z for z, _ in jobs], [z for _, z in jobs],
-                             [options] * len(jobs), [criterion] * len(jobs), pure=False)
         for fut in dask_completed(futures):
             sink(fut.result())
     finally:
-        client.close()
+        client.cancel(futures)  # an interrupt leaves nothing running on the cluster
 
 
 DASK_TIMEOUT = 10  #: seconds to reach the scheduler
@@ -225,15 +258,33 @@ def write_atlas(z1s, z2s, out_dir, template: PairSpec | None = None, *, workers:
     **options
         Keyword arguments of :func:`~gearkit.blocking.blocking_contour` (``tol``, ``window`` ...).
     """
-    from gearkit.export import atomic_write
-
     z1s = sorted({int(z) for z in z1s})
     z2s = sorted({int(z) for z in z2s})
     require(z1s and z2s, "z1s", "give at least one tooth number for each gear")
     template = PairSpec(20, 40, 1.0) if template is None else template
     require(isinstance(template, PairSpec), "template", "must be a PairSpec")
     require(isinstance(workers, int) and workers >= 1, "workers", f"{workers!r} must be a positive integer")
-    out = Path(out_dir)
+    require(criterion in ("balanced", "strength"), "criterion", f"{criterion!r} is not one of balanced, strength")
+    _check_options(options)
+    client = _dask_client(scheduler) if scheduler else None  # before anything is written
+    try:
+        return _write(z1s, z2s, Path(out_dir), template, workers, client, criterion, progress, options)
+    finally:
+        if client is not None:
+            client.close()
+
+
+def _check_options(options) -> None:
+    """The contour options every cell shares, checked once before any work or file (bad input is
+    one error, not a dataset of failed cells)."""
+    from gearkit.blocking.contour import check_options
+
+    check_options(**{k: options[k] for k in ("tol", "points", "window") if k in options})
+
+
+def _write(z1s, z2s, out, template, workers, client, criterion, progress, options) -> dict:
+    from gearkit.export import atomic_write
+
     cells_dir = out / "cells"
     try:
         cells_dir.mkdir(parents=True, exist_ok=True)
@@ -259,11 +310,10 @@ def write_atlas(z1s, z2s, out_dir, template: PairSpec | None = None, *, workers:
             name = cell_name(record["z1"], record["z2"])
             atomic_write(cells_dir / name, lambda tmp: Path(tmp).write_text(_dump(record)))
             bar.step()
-        if jobs:
-            if scheduler:
-                _run_dask(jobs, template, options, criterion, scheduler, sink)
-            else:
-                _run_local(jobs, template, options, criterion, workers, sink)
+        if jobs and client is not None:
+            _run_dask(jobs, template, options, criterion, client, sink)
+        elif jobs:
+            _run_local(atlas_cell, [(template, z1, z2, options, criterion) for z1, z2 in jobs], workers, sink)
     rows = []
     records = []
     for z1 in z1s:

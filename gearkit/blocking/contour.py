@@ -30,7 +30,7 @@ from gearkit.families.involute import tool_label
 from gearkit.pair.spec import PairSpec
 from gearkit.pair.tooling import half_angle, section, thickness_coeff
 
-__all__ = ["BlockingContour", "Line", "blocking_contour", "default_window"]
+__all__ = ["BlockingContour", "Line", "blocking_contour", "check_options", "default_window"]
 
 DEFAULT_TOL = 1e-4  #: shift units (1e-4 m_n): far below what a picture or a cutter shows
 TOL_RANGE = (1e-12, 1e-2)  #: allowed tracing tolerances (shift units)
@@ -203,6 +203,35 @@ class BlockingContour:
         save(self, path, recommendation, marked)
 
 
+def check_options(tol: float | None = None, points: int | None = None, window=None) -> float:
+    """The tracing tolerance ``tol`` (None: ``DEFAULT_TOL``) once ``tol``, ``points`` and a user
+    ``window`` are checked against their ranges (``SpecError`` naming the field): what
+    :func:`blocking_contour` checks before any work, for callers that check once for many pairs.
+
+    >>> check_options(), check_options(1e-3, 40, (0, 1, 0, 1))
+    (0.0001, 0.001)
+    """
+    tol = DEFAULT_TOL if tol is None else tol
+    require(isinstance(tol, float) and TOL_RANGE[0] <= tol <= TOL_RANGE[1], "tol",
+            f"{tol!r} must be in [{TOL_RANGE[0]:g}, {TOL_RANGE[1]:g}] (shift units)")
+    require(points is None or (isinstance(points, int) and 20 <= points <= 5000), "points",
+            f"{points!r} must be in [20, 5000]")
+    if window is not None:
+        _checked_window(window)
+    return tol
+
+
+def _checked_window(window) -> tuple:
+    try:
+        win = tuple(float(v) for v in window)
+    except (TypeError, ValueError):
+        raise SpecError("window", f"{window!r} must be four numbers (x1_lo, x1_hi, x2_lo, x2_hi)") from None
+    require(len(win) == 4 and all(math.isfinite(v) and -3.0 <= v <= 3.0 for v in win)
+            and win[0] < win[1] and win[2] < win[3], "window",
+            f"{win!r} must be (x1_lo, x1_hi, x2_lo, x2_hi) within [-3, 3], lo < hi")
+    return win
+
+
 def blocking_contour(pair: PairSpec, *, window=None, limits: CheckLimits = CheckLimits(), tip_levels=(0.25, 0.4),
                      contact_levels=(1.2,), center_distances=(), tol: float | None = None,
                      points: int | None = None, lines=None, xtol: float | None = None) -> BlockingContour:
@@ -242,16 +271,9 @@ def blocking_contour(pair: PairSpec, *, window=None, limits: CheckLimits = Check
         warnings.warn("blocking_contour: 'xtol' is deprecated, use 'tol'", DeprecationWarning, stacklevel=2)
         require(tol is None, "tol", "give tol or its deprecated name xtol, not both")
         tol = xtol
-    tol = DEFAULT_TOL if tol is None else tol
-    require(isinstance(tol, float) and TOL_RANGE[0] <= tol <= TOL_RANGE[1], "tol",
-            f"{tol!r} must be in [{TOL_RANGE[0]:g}, {TOL_RANGE[1]:g}] (shift units)")
-    require(points is None or (isinstance(points, int) and 20 <= points <= 5000), "points",
-            f"{points!r} must be in [20, 5000]")
+    tol = check_options(tol, points, window)
     field = PairField(pair, limits, tip_levels, contact_levels, center_distances)
-    win = default_window(field) if window is None else tuple(float(v) for v in window)
-    require(len(win) == 4 and all(math.isfinite(v) and -3.0 <= v <= 3.0 for v in win)
-            and win[0] < win[1] and win[2] < win[3], "window",
-            f"{win!r} must be (x1_lo, x1_hi, x2_lo, x2_hi) within [-3, 3], lo < hi")
+    win = _checked_window(default_window(field) if window is None else window)
     field.x_ranges = ((win[0], win[1]), (win[2], win[3]))  # undercut form circles: interpolated
     field.exact_forms = False
     max_step = None if points is None else math.hypot(win[1] - win[0], win[3] - win[2]) / points

@@ -54,20 +54,22 @@ def register(subparsers) -> None:
 def parse_teeth(text: str, flag: str) -> list:
     """``10:100:10`` (stop included) or ``13,16,20`` -> sorted tooth numbers; SpecError naming ``flag``."""
     try:
-        if ":" in text:
-            parts = [int(v) for v in text.split(":")]
-            if len(parts) not in (2, 3):
-                raise ValueError
-            start, stop = parts[0], parts[1]
-            step = parts[2] if len(parts) == 3 else 1
-            if step <= 0:
-                raise SpecError(flag, f"{text!r}: the step must be positive")
-            values = list(range(start, stop + 1, step))
-        else:
-            values = [int(v) for v in text.split(",")]
+        parts = [int(v) for v in text.split(":" if ":" in text else ",")]
     except ValueError:
         raise SpecError(flag, f"{text!r} is not START:STOP:STEP or comma-separated tooth numbers") from None
-    if not values or min(values) < 3 or max(values) > RANGE_MAX:
+    if ":" in text:
+        if len(parts) not in (2, 3):
+            raise SpecError(flag, f"{text!r} is not START:STOP:STEP or comma-separated tooth numbers")
+        start, stop = parts[0], parts[1]
+        step = parts[2] if len(parts) == 3 else 1
+        if step <= 0:
+            raise SpecError(flag, f"{text!r}: the step must be a positive integer")
+        if stop < start:
+            raise SpecError(flag, f"{text!r} is empty: STOP must be at least START (STOP is included)")
+        values = list(range(start, stop + 1, step))
+    else:
+        values = parts
+    if min(values) < 3 or max(values) > RANGE_MAX:
         raise SpecError(flag, f"{text!r}: tooth numbers must lie in [3, {RANGE_MAX}]")
     return sorted(set(values))
 
@@ -88,8 +90,20 @@ def run(args) -> int:
         raise SpecError("--workers", f"{args.workers} must be a positive integer")
     template = template_spec(args, z1s[0], max(z2s[-1], z1s[0] + 8) if args.internal else z2s[0])
     options = {} if args.tol is None else {"tol": args.tol}
-    index = write_atlas(z1s, z2s, args.output, template, workers=args.workers, scheduler=args.scheduler,
-                        criterion=args.criterion, progress=False if args.no_progress else None, **options)
+    try:
+        index = write_atlas(z1s, z2s, args.output, template, workers=args.workers, scheduler=args.scheduler,
+                            criterion=args.criterion, progress=False if args.no_progress else None, **options)
+    except KeyboardInterrupt:  # the pool is stopped; the cells done are on disk, whole
+        from pathlib import Path
+
+        from gearkit.blocking.atlas import cell_name
+        from gearkit.progress import line_break
+
+        cells = Path(args.output) / "cells"
+        done = sum((cells / cell_name(z1, z2)).exists() for z1 in z1s for z2 in z2s)
+        print(f"{line_break()}gearkit atlas: interrupted; {done} of {len(z1s) * len(z2s)} cells are in "
+              f"{cells}/ (the same command resumes)", file=sys.stderr)
+        return 130
     if args.json:
         print_json(index, indent=None)
     else:

@@ -10,6 +10,7 @@ Exit status: 0 (1 when ``--mark`` is outside the region), 2 for bad input.
 from __future__ import annotations
 
 import argparse
+import math
 import sys
 
 from gearkit.cli.common import (QUANTITIES, add_json_flag, add_module_flag, add_output_flag, add_rack_flag, add_tol_flag, print_json,
@@ -24,9 +25,11 @@ def register(subparsers) -> None:
         description="Trace the blocking contour of an involute pair: the lines where the design check starts "
                     "to fail (interference B1/B2, eps_alpha = 1 B3, pointed tips B4/B5, internal jamming and "
                     "trimming B6) and quality lines inside; shade the admissible region; recommend shifts. "
-                    "Shifts are normal coefficients x_n. Internal pairs (--internal) use the textbook sign for "
-                    "the ring: x2 > 0 moves the ring's teeth outward (thinner ring teeth, larger tip (inner) "
-                    "diameter); the shift of a shaper-cut gear (every ring) is the cutter's radial setting.",
+                    "Shifts are normal coefficients x_n. Internal pairs (--internal): x2 > 0 moves the ring's teeth "
+                    "outward (thinner ring teeth, larger tip (inner) diameter), and the ring's x2 is read as "
+                    "'gearkit check' reads it by default (ISO 21771, by its tooth thickness; the shaper "
+                    "setting that cuts it is derived); an external shaper-cut pinion's x1 is the cutter's "
+                    "radial setting.",
         epilog="Exit status: 0 ok, 1 the --mark point is outside the region, 2 bad input.")
     g = p.add_argument_group("pair")
     add_design_argument(p, "pair")
@@ -88,6 +91,8 @@ def _floats(text, n, flag):
         raise SpecError(flag, f"{text!r} is not {n} comma-separated numbers") from None
     if len(vals) != n:
         raise SpecError(flag, f"{text!r} must have {n} comma-separated numbers")
+    if not all(math.isfinite(v) for v in vals):
+        raise SpecError(flag, f"{text!r}: every number must be finite")
     return vals
 
 
@@ -146,12 +151,10 @@ def run(args) -> int:
     window = _floats(args.window, 4, "--window") if args.window else None
     cds = (args.center_distance,) if args.center_distance else ()
     tol = tol_from_args(args)
+    mark = _floats(args.mark, 2, "--mark") if args.mark else None  # bad input before any work
     contour = blocking_contour(spec, window=window, tol=tol, points=args.points, center_distances=cds)
     rec = contour.recommend(args.criterion, args.center_distance)
-    marked = None
-    if args.mark:
-        x1, x2 = _floats(args.mark, 2, "--mark")
-        marked = contour.mark(x1, x2)
+    marked = None if mark is None else contour.mark(*mark)
     if args.output and str(args.output).lower().endswith((".html", ".htm")):
         from gearkit.view import blocking_view, write_page
 
