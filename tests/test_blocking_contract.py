@@ -234,13 +234,58 @@ README_EXAMPLES = [
 ]
 
 
-@pytest.mark.parametrize("spec,kw", README_EXAMPLES)
-def test_readme_recommendations_pass_check_pair(spec, kw):
+@pytest.fixture(scope="module", params=range(len(README_EXAMPLES)),
+                ids=["13/16", "20/40 iso53b strength", "13/16 a_w 14.8", "46/49 ring"])
+def readme_example(request):
+    """``(spec, criterion kw, contour, recommendation)`` of a README example, at the default tol."""
+    spec, kw = README_EXAMPLES[request.param]
+    cds = (kw["center_distance"],) if "center_distance" in kw else ()
+    c = blocking_contour(spec, center_distances=cds)
+    return spec, kw, c, c.recommend(**kw)
+
+
+def test_readme_recommendations_pass_check_pair(readme_example):
     """The README's four blocking examples recommend points that check_pair itself passes (the
     internal one recommended x1 = 1.6705, x2 = 1.3878, which failed four checks)."""
-    cds = (kw["center_distance"],) if "center_distance" in kw else ()
-    rec = blocking_contour(spec, center_distances=cds).recommend(**kw)
+    spec, kw, _, rec = readme_example
     assert rec.passes and _check_passes(spec, rec.x1, rec.x2)
+
+
+def test_readme_pictures_are_readable(readme_example):
+    """The README examples' pictures, measured as drawn (the renderer's boxes, not the placement's
+    own arithmetic): no two line labels overlap (46/49: 'B tip_clearance' lay on 's_a2=0.25', 'B6
+    exit_jamming' on 'sliding'), none covers the star or the mark or leaves the axes; the legend lies
+    outside the axes, names each line once, and the hard lines' entries all look different (46/49's
+    three B6 lines were one colour and style); the star and the mark are drawn above everything else."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    from gearkit.blocking.plot import figure
+
+    _, _, c, rec = readme_example
+    w = c.window
+    mark = c.mark(0.5, 0.3) if w[0] < 0.5 < w[1] and w[2] < 0.3 < w[3] else None
+    fig = figure(c, rec, mark)
+    FigureCanvasAgg(fig)
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    ax = fig.axes[0]
+    frame = ax.get_window_extent(renderer)
+    labels = [(t.get_text(), t.get_window_extent(renderer)) for t in ax.texts]
+    markers = [ln for ln in ax.lines if ln.get_marker() in ("*", "o")]
+    assert len(markers) == 1 + (mark is not None) and len(labels) >= 5
+    for k, (name, box) in enumerate(labels):
+        assert frame.x0 <= box.x0 and box.x1 <= frame.x1 and frame.y0 <= box.y0 and box.y1 <= frame.y1, name
+        assert not [other for other, b in labels[k + 1:] if box.overlaps(b)], name
+        assert not [m for m in markers if box.overlaps(m.get_window_extent(renderer))], name
+    legend = fig.legends[0]
+    assert not legend.get_window_extent(renderer).overlaps(frame)
+    names = [t.get_text() for t in legend.get_texts()]
+    assert len(names) == len(set(names))
+    hard = [h for h in legend.legend_handles if h.get_label()[:1] == "B"]
+    looks = {(h.get_color(), str(h.get_linestyle()), h.get_linewidth()) for h in hard}
+    assert len(looks) == len(hard) == sum(1 for ln in c.lines if ln.hard and ln.components)
+    top = max(a.get_zorder() for a in ax.get_children() if a not in markers)
+    assert all(m.get_zorder() > top for m in markers)
 
 
 def test_recommendation_in_a_user_window():

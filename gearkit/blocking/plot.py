@@ -32,9 +32,25 @@ def _style(line):
     return dict(color="#555555", lw=0.8, ls="--")
 
 
+def _sibling(style, k: int) -> dict:
+    """The style of the ``k``-th (from 0) drawn hard line of a B-code several lines share: the code's
+    colour, lightened for odd ``k``, and long dashes from ``k = 2`` on (bold, so no quality line's),
+    so that no two entries of the legend look alike."""
+    if k == 0:
+        return style
+    from matplotlib.colors import to_hex, to_rgb
+
+    rgb = np.array(to_rgb(style["color"]))
+    out = dict(style, color=to_hex(rgb + (1.0 - rgb) * 0.45) if k % 2 else style["color"])
+    if k >= 2:
+        out["ls"] = (0, (6, 1.5))
+    return out
+
+
 _METADATA = {".png": {"Software": None}, ".svg": {"Date": None}}  #: nothing that changes between runs
-LABEL_SPOTS = (0.5, 0.35, 0.65, 0.2, 0.8, 0.1, 0.9)  #: where along a line its label may go (fraction)
-LABEL_GAP = 0.06  #: labels keep this fraction of the window's diagonal from each other and the markers
+LABEL_SPOTS = (0.5, 0.35, 0.65, 0.2, 0.8, 0.1, 0.9, 0.27, 0.43, 0.57, 0.73, 0.05, 0.95)  #: where along a line
+#: its label may go (fraction of its longest piece's vertices), in the order tried
+LABEL_PAD = 2.0  #: pixels kept between a label's box and another label's or a marker's
 
 
 def _short(line) -> str:
@@ -46,21 +62,44 @@ def _short(line) -> str:
             .replace("contact_ratio", "eps").replace("center_distance", "a_w"))
 
 
-def _label_spot(comp, placed, avoid, lo, hi, gap):
-    """The point of ``comp`` (n, 2) for a label: inside the window, away from the labels already
-    ``placed`` and from the markers (``avoid``); the farthest candidate when none is far enough."""
-    inner = (comp >= lo + 0.03 * (hi - lo)).all(axis=1) & (comp <= hi - 0.03 * (hi - lo)).all(axis=1)
-    cand = comp[inner] if inner.any() else comp
-    best, best_d = None, -1.0
-    for f in LABEL_SPOTS:
-        p = cand[min(int(f * len(cand)), len(cand) - 1)]
-        others = placed + avoid
-        d = min((float(np.hypot(*(p - q))) for q in others), default=np.inf)
-        if d >= gap:
-            return p
-        if d > best_d:
-            best, best_d = p, d
-    return best
+def _overlap(a, b) -> float:
+    """Area (pixels^2) shared by two display boxes (matplotlib ``Bbox``)."""
+    return max(0.0, min(a.x1, b.x1) - max(a.x0, b.x0)) * max(0.0, min(a.y1, b.y1) - max(a.y0, b.y0))
+
+
+def _place_labels(fig, ax, labelled, markers) -> None:
+    """Put each label of ``labelled`` (``[(text, points (n, 2), colour)]``) on its line where its box,
+    as drawn, overlaps no label placed before it, no marker (``markers``: artists) and stays inside the
+    axes: the first spot of ``LABEL_SPOTS`` along the line's points inside the window that does, else
+    the spot overlapping least. Measured on the laid-out figure (its renderer), not guessed from the
+    text's length."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    FigureCanvasAgg(fig)
+    fig.draw_without_rendering()  # the constrained layout and the equal aspect fix the axes' box
+    renderer = fig.canvas.get_renderer()
+    frame = ax.get_window_extent(renderer)
+    taken = [m.get_window_extent(renderer).expanded(1.0, 1.0) for m in markers]
+    x0, x1 = ax.get_xlim()
+    y0, y1 = ax.get_ylim()
+    for text, pts, colour in labelled:
+        inner = (pts[:, 0] > x0) & (pts[:, 0] < x1) & (pts[:, 1] > y0) & (pts[:, 1] < y1)
+        cand = pts[inner] if inner.any() else pts
+        label = ax.annotate(text, cand[0], fontsize=7, color=colour, zorder=3, ha="center", va="center",
+                            bbox=dict(boxstyle="round,pad=0.15", fc="white", ec="none", alpha=0.75))
+        best = None
+        for f in LABEL_SPOTS:
+            p = cand[min(int(f * len(cand)), len(cand) - 1)]
+            label.xy = label.xyann = p  # the point and the text on it
+            box = label.get_window_extent(renderer).padded(LABEL_PAD)
+            outside = box.width * box.height - _overlap(box, frame)
+            cost = outside + sum(_overlap(box, t) for t in taken)
+            if best is None or cost < best[0]:
+                best = (cost, p, box)
+            if cost == 0.0:
+                break
+        label.xy = label.xyann = best[1]
+        taken.append(best[2])
 
 
 NO_PAIR_GRID = 121  #: nodes per side of the grid the no-pair area is first found on
@@ -139,39 +178,34 @@ def figure(contour, recommendation=None, marked=None):
     if nopair is not None:  # where no pair exists the lines end: say why
         ax.add_patch(PathPatch(Path(*nopair), facecolor="#d9d9d9", edgecolor="none", zorder=0))
         handles.append(Patch(facecolor="#d9d9d9", edgecolor="none", label="no pair (no tight mesh or no tooth)"))
-    lo, hi = np.array([x0, y0]), np.array([x1, y1])
-    gap = LABEL_GAP * float(np.hypot(*(hi - lo)))
-    avoid = []
-    if recommendation is not None and recommendation.x1 is not None:
-        avoid.append(np.array([recommendation.x1, recommendation.x2]))
-    if marked is not None:
-        avoid.append(np.array([marked["x1"], marked["x2"]]))
-    placed = []
+    labelled, markers = [], []
+    sharing = {}  # hard lines drawn so far per B-code
     for ln in contour.lines:
         if not ln.components:
             continue
         st = _style(ln)
+        if ln.hard:  # lines sharing a B-code (B6: jamming, trimming, tip sweep) drawn apart
+            sharing[ln.code] = sharing.get(ln.code, -1) + 1
+            st = _sibling(st, sharing[ln.code])
         for k, comp in enumerate(ln.components):
             h, = ax.plot(comp[:, 0], comp[:, 1], zorder=2 if ln.hard else 1, **st,
                          label=(f"{ln.code} {ln.name}" if ln.hard else ln.name) if k == 0 else None)
             if k == 0:
                 handles.append(h)
         if ln.hard or ln.code in ("Q", "C"):
-            comp = max(ln.components, key=len)
-            p = _label_spot(comp, placed, avoid, lo, hi, gap)
-            placed.append(p)
-            ax.annotate(_short(ln), p, fontsize=7, color=st["color"], zorder=3, ha="center", va="center",
-                        bbox=dict(boxstyle="round,pad=0.15", fc="white", ec="none", alpha=0.75))
+            labelled.append((_short(ln), max(ln.components, key=len), st["color"]))
     if recommendation is not None and recommendation.x1 is not None:
         h, = ax.plot([recommendation.x1], [recommendation.x2], marker="*", ms=16, color="#d01c8b", mec="white",
                      mew=0.8, ls="none", zorder=10,
                      label=f"recommended ({recommendation.criterion})" + ("" if recommendation.passes
                                                                           else ", fails the check"))
         handles.append(h)
+        markers.append(h)
     if marked is not None:
         h, = ax.plot([marked["x1"]], [marked["x2"]], marker="o", ms=9, mfc="none", mec="k", mew=1.8, ls="none",
                      zorder=11, label="design point (%s)" % ("inside" if marked["inside"] else "outside"))
         handles.append(h)
+        markers.append(h)
     t = contour.field.template
     kind = "internal" if contour.field.internal else "external"
     ax.set_title(f"Blocking contour: {kind} pair z1 = {t.teeth1}, z2 = {t.teeth2}, alpha_n = {t.alpha_n_deg:g} deg, "
@@ -183,6 +217,7 @@ def figure(contour, recommendation=None, marked=None):
     ax.grid(True, lw=0.3, color="#cccccc")
     ax.set_aspect("equal", adjustable="box")
     fig.legend(handles=handles, loc="outside right upper", fontsize=7, frameon=False)
+    _place_labels(fig, ax, labelled, markers)
     return fig
 
 
