@@ -23,7 +23,7 @@ import time
 
 import numpy as np
 
-from gearkit.bench.topology import topology
+from gearkit.bench.topology import MEASURE_TOL, ROUND_OFF, scan_gap, topology
 from gearkit.export import text_number
 
 __all__ = ["ladder_rows", "target_rows", "atlas_rows", "deviation", "polyline_deviation", "scan_gap", "format_section"]
@@ -34,16 +34,10 @@ REFERENCE_TOL = 1e-10  #: the much finer trace the ladder's rows are measured ag
 QUICK_REFERENCE_TOL = 1e-8
 CONTOUR_TARGET = 0.3  #: s, in-process contour of 13/16 and 20/40 (issue 15)
 RATIO_TARGET = 2.0  #: achieved / tol (issue 19)
-ROUND_OFF = 1e-12  #: |margin| taken as zero
-MEASURE_TOL = 1e-14  #: accuracy of the exact points the deviation is measured against
 RAY_ROUNDS = 10  #: ray lengths tol / 16 ... tol 4**8: the nearest zero first
 SHORT_RATIO = 8.0  #: below tol / 16, the normal is sampled at distances shrinking by this factor
 FLOOR = 1e-13  #: ... down to this fraction of the window's diagonal (round-off)
 ATLAS_GRID = (10, 20, 30, 40)
-SCANS = 80  #: scan lines per axis of the independent gap measure (:func:`scan_gap`)
-SCAN_SAMPLES = 800  #: samples per scan line
-SCAN_FALL = 0.5  #: a solved sign change is a zero when |F| fell below this fraction of its ends' (a jump
-#: of F keeps |F| up)
 
 
 def _median_time(fn, repeats):
@@ -185,62 +179,6 @@ def _short_zero(F, P, N, f0, K, reach, span, found_at):
     if ok.any():
         found_at.append(float(best[ok].max()))
     return ok
-
-
-def scan_gap(contour, scans: int = SCANS, samples: int = SCAN_SAMPLES):
-    """Largest distance of an exact zero of a traced line from that line's trace, with the zeros found
-    independently of any trace: every sign change of the line's margin between neighbouring samples on
-    ``scans`` lines x1 = const and ``scans`` lines x2 = const across the window, solved to
-    ``MEASURE_TOL`` (a sign change through a jump of the margin, where |F| does not fall, is none).
-    A piece of a line the trace misses (e.g. cut short before a saddle or the no-pair edge) shows as a
-    zero far from it, however fine the reference trace is. Returns ``(distance, line name, (x1, x2))``.
-
-    Examples
-    --------
-    >>> from gearkit.blocking import blocking_contour
-    >>> from gearkit.pair import PairSpec
-    >>> c = blocking_contour(PairSpec(13, 16, 1.0), tol=1e-4, lines=["undercut.1"])
-    >>> d, name, at = scan_gap(c, scans=20, samples=50)
-    >>> d <= 1e-4
-    True
-    """
-    from gearkit.distances import distances_to_polyline
-    from gearkit.blocking.arrays import evaluator
-    from gearkit.blocking.brackets import segment_roots
-
-    w = contour.window
-    names = [ln.name for ln in contour.lines]
-    F = evaluator(contour.field, names, w)
-    u = np.linspace(0.0, 1.0, scans + 2)[1:-1]
-    t = np.linspace(0.0, 1.0, samples)
-    rows = []  # (scans * 2, samples, 2): lines x1 = const, then x2 = const
-    for a in u:
-        x = w[0] + a * (w[1] - w[0])
-        rows.append(np.column_stack([np.full(samples, x), w[2] + t * (w[3] - w[2])]))
-    for a in u:
-        y = w[2] + a * (w[3] - w[2])
-        rows.append(np.column_stack([w[0] + t * (w[1] - w[0]), np.full(samples, y)]))
-    P = np.stack(rows)
-    worst = (0.0, None, None)
-    for k, ln in enumerate(contour.lines):
-        V = F(P.reshape(-1, 2), np.full(P.shape[0] * samples, k)).reshape(P.shape[:2])
-        ch = np.isfinite(V[:, :-1]) & np.isfinite(V[:, 1:]) & ((V[:, :-1] > 0) != (V[:, 1:] > 0))
-        i, j = np.nonzero(ch)
-        if not i.size:
-            continue
-        fa, fb = V[i, j], V[i, j + 1]
-        root = segment_roots(F, P[i, j], P[i, j + 1], fa, fb, MEASURE_TOL, np.full(i.size, k))
-        fr = np.abs(F(root, np.full(i.size, k)))
-        root = root[(fr <= ROUND_OFF) | (fr <= SCAN_FALL * np.fmin(np.abs(fa), np.abs(fb)))]
-        if not len(root):
-            continue
-        best = np.full(len(root), np.inf)
-        for q in ln.components:
-            best = np.minimum(best, distances_to_polyline(root, q))
-        m = int(np.argmax(best))
-        if best[m] > worst[0]:
-            worst = (float(best[m]), ln.name, (float(root[m, 0]), float(root[m, 1])))
-    return worst
 
 
 def ladder_rows(quick: bool):

@@ -6,7 +6,16 @@ import numpy as np
 
 from gearkit.blocking.tracing import LEGS
 
-__all__ = ["topology", "duplicates"]
+__all__ = ["topology", "duplicates", "scan_gap"]
+
+SCANS = 80  #: scan lines per axis of the independent gap measure (:func:`scan_gap`)
+SCAN_SAMPLES = 800  #: samples per scan line
+SCAN_FALL = 0.5  #: a solved sign change is a zero when |F| fell below this fraction of its ends' (a jump
+#: of F keeps |F| up)
+EDGE_SAMPLES = 96  #: samples between a scan line's last sample before the no-pair area and its edge ...
+EDGE_FLOOR = 1e-13  #: ... at distances from the edge down to this fraction of the spacing (round-off)
+MEASURE_TOL = 1e-14  #: accuracy of the exact points the bench's measures solve for
+ROUND_OFF = 1e-12  #: |margin| taken as zero
 
 
 def _far(points, polylines) -> float:
@@ -97,6 +106,91 @@ def duplicates(polylines, tol: float, F=None, k: int = 0, legs=()) -> int:
                 count += 1
                 break
     return count
+
+
+def scan_gap(contour, scans: int = SCANS, samples: int = SCAN_SAMPLES):
+    """Largest distance of an exact zero of a traced line from that line's trace, with the zeros found
+    independently of any trace: every sign change of the line's margin between neighbouring samples on
+    ``scans`` lines x1 = const and ``scans`` lines x2 = const across the window, solved to
+    ``MEASURE_TOL`` (a sign change through a jump of the margin, where |F| does not fall, is none); where
+    a scan line enters the no-pair area, also at distances from its edge falling geometrically from a
+    sample's spacing to round-off (a line that dips to the edge between samples, closer to it than any).
+    A piece of a line the trace misses (e.g. cut short before a saddle or the no-pair edge) shows as a
+    zero far from it, however fine the reference trace is. Returns ``(distance, line name, (x1, x2))``.
+
+    Examples
+    --------
+    >>> from gearkit.blocking import blocking_contour
+    >>> from gearkit.pair import PairSpec
+    >>> c = blocking_contour(PairSpec(13, 16, 1.0), tol=1e-4, lines=["undercut.1"])
+    >>> d, name, at = scan_gap(c, scans=20, samples=50)
+    >>> d <= 1e-4
+    True
+    """
+    from gearkit.distances import distances_to_polyline
+    from gearkit.blocking.arrays import evaluator
+    from gearkit.blocking.brackets import segment_roots
+    from gearkit.blocking.edges import edge_point
+
+    w = contour.window
+    names = [ln.name for ln in contour.lines]
+    F = evaluator(contour.field, names, w)
+    u = np.linspace(0.0, 1.0, scans + 2)[1:-1]
+    t = np.linspace(0.0, 1.0, samples)
+    rows = []  # (scans * 2, samples, 2): lines x1 = const, then x2 = const
+    for a in u:
+        x = w[0] + a * (w[1] - w[0])
+        rows.append(np.column_stack([np.full(samples, x), w[2] + t * (w[3] - w[2])]))
+    for a in u:
+        y = w[2] + a * (w[3] - w[2])
+        rows.append(np.column_stack([w[0] + t * (w[1] - w[0]), np.full(samples, y)]))
+    P = np.stack(rows)
+    worst = (0.0, None, None)
+    for k, ln in enumerate(contour.lines):
+        V = F(P.reshape(-1, 2), np.full(P.shape[0] * samples, k)).reshape(P.shape[:2])
+        Q, W = _beside_edge(F, P, V, k, edge_point)
+        ch = np.isfinite(W[:, :-1]) & np.isfinite(W[:, 1:]) & ((W[:, :-1] > 0) != (W[:, 1:] > 0))
+        i, j = np.nonzero(ch)
+        if not i.size:
+            continue
+        fa, fb = W[i, j], W[i, j + 1]
+        root = segment_roots(F, Q[i, j], Q[i, j + 1], fa, fb, MEASURE_TOL, np.full(i.size, k))
+        fr = np.abs(F(root, np.full(i.size, k)))
+        root = root[(fr <= ROUND_OFF) | (fr <= SCAN_FALL * np.fmin(np.abs(fa), np.abs(fb)))]
+        if not len(root):
+            continue
+        best = np.full(len(root), np.inf)
+        for q in ln.components:
+            best = np.minimum(best, distances_to_polyline(root, q))
+        m = int(np.argmax(best))
+        if best[m] > worst[0]:
+            worst = (float(best[m]), ln.name, (float(root[m, 0]), float(root[m, 1])))
+    return worst
+
+
+def _beside_edge(F, P, V, k, edge_point):
+    """The scan lines' samples ``P`` (lines, samples, 2) with values ``V`` of function ``k`` and, for
+    each sample beside the no-pair area (its neighbour undefined), ``EDGE_SAMPLES`` more between it and
+    the area's edge (found to round-off) at distances falling geometrically to ``EDGE_FLOOR`` times
+    the spacing: ``(Q, W)``, one row per scan line and one per such ladder (ordered from the edge)."""
+    fin = np.isfinite(V)
+    i, j = np.nonzero(fin[:, :-1] != fin[:, 1:])
+    if not i.size:
+        return P, V
+    inner = np.where(fin[i, j], j, j + 1)
+    outer = np.where(fin[i, j], j + 1, j)
+    A, B = P[i, inner], P[i, outer]
+    span = float(np.max(np.abs(P)))
+    E = edge_point(F, A, B, np.full(i.size, k), max(span, 1.0))
+    d = np.concatenate([[0.0], np.geomspace(EDGE_FLOOR, 1.0, EDGE_SAMPLES)])
+    Q = E[:, None, :] + d[None, :, None] * (A - E)[:, None, :]
+    W = F(Q.reshape(-1, 2), np.full(Q.shape[0] * Q.shape[1], k)).reshape(Q.shape[:2])
+    pad = P.shape[1] - Q.shape[1]
+    if pad < 0:
+        return P, V
+    Q = np.concatenate([Q, np.full((len(Q), pad, 2), np.nan)], axis=1)
+    W = np.concatenate([W, np.full((len(W), pad), np.nan)], axis=1)
+    return np.concatenate([P, Q]), np.concatenate([V, W])
 
 
 def topology(contour, reference) -> dict:

@@ -21,7 +21,7 @@ import math
 import numpy as np
 
 
-__all__ = ["edge_point", "toward_edge", "ladder", "nearest_change", "across"]
+__all__ = ["edge_point", "toward_edge", "touchdowns", "ladder", "nearest_change", "across"]
 
 LADDER = 0.5  #: ratio of the geometric sample distances
 FLOOR = 1e-13  #: the smallest sample distance, relative to the window's size
@@ -69,6 +69,66 @@ def toward_edge(F, m, f0, out, which):
     lo = np.where(ok[:, None], P[r, j], m)
     hi = np.where(ok[:, None], P[r, j + 1], m)
     return lo, np.where(ok, V[r, j], f0), hi, np.where(ok, V[r, j + 1], f0)
+
+
+def touchdowns(F, A, B, D, which, res):
+    """For chords ``A`` -> ``B`` (n, 2) whose ends are zeros of ``F`` with none across the middle, the
+    undefined area lying along ``D`` (unit, (n, 2)) from the middle: the points ``(TA, TB)`` where the
+    line through each end meets the edge of the defined area on its way to the middle (NaN where it
+    does not). Below a chord point ``C`` the edge is the last defined point along ``D`` within a
+    chord's length; ``F`` there has the sign of the line's side towards the edge while the line runs
+    between ``C`` and the edge, the other sign once it has met the edge: where it meets it is bisected
+    along the chord to ``res`` (a line dipping to the edge between two lattice columns, beside it
+    closer than any sample, is carried to where it meets it; NaN where that is the end itself). Each point
+    returned is defined.
+
+    >>> F = lambda p, k: np.where(p[:, 1] >= 0.0, p[:, 1] - 1e-3 * (16.0 * p[:, 0] ** 2 - 1.0), np.nan)
+    >>> A, B = np.array([[-0.5, 3e-3]]), np.array([[0.5, 3e-3]])  # zeros; the line dips below y = 0 for |x| < 1/4
+    >>> TA, TB = touchdowns(F, A, B, np.array([[0.0, -1.0]]), np.array([0]), 1e-9)
+    >>> np.round(TA, 8).tolist(), np.round(TB, 8).tolist()
+    ([[-0.25, 0.0]], [[0.25, 0.0]])
+    """
+    n = len(A)
+    L = np.hypot(*(B - A).T)
+    span = float(max(1.0, np.max(np.abs(np.concatenate([A, B]))))) if n else 1.0
+
+    def below(t, rows):
+        C = A[rows] + t[:, None] * (B[rows] - A[rows])
+        far = C + L[rows, None] * D[rows]
+        v = F(far, which[rows])
+        out = np.isnan(v)
+        E = far.copy()
+        if out.any():
+            E[out] = edge_point(F, C[out], far[out], which[rows][out], span)
+            v[out] = F(E[out], which[rows][out])
+        return E, v
+
+    rows = np.concatenate([np.arange(n), np.arange(n)])
+    lo = np.concatenate([np.zeros(n), np.ones(n)])  # from each end ...
+    hi = np.full(2 * n, 0.5)  # ... to the middle
+    _, v_lo = below(lo, rows)
+    _, v_hi = below(hi, rows)
+    live = np.isfinite(v_lo) & np.isfinite(v_hi) & ((v_lo > 0) != (v_hi > 0))
+    s_lo = v_lo > 0
+    u = np.arange(1, SPLITS + 1) / (SPLITS + 1)
+    while True:  # multisection: the first of SPLITS samples from the end's side with the middle's sign
+        go = np.flatnonzero(live & (np.abs(hi - lo) * L[rows] > res))
+        if not go.size:
+            break
+        t = lo[go, None] + u[None, :] * (hi - lo)[go, None]
+        _, v = below(t.ravel(), np.repeat(rows[go], SPLITS))
+        v = v.reshape(go.size, SPLITS)
+        other = ~(np.isfinite(v) & ((v > 0) == s_lo[go, None]))
+        j = np.where(other.any(axis=1), np.argmax(other, axis=1), SPLITS)
+        r = np.arange(go.size)
+        lo[go] = np.where(j > 0, t[r, np.maximum(j - 1, 0)], lo[go])
+        hi[go] = np.where(j < SPLITS, t[r, np.minimum(j, SPLITS - 1)], hi[go])
+    T = np.full((2 * n, 2), np.nan)
+    if live.any():
+        T[live] = below(lo[live], rows[live])[0]
+    ends = np.concatenate([A, B])
+    T[np.hypot(*(T - ends).T) <= res] = np.nan  # the line meets the edge at its end already
+    return T[:n], T[n:]
 
 
 def ladder(h, floor):

@@ -35,7 +35,7 @@ import numpy as np
 from gearkit.blocking.band import band_lines, once
 from gearkit.blocking.brackets import NearestBracket, segment_roots
 from gearkit.blocking.corners import corner_splits
-from gearkit.blocking.edges import toward_edge
+from gearkit.blocking.edges import touchdowns, toward_edge
 from gearkit.blocking.ends import extend_ends
 from gearkit.blocking.grid import bridge_pieces, edge_nodes
 from gearkit.blocking.onsets import onset_vertices
@@ -164,7 +164,6 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
     step = np.inf if not max_step else float(max_step)
     state = [(ln[0], np.asarray(ln[1], float), np.asarray(ln[2], float),
               np.asarray(ln[3], bool) if len(ln) > 3 else np.ones(len(ln[1]) - 1, bool)) for ln in lines]
-    state_before = list(state)
     n_curves = 1 + max((ln[0] for ln in lines), default=0)
     trust = np.ones(n_curves, dtype=bool)
     trust[[k for k in measure if k < n_curves]] = False
@@ -202,12 +201,14 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
         # diagonals (a ray past a saddle or across a strip narrower than itself crosses two zeros
         # between its ends; at a saddle's corner the normal only touches zero)
         best = NearestBracket(mm, f0)
+        out_dir = np.full(mm.shape, np.nan)  # towards the no-pair area, where the normal runs into it
         for sgn in (1.0, -1.0):
             end = mm + sgn * 0.5 * Lm[:, None] * nm_
             fe = F(end, km)
             best.consider(np.arange(meas.size), mm, f0, end, fe)
             edge = np.flatnonzero(np.isnan(fe) & trust[km])
             if edge.size:  # into the no-pair area: the zero nearest the middle among samples from its edge up
+                out_dir[edge] = sgn * nm_[edge]
                 lo_e, flo_e, hi_e, fhi_e = toward_edge(F, mm[edge], f0[edge], end[edge], km[edge])
                 best.consider(edge, lo_e, flo_e, hi_e, fhi_e)
         wide = np.flatnonzero(~best.have & (trust[km] | WIDE_REGION))
@@ -260,8 +261,19 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
             g_root = np.where(dev > 0, np.abs(f0) / dev, np.nan)
         limit = np.where(trust[km] & even[meas], SPLIT_FRACTION, SPLIT_MEASURED) * tol
         split_m = found & ((dev > limit) | long[meas])
-        # no zero across a line's chord: two components (a region's loop stays closed)
-        cut = set(meas[~found & live[meas] & trust[which[meas]]].tolist())
+        # no zero across a line's chord: two components (a region's loop stays closed), each carried to where
+        # it meets the no-pair area's edge when the chord runs beside it (a line dipping to the edge)
+        lost = np.flatnonzero(~found & live[meas] & trust[which[meas]])
+        cut = set(meas[lost].tolist())
+        touch = {}  # chord row -> (new vertices, the first of the chord to cut)
+        lost = lost[np.isfinite(out_dir[lost, 0])]
+        if lost.size:
+            rr = meas[lost]
+            TA, TB = touchdowns(F, A[rr], B[rr], out_dir[lost], which[rr], vtol)
+            for r, ta, tb in zip(rr.tolist(), TA, TB):
+                new = np.array([t for t in (ta, tb) if np.isfinite(t[0])]).reshape(-1, 2)
+                if len(new):
+                    touch[r] = (new, ta if np.isfinite(ta[0]) else A[r])
         # chords measured and within tol are kept; chords with no root found are kept as they are
         inserts = {}  # chord row -> (points (j, 2) ordered along the chord, slopes)
         rows = meas[split_m]
@@ -316,9 +328,13 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
             new_p, new_g, new_t = [], [], []
             last = 0
             for c, r in zip(idx, chord_rows):
-                if r in cut:
+                if r in touch:  # its new vertices, then cut after the first end's
+                    ps, at = touch[r]
+                    inserts[r] = (ps, np.full(len(ps), np.nan))
+                    cuts.setdefault(n, []).append(at)
+                elif r in cut:
                     todo[c] = False
-                    cuts.setdefault(n, []).append(c)
+                    cuts.setdefault(n, []).append(p[c])
                     continue
                 if r in inserts:
                     ps, gg = inserts[r]
@@ -339,7 +355,7 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
             state[n] = (k, p, g, todo)
         for n, chords in cuts.items():  # positions of cut chords after this round's insertions
             k, p, g, todo = state[n]
-            at = _cut_positions(p, [state_before[n][1][c] for c in chords])
+            at = _cut_positions(p, chords)
             pieces = np.split(np.arange(len(p)), [i + 1 for i in at])
             first = True
             for piece in pieces:
@@ -352,7 +368,6 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
                     state.append(entry)
             if first:
                 state[n] = (k, p[:1], g[:1], np.zeros(0, bool))
-        state_before = list(state)
     out = [(st[0], st[1], st[2]) for st in state if len(st[1]) >= 2]
     corners = set(kinked) | set(measure)
     again = corner_splits(F, out, tol, corners, SPLIT_FRACTION * tol, VERTEX_FRACTION * tol)
