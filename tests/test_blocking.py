@@ -183,6 +183,11 @@ def test_empty_region_names_the_binding_lines():
     assert "violates B" in c.empty_reason
     rec = c.recommend()  # said, not raised (issue 19)
     assert not rec.passes and rec.x1 is None and "empty" in rec.reason
+    # the picture says why too (it said only "(region empty)" over an empty map)
+    from gearkit.blocking.plot import figure
+
+    title = " ".join(figure(c, rec).axes[0].get_title().split())
+    assert "region empty: " + " ".join(c.empty_reason.split()) in title
 
 
 # ------------------------------------------------------------------------------ CLI

@@ -102,6 +102,7 @@ def _place_labels(fig, ax, labelled, markers) -> None:
         taken.append(best[2])
 
 
+EMPTY_CHARS = 90  #: characters per line of an empty region's reason under the title (the axes' width at 9 pt)
 NO_PAIR_GRID = 121  #: nodes per side of the grid the no-pair area is first found on
 
 
@@ -209,7 +210,9 @@ def figure(contour, recommendation=None, marked=None):
     t = contour.field.template
     kind = "internal" if contour.field.internal else "external"
     ax.set_title(f"Blocking contour: {kind} pair z1 = {t.teeth1}, z2 = {t.teeth2}, alpha_n = {t.alpha_n_deg:g} deg, "
-                 f"beta = {t.helix_angle_deg:g} deg" + ("\n(region empty)" if contour.empty else ""), fontsize=9)
+                 f"beta = {t.helix_angle_deg:g} deg" + ("\n" + textwrap.fill(f"region empty: {contour.empty_reason}",
+                                                                         EMPTY_CHARS) if contour.empty else ""),
+                 fontsize=9)
     ax.set_xlim(x0, x1)
     ax.set_ylim(y0, y1)
     ax.set_xlabel("x1 (pinion shift, normal coefficient)")
