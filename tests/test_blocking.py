@@ -209,6 +209,14 @@ def test_cli_json_and_export(tmp_path, capsys):
     # a mark that is no number is bad input (exit 2, one line), not a point outside the region (exit 1)
     assert main(["blocking", "--z1", "13", "--z2", "16", "--mark", "nan,0.3", "--points", "40"]) == 2
     assert capsys.readouterr().err.strip() == "gearkit blocking: error: --mark: 'nan,0.3': every number must be finite"
+    # the options' errors name the flags typed, with the range (a zero centre distance read as none given)
+    for extra, line in ((["--tol", "5"], "--tol: 5.0 must be in [1e-12, 0.01] (shift units)"),
+                        (["--center-distance", "0", "--criterion", "center_distance"],
+                         "--center-distance: 0.0 must be a positive length in mm"),
+                        (["--window", "1,0,0,1"], "--window: (1.0, 0.0, 0.0, 1.0) must be (x1_lo, x1_hi, x2_lo, "
+                                                  "x2_hi) within [-3, 3], lo < hi")):
+        assert main(["blocking", "--z1", "13", "--z2", "16", *extra]) == 2
+        assert capsys.readouterr().err.strip() == "gearkit blocking: error: " + line
     # a negative first value reads as a flag: the error says how to write it
     assert main(["blocking", "--z1", "13", "--z2", "16", "--mark", "-0.2,0.3"]) == 2
     assert "one starting with '-': write --mark=VALUE" in capsys.readouterr().err

@@ -273,6 +273,7 @@ def test_readme_pictures_are_readable(readme_example):
     labels = [(t.get_text(), t.get_window_extent(renderer)) for t in ax.texts]
     markers = [ln for ln in ax.lines if ln.get_marker() in ("*", "o")]
     assert len(markers) == 1 + (mark is not None) and len(labels) >= 5
+    assert len({name for name, _ in labels}) == len(labels)  # one label per line, none twice
     for k, (name, box) in enumerate(labels):
         assert frame.x0 <= box.x0 and box.x1 <= frame.x1 and frame.y0 <= box.y0 and box.y1 <= frame.y1, name
         assert not [other for other, b in labels[k + 1:] if box.overlaps(b)], name

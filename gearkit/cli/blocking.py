@@ -72,6 +72,11 @@ def add_template_arguments(p, g) -> None:
     t.add_argument("--pinion-cutter-teeth", type=int, help="cut the pinion with a shaper of this many teeth")
 
 
+#: blocking_contour's and recommend's option fields -> the flags that set them
+FLAGS = {"tol": "--tol", "window": "--window", "points": "--points", "center_distances": "--center-distance",
+         "center_distance": "--center-distance", "criterion": "--criterion"}
+
+
 def tol_from_args(args, command: str = "blocking"):
     """``--tol``, or its deprecated name ``--xtol`` (with a note on stderr); None: the default."""
     tol = args.tol
@@ -149,11 +154,17 @@ def run(args) -> int:
     require_flags(argparse.Namespace(z1=z1, z2=z2), ("z1", "--z1"), ("z2", "--z2"))
     spec = template_spec(args, z1, z2)
     window = _floats(args.window, 4, "--window") if args.window else None
-    cds = (args.center_distance,) if args.center_distance else ()
+    cds = () if args.center_distance is None else (args.center_distance,)
     tol = tol_from_args(args)
     mark = _floats(args.mark, 2, "--mark") if args.mark else None  # bad input before any work
-    contour = blocking_contour(spec, window=window, tol=tol, points=args.points, center_distances=cds)
-    rec = contour.recommend(args.criterion, args.center_distance)
+    try:
+        contour = blocking_contour(spec, window=window, tol=tol, points=args.points, center_distances=cds)
+        rec = contour.recommend(args.criterion, args.center_distance)
+    except SpecError as exc:  # the options' errors name the flags typed
+        flag = FLAGS.get(exc.field)
+        if flag == "--tol" and args.xtol is not None:
+            flag = "--xtol"
+        raise (exc if flag is None else exc.renamed(flag)) from None
     marked = None if mark is None else contour.mark(*mark)
     if args.output and str(args.output).lower().endswith((".html", ".htm")):
         from gearkit.view import blocking_view, write_page
