@@ -100,6 +100,20 @@ def test_region_agrees_with_the_design_check(c1316):
             assert d <= 2 * XTOL, (a, b)
 
 
+def test_the_star_is_only_a_point_check_passes(c1316):
+    """A recommendation that fails the check (no candidate passed: x1, x2 the best point found) is
+    drawn as a cross that says so, never as the star of a recommended point (it was a star)."""
+    from gearkit.blocking.plot import figure
+    from gearkit.blocking.recommend import Recommendation
+
+    failing = Recommendation(1.5, 0.0, "balanced", "interference.1", "no recommendation: ...", passes=False)
+    assert not c1316.contains(1.5, 0.0)
+    for rec, marker in ((c1316.recommend(), "*"), (failing, "X")):
+        drawn = [ln for ln in figure(c1316, rec).axes[0].lines if ln.get_marker() in ("*", "X")]
+        assert [ln.get_marker() for ln in drawn] == [marker]
+        assert ("recommended" in drawn[0].get_label()) == rec.passes
+
+
 def test_region_and_recommendation(c1316):
     assert len(c1316.region) == 1
     poly = c1316.region[0]

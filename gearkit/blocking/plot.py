@@ -196,10 +196,12 @@ def figure(contour, recommendation=None, marked=None):
         if ln.hard or ln.code in ("Q", "C"):
             labelled.append((_short(ln), max(ln.components, key=len), st["color"]))
     if recommendation is not None and recommendation.x1 is not None:
-        h, = ax.plot([recommendation.x1], [recommendation.x2], marker="*", ms=16, color="#d01c8b", mec="white",
-                     mew=0.8, ls="none", zorder=10,
-                     label=f"recommended ({recommendation.criterion})" + ("" if recommendation.passes
-                                                                          else ", fails the check"))
+        # the star is only ever a point check_pair passes; a failing best point is a cross, said so
+        ok = recommendation.passes
+        h, = ax.plot([recommendation.x1], [recommendation.x2], marker="*" if ok else "X", ms=16 if ok else 11,
+                     color="#d01c8b", mec="white", mew=0.8, ls="none", zorder=10,
+                     label=(f"recommended ({recommendation.criterion})" if ok else
+                            f"no recommendation ({recommendation.criterion}): the best point found fails the check"))
         handles.append(h)
         markers.append(h)
     if marked is not None:

@@ -169,7 +169,7 @@ def run(args) -> int:
     if args.output and str(args.output).lower().endswith((".html", ".htm")):
         from gearkit.view import blocking_view, write_page
 
-        write_page(args.output, blocking_view(spec, contour, rec if rec.x1 is not None else None, marked))
+        write_page(args.output, blocking_view(spec, contour, rec if rec.passes else None, marked))
     elif args.output:
         contour.save(args.output, rec, marked)
     if args.json:
