@@ -9,6 +9,7 @@ import subprocess
 import sys
 import time
 
+import numpy as np
 import pytest
 
 from gearkit.checks import check_pair
@@ -94,6 +95,23 @@ def test_contact_sheet_title_is_not_cut_off(local):
     ink = img.min(axis=2) < 0.5  # dark pixels: text and outlines
     assert not ink[:, 0].any() and not ink[:, -1].any()
     assert ink[: img.shape[0] // 5].any()  # the title is there, at the top
+
+
+def test_contact_sheet_of_one_row_is_cropped_to_its_drawing(tmp_path):
+    """A 9 x 1 sheet (the README's ring atlas: z1 20..60 step 5 on z2 49) has no empty bands above and
+    below its drawing (its 3.2-inch minimum height left 0.9 inch of white on each side), and its title
+    is not cut: the first and last rows of ink lie within 0.15 inch of the image's edges."""
+    from matplotlib.image import imread
+
+    from gearkit.blocking.plot import contact_sheet
+
+    z1s = list(range(20, 61, 5))
+    records = [{"z1": z, "z2": 49, "error": "the ring needs more teeth than the pinion"} for z in z1s]
+    contact_sheet(records, z1s, [49], tmp_path / "sheet.png", PairSpec(20, 49, 1.0))
+    img = imread(tmp_path / "sheet.png")[..., :3]
+    rows = np.flatnonzero((img.min(axis=2) < 0.5).any(axis=1))  # rows with dark ink: text, frame, crosses
+    pad = 15  # pixels: 0.15 inch at the sheet's 100 dpi
+    assert rows[0] <= pad and img.shape[0] - 1 - rows[-1] <= pad
 
 
 def test_bad_contour_options_and_an_absent_scheduler_write_nothing(tmp_path, capsys, monkeypatch):

@@ -249,6 +249,7 @@ def save(contour, path, recommendation=None, marked=None) -> None:
 SHEET_CELL = 0.62  #: inches per cell of the contact sheet
 SHEET_MIN_WIDTH = 4.0  #: inches: a small sheet still has room for its axis labels and title
 SHEET_MIN_HEIGHT = 3.2  #: inches, the same for the height (the wrapped title takes about one inch)
+SHEET_PAD = 0.08  #: inches of white kept about the sheet's drawing
 SHEET_TITLE_CHARS_PER_INCH = 16  #: characters of the 8 pt title per inch (its average glyph is ~4.5 pt wide)
 
 
@@ -332,9 +333,11 @@ def contact_sheet(records, z1s, z2s, path, template) -> None:
     ax.set_xlabel("z1 (pinion teeth)")
     ax.set_ylabel("z2 (%s teeth)" % ("ring" if template.kind == "internal" else "wheel"))
     title = [f"Blocking atlas ({template.kind}, alpha_n = {template.alpha_n_deg:g} deg): admissible region "
-             "of each pair, star = recommended",
+             "of each pair, star = recommended, x = no pair",
              f"every cell on one scale: x1 from {x0:.2f} to {x1:.2f} (right), x2 from {y0:.2f} to {y1:.2f} (up); "
              "dotted: x1 = 0, x2 = 0"]
     columns = int(width * SHEET_TITLE_CHARS_PER_INCH)  # the title is wrapped to the figure, never cut off
     ax.set_title("\n".join(textwrap.fill(t, columns) for t in title), fontsize=8)
-    atomic_write(path, lambda tmp: fig.savefig(tmp, format="png", metadata=_METADATA[".png"]))
+    # cropped to what is drawn: a sheet of one row or column leaves no empty bands about it
+    atomic_write(path, lambda tmp: fig.savefig(tmp, format="png", metadata=_METADATA[".png"], bbox_inches="tight",
+                                               pad_inches=SHEET_PAD))
