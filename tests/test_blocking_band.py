@@ -9,6 +9,11 @@ on columns x1 = const, each sampled from the no-pair edge upwards (the edge foun
 where the scalar margin is defined, then distances from it growing geometrically from 1e-12), every
 sign change solved by brentq; each zero must lie within 2 tol of the traced line. A sign change
 where |F| does not fall (a pole of the sliding margin) is none.
+
+An internal pair's no-pair edge has three parts: where inv alpha_w reaches 1e-9 (x1 - x2 large),
+where no shaper setting cuts the ring's tooth (x2 low) and where gear 1's tip reaches its base
+circle (x1 low). Its band was not traced at all: 46/49 (shaper z0 = 20) B3 stopped 1.41 short of
+the edge, tip_clearance.1 2.75; 16/59 (z0 = 19) exit_jamming had no trace at all.
 """
 import numpy as np
 import pytest
@@ -16,6 +21,7 @@ from scipy.optimize import brentq
 
 from gearkit.blocking import blocking_contour
 from gearkit.distances import distances_to_polyline
+from gearkit.families.involute import ShaperCutter
 from gearkit.pair import PairSpec
 
 CONTRACT = 2.0  #: achieved / tol (issue 19)
@@ -67,6 +73,27 @@ CASES = [  # (z1, z2, line, tol): cut short in the band by 0.04 .. 0.38 before
     (13, 16, "sliding", 1e-4),
     (20, 40, "sliding", 1e-4),
 ]
+
+
+INTERNAL = [  # (z1, z2, shaper teeth, line, tol): the band was not traced (1.0e4 .. 2.8e6 tol short, or no trace)
+    (46, 49, 20, "contact_ratio=1", 1e-4),
+    (46, 49, 20, "tip_clearance.1", 1e-6),
+    (46, 49, 20, "interference.2", 1e-3),
+    (57, 130, 28, "contact_ratio=1", 1e-4),
+    (57, 130, 28, "contact_ratio_tip=1.2", 1e-6),
+    (16, 59, 19, "exit_jamming", 1e-4),
+    (16, 59, 19, "interference.1", 1e-3),
+    (16, 59, 19, "contact_ratio_tip=1", 1e-6),
+]
+
+
+@pytest.mark.parametrize("z1, z2, z0, name, tol", INTERNAL)
+def test_an_internal_pair_line_beside_the_no_pair_edge_is_traced_to_tol(z1, z2, z0, name, tol):
+    c = blocking_contour(PairSpec(z1, z2, 1.0, kind="internal", tool2=ShaperCutter(z0)), tol=tol, lines=[name])
+    zeros = _edge_zeros(c.field, name, c.window)
+    assert len(zeros) >= 3, name
+    assert c.line(name).components, name
+    assert _farthest(zeros, c.line(name).components) <= CONTRACT * tol
 
 
 @pytest.mark.parametrize("z1, z2, name, tol", CASES)

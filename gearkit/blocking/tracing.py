@@ -105,9 +105,8 @@ def trace(field: PairField, window, names, tol: float, max_step: float | None = 
         bar.update(2)
         # the form circles break their slope where a gear starts to undercut: so do the lines reading them
         onsets = (undercut_onsets(field), {k for k, n in enumerate(ids) if not n.startswith("undercut.")})
-        # the band beside the no-pair area (:mod:`~gearkit.blocking.band`) of an external pair: every line (an
-        # internal pair's band, whose edge has a third part, is not traced there yet)
-        band = set() if field.internal else set(range(len(names)))
+        # the band beside the no-pair area (:mod:`~gearkit.blocking.band`), external or internal pair: every line
+        band = set(range(len(names)))
         traced = zero_lines(F, curves, tol, max_step, measure=(len(ids) - 1,) if region else (), kinked=kinked,
                             onsets=onsets, many=many, band=band)
         bar.update(3)
