@@ -243,3 +243,52 @@ def test_page_runs_in_a_headless_browser(tmp_path):
     assert first != second
     assert filled >= FILLED
     assert "not available" not in webgl
+
+
+#: replaces fillText on the page's canvases to note what the map draws: text, x, y, width, canvas size
+MAP_TEXT_PROBE = """<script>(function () {
+  var seen = [], fill = CanvasRenderingContext2D.prototype.fillText;
+  CanvasRenderingContext2D.prototype.fillText = function (t, x, y) {
+    if (this.canvas.id === "map") {
+      seen.push([String(t), x, y, this.measureText(t).width, parseFloat(this.font), this.canvas.width,
+                 this.canvas.height]);
+      document.body.setAttribute("data-map-text", JSON.stringify(seen.slice(-60)));
+    }
+    return fill.apply(this, arguments);
+  };
+})();</script>
+"""
+
+
+def test_blocking_map_text_stays_on_its_canvas(tmp_path):
+    """The blocking page's map, drawn by the system's headless browser: every tick label, axis name
+    and point label lies on the canvas and no two overlap (the last x tick, '1.48' on 13/16, ran
+    4.5 px past the canvas' right edge: it was placed 10 px left of its tick whatever its width)."""
+    import subprocess
+
+    if not shutil.which(CHROMIUM):
+        if os.environ.get("CI"):
+            raise RuntimeError(f"CI must provide {CHROMIUM} (apt-get install chromium)")
+        pytest.skip(f"no browser at {CHROMIUM} (apt-get install chromium)")
+    from gearkit.blocking import blocking_contour
+
+    spec = PairSpec(13, 16, 1.0)
+    c = blocking_contour(spec, points=40, tol=1e-3)
+    html = render(blocking_view(spec, c, c.recommend(), c.mark(0.5, 0.3), cycles=1))
+    page = tmp_path / "map.html"
+    page.write_text(html.replace("<script>window.GEARKIT_DATA", MAP_TEXT_PROBE + "<script>window.GEARKIT_DATA", 1))
+    dom = subprocess.run([CHROMIUM, *ARGS, f"--user-data-dir={tmp_path / 'profile'}", "--window-size=1200,900",
+                          "--virtual-time-budget=3000", "--dump-dom", page.as_uri()],
+                         capture_output=True, text=True, timeout=120).stdout
+    found = re.search(r'data-map-text="([^"]*)"', dom)
+    assert found, dom[:500]
+    texts = json.loads(found.group(1).replace("&quot;", '"'))
+    frame = {}  # the last frame's texts (the map is drawn every frame)
+    for t, x, y, w, size, cw, ch in texts:
+        frame[(t, round(x), round(y))] = (x, y - 0.8 * size, x + w, y + 0.25 * size, cw, ch)
+    boxes = list(frame.items())
+    assert {"x1", "x2", "recommended", "marked"} <= {t for (t, _, _), _ in boxes}
+    for k, ((t, _, _), (x0, y0, x1, y1, cw, ch)) in enumerate(boxes):
+        assert 0 <= x0 and x1 <= cw and 0 <= y0 and y1 <= ch, (t, x0, x1, cw)
+        for (u, _, _), (a0, b0, a1, b1, _, _) in boxes[k + 1:]:
+            assert min(x1, a1) <= max(x0, a0) or min(y1, b1) <= max(y0, b0), (t, u)

@@ -214,7 +214,9 @@
     g.fillStyle = "#333"; g.font = (11 * dpr) + "px sans-serif";
     for (var q = 0; q <= 4; q++) {
       var vx = w[0] + (w[1] - w[0]) * q / 4, vy = w[2] + (w[3] - w[2]) * q / 4;
-      g.fillText(vx.toFixed(2), X(vx) - 10 * dpr, H - m.b + 14 * dpr);
+      /* centred on its tick, kept right of the x2 labels and on the canvas */
+      var tx = vx.toFixed(2), tw = g.measureText(tx).width;
+      g.fillText(tx, Math.min(Math.max(X(vx) - tw / 2, m.l - 8 * dpr), W - tw), H - m.b + 14 * dpr);
       g.fillText(vy.toFixed(2), 4 * dpr, Y(vy) + 4 * dpr);
     }
     g.fillText("x1", W - m.r - 16 * dpr, H - 6 * dpr); g.fillText("x2", m.l + 5 * dpr, m.t + 13 * dpr);
