@@ -8,7 +8,8 @@ Oracle: the exact zeros of the scalar margins (the check's own pair geometry, ``
 on columns x1 = const, each sampled from the no-pair edge upwards (the edge found by bisection on
 where the scalar margin is defined, then distances from it growing geometrically from 1e-12), every
 sign change solved by brentq; each zero must lie within 2 tol of the traced line. A sign change
-where |F| does not fall (a pole of the sliding margin) is none.
+where |F| does not fall (a pole of the sliding margin) is none. Where the edge is steep (nearly
+parallel to x2), the same on rows x2 = const running from the edge to the right.
 
 An internal pair's no-pair edge has three parts: where inv alpha_w reaches 1e-9 (x1 - x2 large),
 where no shaper setting cuts the ring's tooth (x2 low) and where gear 1's tip reaches its base
@@ -31,12 +32,17 @@ DISTANCES = np.geomspace(1e-12, 0.4, 160)  #: samples above the edge (shift unit
 FALL = 0.5  #: a solved sign change is a zero when |F| fell below this fraction of its ends'
 
 
-def _edge_zeros(field, name, window):
-    """Exact zeros of ``name`` on columns rising from the no-pair edge (see the module notes)."""
+def _edge_zeros(field, name, window, rows=False):
+    """Exact zeros of ``name`` on columns rising from the no-pair edge (see the module notes); ``rows``:
+    on rows x2 = const running right from the edge instead."""
+    if rows:
+        zeros = _edge_zeros(lambda n, a, b: field.margin(n, b, a), name, window[2:] + window[:2])
+        return zeros[:, ::-1]
+    margin = field if callable(field) else field.margin
     x1s = np.linspace(window[0], window[1], COLUMNS + 2)[1:-1]
     zeros = []
     for x1 in x1s:
-        f = lambda x2: field.margin(name, x1, x2)  # noqa: E731
+        f = lambda x2: margin(name, x1, x2)  # noqa: E731
         lo, hi = window[2], window[3]
         if not np.isnan(f(lo)) or np.isnan(f(hi)):
             continue  # no edge crossing this column from below (undefined below, defined above)
@@ -114,3 +120,21 @@ def test_the_band_adds_no_duplicate_trace():
     F = evaluator(c.field, [ln.name for ln in c.lines], c.window)
     for k, ln in enumerate(c.lines):
         assert duplicates(list(ln.components), c.tol, F, k) == 0, ln.name
+
+
+STEEP = [  # (z1, z2, line, tol): the no-pair edge near x1 = -2.6 runs nearly parallel to x2; columns x1 = const
+    # did not cross it and the line along it was cut short (485, 371, 215 tol at tol 1e-3 before)
+    (54, 82, "interference.1", 1e-3),
+    (53, 104, "interference.1", 1e-3),
+    (52, 89, "interference.1", 1e-4),
+]
+
+
+@pytest.mark.parametrize("z1, z2, name, tol", STEEP)
+def test_a_line_along_a_steep_no_pair_edge_is_traced_to_tol(z1, z2, name, tol):
+    """The band is traced on rows x2 = const where the edge is steeper than 45 degrees in grid units (all
+    lines traced: the lattice follows the edge of the first line's grid)."""
+    c = blocking_contour(PairSpec(z1, z2, 1.0), tol=tol)
+    zeros = _edge_zeros(c.field, name, c.window, rows=True)
+    assert len(zeros) >= 3, name
+    assert _farthest(zeros, c.line(name).components) <= CONTRACT * tol

@@ -18,6 +18,15 @@ Here the band is traced on its own lattice:
   lines meet the edge transversally, and two zeros of a column a few times apart in their distance
   from the edge lie in different lattice cells.
 
+Where the edge is steep (from one grid row to the next within one grid column, steeper than about 45
+degrees in grid units: 54/82's edge near x1 = -2.6 runs nearly parallel to x2, and columns x1 = const
+did not cross the line along it, 485 tol short at tol 1e-3), the band is traced on the transposed
+lattice instead: **rows** x2 = const, ``BAND_COLUMNS`` per grid cell, with the same distances from
+the edge along each row. The rows' pieces are traced first; the columns' pieces are cut where they
+enter the rows' band and joined to the rows' pieces there like to the grid's lines, and a column runs
+through each end of the rows' band on the edge (a line along the edge across that end which meets
+the edge before the next column is seen by the columns).
+
 Every margin is evaluated at the lattice's nodes (one evaluation of the pair formulas for all);
 marching squares in lattice coordinates give each line's topology there, and every vertex is
 solved on its lattice edge (a segment in (x1, x2)) like the grid's. A sign change through a pole
@@ -70,31 +79,128 @@ def band_lines(F, lines, grids, tol: float, measure=(), many=None, band=None) ->
           and np.any(np.isnan(grids[k][2][1:-1, 1:-1])) and np.any(np.isfinite(grids[k][2]))]
     if not ks:
         return lines
-    lattice = _lattice(F, grids[ks[0]], ks[0])
+    grid = grids[ks[0]]
+    xs, ys, values = grid
+    # the steep parts of the edge: rows x2 = const (the transposed lattice) where it runs within one
+    # grid column from one grid row to the next; columns x1 = const elsewhere
+    steep = _steep_cells(np.isfinite(values[1:-1, 1:-1]).T)
+    FT = (lambda p, k: F(p[:, ::-1], k))
+    rows = _lattice(FT, (ys, xs, values.T), ks[0], steep) if steep.any() else None
+    # a column through each end of the rows' band on the edge: a line along the edge across it that meets
+    # the edge before the next column is seen by the columns (its tail is no piece of a row)
+    cols = _lattice(F, grid, ks[0], extra=_run_ends(rows))
+
+    def traced(k, p):
+        return _traced_cell(grids[k], p)
+
+    for lattice, flip in ((rows, True), (cols, False)):
+        if lattice is None:
+            continue
+        P, valid = lattice
+        if flip:
+            P = P[:, :, ::-1]
+        nodes = P[valid]
+        if many is None:
+            V = np.stack([F(nodes, np.full(len(nodes), k)) for k in ks])
+        else:
+            V = np.asarray(many(nodes, ks), dtype=float)
+        pieces = _pieces(F, P, valid, V, ks, tol)
+        lines = _merge(lines, pieces, traced, tol)
+        if flip:  # the column lattice's pieces are cut where they enter the rows' band
+            traced = _covering(traced, lattice)
+    return lines
+
+
+def _run_ends(lattice):
+    """x1 of the edge points at the ends of each run of rows of the transposed ``lattice`` (none: ())."""
     if lattice is None:
-        return lines
+        return ()
     P, valid = lattice
-    nodes = P[valid]
-    if many is None:
-        V = np.stack([F(nodes, np.full(len(nodes), k)) for k in ks])
-    else:
-        V = np.asarray(many(nodes, ks), dtype=float)
-    pieces = _pieces(F, P, valid, V, ks, tol)
-    return _merge(lines, pieces, grids, tol)
+    ok = valid[-1]
+    y, x = P[-1, ok, 0], P[-1, ok, 1]
+    if y.size < 2:
+        return ()
+    o = np.argsort(y)
+    y, x = y[o], x[o]
+    step = np.diff(y)
+    cut = np.flatnonzero(step > 1.5 * np.median(step))
+    return tuple(float(v) for v in np.unique(np.concatenate([x[[0, -1]], x[cut], x[cut + 1]])))
 
 
-def _lattice(F, grid, k0):
+def _crossings(fin):
+    """Per column of ``fin`` ``[j, i]`` (defined nodes): ``(row below the one crossing, sense)`` where
+    the defined area's edge crosses it once (sense 1: defined above), else None."""
+    out = []
+    for i in range(fin.shape[1]):
+        t = np.flatnonzero(fin[1:, i] != fin[:-1, i])
+        out.append((int(t[0]), 1 if fin[t[0] + 1, i] else -1) if t.size == 1 else None)
+    return out
+
+
+def _steep_cells(fin):
+    """For ``fin`` ``[i, j]`` (the defined grid nodes, transposed: a row of it is a grid column), per
+    cell between grid rows j, j + 1: True where the edge crosses both rows once, the same way round,
+    within one grid column (steeper than about 45 degrees in grid units); gaps of one cell between
+    such runs filled, runs of one cell dropped."""
+    t = _crossings(fin)
+    n = len(t) - 1
+    s = np.array([t[j] is not None and t[j + 1] is not None and t[j][1] == t[j + 1][1] and t[j][0] == t[j + 1][0]
+                  for j in range(n)], dtype=bool)
+    fill = s.copy()
+    fill[1:-1] |= s[:-2] & s[2:]
+    ok = np.array([t[j] is not None and t[j + 1] is not None and t[j][1] == t[j + 1][1] for j in range(n)], dtype=bool)
+    fill &= ok
+    out = fill.copy()
+    for lo, hi in _runs(fill):
+        if hi - lo < 2:
+            out[lo:hi] = False
+    return out
+
+
+def _covering(traced, lattice):
+    """``traced`` widened by the transposed lattice ``(P, valid)`` (its coordinates swapped): a point
+    is covered where it lies between two valid rows x2 = const of it, no farther from the edge along
+    the row than the lattice's far end."""
+    P, valid = lattice  # transposed: P[..., 0] is x2, rows of P run from the far end (0) to the edge (-1)
+    ok = valid[0] & valid[-1]
+    y = P[0, ok, 0]
+    edge = P[-1, ok, 1]
+    far = P[0, ok, 1]
+    o = np.argsort(y)
+    y, edge, far = y[o], edge[o], far[o]
+    if y.size < 2:
+        return traced
+    step = np.diff(y)
+    gap = step > 1.5 * np.median(step)  # two runs of rows: no band between them
+
+    def covered(k, p):
+        out = traced(k, p)
+        j = np.searchsorted(y, p[:, 1]) - 1
+        inside = (j >= 0) & (j < y.size - 1)
+        j = np.clip(j, 0, y.size - 2)
+        w = (p[:, 1] - y[j]) / (y[j + 1] - y[j])
+        e = edge[j] + w * (edge[j + 1] - edge[j])
+        f = far[j] + w * (far[j + 1] - far[j])
+        t = (p[:, 0] - e) / (f - e)  # 0 at the edge, 1 at the far end
+        return out | (inside & ~gap[j] & (t <= 1.0) & (t >= -1.0))
+    return covered
+
+
+def _lattice(F, grid, k0, cells=None, extra=()):
     """The band's lattice ``(P (rows, cols, 2), valid (rows, cols))``: columns where the edge crosses
-    once between grid rows, the same way round in all of them (None where there is none)."""
+    once between grid rows, the same way round in all of them (None where there is none); ``cells``
+    (per cell between grid columns i, i + 1): only those (None: all); ``extra``: more columns x1 = these
+    (in the cells used)."""
     xs, ys, values = grid
     X, Y = xs[1:-1], ys[1:-1]
     fin = np.isfinite(values[1:-1, 1:-1])  # [j, i] at (X[i], Y[j])
     nx = len(X)
-    trans = []  # per grid column: (row below the edge crossing, sense) or None
-    for i in range(nx):
-        t = np.flatnonzero(fin[1:, i] != fin[:-1, i])
-        trans.append((int(t[0]), 1 if fin[t[0] + 1, i] else -1) if t.size == 1 else None)
-    senses = {t[1] for t in trans if t is not None}
+    trans = _crossings(fin)  # per grid column: (row below the edge crossing, sense) or None
+    use = np.ones(nx - 1, dtype=bool) if cells is None else np.asarray(cells, dtype=bool)
+    near = np.zeros(nx, dtype=bool)
+    near[:-1] |= use
+    near[1:] |= use
+    senses = {t[1] for t, u in zip(trans, near) if t is not None and u}
     if len(senses) != 1:
         return None
     sense = senses.pop()
@@ -106,15 +212,17 @@ def _lattice(F, grid, k0):
     cx, lo_row, hi_row = [], [], []
     for i in range(nx - 1):
         a, b = trans[i], trans[i + 1]
-        if a is None or b is None:
+        if a is None or b is None or not use[i]:
             continue
         if a[0] in (-1, ny - 1) and b[0] in (-1, ny - 1):
             continue  # the edge past the frame on both sides
         j0, j1 = max(min(a[0], b[0]), 0), min(max(a[0], b[0]) + 1, ny - 1)
-        for s in range(m + 1):
-            if s == m and i + 1 < nx - 1 and trans[i + 2] is not None:
-                continue  # the next cell's first column
-            cx.append(X[i] + (X[i + 1] - X[i]) * s / m)
+        here = [X[i] + (X[i + 1] - X[i]) * s / m for s in range(m + 1)]
+        if i + 1 < nx - 1 and trans[i + 2] is not None and use[i + 1]:
+            here.pop()  # the next cell's first column
+        here += [x for x in extra if X[i] < x < X[i + 1] and min(abs(x - h) for h in here) > 1e-9 * (X[i + 1] - X[i])]
+        for x in sorted(here):
+            cx.append(x)
             lo_row.append(j0)
             hi_row.append(j1)
     if len(cx) < 2:
@@ -231,7 +339,7 @@ def _traced_cell(grid, p):
     return full[j, i]
 
 
-def _merge(lines, pieces, grids, tol):
+def _merge(lines, pieces, traced, tol):
     """The grid's ``lines`` and the band's ``pieces``: each piece cut where it enters a traced cell,
     its part in the band joined to the grid line's end where it left: the open end of the same
     function nearest to the point where the chord crossing into the cell meets the cell's side, within
@@ -244,7 +352,7 @@ def _merge(lines, pieces, grids, tol):
     offers = []  # (distance, run, slot, grid end)
     parts = []  # (k, piece's points, run's first and end vertex, closed)
     for k, q, g, closed in pieces:
-        cov = _traced_cell(grids[k], q)
+        cov = traced(k, q)
         if closed and not cov.any():
             parts.append((k, q, g, 0, len(q), True))
         else:
@@ -270,7 +378,7 @@ def _merge(lines, pieces, grids, tol):
                 u, c = q[inner], q[outer]
                 t = np.linspace(0.0, 1.0, ENTRY_SAMPLES + 1)
                 on = u[None] + t[:, None] * (c - u)[None]
-                x = on[int(np.argmax(_traced_cell(grids[k], on)))]  # where the chord enters the traced cells
+                x = on[int(np.argmax(traced(k, on)))]  # where the chord enters the traced cells
                 reach = JOIN_REACH * float(np.hypot(*(c - u)))
                 for key, e in ends.items():
                     if lines[key[0]][0] == k:
