@@ -32,14 +32,16 @@ DISTANCES = np.geomspace(1e-12, 0.4, 160)  #: samples above the edge (shift unit
 FALL = 0.5  #: a solved sign change is a zero when |F| fell below this fraction of its ends'
 
 
-def _edge_zeros(field, name, window, rows=False):
-    """Exact zeros of ``name`` on columns rising from the no-pair edge (see the module notes); ``rows``:
-    on rows x2 = const running right from the edge instead."""
+def _edge_zeros(field, name, window, rows=False, x1s=None):
+    """Exact zeros of ``name`` on columns rising from the no-pair edge (see the module notes), at ``x1s``
+    (default: ``COLUMNS`` across the window); ``rows``: on rows x2 = const running right from the edge
+    instead."""
     if rows:
         zeros = _edge_zeros(lambda n, a, b: field.margin(n, b, a), name, window[2:] + window[:2])
         return zeros[:, ::-1]
     margin = field if callable(field) else field.margin
-    x1s = np.linspace(window[0], window[1], COLUMNS + 2)[1:-1]
+    if x1s is None:
+        x1s = np.linspace(window[0], window[1], COLUMNS + 2)[1:-1]
     zeros = []
     for x1 in x1s:
         f = lambda x2: margin(name, x1, x2)  # noqa: E731
@@ -137,4 +139,24 @@ def test_a_line_along_a_steep_no_pair_edge_is_traced_to_tol(z1, z2, name, tol):
     c = blocking_contour(PairSpec(z1, z2, 1.0), tol=tol)
     zeros = _edge_zeros(c.field, name, c.window, rows=True)
     assert len(zeros) >= 3, name
+    assert _farthest(zeros, c.line(name).components) <= CONTRACT * tol
+
+
+ALONG_CASES = [  # (z1, z2, line, tol, columns): where a band piece left the lattice beside the edge, short of
+    # the line's end: 12/15's sliding leg zeta1 = -zeta2, 9e-5 .. 2.5e-4 above the edge, left the lattice
+    # through its last row (a chord from the edge to the window's frame) at x1 = 0.3156 and runs on to the
+    # frame at 0.3248 (6e-3 short); 12/30's tip-to-tip line reaches the edge at x1 = 0.7215, the band left
+    # it at 0.7236 (2e-3 short)
+    (12, 15, "sliding", 1e-3, (0.317, 0.319, 0.321, 0.323)),
+    (12, 15, "sliding", 1e-5, (0.317, 0.319, 0.321, 0.323)),
+    (12, 30, "contact_ratio_tip=1", 1e-4, (0.7218, 0.7222, 0.7226, 0.7230)),
+    (12, 30, "contact_ratio_tip=1", 1e-6, (0.7218, 0.7222, 0.7226, 0.7230)),
+]
+
+
+@pytest.mark.parametrize("z1, z2, name, tol, x1s", ALONG_CASES)
+def test_a_line_the_lattice_left_beside_the_edge_is_carried_to_its_end(z1, z2, name, tol, x1s):
+    c = blocking_contour(PairSpec(z1, z2, 1.0), tol=tol, lines=[name])
+    zeros = _edge_zeros(c.field, name, c.window, x1s=np.array(x1s))
+    assert len(zeros) >= len(x1s)  # the oracle sees the line on every column
     assert _farthest(zeros, c.line(name).components) <= CONTRACT * tol

@@ -70,11 +70,15 @@ THIN = 0.25  #: successive vertices of a band piece closer than this many tol ar
 #: between two columns' edge points, where the edge has a corner: the rows next to the edge all put theirs there)
 
 
-def band_lines(F, lines, grids, tol: float, measure=(), many=None, band=None) -> list:
+def band_lines(F, lines, grids, tol: float, measure=(), many=None, band=None, carry=None) -> list:
     """``lines`` (``[(k, points, slopes)]``, the grid's pieces) with the band's pieces added and joined
     to them (see the module notes). ``many(points, ks) -> (len(ks), n)``: all functions ``ks`` at the
     same points (one evaluation); None: ``F`` once per function. ``band``: the curves traced in the
-    band (None: all but ``measure``)."""
+    band (None: all but ``measure``). ``carry``: a list to which the ends of the band's pieces that
+    leave the lattice through its boundary off the no-pair edge are appended (``(k, point)``): the
+    lattice's last row is a chord between the edge's points on two columns, or the window's frame
+    on one of them, and a line may go on beside the edge below it (see
+    :func:`~gearkit.blocking.ends.extend_ends`)."""
     ks = [k for k in range(len(grids)) if k not in measure and (band is None or k in band)
           and np.any(np.isnan(grids[k][2][1:-1, 1:-1])) and np.any(np.isfinite(grids[k][2]))]
     if not ks:
@@ -104,7 +108,7 @@ def band_lines(F, lines, grids, tol: float, measure=(), many=None, band=None) ->
             V = np.stack([F(nodes, np.full(len(nodes), k)) for k in ks])
         else:
             V = np.asarray(many(nodes, ks), dtype=float)
-        pieces = _pieces(F, P, valid, V, ks, tol)
+        pieces = _pieces(F, P, valid, V, ks, tol, carry)
         lines = _merge(lines, pieces, traced, tol)
         if flip:  # the column lattice's pieces are cut where they enter the rows' band
             traced = _covering(traced, lattice)
@@ -257,9 +261,10 @@ def _lattice(F, grid, k0, cells=None, extra=()):
     return P, valid
 
 
-def _pieces(F, P, valid, V, ks, tol):
+def _pieces(F, P, valid, V, ks, tol, carry=None):
     """Each function's zero lines on the lattice: ``[(k, points, slopes)]`` (vertices solved on their
-    lattice edges to ``tol / 4``, split where a sign change is a pole or a jump)."""
+    lattice edges to ``tol / 4``, split where a sign change is a pole or a jump); the ends leaving the
+    lattice through its boundary where a pair exists beyond (not on the edge) appended to ``carry``."""
     import contourpy
 
     rows, cols = valid.shape
@@ -295,7 +300,14 @@ def _pieces(F, P, valid, V, ks, tol):
     fr[ok] = np.abs(F(R[ok], W[ok]))
     with np.errstate(invalid="ignore"):
         good = ok & (fr <= JUMP_FALL * np.fmin(np.abs(FA), np.abs(FB)))
-        slope = np.abs(FB - FA) / np.hypot(*(B - A).T)
+    again = np.flatnonzero(ok & ~good)  # |F| did not fall at a root solved to tol / 4: solved to round-off,
+    if again.size:  # a zero beside the edge, where F varies as a root of the distance, falls there; a pole not
+        R[again] = segment_roots(F, A[again], B[again], FA[again], FB[again], 1e-12 * float(length[again].min()),
+                                 W[again])
+        fr[again] = np.abs(F(R[again], W[again]))
+        with np.errstate(invalid="ignore"):
+            good[again] = fr[again] <= JUMP_FALL * np.fmin(np.abs(FA[again]), np.abs(FB[again]))
+    slope = np.abs(FB - FA) / length
     out, at = [], 0
     for k, _, p, _ in raw:
         q, g, use = R[at:at + len(p)], slope[at:at + len(p)], good[at:at + len(p)]
@@ -305,7 +317,22 @@ def _pieces(F, P, valid, V, ks, tol):
             keep = _thin(q[lo:hi], THIN * tol)
             if keep.size >= 2:
                 out.append((k, q[lo:hi][keep], g[lo:hi][keep], closed))
+                if carry is not None and not closed:
+                    carry += [(k, q[j]) for j, at_end in ((lo, lo == 0), (hi - 1, hi == len(p)))
+                              if at_end and _off_lattice(p[j], rows, cols)]
+    if carry:  # a vertex on the edge itself (undefined to round-off) ends its line there
+        keep = np.isfinite(F(np.array([c[1] for c in carry]), np.array([c[0] for c in carry])))
+        carry[:] = [c for c, kp in zip(carry, keep) if kp]
     return out
+
+
+def _off_lattice(v, rows, cols) -> bool:
+    """True when the index-space vertex ``v`` lies on the lattice's boundary between two nodes: its
+    last row (the edge's row) or its first or last column."""
+    i, j = v
+    on_row = j == rows - 1 and i != round(i)
+    on_side = (i == 0 or i == cols - 1) and j != round(j)
+    return bool(on_row or on_side)
 
 
 def _thin(q, close):

@@ -21,7 +21,7 @@ import math
 import numpy as np
 
 
-__all__ = ["edge_point", "toward_edge", "touchdowns", "ladder", "nearest_change", "across"]
+__all__ = ["edge_point", "toward_edge", "touchdowns", "ahead_on_edge", "ladder", "nearest_change", "across"]
 
 LADDER = 0.5  #: ratio of the geometric sample distances
 FLOOR = 1e-13  #: the smallest sample distance, relative to the window's size
@@ -129,6 +129,30 @@ def touchdowns(F, A, B, D, which, res):
     ends = np.concatenate([A, B])
     T[np.hypot(*(T - ends).T) <= res] = np.nan  # the line meets the edge at its end already
     return T[:n], T[n:]
+
+
+def ahead_on_edge(F, P, T, h, which, span, res):
+    """For points ``P`` (n, 2) beside the edge whose steps ``h`` along the directions ``T`` end in
+    the undefined area: the edge's point a whole step ahead, reached from the defined side along the
+    normal (to ``res``; NaN where neither side of the normal is defined within ``h``), for a line
+    running along the edge closer to it than its tangent's meeting with it.
+
+    >>> F = lambda p, k: np.where(p[:, 1] >= p[:, 0] ** 2, 0.0, np.nan)  # defined above y = x^2
+    >>> q = ahead_on_edge(F, np.array([[0.0, 1e-9]]), np.array([[1.0, 0.0]]), np.array([0.5]), np.array([0]), 1.0, 1e-12)
+    >>> bool(abs(q[0, 0] - 0.5) < 1e-12 and abs(q[0, 1] - 0.25) < 1e-11)
+    True
+    """
+    ahead = P + h[:, None] * T
+    N = np.column_stack([-T[:, 1], T[:, 0]])
+    out = np.full(P.shape, np.nan)
+    todo = np.isnan(F(ahead, which))
+    for sgn in (1.0, -1.0):
+        inside = ahead + sgn * h[:, None] * N
+        ok = todo & np.isfinite(F(inside, which))
+        if ok.any():
+            out[ok] = edge_point(F, inside[ok], ahead[ok], which[ok], span, res)
+            todo &= ~ok
+    return out
 
 
 def ladder(h, floor):

@@ -13,7 +13,9 @@ the front gets no farther than ``EDGE_BUDGET`` times that distance). A margin th
 cube or square root of the distance to the edge (those reading the working pressure angle, or a
 tip at its base circle) has lines that meet the edge tangentially, along it for up to the whole
 window: those ends are not carried on here (the band beside the edge is traced on its own lattice,
-:mod:`~gearkit.blocking.band`, and its pieces joined to them before). A front goes on until
+:mod:`~gearkit.blocking.band`), but for those where a band piece left its lattice beside the edge
+(through its last row, a chord between two columns' edge points or the frame): such a front follows
+its line along the edge (a prediction past it moved back onto it along the normal) to where it ends. A front goes on until
 
 * it meets another end of the same function heading back along it: the two join. The arms of a
   saddle join in the pairs ``F`` connects (a step never flips the side on which ``F`` is positive,
@@ -37,7 +39,7 @@ import math
 import numpy as np
 
 from gearkit.blocking.brackets import segment_roots
-from gearkit.blocking.edges import across, edge_point
+from gearkit.blocking.edges import across, ahead_on_edge, edge_point
 
 __all__ = ["extend_ends"]
 
@@ -59,11 +61,13 @@ EDGE_BUDGET = 2.0  #: ... and carried no farther than this times its distance to
 EDGE_FAN_DEG = 10.0  #: the edge's direction there: from its points on rays this far either side of the tangent
 
 
-def extend_ends(F, lines, grids, tol, measure=()):
+def extend_ends(F, lines, grids, tol, measure=(), carry=()):
     """Carry every open end of ``lines`` (``[(k, points, slopes)]``, the curves ``measure`` aside)
     that lies inside the window, off its frame and away from the undefined area, on along its line
-    (see the module notes). Returns ``[(k, points, slopes, todo)]``: ``todo`` marks the chords to
-    refine (the new ones).
+    (see the module notes); so too the ends ``carry`` (``(k, point)``: where the band's lattice ended
+    a line beside the edge, :func:`~gearkit.blocking.band.band_lines`), no farther than ``EDGE_REACH``
+    grid cells. Returns ``[(k, points, slopes, todo)]``: ``todo`` marks the chords to refine (the new
+    ones).
 
     >>> import numpy as np
     >>> F = lambda p, k: p[:, 0] ** 2 - p[:, 1] ** 2 + 1e-4  # branches y = +-sqrt(x^2 + 1e-4)
@@ -100,7 +104,12 @@ def extend_ends(F, lines, grids, tol, measure=()):
                 edge_ends.append((r, end, a, t))  # beside the no-pair area: carried on only into its edge
                 continue
             starts.append((r, end, a, t))
-    starts += _into_edge(F, edge_ends, recs, EDGE_REACH * cell, span)
+    into = _into_edge(F, edge_ends, recs, EDGE_REACH * cell, span)
+    starts += into
+    marked = {(k, tuple(q)) for k, q in carry}
+    taken = {(e[0], e[1]) for e in into}
+    starts += [e + (EDGE_REACH * cell,) for e in edge_ends
+               if (e[0], e[1]) not in taken and (recs[e[0]][0], tuple(e[2])) in marked]
     front, joins = [], []
     geo = (span, vtol, MAX_STEP_CELLS * cell, lo, hi, tol)
     _run(F, front, _fronts(F, starts, recs, eps, geo[2]), recs, joins, geo)
@@ -254,11 +263,21 @@ def _step(F, front, act, active, recs, joins, vtol, span, hmax, turn, lo, hi):
     Q = P + np.array([front[i][5] for i in act])[:, None] * T
     out = np.flatnonzero(np.isnan(F(Q, np.array([recs[front[i][0]][0] for i in act]))))
     if out.size:  # the prediction left the defined area: the step ends just before its edge
-        E = edge_point(F, P[out], Q[out], np.array([recs[front[act[r]][0]][0] for r in out]), span, vtol / 4)
+        ks = np.array([recs[front[act[r]][0]][0] for r in out])
+        h = np.array([front[act[r]][5] for r in out])
+        E = edge_point(F, P[out], Q[out], ks, span, vtol / 4)
         for r, q in zip(out, E):
             f = front[act[r]]
             f[5] = float(np.dot(q - P[r], T[r]))
             Q[r] = P[r] + f[5] * T[r]
+        # a line running along the edge, closer to it than vtol where its tangent meets it: predicted on
+        # the edge a whole step ahead instead (moved back to it along the normal), and corrected from there
+        along = np.flatnonzero(np.array([front[act[r]][5] < vtol for r in out]))
+        if along.size:
+            on = ahead_on_edge(F, P[out[along]], T[out[along]], h[along], ks[along], span, vtol / 4)
+            for r, q, hh in zip(out[along], on, h[along]):
+                if np.isfinite(q[0]):
+                    Q[r], front[act[r]][5] = q, float(hh)
         stop = [act[r] for r in out if front[act[r]][5] < vtol]
         for i in stop:
             active[i] = False

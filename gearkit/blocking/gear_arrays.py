@@ -33,10 +33,16 @@ _HEIGHTS: dict = {}
 
 def inv_inverse(v):
     """The angle ``a`` with ``inv a = v`` (v > 0), arrays: Newton from the right of the root, where
-    ``inv`` is convex (the iterates fall monotonically), stopping at round-off."""
+    ``inv`` is convex (the iterates fall monotonically), stopping at round-off: where the step is
+    below 4e-15 a, or no longer halves (tan a - a cancels to about 1e-14 of a near a = 0.1 rad: the
+    steps stall there). Where ``v`` is not positive (no pair) the result is NaN-free garbage the
+    caller masks; it does not hold the iteration up."""
     a = np.minimum(np.cbrt(3.0 * v), np.arctan(v + np.pi / 2.0))
     # the iterates fall to the root from the right: none falls below SERIES_BELOW where every value is above its inv
     series = bool(np.count_nonzero(v < _INV_SERIES_BELOW))  # (count_nonzero: one C call; .any() wraps one in Python)
+    with np.errstate(invalid="ignore"):
+        live = v > 0
+    last = np.full(np.shape(a), np.inf)
     for _ in range(NEWTON):
         t = np.tan(a)
         f = t - a
@@ -46,8 +52,11 @@ def inv_inverse(v):
                 f[small] = inv(a[small])
         step = (f - v) / (t * t)
         a = a - step
-        if not np.count_nonzero(np.abs(step) > 4e-15 * a):
-            break
+        size = np.abs(step)
+        with np.errstate(invalid="ignore"):
+            if not np.count_nonzero(live & (size > 4e-15 * a) & (size < 0.5 * last)):
+                break
+        last = size
     return a
 
 

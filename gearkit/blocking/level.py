@@ -123,14 +123,15 @@ def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), 
             q, g, jmp = np.vstack([q, q[:1]]), np.append(g, g[0]), np.append(jmp, jmp[0])
         lines += [(k, q[lo:hi], g[lo:hi]) for lo, hi in _runs(~jmp) if hi - lo >= 2]
     # the band beside the no-pair area, where the grid masks every cell (band)
-    lines = band_lines(F, lines, grids, tol, measure, many, band)
+    carry = []  # band ends that leave its lattice beside the edge: carried on (ends)
+    lines = band_lines(F, lines, grids, tol, measure, many, band, carry)
     lines = bridge_pieces(lines, grids, measure, BRIDGE_CELLS, BRIDGE_COS)
     # a run of one chord off the frame, bridged to none: a speck (see above)
     lines = [(k, q, g) for k, q, g in lines if len(q) >= 3 or k in measure or _on_frame(q, *grids[k][:2])]
     vtol = VERTEX_FRACTION * tol
     lines = densify(F, onset_vertices(F, lines, *onsets, vtol), tol, max_step, measure, kinked, slopes=True)
     # lines the grid cut short of their ends (a saddle): carried on to them (ends)
-    lines = extend_ends(F, lines, grids, tol, measure)
+    lines = extend_ends(F, lines, grids, tol, measure, carry)
     lines = densify(F, onset_vertices(F, lines, *onsets, vtol), tol, max_step, measure, kinked)
     for k, q in once(lines, tol, measure):
         out[k].append(q)
