@@ -20,6 +20,8 @@ where undefined); every step below evaluates all the points it needs, of all the
    polyline lies within about ``tol + tol / 4`` of its curve, and the number of vertices is what
    the curvature needs at that tolerance: coarser tolerances cost less.
 
+4. **Saddles the grid got wrong**: loops cut across a thin part re-joined (:func:`~gearkit.blocking.region.reconnect`).
+
 The band beside the area where ``F`` is undefined, whose cells the grid masks, is traced on a
 lattice of its own and joined to the grid's lines (:mod:`~gearkit.blocking.band`); at the end, an
 open component lying wholly within ``2 tol`` of another of the same curve is dropped (one line at
@@ -39,6 +41,7 @@ from gearkit.blocking.edges import touchdowns, toward_edge
 from gearkit.blocking.ends import extend_ends
 from gearkit.blocking.grid import bridge_pieces, edge_nodes
 from gearkit.blocking.onsets import onset_vertices
+from gearkit.blocking.region import reconnect
 
 __all__ = ["zero_lines", "densify"]
 
@@ -129,11 +132,13 @@ def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), 
     # a run of one chord off the frame, bridged to none: a speck (see above)
     lines = [(k, q, g) for k, q, g in lines if len(q) >= 3 or k in measure or _on_frame(q, *grids[k][:2])]
     vtol = VERTEX_FRACTION * tol
-    lines = densify(F, onset_vertices(F, lines, *onsets, vtol), tol, max_step, measure, kinked, slopes=True)
+    kept = []  # the region's chords with no zero across them: loops cut across a thin part, re-joined (reconnect)
+    lines = densify(F, onset_vertices(F, lines, *onsets, vtol), tol, max_step, measure, kinked, True, kept)
     # lines the grid cut short of their ends (a saddle): carried on to them (ends)
     lines = extend_ends(F, lines, grids, tol, measure, carry)
-    lines = densify(F, onset_vertices(F, lines, *onsets, vtol), tol, max_step, measure, kinked)
-    for k, q in once(lines, tol, measure):
+    lines = densify(F, onset_vertices(F, lines, *onsets, vtol), tol, max_step, measure, kinked, True, kept)
+    lines = reconnect(F, lines, kept, tol, lambda ls, kp: densify(F, ls, tol, max_step, measure, kinked, True, kp))
+    for k, q in once([(k, q) for k, q, _ in lines], tol, measure):
         out[k].append(q)
     return out
 
@@ -151,7 +156,8 @@ def _runs(mask):
     return list(zip(np.flatnonzero(d == 1), np.flatnonzero(d == -1)))
 
 
-def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kinked=(), slopes=False) -> list:
+def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kinked=(), slopes=False,
+            kept=None) -> list:
     """``lines`` (a list of ``(k, points (n, 2), slope (n,))``: curve index, vertices on the curve, and
     estimates of ``|grad F_k|`` there, NaN if unknown) with vertices added until every chord lies
     within ``tol`` of its curve and is at most ``max_step`` long (a fourth entry, a mask of the
@@ -160,7 +166,8 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
     index is in ``measure`` (e.g. the smallest of several functions, whose slope jumps at the kinks)
     have every chord measured, never estimated; so do the curves in ``kinked`` (a kink between two
     branches of one margin, e.g. the contact ratio where its limiting end changes: an acute wedge's
-    middle value says nothing of its tip), which are otherwise traced as the rest."""
+    middle value says nothing of its tip), which are otherwise traced as the rest. ``kept``: a list to
+    which a measured curve's chords with no zero found across them are added as ``(k, start, end)``."""
     vtol = VERTEX_FRACTION * tol
     step = np.inf if not max_step else float(max_step)
     state = [(ln[0], np.asarray(ln[1], float), np.asarray(ln[2], float),
@@ -265,6 +272,8 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
         # no zero across a line's chord: two components (a region's loop stays closed), each carried to where
         # it meets the no-pair area's edge when the chord runs beside it (a line dipping to the edge)
         lost = np.flatnonzero(~found & live[meas] & trust[which[meas]])
+        if kept is not None:  # a measured curve's chord with no zero across it: kept as it is, and noted
+            kept += [(int(which[r]), A[r].copy(), B[r].copy()) for r in meas[~found & live[meas] & ~trust[km]]]
         cut = set(meas[lost].tolist())
         touch = {}  # chord row -> (new vertices, the first of the chord to cut)
         lost = lost[np.isfinite(out_dir[lost, 0])]
@@ -374,7 +383,7 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
     again = corner_splits(F, out, tol, corners, SPLIT_FRACTION * tol, VERTEX_FRACTION * tol)
     if again:  # the polylines that got a vertex beside a corner: densified again
         done = [out[n] if slopes else out[n][:2] for n in range(len(out)) if n not in again]
-        return done + densify(F, [out[n] for n in sorted(again)], tol, max_step, measure, kinked, slopes)
+        return done + densify(F, [out[n] for n in sorted(again)], tol, max_step, measure, kinked, slopes, kept)
     return out if slopes else [(k, p) for k, p, _ in out]
 
 

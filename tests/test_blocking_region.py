@@ -1,0 +1,86 @@
+"""Issue 19: the admissible region's boundary lies within 2 tol of the check's exact zero set where the
+region is thinner than the tracing grid's cells (marching squares' saddle cells: a strip cut across,
+the neck of a saddle cut through), against the check's own scalar margins (``PairField.margin``, the
+zeros solved by brentq) and ``check_pair``.
+"""
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+
+from gearkit.blocking import blocking_contour
+from gearkit.blocking.field import PairField
+from gearkit.checks import check_pair
+from gearkit.pair import PairSpec
+
+CONTRACT = 2.0
+
+
+def _smallest(field, x1, x2) -> float:
+    """The smallest hard margin of the check at (x1, x2) (scalar, the check's own formulas)."""
+    return min(field.margin(n, float(x1), float(x2)) for n in field.hard)
+
+
+def _zeros(g, t):
+    """Every zero of ``g`` between the samples ``t`` where it changes sign, solved by brentq."""
+    v = np.array([g(s) for s in t])
+    i = np.flatnonzero((v[:-1] >= 0) != (v[1:] >= 0))
+    return np.array([brentq(g, t[j], t[j + 1], xtol=1e-13) for j in i])
+
+
+def _crossings(polygons, a, b) -> np.ndarray:
+    """Parameters s in [0, 1] where the segment a -> b crosses the polygons' edges, sorted."""
+    out = []
+    d = b - a
+    for p in polygons:
+        e = np.diff(p, axis=0)
+        den = d[0] * e[:, 1] - d[1] * e[:, 0]
+        w = p[:-1] - a
+        with np.errstate(divide="ignore", invalid="ignore"):
+            s = (w[:, 0] * e[:, 1] - w[:, 1] * e[:, 0]) / den
+            u = (w[:, 0] * d[1] - w[:, 1] * d[0]) / den
+        ok = (den != 0) & (s >= 0) & (s <= 1) & (u >= 0) & (u < 1)
+        out += s[ok].tolist()
+    return np.sort(out)
+
+
+def test_a_strip_narrower_than_a_grid_cell_is_not_cut_across():
+    """33/78: interference.2 and interference.1 leave a strip about 0.02 wide (a region grid cell is
+    0.022 x 0.031) running up to x2 = 1.8; the grid's nodes in it sit in diagonal corners of a saddle
+    cell, and the region came out as two loops closed across the strip (chords 0.02 long, 10 tol off
+    at tol 1e-3). On rows across it, the polygons cross exactly where the check's smallest hard margin
+    does (brentq), within 2 tol, and the strip's middle is in the region."""
+    tol = 1e-3
+    spec = PairSpec(33, 78, 1.0)
+    field = PairField(spec)
+    c = blocking_contour(spec, tol=tol, lines=[])
+    for y in np.linspace(1.60, 1.70, 6):
+        xs = np.linspace(-1.30, -1.13, 35)
+        exact = _zeros(lambda x: _smallest(field, x, y), xs)
+        assert len(exact) == 2, (y, exact)  # the strip's two edges
+        a, b = np.array([xs[0], y]), np.array([xs[-1], y])
+        got = xs[0] + _crossings(c.region, a, b) * (xs[-1] - xs[0])
+        assert len(got) == 2 and np.max(np.abs(got - exact)) <= CONTRACT * tol, (y, exact, got)
+        mid = 0.5 * (exact[0] + exact[1])
+        assert check_pair(PairSpec(33, 78, 1.0, float(mid), float(y))).ok and c.in_region(mid, y), (y, mid)
+
+
+def test_the_neck_of_a_saddle_is_not_cut_through():
+    """21/52 at tol 1e-5: interference.1 has a saddle at (x1, x2) = (1, -1) where its margin is +1e-9
+    (the check forgives 1e-9 m_n), so the region goes on through a neck about 9e-5 wide between the two
+    branches of the zero set; the grid saw the branches' other pairing and both loops cut through the
+    neck (chords 1e-4 long, 5 tol off). Across the neck (the diagonal through the saddle), the polygons
+    cross only at the two branches, each within 2 tol of the check's zero (brentq), and the saddle
+    itself, which check_pair passes, is in the region."""
+    tol = 1e-5
+    spec = PairSpec(21, 52, 1.0)
+    field = PairField(spec)
+    c = blocking_contour(spec, tol=tol, lines=[])
+    d = np.array([1.0, 1.0]) / np.sqrt(2.0)
+    o = np.array([1.0, -1.0])
+    g = lambda t: _smallest(field, *(o + t * d))  # noqa: E731
+    reach = 2e-4
+    exact = _zeros(g, np.linspace(-reach, reach, 81))
+    assert len(exact) == 2 and exact[0] < 0 < exact[1], exact
+    got = -reach + _crossings(c.region, o - reach * d, o + reach * d) * (2 * reach)
+    assert len(got) == 2 and np.max(np.abs(got - exact)) <= CONTRACT * tol, (exact, got)
+    assert check_pair(PairSpec(21, 52, 1.0, 1.0, -1.0)).ok and c.in_region(1.0, -1.0)
