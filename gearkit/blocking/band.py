@@ -10,7 +10,7 @@ stopped 0.04 to 0.16 short of the edge; an internal pair's band, where inv alpha
 and where no shaper setting cuts the ring's tooth, was not traced at all: 46/49 B3 1.41 short).
 Here the band is traced on its own lattice:
 
-* **columns** x1 = const, ``BAND_COLUMNS`` per grid cell, where the edge crosses the column once
+* **columns** x1 = const, ``BAND_COLUMNS`` per grid cell (:mod:`~gearkit.blocking.lattice`), where the edge crosses the column once
   between two grid rows (the edge is found there by multisection to round-off,
   :func:`~gearkit.blocking.edges.edge_point`);
 * **rows** at distances from the edge along the column falling geometrically by ``BAND_RATIO``
@@ -52,16 +52,12 @@ from __future__ import annotations
 import numpy as np
 
 from gearkit.blocking.brackets import segment_roots
-from gearkit.blocking.edges import edge_point
-from gearkit.blocking.grid import edge_nodes
+from gearkit.blocking.grid import edge_nodes, true_runs
+from gearkit.blocking.lattice import band_lattice, covering, run_ends, steep_cells
 from gearkit.distances import distances_to_polyline
 
 __all__ = ["band_lines", "once"]
 
-BAND_COLUMNS = 4  #: lattice columns per grid cell
-BAND_RATIO = 2 ** -0.5  #: ratio of the distances from the edge of successive lattice rows
-BAND_OVER = 0.5  #: the lattice reaches this many grid rows past the masked cells
-FLOOR = 1e-13  #: the nearest row (before the edge's own), relative to the window's diagonal
 JUMP_FALL = 0.5  #: a solved vertex whose |F| is above this fraction of its edge's ends' is a pole or a jump
 JOIN_REACH = 0.5  #: a band piece entering a traced cell joins a grid line's end within this many of its chord
 SAME = 2.0  #: a band run within this many tol of a line of the same function traced already is dropped
@@ -87,12 +83,12 @@ def band_lines(F, lines, grids, tol: float, measure=(), many=None, band=None, ca
     xs, ys, values = grid
     # the steep parts of the edge: rows x2 = const (the transposed lattice) where it runs within one
     # grid column from one grid row to the next; columns x1 = const elsewhere
-    steep = _steep_cells(np.isfinite(values[1:-1, 1:-1]).T)
+    steep = steep_cells(np.isfinite(values[1:-1, 1:-1]).T)
     FT = (lambda p, k: F(p[:, ::-1], k))
-    rows = _lattice(FT, (ys, xs, values.T), ks[0], steep) if steep.any() else None
+    rows = band_lattice(FT, (ys, xs, values.T), ks[0], steep) if steep.any() else None
     # a column through each end of the rows' band on the edge: a line along the edge across it that meets
     # the edge before the next column is seen by the columns (its tail is no piece of a row)
-    cols = _lattice(F, grid, ks[0], extra=_run_ends(rows))
+    cols = band_lattice(F, grid, ks[0], extra=run_ends(rows))
 
     def traced(k, p):
         return _traced_cell(grids[k], p)
@@ -111,154 +107,8 @@ def band_lines(F, lines, grids, tol: float, measure=(), many=None, band=None, ca
         pieces = _pieces(F, P, valid, V, ks, tol, carry)
         lines = _merge(lines, pieces, traced, tol)
         if flip:  # the column lattice's pieces are cut where they enter the rows' band
-            traced = _covering(traced, lattice)
+            traced = covering(traced, lattice)
     return lines
-
-
-def _run_ends(lattice):
-    """x1 of the edge points at the ends of each run of rows of the transposed ``lattice`` (none: ())."""
-    if lattice is None:
-        return ()
-    P, valid = lattice
-    ok = valid[-1]
-    y, x = P[-1, ok, 0], P[-1, ok, 1]
-    if y.size < 2:
-        return ()
-    o = np.argsort(y)
-    y, x = y[o], x[o]
-    step = np.diff(y)
-    cut = np.flatnonzero(step > 1.5 * np.median(step))
-    return tuple(float(v) for v in np.unique(np.concatenate([x[[0, -1]], x[cut], x[cut + 1]])))
-
-
-def _crossings(fin):
-    """Per column of ``fin`` ``[j, i]`` (defined nodes): ``(row below the one crossing, sense)`` where
-    the defined area's edge crosses it once (sense 1: defined above), else None."""
-    out = []
-    for i in range(fin.shape[1]):
-        t = np.flatnonzero(fin[1:, i] != fin[:-1, i])
-        out.append((int(t[0]), 1 if fin[t[0] + 1, i] else -1) if t.size == 1 else None)
-    return out
-
-
-def _steep_cells(fin):
-    """For ``fin`` ``[i, j]`` (the defined grid nodes, transposed: a row of it is a grid column), per
-    cell between grid rows j, j + 1: True where the edge crosses both rows once, the same way round,
-    within one grid column (steeper than about 45 degrees in grid units); gaps of one cell between
-    such runs filled, runs of one cell dropped."""
-    t = _crossings(fin)
-    n = len(t) - 1
-    s = np.array([t[j] is not None and t[j + 1] is not None and t[j][1] == t[j + 1][1] and t[j][0] == t[j + 1][0]
-                  for j in range(n)], dtype=bool)
-    fill = s.copy()
-    fill[1:-1] |= s[:-2] & s[2:]
-    ok = np.array([t[j] is not None and t[j + 1] is not None and t[j][1] == t[j + 1][1] for j in range(n)], dtype=bool)
-    fill &= ok
-    out = fill.copy()
-    for lo, hi in _runs(fill):
-        if hi - lo < 2:
-            out[lo:hi] = False
-    return out
-
-
-def _covering(traced, lattice):
-    """``traced`` widened by the transposed lattice ``(P, valid)`` (its coordinates swapped): a point
-    is covered where it lies between two valid rows x2 = const of it, no farther from the edge along
-    the row than the lattice's far end."""
-    P, valid = lattice  # transposed: P[..., 0] is x2, rows of P run from the far end (0) to the edge (-1)
-    ok = valid[0] & valid[-1]
-    y = P[0, ok, 0]
-    edge = P[-1, ok, 1]
-    far = P[0, ok, 1]
-    o = np.argsort(y)
-    y, edge, far = y[o], edge[o], far[o]
-    if y.size < 2:
-        return traced
-    step = np.diff(y)
-    gap = step > 1.5 * np.median(step)  # two runs of rows: no band between them
-
-    def covered(k, p):
-        out = traced(k, p)
-        j = np.searchsorted(y, p[:, 1]) - 1
-        inside = (j >= 0) & (j < y.size - 1)
-        j = np.clip(j, 0, y.size - 2)
-        w = (p[:, 1] - y[j]) / (y[j + 1] - y[j])
-        e = edge[j] + w * (edge[j + 1] - edge[j])
-        f = far[j] + w * (far[j + 1] - far[j])
-        t = (p[:, 0] - e) / (f - e)  # 0 at the edge, 1 at the far end
-        return out | (inside & ~gap[j] & (t <= 1.0) & (t >= -1.0))
-    return covered
-
-
-def _lattice(F, grid, k0, cells=None, extra=()):
-    """The band's lattice ``(P (rows, cols, 2), valid (rows, cols))``: columns where the edge crosses
-    once between grid rows, the same way round in all of them (None where there is none); ``cells``
-    (per cell between grid columns i, i + 1): only those (None: all); ``extra``: more columns x1 = these
-    (in the cells used)."""
-    xs, ys, values = grid
-    X, Y = xs[1:-1], ys[1:-1]
-    fin = np.isfinite(values[1:-1, 1:-1])  # [j, i] at (X[i], Y[j])
-    nx = len(X)
-    trans = _crossings(fin)  # per grid column: (row below the edge crossing, sense) or None
-    use = np.ones(nx - 1, dtype=bool) if cells is None else np.asarray(cells, dtype=bool)
-    near = np.zeros(nx, dtype=bool)
-    near[:-1] |= use
-    near[1:] |= use
-    senses = {t[1] for t, u in zip(trans, near) if t is not None and u}
-    if len(senses) != 1:
-        return None
-    sense = senses.pop()
-    ny = len(Y)
-    for i in range(nx):  # a column defined throughout: the edge lies past the window's frame there
-        if trans[i] is None and fin[:, i].all():
-            trans[i] = (-1 if sense > 0 else ny - 1, sense)
-    m = BAND_COLUMNS
-    cx, lo_row, hi_row = [], [], []
-    for i in range(nx - 1):
-        a, b = trans[i], trans[i + 1]
-        if a is None or b is None or not use[i]:
-            continue
-        if a[0] in (-1, ny - 1) and b[0] in (-1, ny - 1):
-            continue  # the edge past the frame on both sides
-        j0, j1 = max(min(a[0], b[0]), 0), min(max(a[0], b[0]) + 1, ny - 1)
-        here = [X[i] + (X[i + 1] - X[i]) * s / m for s in range(m + 1)]
-        if i + 1 < nx - 1 and trans[i + 2] is not None and use[i + 1]:
-            here.pop()  # the next cell's first column
-        here += [x for x in extra if X[i] < x < X[i + 1] and min(abs(x - h) for h in here) > 1e-9 * (X[i + 1] - X[i])]
-        for x in sorted(here):
-            cx.append(x)
-            lo_row.append(j0)
-            hi_row.append(j1)
-    if len(cx) < 2:
-        return None
-    cx, lo_row, hi_row = np.array(cx), np.array(lo_row), np.array(hi_row)
-    inside = np.where(sense > 0, Y[hi_row], Y[lo_row])  # defined end of each column's bracket
-    outside = np.where(sense > 0, Y[lo_row], Y[hi_row])
-    A = np.column_stack([cx, inside])
-    B = np.column_stack([cx, outside])
-    fa = F(A, np.full(len(A), k0))
-    fb = F(B, np.full(len(B), k0))
-    ok = np.isfinite(fa) & np.isnan(fb)
-    frame = np.isfinite(fa) & np.isfinite(fb) & (outside == (Y[0] if sense > 0 else Y[-1]))
-    if np.count_nonzero(ok | frame) < 2:
-        return None
-    span = float(np.hypot(X[-1] - X[0], Y[-1] - Y[0]))
-    E = np.full(A.shape, np.nan)
-    if ok.any():
-        E[ok] = edge_point(F, A[ok], B[ok], np.full(np.count_nonzero(ok), k0), span)
-    E[frame] = B[frame]  # the edge past the frame: the band ends on it
-    ok |= frame
-    dy = Y[1] - Y[0]
-    reach = float(np.max(np.abs(inside[ok] - E[ok, 1]))) + BAND_OVER * dy
-    n = int(np.ceil(np.log(FLOOR * span / reach) / np.log(BAND_RATIO)))
-    d = np.concatenate([reach * BAND_RATIO ** np.arange(n + 1), [0.0]])  # from the far row to the edge
-    P = np.empty((d.size, cx.size, 2))
-    P[:, :, 0] = cx[None, :]
-    P[:, :, 1] = E[None, :, 1] + sense * d[:, None]
-    valid = ok[None, :] & (P[:, :, 1] >= Y[0]) & (P[:, :, 1] <= Y[-1])
-    valid[:, ~ok] = False
-    P[~valid] = 0.0
-    return P, valid
 
 
 def _pieces(F, P, valid, V, ks, tol, carry=None):
@@ -313,7 +163,7 @@ def _pieces(F, P, valid, V, ks, tol, carry=None):
         q, g, use = R[at:at + len(p)], slope[at:at + len(p)], good[at:at + len(p)]
         at += len(p)
         closed = np.array_equal(p[0], p[-1]) and use.all()
-        for lo, hi in _runs(use):
+        for lo, hi in true_runs(use):
             keep = _thin(q[lo:hi], THIN * tol)
             if keep.size >= 2:
                 out.append((k, q[lo:hi][keep], g[lo:hi][keep], closed))
@@ -350,11 +200,6 @@ def _thin(q, close):
     return np.array(keep)
 
 
-def _runs(mask):
-    """(start, stop) of the runs of True in ``mask``."""
-    d = np.diff(np.concatenate([[False], mask, [False]]).astype(int))
-    return list(zip(np.flatnonzero(d == 1), np.flatnonzero(d == -1)))
-
 
 def _traced_cell(grid, p):
     """True where the points ``p`` lie in a cell of ``grid`` with every corner defined (traced there)."""
@@ -383,7 +228,7 @@ def _merge(lines, pieces, traced, tol):
         if closed and not cov.any():
             parts.append((k, q, g, 0, len(q), True))
         else:
-            parts += [(k, q, g, lo, hi, False) for lo, hi in _runs(~cov)]
+            parts += [(k, q, g, lo, hi, False) for lo, hi in true_runs(~cov)]
     # a run lying within SAME tol of a line traced already is that line (the longer runs first): two
     # zero lines closer than that are one at this tol (each zero within 2 tol of the one traced)
     kept = [(k, q) for k, q, _ in lines]

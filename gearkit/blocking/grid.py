@@ -10,13 +10,23 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["grid_values", "sign_cells", "refine_grid", "edge_nodes", "bridge_pieces"]
+__all__ = ["grid_values", "sign_cells", "refine_grid", "edge_nodes", "bridge_pieces", "true_runs"]
 
 
 def grid_values(F, xs, ys, which: int = 0) -> np.ndarray:
     """``F`` (function ``which``) at the nodes of the grid ``xs`` x ``ys``: ``values[j, i]``."""
     gx, gy = np.meshgrid(xs, ys)
     return F(np.column_stack([gx.ravel(), gy.ravel()]), np.full(gx.size, which)).reshape(gx.shape)
+
+
+def true_runs(mask):
+    """(start, stop) of the runs of True in ``mask``.
+
+    >>> true_runs(np.array([True, True, False, True]))
+    [(0, 2), (3, 4)]
+    """
+    d = np.diff(np.concatenate([[False], mask, [False]]).astype(int))
+    return [(int(a), int(b)) for a, b in zip(np.flatnonzero(d == 1), np.flatnonzero(d == -1))]
 
 
 def edge_nodes(v, xs, ys):

@@ -39,7 +39,7 @@ from gearkit.blocking.brackets import NearestBracket, segment_roots
 from gearkit.blocking.corners import corner_splits
 from gearkit.blocking.edges import touchdowns, toward_edge
 from gearkit.blocking.ends import extend_ends
-from gearkit.blocking.grid import bridge_pieces, edge_nodes
+from gearkit.blocking.grid import bridge_pieces, edge_nodes, true_runs
 from gearkit.blocking.onsets import onset_vertices
 from gearkit.blocking.region import reconnect
 
@@ -124,7 +124,7 @@ def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), 
         q, g, jmp = q[keep], g[keep], jmp[keep]
         if closed and not np.array_equal(q[0], q[-1]):
             q, g, jmp = np.vstack([q, q[:1]]), np.append(g, g[0]), np.append(jmp, jmp[0])
-        lines += [(k, q[lo:hi], g[lo:hi]) for lo, hi in _runs(~jmp) if hi - lo >= 2]
+        lines += [(k, q[lo:hi], g[lo:hi]) for lo, hi in true_runs(~jmp) if hi - lo >= 2]
     # the band beside the no-pair area, where the grid masks every cell (band)
     carry = []  # band ends that leave its lattice beside the edge: carried on (ends)
     lines = band_lines(F, lines, grids, tol, measure, many, band, carry)
@@ -149,11 +149,6 @@ def _on_frame(p, xs, ys) -> bool:
     ey = np.isclose(p[:, 1], ys[1], rtol=0, atol=1e-12) | np.isclose(p[:, 1], ys[-2], rtol=0, atol=1e-12)
     return bool(np.all(ex | ey))
 
-
-def _runs(mask):
-    """(start, stop) of the runs of True in ``mask``."""
-    d = np.diff(np.concatenate([[False], mask, [False]]).astype(int))
-    return list(zip(np.flatnonzero(d == 1), np.flatnonzero(d == -1)))
 
 
 def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kinked=(), slopes=False,

@@ -1,0 +1,164 @@
+"""The band's lattice beside the no-pair area (see :mod:`~gearkit.blocking.band`): columns x1 = const
+where the area's edge crosses them once between two grid rows, ``BAND_COLUMNS`` per grid cell, or
+rows x2 = const where the edge is steep (the transposed problem); along each, nodes at distances from
+the edge falling geometrically by ``BAND_RATIO`` from beyond the masked cells down to round-off, and
+the edge itself (found by multisection, :func:`~gearkit.blocking.edges.edge_point`)."""
+from __future__ import annotations
+
+import numpy as np
+
+from gearkit.blocking.edges import edge_point
+from gearkit.blocking.grid import true_runs
+
+__all__ = ["band_lattice", "steep_cells", "covering", "run_ends", "crossings", "BAND_COLUMNS", "BAND_RATIO"]
+
+BAND_COLUMNS = 4  #: lattice columns per grid cell
+BAND_RATIO = 2 ** -0.5  #: ratio of the distances from the edge of successive lattice rows
+BAND_OVER = 0.5  #: the lattice reaches this many grid rows past the masked cells
+FLOOR = 1e-13  #: the nearest row (before the edge's own), relative to the window's diagonal
+
+
+def run_ends(lattice):
+    """x1 of the edge points at the ends of each run of rows of the transposed ``lattice`` (none: ())."""
+    if lattice is None:
+        return ()
+    P, valid = lattice
+    ok = valid[-1]
+    y, x = P[-1, ok, 0], P[-1, ok, 1]
+    if y.size < 2:
+        return ()
+    o = np.argsort(y)
+    y, x = y[o], x[o]
+    step = np.diff(y)
+    cut = np.flatnonzero(step > 1.5 * np.median(step))
+    return tuple(float(v) for v in np.unique(np.concatenate([x[[0, -1]], x[cut], x[cut + 1]])))
+
+
+def crossings(fin):
+    """Per column of ``fin`` ``[j, i]`` (defined nodes): ``(row below the one crossing, sense)`` where
+    the defined area's edge crosses it once (sense 1: defined above), else None."""
+    out = []
+    for i in range(fin.shape[1]):
+        t = np.flatnonzero(fin[1:, i] != fin[:-1, i])
+        out.append((int(t[0]), 1 if fin[t[0] + 1, i] else -1) if t.size == 1 else None)
+    return out
+
+
+def steep_cells(fin):
+    """For ``fin`` ``[i, j]`` (the defined grid nodes, transposed: a row of it is a grid column), per
+    cell between grid rows j, j + 1: True where the edge crosses both rows once, the same way round,
+    within one grid column (steeper than about 45 degrees in grid units); gaps of one cell between
+    such runs filled, runs of one cell dropped."""
+    t = crossings(fin)
+    n = len(t) - 1
+    s = np.array([t[j] is not None and t[j + 1] is not None and t[j][1] == t[j + 1][1] and t[j][0] == t[j + 1][0]
+                  for j in range(n)], dtype=bool)
+    fill = s.copy()
+    fill[1:-1] |= s[:-2] & s[2:]
+    ok = np.array([t[j] is not None and t[j + 1] is not None and t[j][1] == t[j + 1][1] for j in range(n)], dtype=bool)
+    fill &= ok
+    out = fill.copy()
+    for lo, hi in true_runs(fill):
+        if hi - lo < 2:
+            out[lo:hi] = False
+    return out
+
+
+def covering(traced, lattice):
+    """``traced`` widened by the transposed lattice ``(P, valid)`` (its coordinates swapped): a point
+    is covered where it lies between two valid rows x2 = const of it, no farther from the edge along
+    the row than the lattice's far end."""
+    P, valid = lattice  # transposed: P[..., 0] is x2, rows of P run from the far end (0) to the edge (-1)
+    ok = valid[0] & valid[-1]
+    y = P[0, ok, 0]
+    edge = P[-1, ok, 1]
+    far = P[0, ok, 1]
+    o = np.argsort(y)
+    y, edge, far = y[o], edge[o], far[o]
+    if y.size < 2:
+        return traced
+    step = np.diff(y)
+    gap = step > 1.5 * np.median(step)  # two runs of rows: no band between them
+
+    def covered(k, p):
+        out = traced(k, p)
+        j = np.searchsorted(y, p[:, 1]) - 1
+        inside = (j >= 0) & (j < y.size - 1)
+        j = np.clip(j, 0, y.size - 2)
+        w = (p[:, 1] - y[j]) / (y[j + 1] - y[j])
+        e = edge[j] + w * (edge[j + 1] - edge[j])
+        f = far[j] + w * (far[j + 1] - far[j])
+        t = (p[:, 0] - e) / (f - e)  # 0 at the edge, 1 at the far end
+        return out | (inside & ~gap[j] & (t <= 1.0) & (t >= -1.0))
+    return covered
+
+
+def band_lattice(F, grid, k0, cells=None, extra=()):
+    """The band's lattice ``(P (rows, cols, 2), valid (rows, cols))``: columns where the edge crosses
+    once between grid rows, the same way round in all of them (None where there is none); ``cells``
+    (per cell between grid columns i, i + 1): only those (None: all); ``extra``: more columns x1 = these
+    (in the cells used)."""
+    xs, ys, values = grid
+    X, Y = xs[1:-1], ys[1:-1]
+    fin = np.isfinite(values[1:-1, 1:-1])  # [j, i] at (X[i], Y[j])
+    nx = len(X)
+    trans = crossings(fin)  # per grid column: (row below the edge crossing, sense) or None
+    use = np.ones(nx - 1, dtype=bool) if cells is None else np.asarray(cells, dtype=bool)
+    near = np.zeros(nx, dtype=bool)
+    near[:-1] |= use
+    near[1:] |= use
+    senses = {t[1] for t, u in zip(trans, near) if t is not None and u}
+    if len(senses) != 1:
+        return None
+    sense = senses.pop()
+    ny = len(Y)
+    for i in range(nx):  # a column defined throughout: the edge lies past the window's frame there
+        if trans[i] is None and fin[:, i].all():
+            trans[i] = (-1 if sense > 0 else ny - 1, sense)
+    m = BAND_COLUMNS
+    cx, lo_row, hi_row = [], [], []
+    for i in range(nx - 1):
+        a, b = trans[i], trans[i + 1]
+        if a is None or b is None or not use[i]:
+            continue
+        if a[0] in (-1, ny - 1) and b[0] in (-1, ny - 1):
+            continue  # the edge past the frame on both sides
+        j0, j1 = max(min(a[0], b[0]), 0), min(max(a[0], b[0]) + 1, ny - 1)
+        here = [X[i] + (X[i + 1] - X[i]) * s / m for s in range(m + 1)]
+        if i + 1 < nx - 1 and trans[i + 2] is not None and use[i + 1]:
+            here.pop()  # the next cell's first column
+        here += [x for x in extra if X[i] < x < X[i + 1] and min(abs(x - h) for h in here) > 1e-9 * (X[i + 1] - X[i])]
+        for x in sorted(here):
+            cx.append(x)
+            lo_row.append(j0)
+            hi_row.append(j1)
+    if len(cx) < 2:
+        return None
+    cx, lo_row, hi_row = np.array(cx), np.array(lo_row), np.array(hi_row)
+    inside = np.where(sense > 0, Y[hi_row], Y[lo_row])  # defined end of each column's bracket
+    outside = np.where(sense > 0, Y[lo_row], Y[hi_row])
+    A = np.column_stack([cx, inside])
+    B = np.column_stack([cx, outside])
+    fa = F(A, np.full(len(A), k0))
+    fb = F(B, np.full(len(B), k0))
+    ok = np.isfinite(fa) & np.isnan(fb)
+    frame = np.isfinite(fa) & np.isfinite(fb) & (outside == (Y[0] if sense > 0 else Y[-1]))
+    if np.count_nonzero(ok | frame) < 2:
+        return None
+    span = float(np.hypot(X[-1] - X[0], Y[-1] - Y[0]))
+    E = np.full(A.shape, np.nan)
+    if ok.any():
+        E[ok] = edge_point(F, A[ok], B[ok], np.full(np.count_nonzero(ok), k0), span)
+    E[frame] = B[frame]  # the edge past the frame: the band ends on it
+    ok |= frame
+    dy = Y[1] - Y[0]
+    reach = float(np.max(np.abs(inside[ok] - E[ok, 1]))) + BAND_OVER * dy
+    n = int(np.ceil(np.log(FLOOR * span / reach) / np.log(BAND_RATIO)))
+    d = np.concatenate([reach * BAND_RATIO ** np.arange(n + 1), [0.0]])  # from the far row to the edge
+    P = np.empty((d.size, cx.size, 2))
+    P[:, :, 0] = cx[None, :]
+    P[:, :, 1] = E[None, :, 1] + sense * d[:, None]
+    valid = ok[None, :] & (P[:, :, 1] >= Y[0]) & (P[:, :, 1] <= Y[-1])
+    valid[:, ~ok] = False
+    P[~valid] = 0.0
+    return P, valid
