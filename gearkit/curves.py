@@ -22,7 +22,7 @@ _INV_SERIES = (
     929569.0 / 638512875.0,
     6404582.0 / 10854718875.0,
 )
-_SERIES_LIMIT = 0.05  # |a| below which the series beats tan(a) - a (cancellation)
+SERIES_LIMIT = 0.05  # |a| below which the series beats tan(a) - a (cancellation)
 
 
 def _is_scalar(x) -> bool:
@@ -31,8 +31,8 @@ def _is_scalar(x) -> bool:
 
 
 def _inv_scalar(a: float) -> float:
-    """``inv`` of one float, with the same series below ``_SERIES_LIMIT``."""
-    if abs(a) < _SERIES_LIMIT:
+    """``inv`` of one float, with the same series below ``SERIES_LIMIT``."""
+    if abs(a) < SERIES_LIMIT:
         a2 = a * a
         series = 0.0
         for c in reversed(_INV_SERIES):
@@ -67,15 +67,24 @@ def inv(alpha):
         return _inv_scalar(float(a))
     with np.errstate(invalid="ignore"):
         out = np.tan(a) - a
-        small = np.abs(a) < _SERIES_LIMIT
+        small = np.abs(a) < SERIES_LIMIT
     if np.count_nonzero(small):  # the series only where it is used (most calls have no small angle)
-        s = a[small]
-        s2 = s * s
-        series = np.zeros_like(s)
-        for c in reversed(_INV_SERIES):
-            series = series * s2 + c
-        out[small] = series * s2 * s
+        out[small] = inv_series(a[small])
     return out if out.ndim else float(out)
+
+
+def inv_series(a):
+    """``inv a`` by its Taylor series, for an array of angles below 0.05 rad (what :func:`inv` uses
+    there; no checks: for callers that have selected them).
+
+    >>> bool(abs(inv_series(np.array([0.01]))[0] - (np.tan(0.01) - 0.01)) < 1e-18)
+    True
+    """
+    a2 = a * a
+    series = np.zeros_like(a)
+    for c in reversed(_INV_SERIES):
+        series = series * a2 + c
+    return series * a2 * a
 
 
 def inv_inverse(value):

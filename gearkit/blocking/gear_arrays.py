@@ -17,15 +17,16 @@ import math
 
 import numpy as np
 
-from gearkit.curves import inv
+from gearkit.curves import SERIES_LIMIT, inv, inv_series
 from gearkit.families.involute.tools import BasicRack
 from gearkit.pair.tooling import cutter_radii
 
 __all__ = ["inv_inverse", "gear_forms", "ring_settings", "form_roll_lengths"]
 
 NEWTON = 12  #: most Newton steps of the inverse involute (quadratic from the start: 4 to 6 suffice)
-SERIES_BELOW = 0.1  #: angles (rad) whose ``inv`` is left to :func:`~gearkit.curves.inv` (its series below
-#: 0.05); above, ``inv a`` is ``tan a - a`` there too, read off the tangent the Newton step has anyway
+SERIES_BELOW = 0.1  #: no iterate falls below this angle (rad) unless v < inv of it: only then are the angles
+#: below ``SERIES_LIMIT`` (0.05) given :func:`~gearkit.curves.inv`'s series (elsewhere ``inv a`` is ``tan a - a``,
+#: read off the tangent the Newton step has anyway)
 _INV_SERIES_BELOW = inv(SERIES_BELOW)
 NEWTON_DONE = 1e-13  #: a Newton step of inv_inverse below this fraction of the angle ends it
 HEIGHTS_KEPT = 64  #: racks whose straight-flank height is remembered (each kept alive: its id stays its own)
@@ -55,9 +56,9 @@ def inv_inverse(v):
         t = np.tan(a)
         f = t - a
         if series:
-            small = a < SERIES_BELOW
-            if np.count_nonzero(small):  # inv (its series) at the small angles alone: f is tan a - a elsewhere
-                f[small] = inv(a[small])
+            small = np.abs(a) < SERIES_LIMIT
+            if np.count_nonzero(small):  # inv's series at the small angles alone: f is tan a - a elsewhere
+                f[small] = inv_series(a[small])
         step = (f - v) / (t * t)
         a = a - step
         size = np.abs(step)
