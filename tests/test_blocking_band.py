@@ -167,3 +167,42 @@ def test_a_line_the_lattice_left_beside_the_edge_is_carried_to_its_end(z1, z2, n
     zeros = _edge_zeros(c.field, name, c.window, x1s=np.array(x1s))
     assert len(zeros) >= len(x1s)  # the oracle sees the line on every column
     assert _farthest(zeros, c.line(name).components) <= CONTRACT * tol
+
+
+def _left_edge_zeros(field, name, window):
+    """Exact zeros of ``name`` on rows x2 = const running right from the no-pair edge at the window's left
+    side (an internal pair's rows end on its edge at the right too: each row's edge is bracketed from
+    the left side to ``LEFT_REACH`` in, then sampled as on the columns)."""
+    zeros = []
+    for x2 in np.linspace(window[2], window[3], COLUMNS + 2)[1:-1]:
+        f = lambda x1: field.margin(name, x1, x2)  # noqa: E731
+        lo, hi = window[0], window[0] + LEFT_REACH
+        if not np.isnan(f(lo)) or np.isnan(f(hi)):
+            continue  # no edge crossing this row from the left
+        for _ in range(EDGE_BISECTIONS):
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if np.isnan(f(mid)) else (lo, mid)
+        xs = hi + DISTANCES
+        v = np.array([f(x) for x in xs])
+        for i in np.flatnonzero(np.isfinite(v[:-1]) & np.isfinite(v[1:]) & ((v[:-1] > 0) != (v[1:] > 0))):
+            x = brentq(f, xs[i], xs[i + 1], xtol=1e-15, rtol=1e-15)
+            if abs(f(x)) <= FALL * min(abs(v[i]), abs(v[i + 1])):
+                zeros.append([x, x2])
+    return np.array(zeros).reshape(-1, 2)
+
+
+LEFT_REACH = 0.5  #: the rows' brackets of the left edge: from the window's left side this far in
+LEFT = [  # (z1, z2, shaper teeth, line, tol): an internal pair's edge where x1 is about constant (57/130: gear 1
+    # is cut no tooth below x1 = -2.948), which the columns never cross (411 .. 4.1e5 tol short before)
+    (57, 130, 28, "contact_ratio_tip=1.2", 1e-3),
+    (57, 130, 28, "contact_ratio_tip=1.2", 1e-6),
+    (57, 130, 28, "tip_interference", 1e-4),
+]
+
+
+@pytest.mark.parametrize("z1, z2, z0, name, tol", LEFT)
+def test_a_line_beside_an_internal_pair_s_steep_edge_is_traced_to_tol(z1, z2, z0, name, tol):
+    c = blocking_contour(PairSpec(z1, z2, 1.0, kind="internal", tool2=ShaperCutter(z0)), tol=tol, lines=[name])
+    zeros = _left_edge_zeros(c.field, name, c.window)
+    assert len(zeros) >= 3, name
+    assert _farthest(zeros, c.line(name).components) <= CONTRACT * tol

@@ -34,22 +34,25 @@ def run_ends(lattice):
     return tuple(float(v) for v in np.unique(np.concatenate([x[[0, -1]], x[cut], x[cut + 1]])))
 
 
-def crossings(fin):
+def crossings(fin, sense=None):
     """Per column of ``fin`` ``[j, i]`` (defined nodes): ``(row below the one crossing, sense)`` where
-    the defined area's edge crosses it once (sense 1: defined above), else None."""
+    the defined area's edge crosses it once (sense 1: defined above; ``sense``: once that way round,
+    crossings the other way aside), else None."""
     out = []
     for i in range(fin.shape[1]):
         t = np.flatnonzero(fin[1:, i] != fin[:-1, i])
-        out.append((int(t[0]), 1 if fin[t[0] + 1, i] else -1) if t.size == 1 else None)
+        s = np.where(fin[t + 1, i], 1, -1)
+        t, s = (t, s) if sense is None else (t[s == sense], s[s == sense])
+        out.append((int(t[0]), int(s[0])) if t.size == 1 else None)
     return out
 
 
-def steep_cells(fin):
+def steep_cells(fin, sense=None):
     """For ``fin`` ``[i, j]`` (the defined grid nodes, transposed: a row of it is a grid column), per
     cell between grid rows j, j + 1: True where the edge crosses both rows once, the same way round,
     within one grid column (steeper than about 45 degrees in grid units); gaps of one cell between
     such runs filled, runs of one cell dropped."""
-    t = crossings(fin)
+    t = crossings(fin, sense)  # (``sense``: see :func:`crossings`)
     n = len(t) - 1
     s = np.array([t[j] is not None and t[j + 1] is not None and t[j][1] == t[j + 1][1] and t[j][0] == t[j + 1][0]
                   for j in range(n)], dtype=bool)
@@ -93,16 +96,16 @@ def covering(traced, lattice):
     return covered
 
 
-def band_lattice(F, grid, k0, cells=None, extra=()):
+def band_lattice(F, grid, k0, cells=None, extra=(), sense=None):
     """The band's lattice ``(P (rows, cols, 2), valid (rows, cols))``: columns where the edge crosses
     once between grid rows, the same way round in all of them (None where there is none); ``cells``
     (per cell between grid columns i, i + 1): only those (None: all); ``extra``: more columns x1 = these
-    (in the cells used)."""
+    (in the cells used); ``sense``: the crossings that way round only (see :func:`crossings`)."""
     xs, ys, values = grid
     X, Y = xs[1:-1], ys[1:-1]
     fin = np.isfinite(values[1:-1, 1:-1])  # [j, i] at (X[i], Y[j])
     nx = len(X)
-    trans = crossings(fin)  # per grid column: (row below the edge crossing, sense) or None
+    trans = crossings(fin, sense)  # per grid column: (row below the edge crossing, sense) or None
     use = np.ones(nx - 1, dtype=bool) if cells is None else np.asarray(cells, dtype=bool)
     near = np.zeros(nx, dtype=bool)
     near[:-1] |= use
