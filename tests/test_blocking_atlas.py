@@ -137,7 +137,9 @@ def test_bad_contour_options_and_an_absent_scheduler_write_nothing(tmp_path, cap
 
 #: ``gearkit`` with the atlas' cell function replaced: every cell but z1 = 12 runs ten minutes
 SLOW_CELLS = """
-import sys, time
+import signal, sys, time
+# Ctrl-C as a terminal delivers it: a test run started in the background inherits SIGINT ignored
+signal.signal(signal.SIGINT, signal.default_int_handler)
 import gearkit.blocking.atlas as atlas
 real = atlas.atlas_cell
 def cell(template, z1, z2, options, criterion="balanced"):
