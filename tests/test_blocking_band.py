@@ -42,23 +42,30 @@ def _edge_zeros(field, name, window, rows=False, x1s=None):
     margin = field if callable(field) else field.margin
     if x1s is None:
         x1s = np.linspace(window[0], window[1], COLUMNS + 2)[1:-1]
-    zeros = []
-    for x1 in x1s:
-        f = lambda x2: margin(name, x1, x2)  # noqa: E731
-        lo, hi = window[2], window[3]
-        if not np.isnan(f(lo)) or np.isnan(f(hi)):
-            continue  # no edge crossing this column from below (undefined below, defined above)
-        for _ in range(EDGE_BISECTIONS):
-            mid = 0.5 * (lo + hi)
-            lo, hi = (mid, hi) if np.isnan(f(mid)) else (lo, mid)
-        ys = hi + DISTANCES
-        ys = ys[ys <= window[3]]
-        v = np.array([f(y) for y in ys])
-        for i in np.flatnonzero(np.isfinite(v[:-1]) & np.isfinite(v[1:]) & ((v[:-1] > 0) != (v[1:] > 0))):
-            y = brentq(f, ys[i], ys[i + 1], xtol=1e-15, rtol=1e-15)
-            if abs(f(y)) <= FALL * min(abs(v[i]), abs(v[i + 1])):
-                zeros.append([x1, y])
+    zeros = [[x1, y] for x1 in x1s
+             for y in _zeros_from_edge(lambda x2: margin(name, x1, x2), window[2], window[3], window[3])]
     return np.array(zeros).reshape(-1, 2)
+
+
+def _zeros_from_edge(f, lo, hi, top):
+    """The zeros of ``f`` (NaN where no pair exists) along one line: its edge bisected between ``lo``
+    (undefined) and ``hi`` (defined), then ``f`` sampled at ``DISTANCES`` from it up to ``top``, every
+    sign change solved by brentq (none where ``|f|`` does not fall: a pole). Empty where the line has
+    no such edge."""
+    if not np.isnan(f(lo)) or np.isnan(f(hi)):
+        return []
+    for _ in range(EDGE_BISECTIONS):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if np.isnan(f(mid)) else (lo, mid)
+    ts = hi + DISTANCES
+    ts = ts[ts <= top]
+    v = np.array([f(t) for t in ts])
+    out = []
+    for i in np.flatnonzero(np.isfinite(v[:-1]) & np.isfinite(v[1:]) & ((v[:-1] > 0) != (v[1:] > 0))):
+        t = brentq(f, ts[i], ts[i + 1], xtol=1e-15, rtol=1e-15)
+        if abs(f(t)) <= FALL * min(abs(v[i]), abs(v[i + 1])):
+            out.append(t)
+    return out
 
 
 def _farthest(zeros, components):
@@ -164,21 +171,9 @@ def _left_edge_zeros(field, name, window):
     """Exact zeros of ``name`` on rows x2 = const running right from the no-pair edge at the window's left
     side (an internal pair's rows end on its edge at the right too: each row's edge is bracketed from
     the left side to ``LEFT_REACH`` in, then sampled as on the columns)."""
-    zeros = []
-    for x2 in np.linspace(window[2], window[3], COLUMNS + 2)[1:-1]:
-        f = lambda x1: field.margin(name, x1, x2)  # noqa: E731
-        lo, hi = window[0], window[0] + LEFT_REACH
-        if not np.isnan(f(lo)) or np.isnan(f(hi)):
-            continue  # no edge crossing this row from the left
-        for _ in range(EDGE_BISECTIONS):
-            mid = 0.5 * (lo + hi)
-            lo, hi = (mid, hi) if np.isnan(f(mid)) else (lo, mid)
-        xs = hi + DISTANCES
-        v = np.array([f(x) for x in xs])
-        for i in np.flatnonzero(np.isfinite(v[:-1]) & np.isfinite(v[1:]) & ((v[:-1] > 0) != (v[1:] > 0))):
-            x = brentq(f, xs[i], xs[i + 1], xtol=1e-15, rtol=1e-15)
-            if abs(f(x)) <= FALL * min(abs(v[i]), abs(v[i + 1])):
-                zeros.append([x, x2])
+    zeros = [[x, x2] for x2 in np.linspace(window[2], window[3], COLUMNS + 2)[1:-1]
+             for x in _zeros_from_edge(lambda x1: field.margin(name, x1, x2), window[0], window[0] + LEFT_REACH,
+                                       np.inf)]
     return np.array(zeros).reshape(-1, 2)
 
 
