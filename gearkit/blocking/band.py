@@ -68,16 +68,16 @@ THIN = 0.25  #: successive vertices of a band piece closer than this many tol ar
 #: between two columns' edge points, where the edge has a corner: the rows next to the edge all put theirs there)
 
 
-def band_lines(F, lines, grids, tol: float, measure=(), many=None, band=None, carry=None) -> list:
+def band_lines(F, lines, grids, tol: float, measure=(), many=None, carry=None) -> list:
     """``lines`` (``[(k, points, slopes)]``, the grid's pieces) with the band's pieces added and joined
     to them (see the module notes). ``many(points, ks) -> (len(ks), n)``: all functions ``ks`` at the
-    same points (one evaluation); None: ``F`` once per function. ``band``: the curves traced in the
-    band (None: all but ``measure``). ``carry``: a list to which the ends of the band's pieces that
+    same points (one evaluation); None: ``F`` once per function; every curve but ``measure`` is
+    traced in the band. ``carry``: a list to which the ends of the band's pieces that
     leave the lattice through its boundary off the no-pair edge are appended (``(k, point)``): the
     lattice's last row is a chord between the edge's points on two columns, or the window's frame
     on one of them, and a line may go on beside the edge below it (see
     :func:`~gearkit.blocking.ends.extend_ends`)."""
-    ks = [k for k in range(len(grids)) if k not in measure and (band is None or k in band)
+    ks = [k for k in range(len(grids)) if k not in measure
           and np.any(np.isnan(grids[k][2][1:-1, 1:-1])) and np.any(np.isfinite(grids[k][2]))]
     if not ks:
         return lines

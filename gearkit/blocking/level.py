@@ -67,14 +67,14 @@ JUMP_FALL = 0.5  #: ... and |F| there above this fraction of the smaller |F| at 
 
 
 def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), kinked=(), onsets=((), ()),
-               many=None, band=None) -> list:
+               many=None) -> list:
     """Every component of ``F_k = 0`` seen by the grids ``grids[k] = (xs, ys, values)`` (``values[j, i]``
     at ``(xs[i], ys[j])``, NaN where undefined): a list (one entry per ``k``) of ``(n, 2)`` polylines
     within about ``1.25 tol`` of the zero set; a closed one repeats its first vertex last. A piece of
     one grid cell that does not cross the grid's inner frame (the window of a grid padded by one ring)
     is dropped: it ends on both sides beside undefined nodes. ``onsets``: ``(((axis, x), ...), curves)``,
-    lines ``x_axis = x`` where the curves listed have a kink (:mod:`~gearkit.blocking.onsets`). ``many``
-    and ``band``: see :func:`~gearkit.blocking.band.band_lines`."""
+    lines ``x_axis = x`` where the curves listed have a kink (:mod:`~gearkit.blocking.onsets`). ``many``:
+    see :func:`~gearkit.blocking.band.band_lines`."""
     import contourpy
 
     raw, owner, edges = [], [], []
@@ -127,7 +127,7 @@ def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), 
         lines += [(k, q[lo:hi], g[lo:hi]) for lo, hi in true_runs(~jmp) if hi - lo >= 2]
     # the band beside the no-pair area, where the grid masks every cell (band)
     carry = []  # band ends that leave its lattice beside the edge: carried on (ends)
-    lines = band_lines(F, lines, grids, tol, measure, many, band, carry)
+    lines = band_lines(F, lines, grids, tol, measure, many, carry)
     lines = bridge_pieces(lines, grids, measure, BRIDGE_CELLS, BRIDGE_COS)
     # a run of one chord off the frame, bridged to none: a speck (see above)
     lines = [(k, q, g) for k, q, g in lines if len(q) >= 3 or k in measure or _on_frame(q, *grids[k][:2])]

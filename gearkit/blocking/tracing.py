@@ -105,10 +105,8 @@ def trace(field: PairField, window, names, tol: float, max_step: float | None = 
         bar.update(2)
         # the form circles break their slope where a gear starts to undercut: so do the lines reading them
         onsets = (undercut_onsets(field), {k for k, n in enumerate(ids) if not n.startswith("undercut.")})
-        # the band beside the no-pair area (:mod:`~gearkit.blocking.band`), external or internal pair: every line
-        band = set(range(len(names)))
         traced = zero_lines(F, curves, tol, max_step, measure=(len(ids) - 1,) if region else (), kinked=kinked,
-                            onsets=onsets, many=many, band=band)
+                            onsets=onsets, many=many)
         bar.update(3)
         polygons = None
         if region:
