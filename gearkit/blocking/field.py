@@ -13,7 +13,10 @@ shaper-cut gear that is not undercut (``rho_l >= 0``) has its form circle where 
 puts it (the generated one agrees to rounding), so the closed form is used there; an undercut
 gear's form circle comes from the generated gear, cached per (gear, x): it does not depend on
 the tip diameter. Only the margins that depend on a form circle (real contact ratio,
-interference, sliding at the ends of the real path) ask for it.
+interference, sliding at the ends of the real path) read it, but every margin at the shifts of an
+undercut gear asks whether the generated gear has a tooth: where it has none (below the shift where
+its cutter leaves no involute flank, above the one where its tip reaches its base circle) the check
+raises, and no pair exists there for any margin.
 
 Units: lengths in module units (margin / m_n), angles in radians, ratios as they are.
 """

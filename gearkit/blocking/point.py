@@ -50,10 +50,8 @@ class FieldPoint:
         if g is not None:
             return g
         f = self.field
-        forms = tuple(f.form_diameter(i + 1, x, exact=self.exact) if need else None
-                      for i, (need, x) in enumerate(zip(needs, (self.x1, self.x2))))
-        if any(d is not None and math.isnan(d) for d in forms):
-            raise SpecError("shift", "the generated gear has no tooth at this shift")
+        teeth = self._teeth()
+        forms = tuple(d if need else None for need, d in zip(needs, teeth))
         key = forms if any(d is not None for d in forms) else None
         g = self._geo.get(key)
         if g is None:
@@ -62,6 +60,20 @@ class FieldPoint:
             g = self._geo[key] = _pair_geometry(f.spec(self.x1, self.x2), key)
         self._geo[needs] = g
         return g
+
+    def _teeth(self) -> tuple:
+        """The generated form diameters of the gears (None where the closed form is exact, always for a
+        ring), whatever margin is asked for: the check generates both gears and raises where one has no
+        involute flank left, so no pair exists there, even for a margin that reads no form circle (a SpecError)."""
+        out = self._geo.get("teeth")
+        if out is None:
+            f = self.field
+            out = tuple(None if (f.internal and i == 2) else f.form_diameter(i, x, exact=self.exact)
+                        for i, x in ((1, self.x1), (2, self.x2)))
+            self._geo["teeth"] = out
+        if any(d is not None and math.isnan(d) for d in out):
+            raise SpecError("shift", "the generated gear has no tooth at this shift")
+        return out
 
     def _fail(self, g) -> dict:
         """:func:`~gearkit.checks.involute.fail_margins` of ``g``, kept per geometry."""

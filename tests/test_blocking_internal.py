@@ -1,0 +1,168 @@
+"""Blocking contours of internal pairs beside the shift where gear 1 is cut with no tooth.
+
+Below that shift (and above the one where gear 1's tip reaches its base circle) the pair formulas
+still give a pair, but :func:`~gearkit.checks.check_pair` generates gear 1 with the pair's tip, finds
+no involute flank left and raises a SpecError: no pair exists there. The traced contour is the map of
+the check, so no line runs in that strip and the region does not reach into it. The scalar margins
+(``PairField.margin``, ``BlockingContour.margins``) read numbers there for the lines that need no
+form circle of gear 1 (46/49, shaper z0 20: the tip-to-tip eps_alpha = 1 line ran 0.22 into it;
+57/130, z0 28: s_a1 = 0.25 m_n), so the traced lines looked short of them.
+
+Oracles: check_pair itself (raises, or reports) at random points across the strip; the exact zeros of
+the scalar margins on rows x2 = const from the no-pair edge (bisected), solved by brentq.
+"""
+import math
+from dataclasses import replace
+
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+
+from gearkit.blocking import blocking_contour
+from gearkit.blocking.contour import default_window
+from gearkit.blocking.field import PairField
+from gearkit.checks import check_pair
+from gearkit.distances import distances_to_polyline
+from gearkit.errors import SpecError
+from gearkit.families.involute import ShaperCutter
+from gearkit.pair import PairSpec, pair_geometry
+
+CONTRACT = 2.0  #: achieved / tol
+SAMPLES = 24  #: random points per pair across the strip
+ROWS = 16  #: rows x2 = const across the window
+EDGE_BISECTIONS = 60  #: bisections locating the no-pair edge on a row (to round-off)
+DISTANCES = np.geomspace(1e-12, 0.6, 160)  #: samples right of the edge (shift units)
+CHECK_BISECTIONS = 30  #: bisections of the check's first pair on a row (to 1e-11)
+STEP = 0.01  #: steps along a row from a zero in the strip to the check's first pair
+FALL = 0.5  #: a solved sign change is a zero when |F| fell below this fraction of its ends'
+RINGS = {"46/49": (46, 49, 20), "57/130": (57, 130, 28)}
+
+
+def _ring(key):
+    z1, z2, z0 = RINGS[key]
+    return PairSpec(z1, z2, 1.0, kind="internal", tool2=ShaperCutter(z0))
+
+
+def _check_raises(spec) -> bool:
+    try:
+        check_pair(spec)
+    except SpecError:
+        return True
+    return False
+
+
+def _formula_raises(spec) -> bool:
+    """True where the pair formulas give no pair (check_pair's formula geometry raises)."""
+    try:
+        pair_geometry(spec)
+    except SpecError:
+        return True
+    return False
+
+
+@pytest.mark.parametrize("key", sorted(RINGS))
+def test_the_margins_are_undefined_exactly_where_the_check_finds_no_pair(key):
+    """Random points from the window's left side to 0.1 past gear 1's no-tooth shift: every margin of
+    the field is NaN where check_pair raises and a number where it reports; contains() is check_pair's
+    verdict. (On the old code the margins that need no form circle of gear 1 were numbers in the strip.)"""
+    spec = _ring(key)
+    field = PairField(spec)
+    window = default_window(field)
+    rng = np.random.default_rng(19)
+    no_pair = pair = 0
+    for _ in range(SAMPLES):
+        # the strip starts where the pair formulas give a pair (gear 1's tip above its base circle: the
+        # check's formula geometry does not raise), bisected on this row
+        x2 = rng.uniform(0.0, window[3])
+        a, b = -3.0, window[0] + 0.6
+        assert _formula_raises(field.spec(a, x2)) and not _formula_raises(field.spec(b, x2))
+        for _ in range(EDGE_BISECTIONS):
+            m = 0.5 * (a + b)
+            a, b = (m, b) if _formula_raises(field.spec(m, x2)) else (a, m)
+        x1 = b + 0.15 * rng.uniform() ** 2  # (denser near the edge: the strip is 0.02 .. 0.06 wide)
+        raises = _check_raises(field.spec(x1, x2))
+        # (the undercut onset's margin is the shift itself, x1 - x1,min: defined with or without a pair)
+        lines = [d for d in field.lines if not d.name.startswith("undercut.")]
+        values = [field.margin(d.name, x1, x2) for d in lines]
+        if raises:
+            no_pair += 1
+            assert all(math.isnan(v) for v in values), (x1, x2, [d.name for d, v in zip(lines, values)
+                                                                 if not math.isnan(v)])
+            assert not field.point(x1, x2).valid
+        else:
+            pair += 1
+            assert all(not math.isnan(v) for d, v in zip(lines, values) if d.name != "sliding"), (x1, x2)
+    assert no_pair >= 3 and pair >= 3  # the samples cover both sides of the no-tooth shift
+
+
+def _row_zeros(margin, lo, hi):
+    """The zeros of ``margin(x1)`` (NaN where no pair exists) right of its no-pair edge, bisected between
+    ``lo`` (undefined) and ``hi`` (defined): empty where the row has no such edge."""
+    if not np.isnan(margin(lo)) or np.isnan(margin(hi)):
+        return []
+    for _ in range(EDGE_BISECTIONS):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if np.isnan(margin(mid)) else (lo, mid)
+    xs = hi + DISTANCES
+    v = np.array([margin(x) for x in xs])
+    out = []
+    for i in np.flatnonzero(np.isfinite(v[:-1]) & np.isfinite(v[1:]) & ((v[:-1] > 0) != (v[1:] > 0))):
+        x = brentq(margin, xs[i], xs[i + 1], xtol=1e-15, rtol=1e-15)
+        if abs(margin(x)) <= FALL * min(abs(v[i]), abs(v[i + 1])):
+            out.append(x)
+    return out
+
+
+def _formula_margin(spec, name):
+    """``name``'s margin read off the pair formulas (check_pair's formula geometry, no generated gear:
+    defined in the strip too), NaN where they give no pair."""
+    def margin(x1, x2):
+        try:
+            g = pair_geometry(replace(spec, shift1=x1, shift2=x2))
+        except SpecError:
+            return math.nan
+        if name.startswith("tip_thickness.1="):
+            return g.gears[0].tip_thickness_normal / g.module - float(name.split("=")[1])
+        assert name.startswith("contact_ratio_tip=")
+        return g.contact_ratio_nominal - float(name.split("=")[1])
+    return margin
+
+
+STRIP_LINES = [  # (ring, line, tol, zeros in the strip, zeros with a pair): lines that the old scalar margins
+    # showed in the strip (46/49 the tip-to-tip eps_alpha = 1 line, 0.22 from the trace; 57/130 s_a1 = 0.25 m_n,
+    # which lies wholly in it: gear 1 is 0.257 m_n thick at the tip where the check first finds a tooth)
+    ("46/49", "contact_ratio_tip=1", 1e-4, True, True),
+    ("57/130", "tip_thickness.1=0.25", 1e-4, True, False),
+]
+
+
+@pytest.mark.parametrize("key, name, tol, in_strip, with_pair", STRIP_LINES)
+def test_a_line_beside_gear_1s_no_tooth_shift_is_the_checks_line(key, name, tol, in_strip, with_pair):
+    """The zeros of the line's margin by the check's formula geometry on rows x2 = const from its no-pair
+    edge (gear 1's tip at its base circle), solved by brentq: those where check_pair (generated) gives a
+    pair lie within 2 tol of the trace; those where it raises (the strip) have no trace near, closer than
+    their own distance from the nearest pair the check gives on the row, less 2 tol."""
+    spec = _ring(key)
+    c = blocking_contour(spec, tol=tol, lines=[name])
+    w = c.window
+    margin = _formula_margin(spec, name)
+    on, off = [], []
+    for x2 in np.linspace(w[2], w[3], ROWS + 2)[1:-1]:
+        for x in _row_zeros(lambda x1: margin(x1, x2), -3.0, w[0] + 0.6):
+            (off if _check_raises(c.field.spec(x, x2)) else on).append((x, x2))
+    assert bool(on) == with_pair and bool(off) == in_strip
+    components = c.line(name).components
+    if on:
+        far = np.min([distances_to_polyline(np.array(on), q) for q in components], axis=0)
+        assert float(far.max()) <= CONTRACT * tol
+    for x, x2 in off:  # the check's pair nearest on the row: stepped to from the zero, then bisected
+        b = x
+        while _check_raises(c.field.spec(b, x2)):
+            b += STEP
+        a = b - STEP
+        for _ in range(CHECK_BISECTIONS):
+            m = 0.5 * (a + b)
+            a, b = (m, b) if _check_raises(c.field.spec(m, x2)) else (a, m)
+        near = min(float(distances_to_polyline(np.array([[x, x2]]), q)[0]) for q in components) if components \
+            else math.inf
+        assert near >= (b - x) - CONTRACT * tol
