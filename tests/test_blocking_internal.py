@@ -166,3 +166,22 @@ def test_a_line_beside_gear_1s_no_tooth_shift_is_the_checks_line(key, name, tol,
         near = min(float(distances_to_polyline(np.array([[x, x2]]), q)[0]) for q in components) if components \
             else math.inf
         assert near >= (b - x) - CONTRACT * tol
+
+
+@pytest.mark.parametrize("key", sorted(RINGS))
+def test_gear_1s_no_tooth_shift_is_the_checks_to_round_off(key):
+    """The no-pair edge where gear 1 is cut no tooth, as the contour's field reads it (its form-circle
+    interpolant's floor, below which the arrays find no pair), is check_pair's to neighbouring floats:
+    the check raises at the floor and gives a pair one float above it. (It was bisected 12 times, a
+    bracket 3.6e-4 wide on 46/49, and each point the trace's edge searches put inside it generated a gear.)"""
+    from gearkit.blocking.arrays import margins
+
+    spec = _ring(key)
+    field = PairField(spec, x_ranges=default_window(PairField(spec)))
+    fit = field.form_interpolant(1)
+    floor, lo = fit[4], fit[0]
+    assert lo == np.nextafter(floor, np.inf)
+    for x2 in (0.5, 2.0):
+        assert _check_raises(field.spec(floor, x2)) and not _check_raises(field.spec(lo, x2))
+        m = margins(field, np.array([floor, lo]), np.array([x2, x2]), ["pointing.1"])["pointing.1"]
+        assert np.isnan(m[0]) and np.isfinite(m[1])

@@ -12,11 +12,8 @@ Form circles. The check reads each gear's form circle off the generated gear. A 
 shaper-cut gear that is not undercut (``rho_l >= 0``) has its form circle where the closed form
 puts it (the generated one agrees to rounding), so the closed form is used there; an undercut
 gear's form circle comes from the generated gear, cached per (gear, x): it does not depend on
-the tip diameter. Only the margins that depend on a form circle (real contact ratio,
-interference, sliding at the ends of the real path) read it, but every margin at the shifts of an
-undercut gear asks whether the generated gear has a tooth: where it has none (below the shift where
-its cutter leaves no involute flank, above the one where its tip reaches its base circle) the check
-raises, and no pair exists there for any margin.
+the tip diameter. Only the margins that depend on a form circle (real contact ratio, interference,
+sliding at the ends of the real path) read it; where the generated gear has no tooth, no margin exists.
 
 Units: lengths in module units (margin / m_n), angles in radians, ratios as they are.
 """
@@ -41,7 +38,9 @@ FORM_CHECKS = 2  #: test shifts of the interpolant
 FORM_MARGIN = 0.5  #: the interpolant reaches this far below the window (the probes of chords beside the
 #: window's edge reach past it: each point left outside would generate a gear of its own)
 FORM_TIPS = (0.0, 1.0, -0.5)  #: blank tips tried (m_n above the blank's own) for a gear with a flank
-FORM_BISECTIONS = 12  #: bisections for the smallest shift at which the generated gear has a tooth
+FORM_BISECTIONS = 12  #: bisections for the smallest shift at which the generated gear has a tooth, and
+FLOOR_BISECTIONS = 64  #: at most this many (to neighbouring floats) where it is inside the window: an edge
+#: of the no-pair area, which edge searches close in on (each point between two bisections generated a gear)
 FEW_SHIFTS = 16  #: the form-circle interpolant sums the series on floats for at most this many shifts (numpy's
 #: cost per call outweighs the arithmetic)
 GENERATED_CACHE = 4096  #: generated form circles kept per process (an atlas meets each gear in many cells)
@@ -302,7 +301,8 @@ class PairField:
         part ``[lo, hi]`` of ``x_ranges[which - 1]`` that ends ``FORM_GAP`` below the undercut onset
         (closer to it the generated form circle is not smooth); ``error`` is the largest deviation
         (mm) from the generated gears at ``FORM_CHECKS`` test shifts; below ``floor`` the generated gear
-        has no tooth (``-inf`` when it has one down to ``lo``); ``rho_F(x)`` is the roll length itself (mm, arrays:
+        has no tooth (``-inf`` when it has one down to ``lo``; ``floor`` and ``lo`` are neighbouring floats
+        where they lie inside the window); ``rho_F(x)`` is the roll length itself (mm, arrays:
         read off ``d_F`` it would lose ``sqrt(r_b ulp)``, 2e-7 mm, beside the onset). None without undercut.
         """
         if which in self._fits:
@@ -310,6 +310,7 @@ class PairField:
         fit = None
         x_min = self.x_min[which - 1]
         lo, hi = self.x_ranges[which - 1]
+        window_lo = lo
         lo -= FORM_MARGIN
         hi = min(hi, x_min - FORM_GAP) if x_min is not None else lo
         floor = -math.inf
@@ -329,8 +330,10 @@ class PairField:
                 if math.isnan(self.form_diameter(which, b)):
                     self._fits[which] = None
                     return None
-                for _ in range(FORM_BISECTIONS):
+                for k in range(FLOOR_BISECTIONS):
                     m = 0.5 * (a + b)
+                    if k >= FORM_BISECTIONS and (b <= window_lo or not a < m < b):
+                        break
                     a, b = (m, b) if math.isnan(self.form_diameter(which, m)) else (a, m)
                 lo, floor = b, a
             n = FORM_NODES

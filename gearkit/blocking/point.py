@@ -3,6 +3,11 @@
 :class:`FieldPoint` computes the pair geometry (:func:`~gearkit.pair.pair_geometry`, with the form
 circles the field reads) and the margins on first use, then keeps them. It is the reference the
 array margins (:mod:`gearkit.blocking.arrays`) are held against, and what point queries use.
+
+A pair exists where the check finds one: the pair formulas give one, and each generated gear has a
+tooth. Below the shift where its cutter leaves an undercut gear no involute flank (and above the one
+where its tip reaches its base circle) the formulas still give a pair, but the check raises: no
+margin exists there, not even one that reads no form circle.
 """
 from __future__ import annotations
 
