@@ -20,7 +20,8 @@ where undefined); every step below evaluates all the points it needs, of all the
    polyline lies within about ``tol + tol / 4`` of its curve, and the number of vertices is what
    the curvature needs at that tolerance: coarser tolerances cost less.
 
-4. **Saddles the grid got wrong**: loops cut across a thin part re-joined (:func:`~gearkit.blocking.region.reconnect`).
+4. **Saddles the grid got wrong**: loops cut across a thin part re-joined (:func:`~gearkit.blocking.region.reconnect`),
+   wedges cut short of their tips carried to them (:func:`~gearkit.blocking.tips.carry_to_tips`).
 
 The band beside the area where ``F`` is undefined, whose cells the grid masks, is traced on a
 lattice of its own and joined to the grid's lines (:mod:`~gearkit.blocking.band`); at the end, an
@@ -42,6 +43,7 @@ from gearkit.blocking.ends import extend_ends
 from gearkit.blocking.grid import bridge_pieces, edge_nodes, true_runs
 from gearkit.blocking.onsets import onset_vertices
 from gearkit.blocking.region import reconnect
+from gearkit.blocking.tips import carry_to_tips
 
 __all__ = ["zero_lines", "densify"]
 
@@ -67,14 +69,15 @@ JUMP_FALL = 0.5  #: ... and |F| there above this fraction of the smaller |F| at 
 
 
 def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), kinked=(), onsets=((), ()),
-               many=None) -> list:
+               many=None, parts=None) -> list:
     """Every component of ``F_k = 0`` seen by the grids ``grids[k] = (xs, ys, values)`` (``values[j, i]``
     at ``(xs[i], ys[j])``, NaN where undefined): a list (one entry per ``k``) of ``(n, 2)`` polylines
     within about ``1.25 tol`` of the zero set; a closed one repeats its first vertex last. A piece of
     one grid cell that does not cross the grid's inner frame (the window of a grid padded by one ring)
     is dropped: it ends on both sides beside undefined nodes. ``onsets``: ``(((axis, x), ...), curves)``,
     lines ``x_axis = x`` where the curves listed have a kink (:mod:`~gearkit.blocking.onsets`). ``many``:
-    see :func:`~gearkit.blocking.band.band_lines`."""
+    see :func:`~gearkit.blocking.band.band_lines`. ``parts``: the parts of the measured curve, the region
+    (:func:`~gearkit.blocking.tips.part_evaluator`; see :func:`~gearkit.blocking.tips.carry_to_tips`)."""
     import contourpy
 
     raw, owner, edges = [], [], []
@@ -138,6 +141,9 @@ def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), 
     lines = extend_ends(F, lines, grids, tol, measure, carry)
     lines = densify(F, onset_vertices(F, lines, *onsets, vtol), tol, max_step, measure, kinked, True, kept)
     lines = reconnect(F, lines, kept, tol, lambda ls, kp: densify(F, ls, tol, max_step, measure, kinked, True, kp))
+    if parts is not None and measure:  # the region's chords still across a wedge or a strip: its edge (tips)
+        lines = carry_to_tips(F, parts, lines, kept, measure[0], tol, lambda g, ls: densify(g, ls, tol, max_step,
+                                                                                         (), range(g.size)))
     for k, q in once([(k, q) for k, q, _ in lines], tol, measure):
         out[k].append(q)
     return out

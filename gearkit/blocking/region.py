@@ -17,7 +17,8 @@ import numpy as np
 
 from gearkit.blocking.grid import grid_values
 
-__all__ = ["padded_grid", "pad", "orient_loops", "inside_polygons", "polygon_area", "best_point", "reconnect"]
+__all__ = ["padded_grid", "pad", "orient_loops", "inside_polygons", "polygon_area", "best_point", "reconnect",
+           "locate_chord"]
 
 SPLIT_DEPTH = 20  #: most self-crossings split out of one loop
 FINE = 41  #: nodes per side of the local grid that looks for the best point of an empty region
@@ -126,13 +127,15 @@ def reconnect(F, lines, kept, tol: float, refine) -> list:
     polylines leave out, or take in, the part between them), become ``P1 -> Q2`` and ``P2 -> Q1`` (two
     loops become one, or one loop two). The lines changed are refined again by ``refine(lines, kept)``
     (:func:`~gearkit.blocking.level.densify`, which adds the chords it finds no zero across to the new
-    ``kept``), round after round (``RECONNECT_ROUNDS``)."""
+    ``kept``), round after round (``RECONNECT_ROUNDS``); ``kept`` is extended by their chords kept."""
+    todo = list(kept)
     for _ in range(RECONNECT_ROUNDS):
-        lines, changed = _rejoin(F, lines, kept, tol)
+        lines, changed = _rejoin(F, lines, todo, tol)
         if not changed:
             break
-        kept = []
-        lines = [lines[n] for n in range(len(lines)) if n not in changed] + refine([lines[n] for n in changed], kept)
+        todo = []
+        lines = [lines[n] for n in range(len(lines)) if n not in changed] + refine([lines[n] for n in changed], todo)
+        kept += todo
     return lines
 
 
@@ -141,7 +144,7 @@ def _rejoin(F, lines, kept, tol: float):
     lines = list(lines)
     cuts = []
     for k, a, b in kept:
-        if np.hypot(*(b - a)) > tol and _locate(lines, k, a, b) is not None:
+        if np.hypot(*(b - a)) > tol and locate_chord(lines, k, a, b) is not None:
             cuts.append((k, tuple(a), tuple(b)))
     cuts = sorted(set(cuts))
     if not cuts:
@@ -169,7 +172,7 @@ def _rejoin(F, lines, kept, tol: float):
     return lines, sorted(changed)
 
 
-def _locate(lines, k, a, b):
+def locate_chord(lines, k, a, b):
     """(line, index) of the chord ``a -> b`` of a closed polyline of curve ``k`` in ``lines``, or None."""
     a, b = np.asarray(a), np.asarray(b)
     for m, (kk, q, _) in enumerate(lines):
@@ -192,7 +195,7 @@ def _replace(lines, changed, drop, new):
 def _swap(lines, changed, k, p1, q1, p2, q2):
     """The chords ``p1 -> q1`` and ``p2 -> q2`` of closed polylines replaced by ``p1 -> q2`` and
     ``p2 -> q1`` (see :func:`reconnect`)."""
-    w1, w2 = _locate(lines, k, p1, q1), _locate(lines, k, p2, q2)
+    w1, w2 = locate_chord(lines, k, p1, q1), locate_chord(lines, k, p2, q2)
     if w1 is None or w2 is None:
         return lines, changed
     (m1, j1), (m2, j2) = w1, w2

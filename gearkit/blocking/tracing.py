@@ -27,6 +27,7 @@ from gearkit.blocking.grid import refine_grid, sign_cells
 from gearkit.blocking.level import zero_lines
 from gearkit.blocking.onsets import undercut_onsets
 from gearkit.blocking.region import best_point, orient_loops, pad, padded_grid
+from gearkit.blocking.tips import part_evaluator
 from gearkit.progress import Progress
 
 __all__ = ["Traced", "trace", "empty_reason", "GRID", "REGION_REFINE"]
@@ -105,8 +106,9 @@ def trace(field: PairField, window, names, tol: float, max_step: float | None = 
         bar.update(2)
         # the form circles break their slope where a gear starts to undercut: so do the lines reading them
         onsets = (undercut_onsets(field), {k for k, n in enumerate(ids) if not n.startswith("undercut.")})
+        G = part_evaluator(field, window, count)  # the region's parts: its corners (tips)
         traced = zero_lines(F, curves, tol, max_step, measure=(len(ids) - 1,) if region else (), kinked=kinked,
-                            onsets=onsets, many=many)
+                            onsets=onsets, many=many, parts=G if region else None)
         bar.update(3)
         polygons = None
         if region:

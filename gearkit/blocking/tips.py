@@ -1,0 +1,223 @@
+"""Corners of the admissible region that its chords cut: thin wedges traced to their tips.
+
+The region's edge is the zero set of the smallest of its parts (the hard margins and the distances
+to the window's edges: :func:`part_evaluator`); where the part binding at one vertex of its outline
+differs from the next one's, the edge turns a corner between them, where the two parts cross. A
+chord's middle near the edge says nothing of such a corner: where the parts cross at a small angle
+the region ends in a wedge narrower than a grid cell, which marching squares closes across short of
+its tip (33/78 at tol 1e-5: the wedge between interference.1 and interference.2 cut 0.1 short of
+its tip, the chord's middle 5.5e-3 from the edge, kept as no zero was found across it; 14/62,
+14/118, 13/45: interference.1 and pointing.1; 14/118 at tol 1e-3: the chord across the wedge within
+tol of the edge, the tip 4 tol beyond it). :func:`carry_to_tips` solves each corner ``T`` where the
+binding part changes from ``a`` to ``b`` along a chord ``A -> B``: the crossing of ``a = 0`` and
+``b = 0`` by Newton's method in the plane from ``A``; a corner farther than ``tol`` from its chord
+replaces the chord by the line ``a = 0`` from ``A`` to ``T`` and ``b = 0`` from ``T`` to ``B``, each
+traced to ``tol`` as a smooth curve of its own. A chord kept with no zero found across it whose ends
+bind the same part (along a strip of the region narrower than itself, its middle beside the strip)
+is replaced by that part's line. A new outline is taken only where it is the region's edge: every
+chord's middle within ``tol`` of its part's zero, every new vertex on no other part's wrong side, and
+no chord crossing the rest of the region's outline.
+
+>>> import numpy as np
+>>> P = lambda p, k: np.where(k == 0, p[:, 1] - 0.1 * p[:, 0], 0.2 * p[:, 0] - p[:, 1])  # a wedge, tip (0, 0)
+>>> T, ok = crossings(P, np.array([[1.0, 0.1]]), np.array([0]), np.array([1]), 1e-9, 10.0)
+>>> bool(ok[0]), bool(np.hypot(*T[0]) < 1e-9)
+(True, True)
+"""
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["part_evaluator", "crossings", "carry_to_tips"]
+
+NEWTON_ITERATIONS = 40  #: most Newton steps to a tip
+STEP_H = 1e-7  #: forward difference of the parts' gradients (shift units; their round-off is ~1e-15)
+REACH = 0.25  #: a tip lies within this fraction of the window's diagonal of the chord's end
+
+
+def part_evaluator(field, window, count=None):
+    """``G(points (n, 2), which (n,) int) -> (n,)``: part ``which[i]`` of the region's function at
+    ``points[i]``: the hard margins of ``field`` (NaN where no pair exists), then the distances to the
+    window's four edges (x1 - lo, hi - x1, x2 - lo, hi - x2); ``G.size`` parts, ``G.window``, and
+    ``G.many(points)``: every part at the points, ``(G.size, n)``. The region's function
+    (:func:`~gearkit.blocking.arrays.evaluator`'s ``"region"``) is their smallest. ``count``: a list
+    whose first item counts the points evaluated (times the parts, for ``G.many``)."""
+    from gearkit.blocking.arrays import evaluator
+
+    hard = list(field.hard)
+    M = evaluator(field, hard, None)
+    edges = np.array([0, 0, 1, 1]), np.array([False, True, False, True])  # axis, upper
+    lo = np.array([window[0], window[2]], dtype=float)
+    hi = np.array([window[1], window[3]], dtype=float)
+
+    def G(p, which):
+        p = np.asarray(p, dtype=float).reshape(-1, 2)
+        if count is not None:
+            count[0] += len(p)
+        which = np.asarray(which)
+        out = np.empty(len(p))
+        m = which < len(hard)
+        if np.count_nonzero(m):
+            out[m] = M(p[m], which[m])
+        j = which[~m] - len(hard)
+        axis, upper = j // 2, j % 2 == 1
+        v = p[~m, axis]
+        out[~m] = np.where(upper, hi[axis] - v, v - lo[axis])
+        return out
+
+    def many(p):
+        """Every part at the points ``p``: ``(G.size, n)``."""
+        p = np.asarray(p, dtype=float).reshape(-1, 2)
+        if count is not None:
+            count[0] += len(p) * G.size
+        v = p[:, edges[0]].T
+        w = np.where(edges[1][:, None], hi[edges[0]][:, None] - v, v - lo[edges[0]][:, None])
+        return np.concatenate([M.many(p, range(len(hard))), w]) if len(p) else np.zeros((G.size, 0))
+    G.size, G.window, G.many = len(hard) + 4, tuple(window), many
+    return G
+
+
+def crossings(G, x0, ia, ib, vtol: float, reach: float):
+    """The crossings of ``G_ia = 0`` and ``G_ib = 0`` nearest ``x0`` (``(n, 2)``; ``ia``, ``ib`` ``(n,)``
+    part indices) by Newton's method in the plane (gradients by forward differences), each step at most
+    ``reach`` long: ``(points (n, 2), converged (n,) bool)``; converged where the last step was below
+    ``vtol / 4`` and both parts lie within ``vtol`` (their value over their slope) of zero."""
+    x = np.array(x0, dtype=float).reshape(-1, 2)
+    n = len(x)
+    ok = np.ones(n, bool)
+    done = np.zeros(n, bool)
+    for _ in range(NEWTON_ITERATIONS):
+        act = np.flatnonzero(ok & ~done)
+        if not act.size:
+            break
+        xa = x[act]
+        P = np.concatenate([xa, xa + [STEP_H, 0.0], xa + [0.0, STEP_H]] * 2)
+        W = np.concatenate([np.tile(ia[act], 3), np.tile(ib[act], 3)])
+        fa0, fax, fay, fb0, fbx, fby = G(P, W).reshape(6, act.size)
+        j00, j01, j10, j11 = (fax - fa0) / STEP_H, (fay - fa0) / STEP_H, (fbx - fb0) / STEP_H, (fby - fb0) / STEP_H
+        with np.errstate(invalid="ignore", divide="ignore"):
+            det = j00 * j11 - j01 * j10
+            dx = -(j11 * fa0 - j01 * fb0) / det
+            dy = -(j00 * fb0 - j10 * fa0) / det
+            s = np.hypot(dx, dy)
+            scale = np.minimum(1.0, reach / s)
+        bad = ~(np.isfinite(s) & np.isfinite(fa0) & np.isfinite(fb0))
+        ok[act[bad]] = False
+        good = ~bad
+        step = np.column_stack([dx, dy])[good] * scale[good, None]
+        x[act[good]] = xa[good] + step
+        with np.errstate(invalid="ignore", divide="ignore"):
+            near = (s[good] <= 0.25 * vtol) & (np.abs(fa0[good]) <= vtol * np.hypot(j00, j01)[good]) \
+                & (np.abs(fb0[good]) <= vtol * np.hypot(j10, j11)[good])
+        done[act[good][near]] = True
+    return x, ok & done
+
+
+def _crosses(P, Q, A, B) -> np.ndarray:
+    """For each segment ``P[i] -> Q[i]``: True where it properly crosses any segment ``A[j] -> B[j]``."""
+    if not len(P) or not len(A):
+        return np.zeros(len(P), bool)
+
+    def orient(o, u, v):  # sign of (u - o) x (v - o), broadcast (i, j)
+        return np.sign((u[..., 0] - o[..., 0]) * (v[..., 1] - o[..., 1]) - (u[..., 1] - o[..., 1]) * (v[..., 0] - o[..., 0]))
+    p, q, a, b = P[:, None], Q[:, None], A[None], B[None]
+    hit = (orient(p, q, a) * orient(p, q, b) < 0) & (orient(a, b, p) * orient(a, b, q) < 0)
+    return np.any(hit, axis=1)
+
+
+def _binding(G, P) -> np.ndarray:
+    """The part smallest at each point of ``P`` (``(n,)`` int; -1 where one is undefined: no pair)."""
+    V = G.many(P)
+    return np.where(np.all(np.isfinite(V), axis=0), np.argmin(np.where(np.isfinite(V), V, np.inf), axis=0), -1)
+
+
+def _segment_distance(A, B, P) -> np.ndarray:
+    """Distance of each ``P[i]`` from the segment ``A[i] -> B[i]``."""
+    d = B - A
+    t = np.clip(np.einsum("ij,ij->i", P - A, d) / np.maximum(np.einsum("ij,ij->i", d, d), 1e-300), 0.0, 1.0)
+    return np.hypot(*(A + t[:, None] * d - P).T)
+
+
+def carry_to_tips(F, G, lines, kept, region: int, tol: float, trace) -> list:
+    """``lines`` (``[(k, points, slopes)]``) with the region's chords (curve ``region`` of ``F``) that cut
+    a corner farther than ``tol`` from them carried to it, and the chords listed in ``kept``
+    (``(k, start, end)``: no zero found across them) whose ends bind the same part replaced by its line
+    (see the module's notes). ``G``: the region's parts (:func:`part_evaluator`);
+    ``trace(G, [(part, points (2, 2), slopes)])`` traces lines of single parts to ``tol`` (returns
+    ``[(part, points)]``, a line cut where no zero is found)."""
+    from gearkit.blocking.region import locate_chord
+
+    vtol = 0.25 * tol
+    own = [(m, q) for m, (k, q, _) in enumerate(lines) if k == region and len(q) >= 2]
+    if not own:
+        return lines
+    P = np.concatenate([q for _, q in own])
+    bind = _binding(G, P)
+    first = np.cumsum([0] + [len(q) for _, q in own])
+    A, B, ia, ib, before, after = [], [], [], [], [], []  # the chords, their parts, the chords beside them
+    for (m, q), s in zip(own, first):
+        b = bind[s:s + len(q)]
+        j = np.flatnonzero((b[:-1] != b[1:]) & (b[:-1] >= 0) & (b[1:] >= 0))
+        A.append(q[j]), B.append(q[j + 1]), ia.append(b[j]), ib.append(b[j + 1])
+        before.append(q[np.maximum(j - 1, 0)]), after.append(q[np.minimum(j + 2, len(q) - 1)])
+    A, B, ia, ib, before, after = (np.concatenate(v) for v in (A, B, ia, ib, before, after))
+    tips = np.full(A.shape, np.nan)
+    if len(A):
+        span = float(np.hypot(G.window[1] - G.window[0], G.window[3] - G.window[2]))
+        T, conv = crossings(G, A, ia, ib, vtol, REACH * span)
+        conv &= np.hypot(*(T - A).T) <= REACH * span
+        c = np.flatnonzero(conv)  # a corner farther than tol from the chord and the chords beside it
+        conv[c] = np.minimum.reduce([_segment_distance(u[c], v[c], T[c]) for u, v in
+                                     ((before, A), (A, B), (B, after))]) > tol
+        tips[conv] = T[conv]
+    corner = np.isfinite(tips[:, 0])
+    sides = {}  # chord (start, end) -> its sides (part, start, end)
+    for i in np.flatnonzero(corner):
+        sides[(tuple(A[i]), tuple(B[i]))] = [(int(ia[i]), A[i], tips[i]), (int(ib[i]), tips[i], B[i])]
+    along = [(a, b) for k, a, b in kept if k == region and locate_chord(lines, k, a, b) is not None]
+    if along:
+        a, b = np.array([c[0] for c in along]), np.array([c[1] for c in along])
+        ba, bb = _binding(G, a), _binding(G, b)
+        for i in np.flatnonzero((ba == bb) & (ba >= 0)):
+            sides.setdefault((tuple(a[i]), tuple(b[i])), [(int(ba[i]), a[i], b[i])])
+    todo = [s for ss in sides.values() for s in ss]
+    if not todo:
+        return lines
+    traced = trace(G, [(k, np.array([a, b]), np.full(2, np.nan)) for k, a, b in todo])
+    by_end = {(k, tuple(p[0]), tuple(p[-1])): p for k, p in traced}  # a side cut in two is none
+    OA, OB = np.concatenate([q[:-1] for _, q in own]), np.concatenate([q[1:] for _, q in own])
+    lines = list(lines)
+    for (a, b), ss in sides.items():
+        got = [by_end.get((k, tuple(s), tuple(e))) for k, s, e in ss]
+        if any(p is None for p in got):
+            continue
+        path = np.vstack([got[0]] + [p[1:] for p in got[1:]])
+        part = np.concatenate([np.full(len(p) - 1, k) for p, (k, _, _) in zip(got, ss)])
+        if not _on_edge(F, G, path, part, region, tol):
+            continue
+        touching = np.all(OA == a, axis=1) | np.all(OB == a, axis=1) | np.all(OA == b, axis=1) | np.all(OB == b, axis=1)
+        if np.any(_crosses(path[:-1], path[1:], OA[~touching], OB[~touching])):
+            continue
+        w = locate_chord(lines, region, np.array(a), np.array(b))
+        if w is not None:
+            m, j = w
+            k, q, g = lines[m]
+            lines[m] = (k, np.insert(q, j + 1, path[1:-1], axis=0), np.insert(g, j + 1, np.full(len(path) - 2, np.nan)))
+    return lines
+
+
+def _on_edge(F, G, path, part, region: int, tol: float) -> bool:
+    """True when the traced ``path`` (its chords on the parts ``part``) is the region's edge: every
+    chord's middle within ``tol`` of its part's zero, and at every inner vertex no other part below
+    the vertex's own by more than ``tol`` times its slope."""
+    mid = 0.5 * (path[:-1] + path[1:])
+    inner, own = path[1:-1], part[1:]  # the vertex ending each chord but the last: on that chord's part
+    P = np.concatenate([mid, inner])
+    K = np.concatenate([part, own])
+    f = G(P, K)
+    g = np.hypot(G(P + [STEP_H, 0.0], K) - f, G(P + [0.0, STEP_H], K) - f) / STEP_H
+    m = len(mid)
+    with np.errstate(invalid="ignore"):
+        near = np.abs(f[:m]) <= tol * g[:m]
+        edge = F(inner, np.full(len(inner), region)) >= -tol * g[m:]
+    return bool(np.all(near) and np.all(edge))
