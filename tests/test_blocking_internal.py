@@ -185,3 +185,29 @@ def test_gear_1s_no_tooth_shift_is_the_checks_to_round_off(key):
         assert _check_raises(field.spec(floor, x2)) and not _check_raises(field.spec(lo, x2))
         m = margins(field, np.array([floor, lo]), np.array([x2, x2]), ["pointing.1"])["pointing.1"]
         assert np.isnan(m[0]) and np.isfinite(m[1])
+
+
+def test_the_tip_sweep_in_blocks_is_the_sweep_at_once(monkeypatch):
+    """The tip sweep evaluates its samples of the pinion angle in blocks (speed): at 400 random shift pairs
+    of 46/49 the map's tip-interference margin and the sweep's angles are bit for bit those of the whole
+    round at once (blocks of 64 samples against one block), deep and clear pairs alike."""
+    import gearkit.pair.sweep as sweep
+    from gearkit.blocking.arrays import evaluator
+
+    spec = _ring("46/49")
+    field = PairField(spec, x_ranges=default_window(PairField(spec)))
+    w = field.x_ranges
+    rng = np.random.default_rng(7)
+    x1, x2 = rng.uniform(w[0][0], w[0][1], 400), rng.uniform(w[1][0], w[1][1], 400)
+    runs = []
+    for block in (64, 10 ** 9):
+        monkeypatch.setattr(sweep, "SWEEP_BLOCK", block)
+        calls = []
+        monkeypatch.setattr(sweep, "_corners", lambda *a, _c=sweep._corners: calls.append(a[0].size) or _c(*a))
+        F = evaluator(field, ["tip_interference"], None)
+        runs.append(F(np.column_stack([x1, x2]), np.zeros(len(x1), int)))
+        assert (max(calls) <= 64) == (block == 64)
+        monkeypatch.undo()
+    finite = np.isfinite(runs[0])
+    assert np.array_equal(runs[0][finite], runs[1][finite]) and np.array_equal(finite, np.isfinite(runs[1]))
+    assert np.count_nonzero(runs[0][finite] < 0) >= 20 and np.count_nonzero(runs[0][finite] > 0) >= 20

@@ -36,6 +36,8 @@ SWEEP_ZOOM = 17  #: samples across the bracket of the deepest sample, per refini
 SWEEP_REFINE = 10  #: refining steps (the bracket, 4 final half widths of the branch and bound, ~1e-5 rad,
 #: shrinks below 1e-14 rad)
 SWEEP_ENOUGH = 0.01  #: (m_n) the blocking map's sweep stops beyond this depth past the resolution
+SWEEP_BLOCK = 4096  #: samples of phi evaluated at once (each of the corners' ~100 array operations then
+#: works in the processor's cache: 1.5x faster than all of a round's samples at once, the same values)
 SWEEP_GRADIENT = 2.0  #: bound on the gradient of a tooth's depth function in the plane (it is at most
 #: sqrt(2): radially sin(a_y) <= 1, tangentially r_b / r <= 1 above the base circle)
 
@@ -155,7 +157,10 @@ def sweep_depth(sec, z1: int, z2: int, a, ra1, ra2, rl1, rf2, t1, t2, rw2, resol
 
     def depth(i, phi, w=None):
         """max of the two corners' depths at ``phi`` (pairs ``i``); with a half width ``w``, also
-        their bound over ``[phi - w, phi + w]`` and its slack."""
+        their bound over ``[phi - w, phi + w]`` and its slack (in blocks of ``SWEEP_BLOCK`` samples)."""
+        if i.size > SWEEP_BLOCK:
+            parts = [depth(i[k:k + SWEEP_BLOCK], phi[k:k + SWEEP_BLOCK], w) for k in range(0, i.size, SWEEP_BLOCK)]
+            return np.concatenate(parts) if w is None else tuple(np.concatenate(p) for p in zip(*parts))
         c = dict(const)
         c.update(zip(keys, table[:, :, i]))
         out = _corners(phi[None], w, c)
