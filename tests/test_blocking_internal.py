@@ -35,6 +35,7 @@ DISTANCES = np.geomspace(1e-12, 0.6, 160)  #: samples right of the edge (shift u
 CHECK_BISECTIONS = 30  #: bisections of the check's first pair on a row (to 1e-11)
 STEP = 0.01  #: steps along a row from a zero in the strip to the check's first pair
 FALL = 0.5  #: a solved sign change is a zero when |F| fell below this fraction of its ends'
+FORM_ACCURACY = 1e-9  #: (m_n) the form-circle interpolant's accuracy (PairField.form_interpolant)
 RINGS = {"46/49": (46, 49, 20), "57/130": (57, 130, 28)}
 
 
@@ -171,16 +172,24 @@ def test_a_line_beside_gear_1s_no_tooth_shift_is_the_checks_line(key, name, tol,
 @pytest.mark.parametrize("key", sorted(RINGS))
 def test_gear_1s_no_tooth_shift_is_the_checks_to_round_off(key):
     """The no-pair edge where gear 1 is cut no tooth, as the contour's field reads it (its form-circle
-    interpolant's floor, below which the arrays find no pair), is check_pair's to neighbouring floats:
-    the check raises at the floor and gives a pair one float above it. (It was bisected 12 times, a
-    bracket 3.6e-4 wide on 46/49, and each point the trace's edge searches put inside it generated a gear.)"""
+    interpolant's floor, below which the arrays find no pair), is bisected 12 times; once the trace
+    generates gears between those bisections (as its edge searches closing in on the edge do) it is
+    check_pair's to neighbouring floats: the check raises at the floor and gives a pair one float above
+    it, and the interpolant, reaching down to there, gives the generated gear's form circle within its
+    own accuracy. (Each point the trace put inside the 3.6e-4 wide bracket on 46/49 generated a gear.)"""
     from gearkit.blocking.arrays import margins
+    from gearkit.blocking.field import FLOOR_HITS
 
     spec = _ring(key)
     field = PairField(spec, x_ranges=default_window(PairField(spec)))
+    floor, lo = field.form_interpolant(1)[4], field.form_interpolant(1)[0]
+    assert lo - floor > 1e-6  # coarse until the trace probes it
+    for k in range(FLOOR_HITS):
+        field.form_diameter(1, floor + (lo - floor) * (k + 1) / (FLOOR_HITS + 1))
     fit = field.form_interpolant(1)
     floor, lo = fit[4], fit[0]
     assert lo == np.nextafter(floor, np.inf)
+    assert abs(fit[3](lo) - field.form_diameter(1, lo, exact=True)) <= FORM_ACCURACY * spec.module
     for x2 in (0.5, 2.0):
         assert _check_raises(field.spec(floor, x2)) and not _check_raises(field.spec(lo, x2))
         m = margins(field, np.array([floor, lo]), np.array([x2, x2]), ["pointing.1"])["pointing.1"]

@@ -38,9 +38,9 @@ FORM_CHECKS = 2  #: test shifts of the interpolant
 FORM_MARGIN = 0.5  #: the interpolant reaches this far below the window (the probes of chords beside the
 #: window's edge reach past it: each point left outside would generate a gear of its own)
 FORM_TIPS = (0.0, 1.0, -0.5)  #: blank tips tried (m_n above the blank's own) for a gear with a flank
-FORM_BISECTIONS = 12  #: bisections for the smallest shift at which the generated gear has a tooth, and
-FLOOR_BISECTIONS = 64  #: at most this many (to neighbouring floats) where it is inside the window: an edge
-#: of the no-pair area, which edge searches close in on (each point between two bisections generated a gear)
+FORM_BISECTIONS = 12  #: bisections for the smallest shift at which the generated gear has a tooth; once
+FLOOR_HITS = 4  #: gears are generated between the last two, it is bisected on to neighbouring floats (edge
+#: searches close in on it there: each point generated a gear, 9354 on 46/49's contour)
 FEW_SHIFTS = 16  #: the form-circle interpolant sums the series on floats for at most this many shifts (numpy's
 #: cost per call outweighs the arithmetic)
 GENERATED_CACHE = 4096  #: generated form circles kept per process (an atlas meets each gear in many cells)
@@ -158,7 +158,7 @@ class PairField:
         self._fields = dict(self.template.__dict__)
         self._forms = {}
         self._under = {}
-        self._fits = {}
+        self._fits, self._hits = {}, {}
         self._points = {}
         self._checks = {}
         self.exact_forms = x_ranges is None
@@ -174,7 +174,7 @@ class PairField:
         """Pickled (e.g. from an atlas worker) without the evaluation caches: the evaluated points,
         the undercut flags and the form-circle interpolants (closures) are rebuilt on demand."""
         state = dict(self.__dict__)
-        state["_points"], state["_under"], state["_fits"], state["_checks"] = {}, {}, {}, {}
+        state["_points"], state["_under"], state["_fits"], state["_checks"], state["_hits"] = {}, {}, {}, {}, {}
         return state
 
     # -- lines ------------------------------------------------------------------------------
@@ -274,16 +274,13 @@ class PairField:
             from gearkit.families.involute import GearSpec
 
             t = self.template
-            # the check's gear (gear_specs) with its own blank tip: the form circle does not depend on it
+            # the check's gear (gear_specs); its form circle does not depend on its tip, but whether a flank is
+            # left below it does: where the blank's own tip leaves none, other tips are tried (pair tips move)
             z, beta, thin = ((t.teeth1, t.helix_angle_deg, t.thinning1) if which == 1 else
                              (t.teeth2, -t.helix_angle_deg, t.thinning2))
-            # the form circle does not depend on the tip, but whether a flank is left below it does:
-            # where the blank's own tip leaves none, other tips (a pair's tip moves with its
-            # shortening, up or down) are tried
             self._forms[key] = math.nan
-            r = z * self._sec.mt / 2
             for k, up in enumerate(FORM_TIPS):
-                tip = None if k == 0 else 2 * (r + t.module * (t.addendum + float(x) + up))
+                tip = None if k == 0 else 2 * (z * self._sec.mt / 2 + t.module * (t.addendum + float(x) + up))
                 try:
                     gspec = GearSpec(z, t.module, float(x), beta, False, t.tools[which - 1], tip, thin)
                 except SpecError:  # a shift no gear takes: no tooth
@@ -292,6 +289,14 @@ class PairField:
                 if d is not None:
                     self._forms[key] = d
                     break
+            fit = self._fits.get(which)
+            if fit is not None and fit[4] > -math.inf and fit[4] <= x < fit[0]:  # see FLOOR_HITS
+                self._hits[which] = self._hits.get(which, 0) + 1
+                if self._hits[which] == FLOOR_HITS:
+                    a, b = fit[4], fit[0]
+                    while a < (m := 0.5 * (a + b)) < b:
+                        a, b = (m, b) if math.isnan(self.form_diameter(which, m)) else (a, m)
+                    self._fits[which] = (b,) + fit[1:4] + (a,) + fit[5:]  # (the interpolant reaches b)
         return self._forms[key]
 
     def form_interpolant(self, which: int):
@@ -301,8 +306,7 @@ class PairField:
         part ``[lo, hi]`` of ``x_ranges[which - 1]`` that ends ``FORM_GAP`` below the undercut onset
         (closer to it the generated form circle is not smooth); ``error`` is the largest deviation
         (mm) from the generated gears at ``FORM_CHECKS`` test shifts; below ``floor`` the generated gear
-        has no tooth (``-inf`` when it has one down to ``lo``; ``floor`` and ``lo`` are neighbouring floats
-        where they lie inside the window); ``rho_F(x)`` is the roll length itself (mm, arrays:
+        has no tooth (``-inf`` when it has one down to ``lo``; see ``FLOOR_HITS``); ``rho_F(x)`` is the roll length itself (mm, arrays:
         read off ``d_F`` it would lose ``sqrt(r_b ulp)``, 2e-7 mm, beside the onset). None without undercut.
         """
         if which in self._fits:
@@ -310,7 +314,6 @@ class PairField:
         fit = None
         x_min = self.x_min[which - 1]
         lo, hi = self.x_ranges[which - 1]
-        window_lo = lo
         lo -= FORM_MARGIN
         hi = min(hi, x_min - FORM_GAP) if x_min is not None else lo
         floor = -math.inf
@@ -330,10 +333,8 @@ class PairField:
                 if math.isnan(self.form_diameter(which, b)):
                     self._fits[which] = None
                     return None
-                for k in range(FLOOR_BISECTIONS):
+                for _ in range(FORM_BISECTIONS):
                     m = 0.5 * (a + b)
-                    if k >= FORM_BISECTIONS and (b <= window_lo or not a < m < b):
-                        break
                     a, b = (m, b) if math.isnan(self.form_diameter(which, m)) else (a, m)
                 lo, floor = b, a
             n = FORM_NODES
