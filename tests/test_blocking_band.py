@@ -195,3 +195,32 @@ def test_an_internal_pair_line_beside_the_no_pair_edge_is_traced_to_tol(z1, z2, 
     assert len(zeros) >= 3, name
     assert c.line(name).components, name
     assert _farthest(zeros, c.line(name).components) <= CONTRACT * tol
+
+
+def _row_zeros(field, name, x2s, lo, hi):
+    """Exact zeros of ``name`` on rows x2 = ``x2s`` running right from the no-pair edge between ``lo``
+    (undefined) and ``hi`` (defined), up to ``hi``."""
+    zeros = [[x, x2] for x2 in x2s for x in _zeros_from_edge(lambda x1: field.margin(name, x1, x2), lo, hi, hi)]
+    return np.array(zeros).reshape(-1, 2)
+
+
+CORNERS = [  # (z1, z2, line, tol, rows x2, right end of the rows): lines from beside the steep no-pair edge to the
+    # window's top frame x2 = 3. 47/79's interference.1 ran on the grid up to the row x2 = 2.875 and stopped there,
+    # 0.13 short of the frame (the band's end marked to go on was the grid line's end within tol, not the same
+    # point: 52 tol at 1e-3, 5184 at 1e-5 before); 44/112's tip thickness line leaves the edge near x1 = -2.31 and
+    # meets the frame at x1 = -2.14 through a cell whose grid piece (one chord beside undefined nodes) was
+    # dropped: the band's piece was cut there (80 tol at 1e-3, 8025 at 1e-5 before)
+    (47, 79, "interference.1", 1e-3, np.linspace(2.88, 3.0, 7), -2.0),
+    (47, 79, "interference.1", 1e-5, np.linspace(2.88, 3.0, 7), -2.0),
+    (44, 112, "tip_thickness.2=0.25", 1e-3, np.linspace(2.955, 3.0, 7), -2.0),
+    (44, 112, "tip_thickness.2=0.25", 1e-5, np.linspace(2.955, 3.0, 7), -2.0),
+]
+
+
+@pytest.mark.parametrize("z1, z2, name, tol, x2s, hi", CORNERS)
+def test_a_line_beside_the_edge_is_traced_to_the_window_frame(z1, z2, name, tol, x2s, hi):
+    c = blocking_contour(PairSpec(z1, z2, 1.0), tol=tol, lines=[name])
+    zeros = _row_zeros(c.field, name, x2s, c.window[0], hi)
+    assert len(zeros) >= len(x2s)  # the oracle sees the line on every row
+    assert _farthest(zeros, c.line(name).components) <= CONTRACT * tol
+

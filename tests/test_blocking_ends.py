@@ -64,16 +64,21 @@ def test_a_saddle_inside_one_cell_is_joined_as_its_function_connects(c0):
 @pytest.fixture(scope="module")
 def saddle_1230():
     """The saddle of interference.1 of 12/30 near (1, -1), from the scalar margin: grad = 0."""
-    spec = PairSpec(12, 30, 1.0)
-    c = blocking_contour(spec, tol=1e-3, lines=["interference.1"])
-    m = lambda x1, x2: c.field.margin("interference.1", x1, x2)  # noqa: E731
+    return _saddle(PairSpec(12, 30, 1.0), "interference.1", [1.01, -0.99])
+
+
+def _saddle(spec, name, guess):
+    """``(spec, margin(x1, x2), saddle)``: the saddle of the scalar margin ``name`` near ``guess`` (grad = 0,
+    central differences), checked to be one (the Hessian's determinant negative)."""
+    c = blocking_contour(spec, tol=1e-3, lines=[name])
+    m = lambda x1, x2: c.field.margin(name, x1, x2)  # noqa: E731
     h = FD_STEP
 
     def grad(p):
         x1, x2 = p
         return [(m(x1 + h, x2) - m(x1 - h, x2)) / (2 * h), (m(x1, x2 + h) - m(x1, x2 - h)) / (2 * h)]
 
-    sol = root(grad, [1.01, -0.99], tol=1e-13)
+    sol = root(grad, guess, tol=1e-13)
     assert sol.success
     x1, x2 = sol.x
     hxx = (m(x1 + h, x2) - 2 * m(x1, x2) + m(x1 - h, x2)) / h ** 2
@@ -98,9 +103,20 @@ def test_interference_line_reaches_its_saddle(saddle_1230, tol):
     """12/30 interference.1 (B1): every exact zero on circles of radius RADII around the saddle
     (brentq on the scalar margin along the circle) lies within 2 tol of the traced line (the arms
     stopped up to 6e-3 short of it), and no traced component ends near the saddle."""
-    spec, m, s = saddle_1230
-    c = blocking_contour(spec, tol=tol, lines=["interference.1"])
-    comps = c.line("interference.1").components
+    _arms_reach_the_saddle(*saddle_1230, "interference.1", tol)
+
+
+@pytest.mark.parametrize("tol", [1e-3, 1e-5])
+def test_the_arms_of_a_saddle_are_joined_past_the_other_branch(tol):
+    """25/58 interference.2 (B2) at its saddle near (-1, 1), where the margin is the check's 1e-9: the
+    arms of the branch above it stopped 0.02 apart at tol 1e-5 (the continuation's step past the saddle
+    found the branch below, traced already, and stopped there). Oracle as for 12/30."""
+    _arms_reach_the_saddle(*_saddle(PairSpec(25, 58, 1.0), "interference.2", [-1.01, 1.01]), "interference.2", tol)
+
+
+def _arms_reach_the_saddle(spec, m, s, name, tol):
+    c = blocking_contour(spec, tol=tol, lines=[name])
+    comps = c.line(name).components
     zeros = []
     for rho in RADII:
         f = lambda a: m(s[0] + rho * math.cos(a), s[1] + rho * math.sin(a))  # noqa: E731

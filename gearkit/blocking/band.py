@@ -68,7 +68,7 @@ THIN = 0.25  #: successive vertices of a band piece closer than this many tol ar
 #: between two columns' edge points, where the edge has a corner: the rows next to the edge all put theirs there)
 
 
-def band_lines(F, lines, grids, tol: float, measure=(), many=None, carry=None) -> list:
+def band_lines(F, lines, grids, tol: float, measure=(), many=None, carry=None, specks=()) -> list:
     """``lines`` (``[(k, points, slopes)]``, the grid's pieces) with the band's pieces added and joined
     to them (see the module notes). ``many(points, ks) -> (len(ks), n)``: all functions ``ks`` at the
     same points (one evaluation); None: ``F`` once per function; every curve but ``measure`` is
@@ -76,7 +76,10 @@ def band_lines(F, lines, grids, tol: float, measure=(), many=None, carry=None) -
     leave the lattice through its boundary off the no-pair edge are appended (``(k, point)``): the
     lattice's last row is a chord between the edge's points on two columns, or the window's frame
     on one of them, and a line may go on beside the edge below it (see
-    :func:`~gearkit.blocking.ends.extend_ends`)."""
+    :func:`~gearkit.blocking.ends.extend_ends`). ``specks`` (``(k, point)``): grid cells whose piece
+    of function k the grid dropped (one chord beside undefined nodes): the band's pieces go on through
+    them (44/112's tip thickness line from the edge to the window's top frame crosses one such cell
+    on its way: cut there, it stopped 0.08 short of the frame)."""
     ks = [k for k in range(len(grids)) if k not in measure
           and np.any(np.isnan(grids[k][2][1:-1, 1:-1])) and np.any(np.isfinite(grids[k][2]))]
     if not ks:
@@ -98,7 +101,7 @@ def band_lines(F, lines, grids, tol: float, measure=(), many=None, carry=None) -
     cols = band_lattice(F, grid, ks[0], extra=tuple(x for r in rows for x in run_ends(r)))
 
     def traced(k, p):
-        return _traced_cell(grids[k], p)
+        return _traced_cell(grids[k], p, [q for kk, q in specks if kk == k])
 
     for lattice, flip in [(r, True) for r in rows] + [(cols, False)]:
         if lattice is None:
@@ -208,14 +211,21 @@ def _thin(q, close):
 
 
 
-def _traced_cell(grid, p):
-    """True where the points ``p`` lie in a cell of ``grid`` with every corner defined (traced there)."""
+def _traced_cell(grid, p, specks=()):
+    """True where the points ``p`` lie in a cell of ``grid`` with every corner defined (traced there),
+    but for the cells of the points ``specks`` (the grid's piece there dropped)."""
     xs, ys, values = grid
     fin = np.isfinite(values)
     full = fin[:-1, :-1] & fin[1:, :-1] & fin[:-1, 1:] & fin[1:, 1:]
-    i = np.clip(((p[:, 0] - xs[0]) // (xs[1] - xs[0])).astype(int), 0, len(xs) - 2)
-    j = np.clip(((p[:, 1] - ys[0]) // (ys[1] - ys[0])).astype(int), 0, len(ys) - 2)
-    return full[j, i]
+
+    def cell(q):
+        i = np.clip(((q[:, 0] - xs[0]) // (xs[1] - xs[0])).astype(int), 0, len(xs) - 2)
+        j = np.clip(((q[:, 1] - ys[0]) // (ys[1] - ys[0])).astype(int), 0, len(ys) - 2)
+        return j, i
+    if len(specks):
+        full = full.copy()
+        full[cell(np.asarray(specks, float))] = False
+    return full[cell(p)]
 
 
 def _merge(lines, pieces, traced, tol):

@@ -6,7 +6,8 @@ undefined point is found by multisection to round-off (:func:`edge_point`), and 
 at distances from it shrinking geometrically to round-off (:func:`ladder`): a zero between a
 sample and the edge is seen however close to the edge it lies. :func:`across` looks for the
 nearest oriented zero along normals (for the continuation of :mod:`gearkit.blocking.ends`),
-:func:`toward_edge` the nearest zero towards the edge (for the accuracy measure of the bench).
+:func:`toward_edge` the nearest zero towards the edge (for the accuracy measure of the bench),
+:func:`crossing_ends` which ends of lines beside the edge run into it (carried on to it there).
 
 >>> import numpy as np
 >>> F = lambda p, k: np.where(p[:, 0] < 1.0, p[:, 0] - (1.0 - 1e-9), np.nan)  # a zero 1e-9 before the edge
@@ -21,11 +22,25 @@ import math
 import numpy as np
 
 
-__all__ = ["edge_point", "toward_edge", "touchdowns", "ahead_on_edge", "ladder", "nearest_change", "across"]
+__all__ = ["edge_point", "toward_edge", "touchdowns", "ahead_on_edge", "ladder", "nearest_change", "across",
+           "crossing_ends", "EDGE_REACH"]
 
 LADDER = 0.5  #: ratio of the geometric sample distances
 FLOOR = 1e-13  #: the smallest sample distance, relative to the window's size
 SPLITS = 15  #: points per round of the multisection for the edge of the defined area
+EDGE_REACH = 3.0  #: an end beside the no-pair area is carried on when its tangent meets the area's edge
+#: within this many grid cell diagonals ...
+EDGE_DEG = 20.0  #: ... at more than this angle to the edge (a line running along the edge is left as the
+#: grid has it, at every tol alike)
+EDGE_PROBE = 1e-4  #: ... and where ``F`` is regular at the edge (at the edge points of the rays either side of
+#: the tangent, up from the edge from this fraction of the reach)
+EDGE_GROWTH = 3.0  #: ... its differences over D, 4 D, 16 D from the edge grow by more than this (4 where
+#: F is smooth; 4 ** (1/3) and 2 where it varies as the cube or square root of the distance to the edge,
+#: as the margins that read the working pressure angle or a tip at its base circle do: their lines
+#: meet the edge tangentially)
+EDGE_FLAT = 1e-12  #: ... (differences at round-off: F does not vary up from the edge, regular)
+EDGE_BUDGET = 2.0  #: ... and carried no farther than this times its distance to the edge along the tangent
+EDGE_FAN_DEG = 10.0  #: the edge's direction there: from its points on rays this far either side of the tangent
 
 
 def edge_point(F, a, b, which, span, within=None):
@@ -213,3 +228,46 @@ def across(F, Q, N, reach, sig, which, span, floor=None):
             o = np.argsort(s, kind="stable")
             out[e] = [s[o], v[o], nearest_change(s[o], v[o], sig[e])]
     return out
+
+
+def crossing_ends(F, ends, which, reach, span) -> list:
+    """The ``ends`` (``(..., point, tangent)``, of the functions ``which``) of lines beside the no-pair
+    area, for the continuation of :mod:`~gearkit.blocking.ends`, whose line crosses the area's
+    edge: the tangent meets the edge within ``reach`` at more than ``EDGE_DEG`` to it (the edge's
+    points on the tangent and on rays ``EDGE_FAN_DEG`` either side of it), and ``F`` is regular
+    there (see ``EDGE_GROWTH``). Each is returned with the length its front may run
+    (``EDGE_BUDGET`` times its distance to the edge). Nothing here depends on tol: the same ends
+    are carried on at every tol."""
+    if not ends:
+        return []
+    P = np.array([e[2] for e in ends])
+    T = np.array([e[3] for e in ends])
+    K = np.asarray(which)
+    fan = math.radians(EDGE_FAN_DEG)
+    rays = []
+    for ang in (0.0, fan, -fan):
+        c, s = math.cos(ang), math.sin(ang)
+        rays.append(np.column_stack([c * T[:, 0] - s * T[:, 1], s * T[:, 0] + c * T[:, 1]]))
+    A, D, KK = np.tile(P, (3, 1)), np.concatenate(rays), np.tile(K, 3)
+    B = A + reach * D
+    out = np.isnan(F(B, KK))
+    E = np.full(A.shape, np.nan)
+    if out.any():  # the three rays' edge points in one multisection
+        E[out] = edge_point(F, A[out], B[out], KK[out], span, EDGE_PROBE ** 2 * reach)
+    hits = np.split(E, 3)
+    along = hits[1] - hits[2]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        sin = np.abs(T[:, 0] * along[:, 1] - T[:, 1] * along[:, 0]) / np.hypot(*along.T)
+    ok = np.isfinite(hits[0][:, 0]) & np.isfinite(sin) & (sin > math.sin(math.radians(EDGE_DEG)))
+    if ok.any():  # F regular at the edge beside the line: differences over D, 4 D, 16 D up from it
+        i = np.flatnonzero(ok)
+        n_e = np.column_stack([-along[i, 1], along[i, 0]]) / np.hypot(*along[i].T)[:, None]
+        n_e *= np.where(np.einsum("ij,ij->i", n_e, P[i] - hits[0][i]) > 0, 1.0, -1.0)[:, None]
+        d = EDGE_PROBE * reach * 4.0 ** np.arange(3)
+        Q = np.concatenate([h[i][:, None, :] + d[None, :, None] * n_e[:, None, :] for h in hits[1:]])
+        V = F(Q.reshape(-1, 2), np.repeat(np.tile(K[i], 2), d.size)).reshape(2 * len(i), d.size)
+        step = np.abs(np.diff(V, axis=1))
+        regular = step[:, 1] + EDGE_FLAT * (1.0 + np.abs(V[:, 0])) >= EDGE_GROWTH * step[:, 0]
+        ok[i] = np.all(np.isfinite(V), axis=1).reshape(2, -1).all(axis=0) & regular.reshape(2, -1).all(axis=0)
+    run = EDGE_BUDGET * np.hypot(*(hits[0] - P).T)
+    return [e + (float(b),) for e, o, b in zip(ends, ok, run) if o]

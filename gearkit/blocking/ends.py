@@ -7,9 +7,9 @@ also masks every cell with a corner in the no-pair area, so a line that runs int
 edge ends up to a cell short of it (12/30: pointing.1 and gear 1's tip-thickness lines 0.07 to
 0.13 short of the edge where gear 2's tip meets its base circle). Here every open end inside the
 window (not on its frame) is carried along its line by predictor-corrector continuation; an end
-beside the no-pair area only when its line crosses the edge (:func:`_into_edge`: its tangent meets
-the edge within ``EDGE_REACH`` cells at more than ``EDGE_DEG`` to it, ``F`` is regular there, and
-the front gets no farther than ``EDGE_BUDGET`` times that distance). A margin that varies as the
+beside the no-pair area only when its line crosses the edge (:func:`~gearkit.blocking.edges.crossing_ends`:
+its tangent meets the edge within ``EDGE_REACH`` cells at more than ``EDGE_DEG`` to it, ``F`` is regular
+there, and the front gets no farther than ``EDGE_BUDGET`` times that distance). A margin that varies as the
 cube or square root of the distance to the edge (those reading the working pressure angle, or a
 tip at its base circle) has lines that meet the edge tangentially, along it for up to the whole
 window: those ends are not carried on here (the band beside the edge is traced on its own lattice,
@@ -22,7 +22,8 @@ its line along the edge (a prediction past it moved back onto it along the norma
   as going straight through a crossing would): where ``F`` at the saddle is not exactly zero (the
   check forgives 1e-9 m_n there), the two branches of the zero set turn off before the saddle,
   and the joined arms follow them;
-* it runs onto a piece of the same line traced already (it joins that piece's end there, or stops);
+* it runs onto a piece of the same line traced already (it joins that piece's end there, or stops; a
+  long step onto a line running across it has passed a saddle onto another branch: it is halved);
 * its step shrinks below ``tol / 4`` (a line that ends: the edge where ``F`` is undefined), or
 * it reaches the window's frame.
 
@@ -39,26 +40,14 @@ import math
 import numpy as np
 
 from gearkit.blocking.brackets import segment_roots
-from gearkit.blocking.edges import across, ahead_on_edge, edge_point
+from gearkit.blocking.edges import EDGE_REACH, across, ahead_on_edge, crossing_ends, edge_point
 
 __all__ = ["extend_ends"]
 
 TURN_DEG = 30.0  #: a step turning more than this is halved
+ACROSS = "across"  #: a step that ran onto another line of the same function across its path
 MAX_STEP_CELLS = 2.0  #: longest step, in grid cell diagonals (the chords are refined afterwards)
 MAX_STEPS = 400  #: steps of one front
-EDGE_REACH = 3.0  #: an end beside the no-pair area is carried on when its tangent meets the area's edge
-#: within this many grid cell diagonals ...
-EDGE_DEG = 20.0  #: ... at more than this angle to the edge (a line running along the edge is left as the
-#: grid has it, at every tol alike)
-EDGE_PROBE = 1e-4  #: ... and where ``F`` is regular at the edge (at the edge points of the rays either side of
-#: the tangent, up from the edge from this fraction of the reach)
-EDGE_GROWTH = 3.0  #: ... its differences over D, 4 D, 16 D from the edge grow by more than this (4 where
-#: F is smooth; 4 ** (1/3) and 2 where it varies as the cube or square root of the distance to the edge,
-#: as the margins that read the working pressure angle or a tip at its base circle do: their lines
-#: meet the edge tangentially)
-EDGE_FLAT = 1e-12  #: ... (differences at round-off: F does not vary up from the edge, regular)
-EDGE_BUDGET = 2.0  #: ... and carried no farther than this times its distance to the edge along the tangent
-EDGE_FAN_DEG = 10.0  #: the edge's direction there: from its points on rays this far either side of the tangent
 
 
 def extend_ends(F, lines, grids, tol, measure=(), carry=()):
@@ -104,58 +93,19 @@ def extend_ends(F, lines, grids, tol, measure=(), carry=()):
                 edge_ends.append((r, end, a, t))  # beside the no-pair area: carried on only into its edge
                 continue
             starts.append((r, end, a, t))
-    into = _into_edge(F, edge_ends, recs, EDGE_REACH * cell, span)
+    into = crossing_ends(F, edge_ends, [recs[e[0]][0] for e in edge_ends], EDGE_REACH * cell, span)
     starts += into
-    marked = {(k, tuple(q)) for k, q in carry}
     taken = {(e[0], e[1]) for e in into}
+    # a band end marked to carry on: the line's end within tol of it (the band's run there may have been
+    # the grid's line already, whose end was solved on the grid's edge: 47/79's interference.1 on the row
+    # x2 = 2.875 under the window's top frame, 0.125 short of it)
     starts += [e + (EDGE_REACH * cell,) for e in edge_ends
-               if (e[0], e[1]) not in taken and (recs[e[0]][0], tuple(e[2])) in marked]
+               if (e[0], e[1]) not in taken and any(k == recs[e[0]][0] and np.hypot(*(q - e[2])) <= tol
+                                                    for k, q in carry)]
     front, joins = [], []
     geo = (span, vtol, MAX_STEP_CELLS * cell, lo, hi, tol)
     _run(F, front, _fronts(F, starts, recs, eps, geo[2]), recs, joins, geo)
     return _assemble(recs, joins)
-
-
-def _into_edge(F, ends, recs, reach, span) -> list:
-    """The ``ends`` (rec, end, point, tangent) beside the no-pair area whose line crosses the area's
-    edge: the tangent meets the edge within ``reach`` at more than ``EDGE_DEG`` to it (the edge's
-    points on the tangent and on rays ``EDGE_FAN_DEG`` either side of it), and ``F`` is regular
-    there (see ``EDGE_GROWTH``). Each is returned with the length its front may run
-    (``EDGE_BUDGET`` times its distance to the edge). Nothing here depends on tol: the same ends
-    are carried on at every tol."""
-    if not ends:
-        return []
-    P = np.array([e[2] for e in ends])
-    T = np.array([e[3] for e in ends])
-    K = np.array([recs[e[0]][0] for e in ends])
-    fan = math.radians(EDGE_FAN_DEG)
-    rays = []
-    for ang in (0.0, fan, -fan):
-        c, s = math.cos(ang), math.sin(ang)
-        rays.append(np.column_stack([c * T[:, 0] - s * T[:, 1], s * T[:, 0] + c * T[:, 1]]))
-    A, D, KK = np.tile(P, (3, 1)), np.concatenate(rays), np.tile(K, 3)
-    B = A + reach * D
-    out = np.isnan(F(B, KK))
-    E = np.full(A.shape, np.nan)
-    if out.any():  # the three rays' edge points in one multisection
-        E[out] = edge_point(F, A[out], B[out], KK[out], span, EDGE_PROBE ** 2 * reach)
-    hits = np.split(E, 3)
-    along = hits[1] - hits[2]
-    with np.errstate(invalid="ignore", divide="ignore"):
-        sin = np.abs(T[:, 0] * along[:, 1] - T[:, 1] * along[:, 0]) / np.hypot(*along.T)
-    ok = np.isfinite(hits[0][:, 0]) & np.isfinite(sin) & (sin > math.sin(math.radians(EDGE_DEG)))
-    if ok.any():  # F regular at the edge beside the line: differences over D, 4 D, 16 D up from it
-        i = np.flatnonzero(ok)
-        n_e = np.column_stack([-along[i, 1], along[i, 0]]) / np.hypot(*along[i].T)[:, None]
-        n_e *= np.where(np.einsum("ij,ij->i", n_e, P[i] - hits[0][i]) > 0, 1.0, -1.0)[:, None]
-        d = EDGE_PROBE * reach * 4.0 ** np.arange(3)
-        Q = np.concatenate([h[i][:, None, :] + d[None, :, None] * n_e[:, None, :] for h in hits[1:]])
-        V = F(Q.reshape(-1, 2), np.repeat(np.tile(K[i], 2), d.size)).reshape(2 * len(i), d.size)
-        step = np.abs(np.diff(V, axis=1))
-        regular = step[:, 1] + EDGE_FLAT * (1.0 + np.abs(V[:, 0])) >= EDGE_GROWTH * step[:, 0]
-        ok[i] = np.all(np.isfinite(V), axis=1).reshape(2, -1).all(axis=0) & regular.reshape(2, -1).all(axis=0)
-    run = EDGE_BUDGET * np.hypot(*(hits[0] - P).T)
-    return [e + (float(b),) for e, o, b in zip(ends, ok, run) if o]
 
 
 def _fronts(F, starts, recs, eps, hmax) -> list:
@@ -311,7 +261,11 @@ def _step(F, front, act, active, recs, joins, vtol, span, hmax, turn, lo, hi):
             if f[5] < vtol:
                 active[i] = False
             continue
-        if _collides(i, r, L, front, active, recs, joins, 8 * vtol):
+        hit = _collides(i, r, d / L, L, front, active, recs, joins, 8 * vtol, turn)
+        if hit == ACROSS:  # a long step onto another branch, across the line's path (past a saddle): shorter
+            f[5] *= 0.5
+            continue
+        if hit:
             continue
         f[6] -= L
         if f[6] < 0:  # carried towards the edge farther than it lay: not a line that meets it there
@@ -323,10 +277,15 @@ def _step(F, front, act, active, recs, joins, vtol, span, hmax, turn, lo, hi):
         f[5] = min(2 * f[5], hmax)
 
 
-def _collides(i, r, L, front, active, recs, joins, close) -> bool:
-    """True when front ``i``'s next point ``r`` lies within ``close`` of a line of the same
-    function traced already (another record): the front has run onto it. It joins that line's
-    nearest open end within ``2 L`` (heading back), or stops."""
+def _collides(i, r, u, L, front, active, recs, joins, close, turn):
+    """True when front ``i``'s next point ``r`` (a step of length ``L`` along ``u``) lies within
+    ``close`` of a line of the same function traced already (another record): the front has run
+    onto it. It joins that line's nearest open end within ``2 L`` (heading back), or stops. ``ACROSS``
+    when the step is longer than ``close`` and that line runs across it (at more than the angle
+    whose cosine is ``turn``): a step past a saddle onto another branch, whose side of ``F`` the
+    front's orientation cannot tell from its own there (25/58's interference.2 beside (-1, 1),
+    where F is 1e-9: the arms of the upper branch stopped on the lower one, 0.02 apart at tol 1e-5);
+    the front is not stopped."""
     from gearkit.distances import distances_to_polyline
 
     f = front[i]
@@ -335,8 +294,19 @@ def _collides(i, r, L, front, active, recs, joins, close) -> bool:
         if kk != k or rr == f[0]:
             continue
         q = np.vstack([np.reshape(hd[::-1], (-1, 2)), p, np.reshape(tl, (-1, 2))])
-        if len(q) < 2 or float(distances_to_polyline(r[None], q)[0]) > close:
+        if len(q) < 2:
             continue
+        dist = float(distances_to_polyline(r[None], q)[0])
+        if dist > close:
+            continue
+        if L > close:
+            t = np.diff(q, axis=0)  # the line's chord nearest to r: its direction there
+            n2 = np.einsum("ij,ij->i", t, t)
+            with np.errstate(invalid="ignore", divide="ignore"):
+                w = np.clip(np.einsum("ij,ij->i", r - q[:-1], t) / n2, 0.0, 1.0)
+            j = int(np.nanargmin(np.hypot(*(q[:-1] + np.nan_to_num(w)[:, None] * t - r).T)))
+            if n2[j] > 0 and abs(float(np.dot(t[j], u))) < turn * math.sqrt(n2[j]):
+                return ACROSS
         ends = [j for j, g in enumerate(front) if g[0] == rr and g[4] == -f[4] and g[4] != 0
                 and float(np.hypot(*(g[2] - f[2]))) <= 2 * L]
         if ends:

@@ -81,6 +81,7 @@ def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), 
     import contourpy
 
     raw, owner, edges = [], [], []
+    specks = []  # (k, point): the grid cells of the specks dropped, left to the band (no grid line there)
     for k, (xs, ys, values) in enumerate(grids):
         if not np.any(np.isfinite(values)):
             continue
@@ -88,6 +89,7 @@ def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), 
                                           line_type="Separate")
         for p in gen.lines(0.0):
             if len(p) == 2 and k not in measure and not _on_frame(np.asarray(p, float), xs, ys):
+                specks.append((k, np.mean(p, axis=0)))
                 continue  # one cell beside undefined ones: a speck the grid barely sees, at any tol alike
             if len(p) >= 2:
                 p = np.array(p, dtype=float)
@@ -130,7 +132,7 @@ def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), 
         lines += [(k, q[lo:hi], g[lo:hi]) for lo, hi in true_runs(~jmp) if hi - lo >= 2]
     # the band beside the no-pair area, where the grid masks every cell (band)
     carry = []  # band ends that leave its lattice beside the edge: carried on (ends)
-    lines = band_lines(F, lines, grids, tol, measure, many, carry)
+    lines = band_lines(F, lines, grids, tol, measure, many, carry, specks)
     lines = bridge_pieces(lines, grids, measure, BRIDGE_CELLS, BRIDGE_COS)
     # a run of one chord off the frame, bridged to none: a speck (see above)
     lines = [(k, q, g) for k, q, g in lines if len(q) >= 3 or k in measure or _on_frame(q, *grids[k][:2])]
