@@ -76,3 +76,30 @@ def test_the_legs_crossing_beside_the_no_pair_edge_are_traced_through_it(tol):
         assert len(zeros) >= 3, radius  # the arms the circle meets where a pair exists
         far = np.min([distances_to_polyline(zeros, q) for q in comps], axis=0)
         assert far.max() <= CONTRACT * tol, (radius, far.max())
+
+
+@pytest.mark.parametrize("tol", [1e-4, 1e-5])
+def test_a_leg_touching_the_no_pair_edge_twice_is_not_drawn_along_it_between(tol):
+    """31/39: the leg zeta1 = -zeta2 touches the no-pair edge near x1 = -0.159 and again near -0.138 and
+    runs nowhere near it between (its margin about -30 along the edge there); the band joined the two
+    touchdowns by a chord along the edge, 0.015 from any zero (150 tol at 1e-4, 1499 at 1e-5): the slope
+    at its ends, steep beside the edge, made its middle look within tol. Oracle: at points along the
+    traced line in that stretch, the scalar margin (``PairField.margin``, the check's own geometry) takes
+    both signs within 2 tol of the point (on circles of radius 1e-4 .. 2 tol: beside the edge the margin
+    varies as the cube root of the distance to it, and the leg runs along it closer than 1e-8)."""
+    field = PairField(PairSpec(31, 39, 1.0))
+    c = blocking_contour(PairSpec(31, 39, 1.0), tol=tol, lines=["sliding"])
+    lo, hi = np.array([-0.156, -1.298]), np.array([-0.141, -1.277])
+    pts = []
+    for q in c.line("sliding").components:
+        d = np.hypot(*np.diff(q, axis=0).T)
+        s = np.concatenate([[0.0], np.cumsum(d)])
+        t = np.linspace(0.0, s[-1], max(2, int(s[-1] / 1e-3)))
+        p = np.column_stack([np.interp(t, s, q[:, 0]), np.interp(t, s, q[:, 1])])
+        pts += [v for v in p if np.all(v >= lo) and np.all(v <= hi)]
+    a = np.linspace(0.0, 2 * np.pi, 16, endpoint=False)
+    ring = np.concatenate([r * tol * np.column_stack([np.cos(a), np.sin(a)]) for r in np.geomspace(1e-4, 2.0, 12)])
+    for p in pts:
+        v = np.array([field.margin("sliding", *(p + o)) for o in ring])
+        v = v[np.isfinite(v)]
+        assert np.any(v > 0) and np.any(v < 0), (p, v.min(), v.max())

@@ -52,6 +52,7 @@ ESTIMATE_FRACTION = 0.5  #: a chord whose estimated deviation is below this frac
 SPLIT_FRACTION = 0.75  #: a chord measured farther than this fraction of tol from its curve is split (a
 #: kink of the curve beside the chord's middle lies at most twice as far as the middle: 1.5 tol)
 SLOPE_RATIO = 2.0  #: a chord is estimated only where the slopes at its ends agree within this factor
+STEEP = 1e5  #: ... and below this (beside the no-pair edge F goes as a cube root: an extrapolated zero may be none)
 SPLIT_MEASURED = 0.5  #: the same for measured curves (a region's corners: its zero may be found on a diagonal)
 MAX_ROUNDS = 60  #: rounds of chord splitting
 MAX_PIECES = 64  #: most pieces one chord is split into in one round
@@ -201,7 +202,7 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
         long = L > step
         with np.errstate(invalid="ignore", divide="ignore"):
             even = np.fmax(gA, gB) <= SLOPE_RATIO * slope  # a slope that jumps along the chord: a kink
-        keep = ~live | (~long & estimate[which] & even & np.isfinite(est) & (est <= ESTIMATE_FRACTION * tol)) \
+        keep = ~live | (~long & estimate[which] & even & (slope <= STEEP) & (est <= ESTIMATE_FRACTION * tol)) \
             | (fm == 0) & ~long
         # measure the others: the root of F along the normal through the middle
         meas = np.flatnonzero(~keep & np.isfinite(fm))
