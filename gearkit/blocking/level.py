@@ -77,8 +77,7 @@ def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), 
     one grid cell that does not cross the grid's inner frame (the window of a grid padded by one ring)
     is dropped: it ends on both sides beside undefined nodes. ``onsets``: ``(((axis, x), ...), curves)``,
     lines ``x_axis = x`` where the curves listed have a kink (:mod:`~gearkit.blocking.onsets`). ``many``:
-    see :func:`~gearkit.blocking.band.band_lines`. ``parts``: the parts of the measured curve, the region
-    (:func:`~gearkit.blocking.tips.part_evaluator`; see :func:`~gearkit.blocking.tips.carry_to_tips`)."""
+    see :func:`~gearkit.blocking.band.band_lines`. ``parts``: the region's (:mod:`~gearkit.blocking.tips`)."""
     import contourpy
 
     raw, owner, edges = [], [], []
