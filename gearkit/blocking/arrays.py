@@ -27,15 +27,12 @@ import numpy as np
 
 from gearkit.curves import inv
 from gearkit.blocking.gear_arrays import form_roll_lengths, gear_forms, inv_inverse, ring_settings
-from gearkit.pair.internal import SWEEP_RESOLUTION
-from gearkit.pair.sweep import SWEEP_ENOUGH, sweep_depth
+from gearkit.blocking.ring_arrays import exit_jamming, plunge_gap, tip_clearance_margin
 from gearkit.pair.tooling import graded_tip_radius, half_angle
 
 __all__ = ["margins", "evaluator", "sliding_ends", "SLIDING_LEGS"]
 
 SLIDING_LEGS = ("sliding.same", "sliding.opposite")  #: the factors of the sliding margin (:meth:`_Pair.sliding_factors`)
-PLUNGE_SAMPLES = 97  #: samples of the plunge-trimming gap (over a quarter wave of the shaper's corner: at
-#: most two extrema), then Newton on the derivative from the smallest; the check samples 801
 
 
 def _no_thinning(thinning) -> bool:
@@ -83,6 +80,7 @@ class _Pair:
         bad = ~(value > 1e-9)
         alpha_tight = inv_inverse(np.where(bad, 1.0, value))
         a_w = np.where(bad, np.nan, base / np.cos(alpha_tight))
+        self._tight = (value, a_w, base)  # (for :meth:`conditions`)
         bad |= ~(a_w > base * (1 + 1e-12))
         a_w = np.where(bad, np.nan, a_w)
         alpha_w = np.arccos(base / a_w)
@@ -126,6 +124,18 @@ class _Pair:
         self.a_w, self.alpha_w, self.ra1, self.ra2, self.rf1, self.rf2 = a_w, alpha_w, ra1, ra2, rf1, rf2
         self.t1, self.t2 = t1, t2
         self._tips = None
+
+    def conditions(self):
+        """The conditions for a pair, ``(n, 4)`` (a tight mesh, its centre distance beyond the base
+        circles', each tip beyond its base circle or, for a ring, inside its root circle): every one
+        positive exactly where a pair exists (one is NaN where an earlier one fails); where none
+        exists for another reason (no tooth, no cutter setting) there is no measure: all NaN."""
+        value, a_w, base = self._tight
+        mn = self.sec.mn
+        far = (self.rf2 - self.ra2) if self.internal else (self.ra2 - self.rb2)
+        parts = np.column_stack([value - 1e-9, (a_w - base * (1 + 1e-12)) / mn, (self.ra1 - self.rb1) / mn, far / mn])
+        parts[self.bad & np.all(parts > 0, axis=1)] = np.nan
+        return parts
 
     @property
     def eps_nominal(self):
@@ -199,69 +209,6 @@ class _Pair:
         d = ratio * self.g_line ** 2
         return (ratio * ratio * u0 * u1 - rho0 * rho1) / d, (2 * ratio * u0 * rho1 - rho0 * rho1 - ratio * ratio * u0 * u1) / d
 
-    def exit_jamming(self):
-        """:func:`~gearkit.pair.internal.exit_jamming_margin`, arrays (rad)."""
-        a, ra1 = self.a_w, self.ra1
-        ra2 = np.maximum(self.ra2, self.rb2)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            c1 = (ra2 ** 2 - ra1 ** 2 - a ** 2) / (2 * a * ra1)
-            c2 = (ra2 ** 2 - ra1 ** 2 + a ** 2) / (2 * a * ra2)
-            d1 = np.arccos(np.clip(c1, -1.0, 1.0))
-            d2 = np.arccos(np.clip(c2, -1.0, 1.0))
-            aa1 = np.arccos(self.rb1 / ra1)
-            aa2 = np.arccos(self.rb2 / ra2)
-            out = (self.z1 * (inv(aa1) + d1) + (self.z2 - self.z1) * inv(self.alpha_w)
-                   - self.z2 * (inv(aa2) + d2))
-        return np.where(ra2 >= ra1 + a, np.inf, out)
-
-    def plunge_gap(self, sel=None):
-        """min (X2 - X0) of :func:`~gearkit.pair.internal.plunge_trimming` (mm) at the points ``sel``:
-        ``PLUNGE_SAMPLES`` samples, then Newton on the derivative from the smallest one (to round-off)."""
-        sec = self.sec
-        cutter = self.field._tools[1]
-        z2, z0 = self.z2, cutter.teeth
-        r2 = np.maximum(self.ra2, self.rb2)
-        t2 = self.t2
-        if sel is not None:
-            r2, t2 = r2[sel], np.asarray(t2)[sel]
-        with np.errstate(invalid="ignore"):
-            d2 = math.pi / z2 - half_angle(sec, z2, t2, r2, True)
-        ra0 = z0 * sec.mt / 2 + (cutter.shift + cutter.addendum) * sec.mn
-        d0 = float(half_angle(sec, z0, 2 * cutter.shift * math.tan(sec.alpha_n), float(ra0), False))
-        k = z2 / z0
-        hi = math.pi / (2 * k)
-        phi = np.linspace(0.0, hi, PLUNGE_SAMPLES)
-        r2c, d2c = r2[:, None], d2[:, None]
-        vals = r2c * np.sin(phi[None] + d2c) - ra0 * np.sin(k * phi[None] + d0)
-        vals = np.where(np.isnan(vals), np.inf, vals)
-        i = np.argmin(vals, axis=1)
-        best = vals[np.arange(len(i)), i]
-        p = phi[i]
-        lo_b, hi_b = phi[np.maximum(i - 1, 0)], phi[np.minimum(i + 1, PLUNGE_SAMPLES - 1)]
-        for _ in range(12):
-            g1 = r2 * np.cos(p + d2) - ra0 * k * np.cos(k * p + d0)
-            g2 = -r2 * np.sin(p + d2) + ra0 * k * k * np.sin(k * p + d0)
-            with np.errstate(invalid="ignore", divide="ignore"):
-                p = np.clip(np.where(g2 > 0, p - g1 / g2, p), lo_b, hi_b)
-        val = r2 * np.sin(p + d2) - ra0 * np.sin(k * p + d0)
-        return np.where(val < best, val, best)
-
-
-    def tip_clearance_margin(self, sel=None):
-        """``SWEEP_RESOLUTION`` minus the tip sweep's depth (m_n) at the points ``sel``: the check's
-        :func:`~gearkit.pair.internal.tip_sweep_depth`, the same function on arrays (exact down to
-        ``-SWEEP_ENOUGH``, below it an upper bound)."""
-        pick = (lambda v: np.asarray(v)) if sel is None else (lambda v: np.asarray(v)[sel])
-        mn = self.sec.mn
-        with np.errstate(invalid="ignore"):
-            rl1 = np.maximum(self.rb1, np.hypot(self.rb1, self.rhoF1))
-            rw2 = self.rb2 / np.cos(self.alpha_w)
-        depth, _ = sweep_depth(self.sec, self.z1, self.z2, pick(self.a_w), pick(self.ra1),
-                               pick(np.maximum(self.ra2, self.rb2)), pick(rl1), pick(self.rf2), pick(self.t1),
-                               pick(self.t2), pick(rw2), SWEEP_RESOLUTION * mn,
-                               (SWEEP_RESOLUTION + SWEEP_ENOUGH) * mn)
-        return SWEEP_RESOLUTION - depth / mn
-
     def margin(self, name, sel=None):
         """Margin ``name`` (see :func:`margins`) at the points ``sel`` (indices; None: all)."""
         if name.startswith("undercut."):
@@ -307,12 +254,12 @@ class _Pair:
         if base in SLIDING_LEGS:
             return at(self.sliding_factors()[SLIDING_LEGS.index(base)])
         if base == "exit_jamming":
-            return at(self.exit_jamming())
+            return at(exit_jamming(self))
         if base == "trimming.plunge":
-            gap = self.plunge_gap(sel) / mn
+            gap = plunge_gap(self, sel) / mn
             return np.where(gap > 0, gap, np.minimum(gap, -5e-324))
         if base == "tip_interference":
-            return self.tip_clearance_margin(sel)
+            return tip_clearance_margin(self, sel)
         if base == "trimming.nu":
             return (at(self.ra2) - at(self.nu)) / mn
         if base == "center_distance":
@@ -372,20 +319,35 @@ def evaluator(field, names, window):
         v = np.minimum(w, m)
         return np.where(np.isnan(v), np.minimum(w, -1.0), v)
 
-    def F(p, which):
+    def values(p, which):
+        """(the pair geometry, the functions ``names[which[i]]`` at ``p[i]``)."""
         p = np.asarray(p, dtype=float).reshape(-1, 2)
         which = np.asarray(which)
         with np.errstate(invalid="ignore", divide="ignore"):
             g = _Pair(field, p[:, 0].copy(), p[:, 1].copy())
             if len(p) and not np.count_nonzero(which != which[0]):  # one function (most calls): in place
-                return np.asarray(one(g, p, names[which[0]], None), dtype=float)
+                return g, np.asarray(one(g, p, names[which[0]], None), dtype=float)
             out = np.empty(len(p))
             order = np.argsort(which, kind="stable")  # each function's points, in their order
             ends = np.flatnonzero(np.diff(which[order])).tolist() + [len(p) - 1]
             for lo, hi in zip([-1] + ends, ends if len(p) else []):
                 sel = order[lo + 1:hi + 1]
                 out[sel] = one(g, p, names[which[sel[0]]], sel)
-        return out
+        return g, out
+
+    def F(p, which):
+        return values(p, which)[1]
+
+    def slack(p, which):
+        """The conditions for a pair, ``(n, 4)``: all positive exactly where ``F(p, which)`` is finite;
+        where it is not, each smooth and zero where its condition starts to fail (the parts of the edge
+        of the no-pair area), NaN where it has no measure (a function undefined for a reason of its
+        own, no tooth): what :func:`~gearkit.blocking.edges.edge_point` solves for the edge."""
+        g, v = values(p, which)
+        fin = np.isfinite(v)[:, None]
+        s = g.conditions()
+        ok = np.all(s > 0, axis=1)[:, None]
+        return np.where(fin, np.where(ok, s, np.inf), np.where(ok, np.nan, s))
 
     def many(p, which):
         """Functions ``names[w]`` for every ``w`` in ``which`` at all the points ``p``: ``(len(which), n)``,
@@ -394,5 +356,5 @@ def evaluator(field, names, window):
         with np.errstate(invalid="ignore", divide="ignore"):
             g = _Pair(field, p[:, 0].copy(), p[:, 1].copy())
             return np.array([one(g, p, names[w], None) for w in which], dtype=float).reshape(len(which), len(p))
-    F.many = many
+    F.many, F.slack = many, slack
     return F

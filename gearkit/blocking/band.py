@@ -90,7 +90,10 @@ def band_lines(F, lines, grids, tol: float, measure=(), many=None, carry=None, s
     # grid column from one grid row to the next; columns x1 = const elsewhere
     # (each way round on its own: an internal pair's rows cross the edge twice, at x1 about constant where
     # gear 1 is cut no tooth and where inv alpha_w reaches 1e-9)
-    FT = (lambda p, k: F(p[:, ::-1], k))
+    def FT(p, k):
+        return F(p[:, ::-1], k)
+    if getattr(F, "slack", None) is not None:  # the measure of the no-pair area, transposed alike
+        FT.slack = lambda p, k: F.slack(p[:, ::-1], k)
     rows = []
     for sense in (1, -1):
         steep = steep_cells(np.isfinite(values[1:-1, 1:-1]).T, sense)

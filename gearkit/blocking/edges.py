@@ -22,8 +22,8 @@ import math
 import numpy as np
 
 
-__all__ = ["edge_point", "toward_edge", "touchdowns", "ahead_on_edge", "ladder", "nearest_change", "across",
-           "crossing_ends", "EDGE_REACH"]
+__all__ = ["edge_point", "by_slack", "toward_edge", "touchdowns", "ahead_on_edge", "ladder", "nearest_change",
+           "across", "crossing_ends", "EDGE_REACH"]
 
 LADDER = 0.5  #: ratio of the geometric sample distances
 FLOOR = 1e-13  #: the smallest sample distance, relative to the window's size
@@ -41,15 +41,25 @@ EDGE_GROWTH = 3.0  #: ... its differences over D, 4 D, 16 D from the edge grow b
 EDGE_FLAT = 1e-12  #: ... (differences at round-off: F does not vary up from the edge, regular)
 EDGE_BUDGET = 2.0  #: ... and carried no farther than this times its distance to the edge along the tangent
 EDGE_FAN_DEG = 10.0  #: the edge's direction there: from its points on rays this far either side of the tangent
+GUARDS = np.array([0.1, 1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12])  #: fractions of the bracket about the false
+#: position that :func:`by_slack` samples (2 * 7 + 1 = SPLITS points): the next bracket is about the first
+#: guard beyond the false position's error
 
 
 def edge_point(F, a, b, which, span, within=None):
     """The last defined point from ``a`` (defined) towards ``b`` (undefined), to ``span * FLOOR``
-    (or to ``within``, a length, where that is enough)."""
-    a, b = a.copy(), b.copy()
+    (or to ``within``, a length, where that is enough). With a measure of the undefined area
+    (``F.slack``, see :func:`by_slack`) the edge is solved for; without, found by multisection."""
+    close = FLOOR * span if within is None else max(float(within), FLOOR * span)
+    if getattr(F, "slack", None) is not None and len(a):
+        return by_slack(F.slack, a, b, which, close)
+    return _multisection(F, a.copy(), b.copy(), which, close)
+
+
+def _multisection(F, a, b, which, close):
+    """:func:`edge_point` by multisection: ``SPLITS`` samples a round, the first undefined one kept."""
     n = len(a)
     t = np.arange(1, SPLITS + 1) / (SPLITS + 1)
-    close = FLOOR * span if within is None else max(float(within), FLOOR * span)
     for _ in range(40):
         if not n or np.max(np.hypot(*(b - a).T)) <= close:
             break
@@ -62,6 +72,65 @@ def edge_point(F, a, b, which, span, within=None):
         nb = np.where((j < SPLITS)[:, None], P[r, np.minimum(j, SPLITS - 1)], b)
         a, b = na, nb
     return a
+
+
+def by_slack(S, a, b, which, close):
+    """:func:`edge_point` for a function ``F`` whose ``S = F.slack`` gives the conditions for ``F``
+    to be defined, ``(n, K)``: all positive exactly where it is, each smooth and zero where it starts
+    to fail (NaN where it has no measure). Each round samples ``SPLITS`` points between the last
+    defined and the first undefined point found: where a condition is measured at both ends and
+    fails at the far one, about the false position of the first such (guards at fractions ``GUARDS``
+    of the bracket: a straight edge is met to round-off in one round, a curved one quadratically);
+    elsewhere ``SPLITS`` even splits. The first undefined sample ends the bracket, as in the
+    multisection.
+
+    >>> S = lambda p, k: np.where(p[:, :1] < 1 / 3, 1 / 3 - p[:, :1], np.nan)  # no measure past x = 1/3
+    >>> bool(abs(by_slack(S, np.array([[0.0, 0.0]]), np.array([[1.0, 0.0]]), np.array([0]), 1e-13)[0, 0] - 1 / 3) < 1e-13)
+    True
+    """
+    n = len(a)
+    d = b - a
+    length = np.maximum(np.hypot(*d.T), 1e-300)
+    lo, hi = np.zeros(n), np.ones(n)
+    s_lo = s_hi = None
+    even = np.arange(1, SPLITS + 1) / (SPLITS + 1)
+    guards = np.concatenate([-GUARDS, [0.0], GUARDS[::-1]])
+    live = np.arange(n)
+    for _ in range(40):
+        live = live[(hi[live] - lo[live]) * length[live] > close]
+        if not live.size:
+            break
+        w = hi[live] - lo[live]
+        t = lo[live, None] + even[None, :] * w[:, None]
+        if s_lo is not None:
+            a_s, b_s = s_lo[live], s_hi[live]
+            with np.errstate(invalid="ignore", divide="ignore"):
+                fails = np.isfinite(a_s) & np.isfinite(b_s) & (a_s > 0) & (b_s <= 0)
+                f = np.where(fails, a_s / (a_s - b_s), np.inf).min(axis=1)  # the first condition's false position
+            m = np.flatnonzero(np.isfinite(f))
+            t[m] = lo[live[m], None] + np.clip(f[m, None] + guards[None, :], 0.0, 1.0) * w[m, None]
+        P = a[live, None, :] + t[:, :, None] * d[live, None, :]
+        if s_lo is None:  # the start's own measure, with the first samples
+            v = S(np.concatenate([a, P.reshape(-1, 2)]), np.concatenate([which, np.repeat(which, SPLITS)]))
+            s_lo, s_hi = v[:n].copy(), np.full((n, v.shape[1]), np.nan)
+            v = v[n:].reshape(n, SPLITS, -1)
+            hi[~np.all(s_lo > 0, axis=1)] = 0.0  # a start that is not defined is its own edge (as in the multisection)
+        else:
+            v = S(P.reshape(-1, 2), np.repeat(which[live], SPLITS)).reshape(live.size, SPLITS, -1)
+        within = (t > lo[live, None]) & (t < hi[live, None])
+        ok = np.all(v > 0, axis=2)
+        inside, out = ok & within, ~ok & within
+        j = np.where(out.any(axis=1), np.argmax(out, axis=1), SPLITS)  # the first undefined sample
+        r = np.arange(live.size)
+        before = inside & (np.arange(SPLITS)[None, :] < j[:, None])  # the defined samples before it
+        k = np.where(before.any(axis=1), SPLITS - 1 - np.argmax(before[:, ::-1], axis=1), -1)
+        got, cut = k >= 0, j < SPLITS
+        lo[live[got]], s_lo[live[got]] = t[r[got], k[got]], v[r[got], k[got]]
+        hi[live[cut]], s_hi[live[cut]] = t[r[cut], j[cut]], v[r[cut], j[cut]]
+        s_lo[live[~got]] *= 0.5  # an end kept twice weighs half in the next false position: the
+        s_hi[live[~cut]] *= 0.5  # other comes to the edge where the condition bends
+        live = live[got | cut]  # (neither: every sample fell on an end of its bracket, at round-off)
+    return a + lo[:, None] * d
 
 
 def toward_edge(F, m, f0, out, which):

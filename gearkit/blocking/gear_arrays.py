@@ -39,7 +39,7 @@ def inv_inverse(v):
     below ``NEWTON_DONE`` a (Newton converges quadratically: the next step would be below 1e-25 a;
     near a = 0.1 rad tan a - a cancels and the steps stall at 1e-14 a), or no longer halves. Where
     ``v`` is not positive (no pair) the result is garbage the caller masks; it does not hold the
-    iteration up.
+    iteration up. Each angle stops on its own: the result does not depend on the others in the array.
 
     >>> from gearkit.curves import inv
     >>> v = np.geomspace(1e-12, 0.5, 400)
@@ -50,7 +50,7 @@ def inv_inverse(v):
     # the iterates fall to the root from the right: none falls below SERIES_BELOW where every value is above its inv
     series = bool(np.count_nonzero(v < _INV_SERIES_BELOW))  # (count_nonzero: one C call; .any() wraps one in Python)
     with np.errstate(invalid="ignore"):
-        live = v > 0
+        going = v > 0
     last = np.full(np.shape(a), np.inf)
     for _ in range(NEWTON):
         t = np.tan(a)
@@ -60,11 +60,12 @@ def inv_inverse(v):
             if np.count_nonzero(small):  # inv's series at the small angles alone: f is tan a - a elsewhere
                 f[small] = inv_series(a[small])
         step = (f - v) / (t * t)
-        a = a - step
-        size = np.abs(step)
+        a = np.where(going, a - step, a)  # an angle that has stopped stays: each its own iterates, however
+        size = np.abs(step)  # many share the array (the same angle alone or among others, to the bit)
         with np.errstate(invalid="ignore"):
-            if not np.count_nonzero(live & (size > NEWTON_DONE * a) & (size < 0.5 * last)):
-                break
+            going &= (size > NEWTON_DONE * a) & (size < 0.5 * last)
+        if not np.count_nonzero(going):
+            break
         last = size
     return a
 

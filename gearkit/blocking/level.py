@@ -144,8 +144,8 @@ def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), 
     lines = densify(F, onset_vertices(F, lines, *onsets, vtol), tol, max_step, measure, kinked, True, kept)
     lines = reconnect(F, lines, kept, tol, lambda ls, kp: densify(F, ls, tol, max_step, measure, kinked, True, kp))
     if parts is not None and measure:  # the region's chords still across a wedge or a strip: its edge (tips)
-        lines = carry_to_tips(F, parts, lines, kept, measure[0], tol, lambda g, ls: densify(g, ls, tol, max_step,
-                                                                                         (), range(g.size)))
+        lines = carry_to_tips(F, parts, lines, kept, measure[0], tol,  # (a side is taken whole or not at all)
+                              lambda g, ls: densify(g, ls, tol, max_step, (), range(g.size), dips=False))
     for k, q in once([(k, q) for k, q, _ in lines], tol, measure):
         out[k].append(q)
     return out
@@ -158,9 +158,8 @@ def _on_frame(p, xs, ys) -> bool:
     return bool(np.all(ex | ey))
 
 
-
 def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kinked=(), slopes=False,
-            kept=None) -> list:
+            kept=None, dips=True) -> list:
     """``lines`` (a list of ``(k, points (n, 2), slope (n,))``: curve index, vertices on the curve, and
     estimates of ``|grad F_k|`` there, NaN if unknown) with vertices added until every chord lies
     within ``tol`` of its curve and is at most ``max_step`` long (a fourth entry, a mask of the
@@ -170,7 +169,8 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
     have every chord measured, never estimated; so do the curves in ``kinked`` (a kink between two
     branches of one margin, e.g. the contact ratio where its limiting end changes: an acute wedge's
     middle value says nothing of its tip), which are otherwise traced as the rest. ``kept``: a list to
-    which a measured curve's chords with no zero found across them are added as ``(k, start, end)``."""
+    which a measured curve's chords with no zero found across them are added as ``(k, start, end)``. ``dips``:
+    lines dipping to the no-pair edge carried to it (:func:`~gearkit.blocking.edges.touchdowns`)."""
     vtol = VERTEX_FRACTION * tol
     step = np.inf if not max_step else float(max_step)
     state = [(ln[0], np.asarray(ln[1], float), np.asarray(ln[2], float),
@@ -280,7 +280,7 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
         cut = set(meas[lost].tolist())
         touch = {}  # chord row -> (new vertices, the first of the chord to cut)
         lost = lost[np.isfinite(out_dir[lost, 0])]
-        if lost.size:
+        if lost.size and dips:
             rr = meas[lost]
             TA, TB = touchdowns(F, A[rr], B[rr], out_dir[lost], which[rr], vtol)
             for r, ta, tb in zip(rr.tolist(), TA, TB):

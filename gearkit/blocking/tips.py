@@ -73,7 +73,19 @@ def part_evaluator(field, window, count=None):
         v = p[:, edges[0]].T
         w = np.where(edges[1][:, None], hi[edges[0]][:, None] - v, v - lo[edges[0]][:, None])
         return np.concatenate([M.many(p, range(len(hard))), w]) if len(p) else np.zeros((G.size, 0))
-    G.size, G.window, G.many = len(hard) + 4, tuple(window), many
+    def slack(p, which):
+        """The conditions for part ``which[i]`` to be defined at ``p[i]`` (:func:`~gearkit.blocking.arrays.evaluator`'s
+        ``slack``; a window's edge is defined everywhere)."""
+        p = np.asarray(p, dtype=float).reshape(-1, 2)
+        if count is not None:
+            count[0] += len(p)
+        which = np.asarray(which)
+        out = np.full((len(p), 4), np.inf)
+        m = which < len(hard)
+        if np.count_nonzero(m):
+            out[m] = M.slack(p[m], which[m])
+        return out
+    G.size, G.window, G.many, G.slack = len(hard) + 4, tuple(window), many, slack
     return G
 
 

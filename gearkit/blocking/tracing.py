@@ -81,6 +81,11 @@ def trace(field: PairField, window, names, tol: float, max_step: float | None = 
     def many(p, which):
         count[0] += len(p) * len(which)
         return F0.many(p, which)
+
+    def slack(p, which):
+        count[0] += len(p)
+        return F0.slack(p, which)
+    F.slack = slack
     with Progress("blocking", 4, unit="stages") as bar:  # the grid, the region's cells, the lines, the polygons
         xs = np.linspace(window[0], window[1], GRID)
         ys = np.linspace(window[2], window[3], GRID)

@@ -1,0 +1,108 @@
+"""The edge of the no-pair area solved for from the conditions for a pair (``F.slack``,
+:func:`gearkit.blocking.edges.by_slack`), against the margins' own definedness, the multisection
+that needs no measure, and the closed form of the tight-mesh edge."""
+import math
+
+import numpy as np
+import pytest
+
+from gearkit.blocking import edges
+from gearkit.blocking.arrays import evaluator
+from gearkit.blocking.field import PairField
+from gearkit.curves import inv
+from gearkit.families.involute.tools import ShaperCutter
+from gearkit.pair import PairSpec
+
+PAIRS = {
+    "20/40": PairSpec(20, 40, 1.0),
+    "13/16": PairSpec(13, 16, 1.0),
+    "46/49 internal": PairSpec(46, 49, 1.0, kind="internal", tool2=ShaperCutter(20)),
+    "14/30 shaper": PairSpec(14, 30, 1.0, tool1=ShaperCutter(17)),
+}
+NAMES = ["contact_ratio=1", "interference.1", "interference.2", "pointing.1", "tip_clearance.2", "sliding.same"]
+
+
+def _field(key):
+    f = PairField(PAIRS[key])
+    names = NAMES + (["exit_jamming", "undercut.1"] if f.internal else ["undercut.1"])
+    return f, names, evaluator(f, names, None)
+
+
+@pytest.mark.parametrize("key", sorted(PAIRS))
+def test_the_conditions_are_positive_exactly_where_the_margin_is_defined(key):
+    f, names, F = _field(key)
+    rng = np.random.default_rng(3)
+    p = rng.uniform(-2.5, 3.0, (4000, 2))
+    defined = 0
+    for k in range(len(names)):
+        which = np.full(len(p), k)
+        v, s = F(p, which), F.slack(p, which)
+        assert s.shape == (len(p), 4)
+        np.testing.assert_array_equal(np.all(s > 0, axis=1), np.isfinite(v), err_msg=names[k])
+        defined += int(np.count_nonzero(np.isfinite(v)))
+    assert 0.1 * len(p) * len(names) < defined < 0.95 * len(p) * len(names)  # both sides sampled
+
+
+def _rows(F, k, n=40, seed=5):
+    """Segments from a defined point to an undefined one."""
+    rng = np.random.default_rng(seed)
+    p = rng.uniform(-2.5, 3.0, (20 * n, 2))
+    q = p + rng.normal(0.0, 0.6, p.shape)
+    which = np.full(len(p), k)
+    ok = np.isfinite(F(p, which)) & np.isnan(F(q, which))
+    return p[ok][:n], q[ok][:n]
+
+
+@pytest.mark.parametrize("key", sorted(PAIRS))
+def test_the_edge_solved_for_is_where_the_multisection_finds_it(key):
+    f, names, F = _field(key)
+    close = 1e-12
+    for k in (0, 1, 3):
+        a, b = _rows(F, k)
+        assert len(a) >= 10
+        which = np.full(len(a), k)
+        e = edges.by_slack(F.slack, a, b, which, close)
+        m = edges._multisection(F, a.copy(), b.copy(), which, close)  # sees only defined or not
+        np.testing.assert_array_less(np.hypot(*(e - m).T), 4 * close)
+        assert np.all(np.isfinite(F(e, which)))  # the last defined point ...
+        u = (b - a) / np.hypot(*(b - a).T)[:, None]
+        assert np.all(np.isnan(F(e + 4 * close * u, which)))  # ... with the area a step beyond
+
+
+def test_the_tight_mesh_edge_is_met_where_its_closed_form_puts_it_in_two_rounds():
+    """Rack-cut gears: a tight mesh exists while inv a_t + 2 (x1 + x2) tan a_n / (z1 + z2) > 1e-9
+    (the arrays' threshold); that edge is a straight line, met to round-off by the false position."""
+    f, names, F = _field("20/40")
+    edge = (1e-9 - inv(f._sec.alpha_t)) * 60 / (2 * math.tan(f._sec.alpha_n))
+    x1 = np.array([-1.0, -0.5, 0.0, 0.25])
+    a, b = np.column_stack([x1, np.full(4, 2.0)]), np.column_stack([x1, np.full(4, -6.0)])
+    calls = []
+
+    def S(p, k):
+        calls.append(len(p))
+        return F.slack(p, k)
+    e = edges.by_slack(S, a, b, np.zeros(4, int), 1e-13)
+    np.testing.assert_allclose(e.sum(axis=1), edge, rtol=0, atol=1e-13)
+    slack_calls = len(calls)
+
+    def G(p, k):
+        calls.append(len(p))
+        return F(p, k)
+    m = edges._multisection(G, a.copy(), b.copy(), np.zeros(4, int), 1e-13)
+    np.testing.assert_allclose(m.sum(axis=1), edge, rtol=0, atol=1e-13)
+    # even splits, the false position (at round-off), one more round of guards to close the bracket
+    assert slack_calls == 3 and len(calls) - slack_calls >= 10
+
+
+@pytest.mark.parametrize("key", sorted(PAIRS))
+def test_a_margin_at_a_point_does_not_depend_on_the_points_beside_it(key):
+    """The same point alone or among others, to the bit (each Newton iteration of the working
+    pressure angle stops on its own): an edge solved to round-off stays defined when evaluated again."""
+    f, names, F = _field(key)
+    names = list(dict.fromkeys(names + list(f.hard)))
+    F = evaluator(f, names, None)
+    p = np.random.default_rng(1).uniform(-2.0, 2.5, (120, 2))
+    for k in range(len(names)):
+        which = np.full(len(p), k)
+        alone = np.array([F(p[i:i + 1], which[:1])[0] for i in range(len(p))])
+        np.testing.assert_array_equal(F(p, which), alone, err_msg=names[k])
