@@ -106,3 +106,14 @@ def test_a_margin_at_a_point_does_not_depend_on_the_points_beside_it(key):
         which = np.full(len(p), k)
         alone = np.array([F(p[i:i + 1], which[:1])[0] for i in range(len(p))])
         np.testing.assert_array_equal(F(p, which), alone, err_msg=names[k])
+
+
+def test_a_line_along_the_edge_below_the_bands_rows_is_traced_on():
+    """51/101's interference.1 runs along the no-pair edge near the bottom frame: the band's rows stand
+    on the multisection's edge points (rows placed from the solved edge, 1e-15 away, lost the piece:
+    7 tol at 1e-3). The bench's scan: exact zeros on scan lines, each within 2 tol of a traced line."""
+    from gearkit.blocking import blocking_contour
+    from gearkit.bench.topology import scan_gap
+
+    c = blocking_contour(PairSpec(51, 101, 1.0), tol=1e-3)
+    assert scan_gap(c)[0] <= 2e-3

@@ -46,12 +46,13 @@ GUARDS = np.array([0.1, 1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12])  #: fractions of 
 #: guard beyond the false position's error
 
 
-def edge_point(F, a, b, which, span, within=None):
+def edge_point(F, a, b, which, span, within=None, solve=True):
     """The last defined point from ``a`` (defined) towards ``b`` (undefined), to ``span * FLOOR``
     (or to ``within``, a length, where that is enough). With a measure of the undefined area
-    (``F.slack``, see :func:`by_slack`) the edge is solved for; without, found by multisection."""
+    (``F.slack``, see :func:`by_slack`) the edge is solved for; without, or with ``solve=False``,
+    found by multisection."""
     close = FLOOR * span if within is None else max(float(within), FLOOR * span)
-    if getattr(F, "slack", None) is not None and len(a):
+    if solve and getattr(F, "slack", None) is not None and len(a):
         return by_slack(F.slack, a, b, which, close)
     return _multisection(F, a.copy(), b.copy(), which, close)
 
