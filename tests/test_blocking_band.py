@@ -18,18 +18,17 @@ the edge, tip_clearance.1 2.75; 16/59 (z0 = 19) exit_jamming had no trace at all
 """
 import numpy as np
 import pytest
-from scipy.optimize import brentq
 
 from gearkit.blocking import blocking_contour
 from gearkit.distances import distances_to_polyline
 from gearkit.families.involute import ShaperCutter
 from gearkit.pair import PairSpec
 
+from edgezeros import zeros_from_edge
+
 CONTRACT = 2.0  #: achieved / tol (issue 19)
 COLUMNS = 80  #: columns x1 = const across the window
-EDGE_BISECTIONS = 60  #: bisections locating the no-pair edge on a column (to round-off)
 DISTANCES = np.geomspace(1e-12, 0.4, 160)  #: samples above the edge (shift units)
-FALL = 0.5  #: a solved sign change is a zero when |F| fell below this fraction of its ends'
 
 
 def _edge_zeros(field, name, window, rows=False, x1s=None):
@@ -48,24 +47,8 @@ def _edge_zeros(field, name, window, rows=False, x1s=None):
 
 
 def _zeros_from_edge(f, lo, hi, top):
-    """The zeros of ``f`` (NaN where no pair exists) along one line: its edge bisected between ``lo``
-    (undefined) and ``hi`` (defined), then ``f`` sampled at ``DISTANCES`` from it up to ``top``, every
-    sign change solved by brentq (none where ``|f|`` does not fall: a pole). Empty where the line has
-    no such edge."""
-    if not np.isnan(f(lo)) or np.isnan(f(hi)):
-        return []
-    for _ in range(EDGE_BISECTIONS):
-        mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if np.isnan(f(mid)) else (lo, mid)
-    ts = hi + DISTANCES
-    ts = ts[ts <= top]
-    v = np.array([f(t) for t in ts])
-    out = []
-    for i in np.flatnonzero(np.isfinite(v[:-1]) & np.isfinite(v[1:]) & ((v[:-1] > 0) != (v[1:] > 0))):
-        t = brentq(f, ts[i], ts[i + 1], xtol=1e-15, rtol=1e-15)
-        if abs(f(t)) <= FALL * min(abs(v[i]), abs(v[i + 1])):
-            out.append(t)
-    return out
+    """:func:`edgezeros.zeros_from_edge` with the samples of this file (above the edge, up to 0.4)."""
+    return zeros_from_edge(f, lo, hi, top, DISTANCES)
 
 
 def _farthest(zeros, components):

@@ -16,7 +16,6 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-from scipy.optimize import brentq
 
 from gearkit.blocking import blocking_contour
 from gearkit.blocking.contour import default_window
@@ -27,6 +26,8 @@ from gearkit.errors import SpecError
 from gearkit.families.involute import ShaperCutter
 from gearkit.pair import PairSpec, pair_geometry
 
+from edgezeros import zeros_from_edge
+
 CONTRACT = 2.0  #: achieved / tol
 SAMPLES = 24  #: random points per pair across the strip
 ROWS = 16  #: rows x2 = const across the window
@@ -34,7 +35,6 @@ EDGE_BISECTIONS = 60  #: bisections locating the no-pair edge on a row (to round
 DISTANCES = np.geomspace(1e-12, 0.6, 160)  #: samples right of the edge (shift units)
 CHECK_BISECTIONS = 30  #: bisections of the check's first pair on a row (to 1e-11)
 STEP = 0.01  #: steps along a row from a zero in the strip to the check's first pair
-FALL = 0.5  #: a solved sign change is a zero when |F| fell below this fraction of its ends'
 FORM_ACCURACY = 1e-9  #: (m_n) the form-circle interpolant's accuracy (PairField.form_interpolant)
 RINGS = {"46/49": (46, 49, 20), "57/130": (57, 130, 28)}
 
@@ -99,19 +99,7 @@ def test_the_margins_are_undefined_exactly_where_the_check_finds_no_pair(key):
 def _row_zeros(margin, lo, hi):
     """The zeros of ``margin(x1)`` (NaN where no pair exists) right of its no-pair edge, bisected between
     ``lo`` (undefined) and ``hi`` (defined): empty where the row has no such edge."""
-    if not np.isnan(margin(lo)) or np.isnan(margin(hi)):
-        return []
-    for _ in range(EDGE_BISECTIONS):
-        mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if np.isnan(margin(mid)) else (lo, mid)
-    xs = hi + DISTANCES
-    v = np.array([margin(x) for x in xs])
-    out = []
-    for i in np.flatnonzero(np.isfinite(v[:-1]) & np.isfinite(v[1:]) & ((v[:-1] > 0) != (v[1:] > 0))):
-        x = brentq(margin, xs[i], xs[i + 1], xtol=1e-15, rtol=1e-15)
-        if abs(margin(x)) <= FALL * min(abs(v[i]), abs(v[i + 1])):
-            out.append(x)
-    return out
+    return zeros_from_edge(margin, lo, hi, math.inf, DISTANCES)
 
 
 def _formula_margin(spec, name):
