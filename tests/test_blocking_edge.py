@@ -117,3 +117,16 @@ def test_a_line_along_the_edge_below_the_bands_rows_is_traced_on():
 
     c = blocking_contour(PairSpec(51, 101, 1.0), tol=1e-3)
     assert scan_gap(c)[0] <= 2e-3
+
+
+def test_a_segment_shorter_than_the_resolution_among_others_is_its_own_start():
+    """A segment already within ``close`` (zero length) beside segments to solve: it takes no samples and
+    returns its start, the others their edges (the first round sampled every segment's start but only
+    the live segments: the functions' indices no longer matched the points, an IndexError in an atlas)."""
+    f, names, F = _field("20/40")
+    edge = (1e-9 - inv(f._sec.alpha_t)) * 60 / (2 * math.tan(f._sec.alpha_n))
+    a = np.array([[0.0, 2.0], [0.3, 0.3], [-0.5, 2.0]])
+    b = np.array([[0.0, -6.0], [0.3, 0.3], [-0.5, -6.0]])
+    e = edges.by_slack(F.slack, a, b, np.array([0, 1, 0]), 1e-13)
+    np.testing.assert_array_equal(e[1], a[1])
+    np.testing.assert_allclose(e[[0, 2]].sum(axis=1), edge, rtol=0, atol=1e-13)

@@ -112,9 +112,9 @@ def by_slack(S, a, b, which, close):
             t[m] = lo[live[m], None] + np.clip(f[m, None] + guards[None, :], 0.0, 1.0) * w[m, None]
         P = a[live, None, :] + t[:, :, None] * d[live, None, :]
         if s_lo is None:  # the start's own measure, with the first samples
-            v = S(np.concatenate([a, P.reshape(-1, 2)]), np.concatenate([which, np.repeat(which, SPLITS)]))
+            v = S(np.concatenate([a, P.reshape(-1, 2)]), np.concatenate([which, np.repeat(which[live], SPLITS)]))
             s_lo, s_hi = v[:n].copy(), np.full((n, v.shape[1]), np.nan)
-            v = v[n:].reshape(n, SPLITS, -1)
+            v = v[n:].reshape(live.size, SPLITS, -1)  # (a segment already shorter than close takes none)
             hi[~np.all(s_lo > 0, axis=1)] = 0.0  # a start that is not defined is its own edge (as in the multisection)
         else:
             v = S(P.reshape(-1, 2), np.repeat(which[live], SPLITS)).reshape(live.size, SPLITS, -1)
