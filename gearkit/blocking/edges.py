@@ -286,7 +286,8 @@ def across(F, Q, N, reach, sig, which, span, floor=None):
         idx = np.array([e for e, _, _ in edge])
         A = Q[idx] + np.array([a for _, a, _ in edge])[:, None] * N[idx]
         B = Q[idx] + np.array([b for _, _, b in edge])[:, None] * N[idx]
-        E = edge_point(F, A, B, which[idx], span)
+        E = edge_point(F, A, B, which[idx], span, solve=False)  # (the multisection's point: from the solved
+        # edge, 1e-15 away, 12/30's ladder lost a piece at tol 1e-9, 58 tol)
         # from the edge to round-off whatever ``floor``: a line meeting the edge at a small angle runs
         # closer to it than any sample about Q (the margins vary as the cube root of the distance)
         d = ladder(1.0, FLOOR * span / max(float(np.max(np.hypot(*(A - E).T))), 1e-300))
