@@ -19,11 +19,17 @@ ROOT_ITERATIONS = 100
 GUARD_FRACTION = 0.5  #: a round's guard stands this fraction of tol beyond its estimate ...
 GUARD_SETTLED = 0.5  #: ... where the estimate moved less than this fraction of its bracket since the round
 #: before (it is settling on a root; not beside a jump of F or while the bracket is still wide)
+SLOPE_WIDTH = 1.0 / 16  #: the slope at a root is read off a bracket at least this fraction of tol wide
 
 
-def segment_roots(F, a, b, fa, fb, tol: float, which) -> np.ndarray:
+def segment_roots(F, a, b, fa, fb, tol: float, which, slopes: bool = False):
     """Roots of ``F`` (function ``which[k]``) on the segments ``a[k] -> b[k]`` (``(k, 2)``), given end
-    values of opposite signs; each within ``tol`` (in x) of a sign change of ``F``.
+    values of opposite signs; each within ``tol`` (in x) of a sign change of ``F``. With ``slopes=True``,
+    ``(roots, slopes)``: ``|dF/ds|`` along the segment at each root, read off the last bracket (values
+    as evaluated, about ``tol`` wide), not off the segment's ends: beside a saddle, where ``F`` is
+    nearly quadratic, the secant across a wide bracket is many times the slope at the root. The bracket
+    read is the narrowest at least ``SLOPE_WIDTH tol`` wide with both values defined (the segment itself
+    when none is narrower).
 
     Regula falsi with the Illinois modification; a step that fails to halve the bracket over two
     iterations is followed by a bisection. Regula falsi comes at a root from one side, so where its
@@ -44,6 +50,11 @@ def segment_roots(F, a, b, fa, fb, tol: float, which) -> np.ndarray:
     # the open brackets' state, compacted as brackets close (their ends written back then)
     act = np.flatnonzero(~done)
     l, h, fl, fh, aa, dd, ww, sp = (v[act] for v in (lo, hi, flo, fhi, a, d, which, span))
+    vl, vh = flo[act], fhi[act]  # the bracket's values as evaluated (fl, fh are scaled by Illinois)
+    # the slope's bracket: the narrowest so far at least SLOPE_WIDTH tol wide (a narrower one, where regula
+    # falsi met the root to round-off, has values of round-off)
+    slo, shi, svlo, svhi = lo.copy(), hi.copy(), flo.copy(), fhi.copy()
+    bl, bh, bvl, bvh = (v[act] for v in (slo, shi, svlo, svhi))
     s = np.zeros(act.size, dtype=int)  # the end moved last: 1 low, -1 high, 0 none or a bisection
     stall = np.zeros(act.size, dtype=int)
     cp = np.full(act.size, np.nan)
@@ -80,6 +91,8 @@ def segment_roots(F, a, b, fa, fb, tol: float, which) -> np.ndarray:
                 new_h = np.where(same_hi | nh, c, h)
                 new_l = np.where(same_lo | (nan & ~nh), c, l)
                 s_new = np.where(bis | nan, 0, np.where(same_hi, -1, np.where(same_lo, 1, s)))
+                vh2 = np.where(same_hi, fc, np.where(nh, np.nan, vh))
+                vl2 = np.where(same_lo, fc, np.where(nan & ~nh, np.nan, vl))
             else:
                 live = ~zero
                 same_hi = live & pos
@@ -87,6 +100,8 @@ def segment_roots(F, a, b, fa, fb, tol: float, which) -> np.ndarray:
                 new_h = np.where(same_hi, c, h)
                 new_l = np.where(same_lo, c, l)
                 s_new = np.where(bis, 0, np.where(same_hi, -1, np.where(same_lo, 1, s)))
+                vh2 = np.where(same_hi, fc, vh)
+                vl2 = np.where(same_lo, fc, vl)
             # Anderson-Bjorck: when the same end moves twice, scale the value kept at the other end
             scale_l, scale_h = same_hi & (s == -1) & moving, same_lo & (s == 1) & moving
             s = s_new
@@ -103,8 +118,8 @@ def segment_roots(F, a, b, fa, fb, tol: float, which) -> np.ndarray:
                 g_zero = fg == 0
                 up = ((fg > 0) == (fh2[gi] > 0)) | g_zero  # the guard moves the high end (or is a zero)
                 hi_i, lo_i = gi[up], gi[~up]
-                new_h[hi_i], fh2[hi_i] = gv[up], fg[up]
-                new_l[lo_i], fl2[lo_i] = gv[~up], fg[~up]
+                new_h[hi_i], fh2[hi_i], vh2[hi_i] = gv[up], fg[up], fg[up]
+                new_l[lo_i], fl2[lo_i], vl2[lo_i] = gv[~up], fg[~up], fg[~up]
                 if np.count_nonzero(g_zero):
                     c = c.copy()
                     c[gi[g_zero]] = gv[g_zero]
@@ -118,7 +133,9 @@ def segment_roots(F, a, b, fa, fb, tol: float, which) -> np.ndarray:
                     t_in[gi[pair]] = ci + (cg - ci) * (fci / (fci - fgi))
             width = new_h - new_l
             stall = np.where((width <= 0.5 * (h - l)) | bis, 0, stall + 1)
-        l, h, fl, fh = new_l, new_h, fl2, fh2
+        l, h, fl, fh, vl, vh = new_l, new_h, fl2, fh2, vl2, vh2
+        wide = (width * sp >= SLOPE_WIDTH * tol) & np.isfinite(vl) & np.isfinite(vh)
+        bl, bh, bvl, bvh = (np.where(wide, x, y) for x, y in ((l, bl), (h, bh), (vl, bvl), (vh, bvh)))
         closed = zero | (width * sp <= tol)
         if np.count_nonzero(closed):
             if np.count_nonzero(zero):
@@ -128,14 +145,21 @@ def segment_roots(F, a, b, fa, fb, tol: float, which) -> np.ndarray:
                 t[act[at]] = t_in[at]
             i = act[closed]
             lo[i], hi[i], flo[i], fhi[i] = l[closed], h[closed], fl[closed], fh[closed]
+            slo[i], shi[i], svlo[i], svhi[i] = bl[closed], bh[closed], bvl[closed], bvh[closed]
             keep = ~closed
-            act, l, h, fl, fh, aa, dd, ww, sp, s, stall, cp = (v[keep] for v in (act, l, h, fl, fh, aa, dd, ww, sp,
-                                                                                 s, stall, cp))
+            act, l, h, fl, fh, aa, dd, ww, sp, s, stall, cp, vl, vh, bl, bh, bvl, bvh = (
+                v[keep] for v in (act, l, h, fl, fh, aa, dd, ww, sp, s, stall, cp, vl, vh, bl, bh, bvl, bvh))
     lo[act], hi[act], flo[act], fhi[act] = l, h, fl, fh  # brackets still open after the last iteration
+    slo[act], shi[act], svlo[act], svhi[act] = bl, bh, bvl, bvh
     with np.errstate(invalid="ignore"):
         best = np.where(np.abs(flo) <= np.abs(fhi), lo, hi)
     t = np.where(np.isnan(t), best, t)
-    return a + t[:, None] * d
+    roots = a + t[:, None] * d
+    if not slopes:
+        return roots
+    with np.errstate(invalid="ignore", divide="ignore"):
+        g = np.abs(svhi - svlo) / ((shi - slo) * np.hypot(*d.T))
+    return roots, g
 
 
 class NearestBracket:

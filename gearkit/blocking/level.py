@@ -109,9 +109,10 @@ def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), 
     fb = np.concatenate([e[3] for e in edges])
     ok = np.isfinite(fa) & np.isfinite(fb) & ((fa > 0) != (fb > 0))
     moved = allv.copy()
-    grad = np.full(len(allv), np.nan)
+    grad = np.full(len(allv), np.nan)  # the secant across the grid edge (a jump's |F| is read against it)
+    slope = grad.copy()  # |grad F| at the vertex, off its root's last bracket (segment_roots: not the edge's secant)
     if ok.any():
-        moved[ok] = segment_roots(F, a[ok], b[ok], fa[ok], fb[ok], VERTEX_FRACTION * tol, ids[ok])
+        moved[ok], slope[ok] = segment_roots(F, a[ok], b[ok], fa[ok], fb[ok], VERTEX_FRACTION * tol, ids[ok], True)
         grad[ok] = np.abs(fb[ok] - fa[ok]) / np.hypot(*(b[ok] - a[ok]).T)
     # a sign change through a pole or a jump of F is no zero: |F| stays large at the "root"; a
     # vertex on no edge with a sign change (beside undefined nodes) is kept only where F = 0
@@ -122,7 +123,7 @@ def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), 
     jump[np.isin(ids, list(measure))] = False  # the region: where no pair exists is its edge too
     lines, k0 = [], 0
     for p, k in zip(raw, owner):
-        q, g, jmp = moved[k0:k0 + len(p)], grad[k0:k0 + len(p)], jump[k0:k0 + len(p)]
+        q, g, jmp = moved[k0:k0 + len(p)], slope[k0:k0 + len(p)], jump[k0:k0 + len(p)]
         k0 += len(p)
         closed = np.array_equal(p[0], p[-1])
         keep = np.concatenate([[True], np.any(q[1:] != q[:-1], axis=1)])
@@ -255,9 +256,10 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
                 best.consider(wide[ok], lo[ok], flo[ok], ps[rw, j][ok], vs[rw, j][ok], diagonal=r >= 2)
         found = best.have.copy()
         root = mm.copy()
+        g_root = np.full(len(mm), np.nan)  # |grad F| at the root, off its last bracket (see zero_lines)
         if found.any():
-            root[found] = segment_roots(F, best.lo[found], best.end[found], best.flo[found], best.fe[found], vtol,
-                                        km[found])
+            root[found], g_root[found] = segment_roots(F, best.lo[found], best.end[found], best.flo[found],
+                                                       best.fe[found], vtol, km[found], True)
             # a "root" through a pole or a jump of F is none: |F| stays large there
             solved = np.flatnonzero(found)
             slope_end = np.abs(best.fe[solved] - best.flo[solved]) / np.hypot(*(best.end[solved] - best.lo[solved]).T)
@@ -268,8 +270,6 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
         off = np.einsum("ij,ij->i", root - m[meas], nrm[meas])
         # a zero found on a diagonal ray is as far as it lies from the middle (an acute corner beyond it)
         dev = np.where(best.diagonal, np.hypot(*(root - mm).T), np.abs(off))
-        with np.errstate(invalid="ignore", divide="ignore"):
-            g_root = np.where(dev > 0, np.abs(f0) / dev, np.nan)
         limit = np.where(trust[km] & even[meas], SPLIT_FRACTION, SPLIT_MEASURED) * tol
         split_m = found & ((dev > limit) | long[meas])
         # no zero across a line's chord: two components (a region's loop stays closed), each carried to where
@@ -313,11 +313,10 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
                 flo = F(lo_p, which[row])
                 fhi = F(hi_p, which[row])
                 okb = np.isfinite(flo) & np.isfinite(fhi) & ((flo > 0) != (fhi > 0))
-                pts = np.full(lo_p.shape, np.nan)
+                pts, gs = np.full(lo_p.shape, np.nan), np.full(len(row), np.nan)
                 if okb.any():
-                    pts[okb] = segment_roots(F, lo_p[okb], hi_p[okb], flo[okb], fhi[okb], vtol, which[row][okb])
-                with np.errstate(invalid="ignore", divide="ignore"):
-                    gs = np.abs(fhi - flo) / np.abs(2.5 * pred)
+                    pts[okb], gs[okb] = segment_roots(F, lo_p[okb], hi_p[okb], flo[okb], fhi[okb], vtol,
+                                                      which[row][okb], True)
             else:
                 okb = np.zeros(0, bool)
                 pts, gs = np.zeros((0, 2)), np.zeros(0)
