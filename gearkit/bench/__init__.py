@@ -84,7 +84,8 @@ def run_bench(quick: bool = False, process: bool = True, progress=None) -> dict:
         if products.available("gearkit.blocking.contour"):
             say("blocking contour: ladder, targets, atlas throughput")
             out["ladder"] += blocking.ladder_rows(quick)
-            out["blocking_targets"] = blocking.target_rows(out["ladder"])
+            out["contract"] = blocking.contract_rows(quick)
+            out["blocking_targets"] = blocking.target_rows(out["ladder"]) + [blocking.contract_target(out["contract"])]
             out["targets"] += targets.blocking_targets(out["blocking_targets"])
             out["atlas"] = blocking.atlas_rows(quick)
         say("scaling in z")

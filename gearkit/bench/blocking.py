@@ -13,6 +13,10 @@
 * **Targets** (issue 15): the 13/16 and 20/40 contours in-process, at the default tolerance, each
   under 0.3 s of CPU (the machine is shared: the verdict reads CPU, the wall time is shown beside),
   median of five runs in a session (generated gears remembered), and the first run of a process.
+* **Contract on other pairs**: ``CONTRACT_PAIRS`` random external pairs (a fixed seed: the same pairs in
+  every run) at ``CONTRACT_TOLS`` and the README's internal pair (46/49, shaper 20) at tol 1e-3 and
+  1e-4, each measured by its exact deviation and scan gap (no reference trace): the worst achieved /
+  tol and how many contours keep the contract.
 * **Atlas throughput** in cells per second for 1 and 2 local workers and the distributed path (a
   Dask cluster of two worker processes on this machine).
 """
@@ -26,7 +30,7 @@ import numpy as np
 from gearkit.bench.topology import MEASURE_TOL, ROUND_OFF, scan_gap, topology
 from gearkit.export import text_number
 
-__all__ = ["ladder_rows", "target_rows", "atlas_rows", "deviation", "polyline_deviation", "scan_gap", "format_section"]
+__all__ = ["ladder_rows", "target_rows", "contract_rows", "atlas_rows", "deviation", "polyline_deviation", "scan_gap", "format_section"]
 
 LADDER = (1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9)
 QUICK_LADDER = (1e-3, 1e-6)
@@ -38,6 +42,10 @@ RAY_ROUNDS = 10  #: ray lengths tol / 16 ... tol 4**8: the nearest zero first
 SHORT_RATIO = 8.0  #: below tol / 16, the normal is sampled at distances shrinking by this factor
 FLOOR = 1e-13  #: ... down to this fraction of the window's diagonal (round-off)
 ATLAS_GRID = (10, 20, 30, 40)
+CONTRACT_PAIRS = 8  #: random external pairs (z1 8..60, z2 z1..120) the contract is measured on
+CONTRACT_SEED = 19  #: their seed (the same pairs in every run)
+CONTRACT_TOLS = (1e-3, 1e-5)
+INTERNAL_TOLS = (1e-3, 1e-4)  #: the README's internal pair 46/49 (shaper 20) at these
 
 
 def _median_time(fn, repeats):
@@ -250,6 +258,47 @@ def target_rows(ladder):
     return rows
 
 
+def contract_rows(quick: bool):
+    """The contract on pairs other than the ladder's: per contour ``{case, tol, exact, scan, achieved,
+    scan_line, seconds (CPU), evaluations}``, ``achieved`` the larger of the exact deviation
+    (:func:`deviation`) and the scan gap (:func:`scan_gap`), both in shift units. ``quick``: two
+    random pairs at tol 1e-3 and the internal pair at 1e-3."""
+    from gearkit.blocking.contour import blocking_contour
+    from gearkit.families.involute import ShaperCutter
+    from gearkit.pair import PairSpec
+
+    rng = np.random.default_rng(CONTRACT_SEED)
+    cases = []
+    for _ in range(CONTRACT_PAIRS):
+        z1 = int(rng.integers(8, 61))
+        z2 = int(rng.integers(z1, 121))
+        cases.append((f"{z1}/{z2}", PairSpec(z1, z2, 1.0), CONTRACT_TOLS))
+    if quick:
+        cases = [(name, pair, CONTRACT_TOLS[:1]) for name, pair, _ in cases[:2]]
+    cases.append(("internal 46/49, shaper 20", PairSpec(46, 49, 1.0, kind="internal", tool2=ShaperCutter(20)),
+                  INTERNAL_TOLS[:1] if quick else INTERNAL_TOLS))
+    rows = []
+    for name, pair, tols in cases:
+        for tol in tols:
+            c0 = time.process_time()
+            contour = blocking_contour(pair, tol=tol)
+            seconds = time.process_time() - c0
+            exact = deviation(contour)
+            scan, scan_line, scan_at = scan_gap(contour)
+            rows.append({"case": name, "tol": tol, "exact": exact, "scan": scan, "achieved": max(exact, scan),
+                         "scan_line": scan_line, "scan_at": scan_at, "seconds": seconds,
+                         "evaluations": int(contour.evaluations)})
+    return rows
+
+
+def contract_target(rows):
+    """The contract rows' verdict as a target row: the worst achieved / tol, and how many keep it."""
+    worst = max(r["achieved"] / r["tol"] for r in rows)
+    kept = sum(r["achieved"] / r["tol"] <= RATIO_TARGET for r in rows)
+    return {"target": f"blocking contract, other pairs: achieved / tol, worst ({kept} of {len(rows)} contours within)",
+            "measured": worst, "limit": RATIO_TARGET, "unit": "", "pass": worst <= RATIO_TARGET}
+
+
 def atlas_rows(quick: bool):
     """Atlas throughput (cells/s) on the grid ATLAS_GRID x ATLAS_GRID: 1 and 2 local workers and a Dask
     cluster of two worker processes on this machine (when dask.distributed is installed)."""
@@ -311,6 +360,17 @@ def format_section(res: dict) -> list:
                          f"{r['achieved'] / r['tol']:8.2f} "
                          f"{'%d/%d' % tuple(r['loops']):>7} {r['duplicates']:4d} {r['vertices']:9d} "
                          f"{r['evaluations']:9d} {r['seconds']:8.3f}s{where}")
+    rows = res.get("contract", [])
+    if rows:
+        lines.append("blocking contract on other pairs (random external pairs, seed %d, and the README's internal "
+                     "pair; exact deviation and scan gap, shift units)" % CONTRACT_SEED)
+        lines.append(f"  {'case':26} {'tol':>8} {'exact':>10} {'scan gap':>10} {'ach/tol':>8} {'evals':>9} "
+                     f"{'CPU':>9}  worst scan zero")
+        for r in rows:
+            where = "" if r.get("scan_line") is None else f"  {r['scan_line']} at ({r['scan_at'][0]:.4f}, " \
+                f"{r['scan_at'][1]:.4f})"
+            lines.append(f"  {r['case']:26} {r['tol']:8.0e} {r['exact']:10.2e} {r['scan']:10.2e} "
+                         f"{r['achieved'] / r['tol']:8.2f} {r['evaluations']:9d} {r['seconds']:8.3f}s{where}")
     rows = res.get("atlas", [])
     if rows:
         lines.append("atlas throughput (external pairs, z1, z2 in %s)" % (ATLAS_GRID,))

@@ -49,6 +49,17 @@ def render(res: dict) -> str:
                     cells.append(f"{r['achieved'] / r['tol']:.2f} · {r['vertices']} · {_ms(r['seconds'])}")
             out.append(f"| {t:.0e} | " + " | ".join(cells) + " |")
         out.append("")
+    if res.get("contract"):
+        out.append("*blocking contract on other pairs* (random external pairs of a fixed seed and the README's "
+                   "internal pair; no reference trace: the exact deviation of the lines and the region, and the "
+                   "scan gap, exact zeros on scan lines that no traced line comes near; contract: both <= 2 tol)")
+        out.append("")
+        out.append("| pair | tol | exact / tol | scan gap / tol | evaluations | CPU |")
+        out.append("|---|---:|---:|---:|---:|---:|")
+        for r in res["contract"]:
+            out.append(f"| {r['case']} | {r['tol']:.0e} | {r['exact'] / r['tol']:.2f} | {r['scan'] / r['tol']:.2f} "
+                       f"| {r['evaluations']} | {_ms(r['seconds'])} |")
+        out.append("")
     out.append("**Scaling in the tooth count** (spur, m = 1 mm)")
     out.append("")
     out.append("| z | tol | achieved | vertices | time |")
