@@ -64,6 +64,30 @@ def test_a_strip_narrower_than_a_grid_cell_is_not_cut_across():
         assert check_pair(PairSpec(33, 78, 1.0, float(mid), float(y))).ok and c.in_region(mid, y), (y, mid)
 
 
+@pytest.mark.parametrize("pair, tol, xr, rows", [((32, 77), 1e-3, (-1.13, -1.04), (1.22, 1.23, 1.24)),
+                                                 ((34, 105), 1e-5, (-1.27, -1.20), (1.775, 1.778, 1.78))])
+def test_a_strip_cut_across_twice_is_taken_once(pair, tol, xr, rows):
+    """The strip between interference.1 and interference.2 below its tip (about 0.02 wide), cut across twice
+    by the grid (32/77: at x2 = 1.214 and 1.245; 34/105: two cuts crossing near x2 = 1.778): the loop
+    below the upper cut and the loop above the lower cut both took the part between the cuts (each cut's
+    middle inside the other loop), so by the even-odd rule it left the region (32/77 at tol 1e-3: the
+    chords 10 tol off; 34/105 at 1e-5: 787 tol). On rows between the cuts, the polygons cross exactly
+    where the check's smallest hard margin does (brentq), within 2 tol, and the strip's middle is in
+    the region and passes check_pair."""
+    spec = PairSpec(*pair, 1.0)
+    field = PairField(spec)
+    c = blocking_contour(spec, tol=tol, lines=[])
+    for y in rows:
+        xs = np.linspace(*xr, 37)
+        exact = _zeros(lambda x: _smallest(field, x, y), xs)
+        assert len(exact) == 2, (y, exact)  # the strip's two edges
+        a, b = np.array([xs[0], y]), np.array([xs[-1], y])
+        got = xs[0] + _crossings(c.region, a, b) * (xs[-1] - xs[0])
+        assert len(got) == 2 and np.max(np.abs(got - exact)) <= CONTRACT * tol, (y, exact, got)
+        mid = 0.5 * (exact[0] + exact[1])
+        assert check_pair(PairSpec(*pair, 1.0, float(mid), float(y))).ok and c.in_region(mid, y), (y, mid)
+
+
 def test_the_neck_of_a_saddle_is_not_cut_through():
     """21/52 at tol 1e-5: interference.1 has a saddle at (x1, x2) = (1, -1) where its margin is +1e-9
     (the check forgives 1e-9 m_n), so the region goes on through a neck about 9e-5 wide between the two

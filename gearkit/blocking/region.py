@@ -125,7 +125,11 @@ def reconnect(F, lines, kept, tol: float, refine) -> list:
     ``tol``. Two of them, ``P1 -> Q1`` and ``P2 -> Q2``, running opposite ways with each on the same
     side of the other, where ``F`` halfway between their middles has the sign of the other side (the
     polylines leave out, or take in, the part between them), become ``P1 -> Q2`` and ``P2 -> Q1`` (two
-    loops become one, or one loop two). The lines changed are refined again by ``refine(lines, kept)``
+    loops become one, or one loop two). Where ``F`` there has their side's sign and the chords lie in two
+    loops, each chord's middle inside the other loop, both loops take the part between them (32/77 at tol
+    1e-3: a strip of the region cut across twice, the part between the cuts left out by the even-odd
+    rule, 10 tol off): the two loops become one along their lines, their vertices between the chords
+    dropped. The lines changed are refined again by ``refine(lines, kept)``
     (:func:`~gearkit.blocking.level.densify`, which adds the chords it finds no zero across to the new
     ``kept``), round after round (``RECONNECT_ROUNDS``); ``kept`` is extended by their chords kept."""
     todo = list(kept)
@@ -165,11 +169,28 @@ def _rejoin(F, lines, kept, tol: float):
         u, v, gap, side, near = u[ok], v[ok], gap[ok], side_u[ok], near[ok]
         fg = F(gap, K[u]) if u.size else np.zeros(0)
         wrong = np.isfinite(fg) & (np.sign(fg) == -side)  # F there has the sign of the chords' other side
+        held = np.isfinite(fg) & (np.sign(fg) == side)  # ... or of their side: taken twice when in two loops
         for t in np.argsort(near):
-            if wrong[t] and u[t] not in used and v[t] not in used:
+            if u[t] in used or v[t] in used:
+                continue
+            chords = K[u[t]], P[u[t]], Q[u[t]], P[v[t]], Q[v[t]]
+            if wrong[t]:
                 used |= {int(u[t]), int(v[t])}
-                lines, changed = _swap(lines, changed, K[u[t]], P[u[t]], Q[u[t]], P[v[t]], Q[v[t]])
+                lines, changed = _swap(lines, changed, *chords)
+            elif held[t] and _overlap(lines, *chords):
+                used |= {int(u[t]), int(v[t])}
+                lines, changed = _swap(lines, changed, *chords, side=side[t])
     return lines, sorted(changed)
+
+
+def _overlap(lines, k, p1, q1, p2, q2) -> bool:
+    """True when the chords ``p1 -> q1`` and ``p2 -> q2`` lie in two loops, each chord's middle inside
+    the other's loop: the part between them is taken by both (see :func:`reconnect`)."""
+    w1, w2 = locate_chord(lines, k, p1, q1), locate_chord(lines, k, p2, q2)
+    if w1 is None or w2 is None or w1[0] == w2[0]:
+        return False
+    return bool(inside_polygons([lines[w2[0]][1]], 0.5 * (p1 + q1))[0]
+                and inside_polygons([lines[w1[0]][1]], 0.5 * (p2 + q2))[0])
 
 
 def locate_chord(lines, k, a, b):
@@ -192,14 +213,25 @@ def _replace(lines, changed, drop, new):
     return [lines[m] for m in keep] + new, changed
 
 
-def _swap(lines, changed, k, p1, q1, p2, q2):
+def _swap(lines, changed, k, p1, q1, p2, q2, side=0):
     """The chords ``p1 -> q1`` and ``p2 -> q2`` of closed polylines replaced by ``p1 -> q2`` and
-    ``p2 -> q1`` (see :func:`reconnect`)."""
+    ``p2 -> q1`` (see :func:`reconnect`). ``side`` (+-1: the part between the chords on their left or
+    right, taken by both loops): the loops joined along their lines instead, each loop's vertices
+    between the chords dropped, ``q1 ... p1`` becoming ``p2 ... q2`` and ``q2 ... p2`` becoming
+    ``p1 ... q1``."""
     w1, w2 = locate_chord(lines, k, p1, q1), locate_chord(lines, k, p2, q2)
     if w1 is None or w2 is None:
         return lines, changed
     (m1, j1), (m2, j2) = w1, w2
-    if m1 != m2:  # q1 ... p1 then q2 ... p2, closed at q1
+    if m1 != m2 and side:  # p2, (q1 ... p1 outside the part between), q2, then p1, (q2 ... p2 outside), q1
+        a, ga = _from(lines[m1], j1)
+        b, gb = _from(lines[m2], j2)
+        ia, ib = _outside(a, side, p1, q1, p2, q2), _outside(b, side, p1, q1, p2, q2)
+        if ia is None or ib is None:
+            return lines, changed
+        ring = np.vstack([b[-1:], a[ia], b[:1], a[-1:], b[ib], a[:1], b[-1:]])
+        new = [(k, ring, np.concatenate([gb[-1:], ga[ia], gb[:1], ga[-1:], gb[ib], ga[:1], gb[-1:]]))]
+    elif m1 != m2:  # q1 ... p1 then q2 ... p2, closed at q1
         a, ga = _from(lines[m1], j1)
         b, gb = _from(lines[m2], j2)
         new = [(k, np.vstack([a, b, a[:1]]), np.concatenate([ga, gb, ga[:1]]))]
@@ -209,6 +241,32 @@ def _swap(lines, changed, k, p1, q1, p2, q2):
         new = [(k, np.vstack([a[:s], a[:1]]), np.concatenate([ga[:s], ga[:1]])),
                (k, np.vstack([a[s:], a[s:s + 1]]), np.concatenate([ga[s:], ga[s:s + 1]]))]
     return _replace(lines, changed, {m1, m2}, new)
+
+
+def _outside(a, side, p1, q1, p2, q2):
+    """Indices of the inner vertices of the open path ``a`` (a loop from a chord's end round to its start)
+    outside the part between the chords ``p1 -> q1`` and ``p2 -> q2`` (on the ``side`` of both): from
+    each end up to the vertex farthest from the chords, the stretch of vertices near them is dropped up
+    to its last vertex between them (a fold of the path beside a cut, past the other chord and back,
+    goes with it). None where nothing is left or the farthest vertex lies between them."""
+    between = np.ones(len(a), dtype=bool)
+    for p, q in ((p1, q1), (p2, q2)):
+        d = q - p
+        between &= side * (d[0] * (a[:, 1] - p[1]) - d[1] * (a[:, 0] - p[0])) > 0
+    m1, m2 = 0.5 * (p1 + q1), 0.5 * (p2 + q2)
+    reach = np.hypot(*(m2 - m1)) + max(np.hypot(*(q1 - p1)), np.hypot(*(q2 - p2)))
+    dist = np.hypot(*(a - 0.5 * (m1 + m2)).T)
+    dist[[0, -1]] = -np.inf
+    top = int(np.argmax(dist))
+    if len(a) < 3 or between[top]:
+        return None
+    go = np.flatnonzero(dist[1:top] > reach)  # the stretches near the chords: to the first far vertex
+    lead = np.flatnonzero(between[1:1 + go[0] if go.size else top]) + 1
+    back = np.flatnonzero(dist[top + 1:-1] > reach) + top + 1
+    start = back[-1] + 1 if back.size else top + 1
+    trail = np.flatnonzero(between[start:-1]) + start
+    keep = np.arange(lead[-1] + 1 if lead.size else 1, trail[0] if trail.size else len(a) - 1)
+    return keep if keep.size else None
 
 
 def _from(line, j):
