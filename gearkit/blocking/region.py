@@ -22,6 +22,7 @@ __all__ = ["padded_grid", "pad", "orient_loops", "inside_polygons", "polygon_are
 
 SPLIT_DEPTH = 20  #: most self-crossings split out of one loop
 FINE = 41  #: nodes per side of the local grid that looks for the best point of an empty region
+SLIVER = 0.5  #: a loop split off narrower than this fraction of tol on average is a fold (_simple_loops)
 RECONNECT_ROUNDS = 3  #: rounds of re-joining loops cut across a thin part (:func:`reconnect`)
 
 
@@ -58,9 +59,11 @@ def pad(values, fill: float):
     return out
 
 
-def _simple_loops(p, depth: int = 0) -> list:
+def _simple_loops(p, tol: float, depth: int = 0) -> list:
     """A closed loop split at its self-crossings into simple loops (a crossing of two of its edges
-    within the tolerance band, e.g. where two parts of the region nearly touch)."""
+    within the tolerance band, e.g. where two parts of the region nearly touch); a loop split off whose
+    mean width (4 area / perimeter) is below ``SLIVER tol`` is dropped: a fold of the loop's path, back
+    along the line it came (beside a corner, a saddle's neck or a cut), not a part of the region."""
     from gearkit.curves import polyline_self_intersections
 
     ei, ej, ti, _ = polyline_self_intersections(p)
@@ -70,7 +73,12 @@ def _simple_loops(p, depth: int = 0) -> list:
     x = p[i] + ti[0] * (p[i + 1] - p[i])
     a = np.vstack([p[:i + 1], x[None], p[j + 1:]])
     b = np.vstack([x[None], p[i + 1:j + 1], x[None]])
-    return [q for part in (a, b) if len(part) >= 4 for q in _simple_loops(part, depth + 1)]
+    wide = [q for q in (a, b) if len(q) >= 4 and 4 * abs(polygon_area(q)) >= SLIVER * tol * _perimeter(q)]
+    return [q for part in wide for q in _simple_loops(part, tol, depth + 1)]
+
+
+def _perimeter(p) -> float:
+    return float(np.sum(np.hypot(*np.diff(p, axis=0).T)))
 
 
 def orient_loops(loops, window, tol: float) -> tuple:
@@ -87,7 +95,7 @@ def orient_loops(loops, window, tol: float) -> tuple:
         p = np.clip(p, lo, hi)
         if abs(polygon_area(p)) > (10 * tol) ** 2 or len(p) > 6:
             closed.append(p)
-    closed = [q for p in closed for q in _simple_loops(p)]
+    closed = [q for p in closed for q in _simple_loops(p, tol)]
     out = []
     for i, p in enumerate(closed):
         others = [q for j, q in enumerate(closed) if j != i]
