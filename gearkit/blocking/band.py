@@ -33,7 +33,9 @@ Every margin is evaluated at the lattice's nodes (one evaluation of the pair for
 marching squares in lattice coordinates give each line's topology there, and every vertex is
 solved on its lattice edge (a segment in (x1, x2)) like the grid's. A sign change through a pole
 of ``F`` is none: ``|F|`` does not fall there. The band's pieces are cut where they enter a cell the
-grid traced (all corners defined) and joined to the grid line ending on that cell's edge, so each
+grid traced (all corners defined, not all of one sign: 14/46's sliding line turns back in a hairpin
+smaller than a grid cell, in cells whose corners all have one sign, 44 tol short of it at tol 1e-3
+when those counted) and joined to the grid line ending on that cell's edge, so each
 zero is traced once; a piece lying wholly within ``SAME tol`` of a line traced already is that line
 at this tol (two zero lines of one margin may run closer than that beside the edge).
 
@@ -54,7 +56,7 @@ from __future__ import annotations
 import numpy as np
 
 from gearkit.blocking.brackets import segment_roots
-from gearkit.blocking.grid import edge_nodes, true_runs
+from gearkit.blocking.grid import edge_nodes, sign_cells, true_runs
 from gearkit.blocking.lattice import band_lattice, covering, run_ends, steep_cells
 from gearkit.distances import distances_to_polyline
 
@@ -215,11 +217,11 @@ def _thin(q, close):
 
 
 def _traced_cell(grid, p, specks=()):
-    """True where the points ``p`` lie in a cell of ``grid`` with every corner defined (traced there),
-    but for the cells of the points ``specks`` (the grid's piece there dropped)."""
+    """True where the points ``p`` lie in a cell of ``grid`` with every corner defined and not all of one
+    sign (traced there), but for the cells of the points ``specks`` (the grid's piece there dropped)."""
     xs, ys, values = grid
     fin = np.isfinite(values)
-    full = fin[:-1, :-1] & fin[1:, :-1] & fin[:-1, 1:] & fin[1:, 1:]
+    full = fin[:-1, :-1] & fin[1:, :-1] & fin[:-1, 1:] & fin[1:, 1:] & sign_cells(values)
 
     def cell(q):
         i = np.clip(((q[:, 0] - xs[0]) // (xs[1] - xs[0])).astype(int), 0, len(xs) - 2)

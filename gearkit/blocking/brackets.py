@@ -1,4 +1,5 @@
-"""Roots of array functions on segments, and the nearest bracket of a zero among several rays.
+"""Roots of array functions on segments, the nearest bracket of a zero among several rays, and chords
+whose ends lie on two lines.
 
 ``F(points (n, 2), which (n,) int) -> (n,)`` evaluates function ``which[i]`` at ``points[i]`` (NaN
 where undefined), as in :mod:`gearkit.blocking.level`.
@@ -13,12 +14,13 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["segment_roots", "NearestBracket"]
+__all__ = ["segment_roots", "NearestBracket", "two_lines"]
 
 ROOT_ITERATIONS = 100
 GUARD_FRACTION = 0.5  #: a round's guard stands this fraction of tol beyond its estimate ...
 GUARD_SETTLED = 0.5  #: ... where the estimate moved less than this fraction of its bracket since the round
 #: before (it is settling on a root; not beside a jump of F or while the bracket is still wide)
+LADDER_RATIO = 0.5  #: successive distances of :meth:`NearestBracket.ladder`'s samples
 SLOPE_WIDTH = 1.0 / 16  #: the slope at a root is read off a bracket at least this fraction of tol wide
 
 
@@ -184,3 +186,57 @@ class NearestBracket:
         self.dist[i] = d[take]
         self.have[i] = True
         self.diagonal[i] = diagonal
+
+    def ladder(self, F, idx, n, reach, which, floor):
+        """Offer the chords ``idx`` the sign change nearest to their middles along their normals ``n``,
+        sampled at distances falling geometrically by ``LADDER_RATIO`` from ``reach`` down to ``floor`` to
+        either side: a zero of a strip (or of a saddle's thin wedge) narrower than a sampled search's
+        spacing is seen.
+
+        >>> F = lambda p, w: np.abs(p[:, 1] - 3e-4) - 1e-4  # a strip 2e-4 wide, 3e-4 from the middle
+        >>> b = NearestBracket(np.zeros((1, 2)), np.array([2e-4]))
+        >>> bool(F(np.array([[0.0, y] for y in (-1.0, -0.5, 0.5, 1.0)]), 0).min() > 0)  # none at a sampled search
+        True
+        >>> b.ladder(F, np.array([0]), np.array([[0.0, 1.0]]), np.array([1.0]), np.array([0]), 1e-6)
+        >>> bool(b.have[0] and b.lo[0, 1] < 2e-4 < b.end[0, 1])
+        True
+        """
+        for r, i in enumerate(idx):
+            d = reach[r] * LADDER_RATIO ** np.arange(max(1, int(np.ceil(np.log(max(reach[r] / floor, 1.0))
+                                                                              / -np.log(LADDER_RATIO))) + 1))
+            s = np.concatenate([-d, [0.0], d[::-1]])
+            v = F(self.m[i] + s[:, None] * n[r], np.full(s.size, which[r]))
+            for side in (slice(d.size, None), slice(d.size, None, -1)):  # outward from the middle, each way
+                ss, vv = s[side], v[side]
+                with np.errstate(invalid="ignore"):
+                    ch = np.flatnonzero(np.isfinite(vv[1:]) & np.isfinite(vv[:-1]) & ((vv[1:] > 0) != (vv[:-1] > 0)))
+                if ch.size:
+                    j = ch[0]
+                    self.consider(np.array([i]), (self.m[i] + ss[j] * n[r])[None], vv[j:j + 1],
+                                  (self.m[i] + ss[j + 1] * n[r])[None], vv[j + 1:j + 2])
+
+
+def two_lines(F, A, B, n, which, mask, h):
+    """True for the chords ``A``-``B`` (``(k, 2)``, unit normals ``n``) marked in ``mask`` whose ends lie
+    on two different zero lines: ``F`` grows towards opposite sides of the chord at its two ends (read
+    ``h`` to either side of each along ``n``). A chord of one line has ``F`` growing towards the same side
+    at both ends (its line turns by less than a right angle from the chord's direction); a chord from
+    one side of a strip to the other (the two lines bounding a thin region of one sign) has not.
+
+    >>> F = lambda p, w: np.abs(p[:, 1]) - 1e-3  # a strip |y| < 1e-3
+    >>> A, B = np.array([[0.0, -1e-3]]), np.array([[0.1, 1e-3]])  # from one side to the other
+    >>> n = np.array([[-0.02, 1.0]]) / np.hypot(0.02, 1.0)
+    >>> two_lines(F, A, B, n, [0], [True], 2e-4).tolist()
+    [True]
+    >>> two_lines(F, A, A + [0.1, 0.0], n, [0], [True], 2e-4).tolist()  # along one side
+    [False]
+    """
+    A, B, n, which = (np.asarray(v) for v in (A, B, n, which))
+    out = np.zeros(len(A), bool)
+    i = np.flatnonzero(mask)
+    if i.size:
+        d = h * n[i]
+        V = F(np.concatenate([A[i] + d, A[i] - d, B[i] + d, B[i] - d]), np.tile(which[i], 4)).reshape(4, -1)
+        with np.errstate(invalid="ignore"):
+            out[i] = np.all(np.isfinite(V), axis=0) & (np.sign(V[0] - V[1]) * np.sign(V[2] - V[3]) < 0)
+    return out

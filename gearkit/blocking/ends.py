@@ -14,7 +14,10 @@ cube or square root of the distance to the edge (those reading the working press
 tip at its base circle) has lines that meet the edge tangentially, along it for up to the whole
 window: those ends are not carried on here (the band beside the edge is traced on its own lattice,
 :mod:`~gearkit.blocking.band`), but for those where a band piece left its lattice beside the edge
-(through its last row, a chord between two columns' edge points or the frame): such a front follows
+(through its last row, a chord between two columns' edge points or the frame) and those of a chord
+:func:`~gearkit.blocking.level.densify` cut (from one side of a strip to the other: 46/49's interference.1,
+two thin wedges meeting at a saddle at (1, 1), whose arms ended 0.02 to 0.04 short of it beside the edge,
+tangents away from it; such a front's first step is no longer than the cut chord): such a front follows
 its line along the edge (a prediction past it moved back onto it along the normal) to where it ends. A front goes on until
 
 * it meets another end of the same function heading back along it: the two join. The arms of a
@@ -100,11 +103,23 @@ def extend_ends(F, lines, grids, tol, measure=(), carry=()):
     # the grid's line already, whose end was solved on the grid's edge: 47/79's interference.1 on the row
     # x2 = 2.875 under the window's top frame, 0.125 short of it)
     starts += [e + (EDGE_REACH * cell,) for e in edge_ends
-               if (e[0], e[1]) not in taken and any(k == recs[e[0]][0] and np.hypot(*(q - e[2])) <= tol
-                                                    for k, q in carry)]
+               if (e[0], e[1]) not in taken and any(c[0] == recs[e[0]][0] and np.hypot(*(c[1] - e[2])) <= tol
+                                                    for c in carry)]
+    # an end of a chord cut across a strip (densify) starts with a step no longer than that chord: a strip
+    # narrowing to a saddle, whose other branches run on nearly straight beyond it (46/49's interference.1
+    # at (1, 1)): a first step of two cells passed the saddle onto them and stopped there
+    first = {}
+    for c in carry:
+        if len(c) > 2:
+            for n, e in enumerate(starts):
+                if c[0] == recs[e[0]][0] and np.hypot(*(c[1] - e[2])) <= tol:
+                    first[n] = min(first.get(n, np.inf), c[2])
     front, joins = [], []
     geo = (span, vtol, MAX_STEP_CELLS * cell, lo, hi, tol)
-    _run(F, front, _fronts(F, starts, recs, eps, geo[2]), recs, joins, geo)
+    new = _fronts(F, starts, recs, eps, geo[2])
+    for n, h in first.items():
+        new[n][5] = min(new[n][5], max(h, vtol))
+    _run(F, front, new, recs, joins, geo)
     return _assemble(recs, joins)
 
 

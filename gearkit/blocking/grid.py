@@ -1,5 +1,6 @@
 """Grids for the level sets of :mod:`gearkit.blocking.level`: values at the nodes, the cells a zero
-set crosses, a locally refined grid, and the grid edges marching-squares vertices lie on.
+set crosses, a locally refined grid, the grid edges marching-squares vertices lie on, the pieces
+lying on its frame, and where polylines are cut.
 
 >>> import numpy as np
 >>> v = np.array([[-1.0, 1.0], [-1.0, 1.0]])
@@ -10,7 +11,8 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["grid_values", "sign_cells", "refine_grid", "edge_nodes", "bridge_pieces", "true_runs"]
+__all__ = ["grid_values", "sign_cells", "refine_grid", "edge_nodes", "bridge_pieces", "true_runs", "on_frame",
+           "cut_positions"]
 
 
 def grid_values(F, xs, ys, which: int = 0) -> np.ndarray:
@@ -123,3 +125,20 @@ def bridge_pieces(lines, grids, measure, cells: float, cos: float) -> list:
             q2, g2 = q2[::-1], g2[::-1]
         joined = (k, np.vstack([q1, q2]), np.concatenate([g1, g2]))
         lines = [ln for i, ln in enumerate(lines) if i not in (n1, n2)] + [joined]
+
+
+def on_frame(p, xs, ys) -> bool:
+    """True when both vertices of ``p`` lie on the inner frame of the padded grid (the window's edge)."""
+    ex = np.isclose(p[:, 0], xs[1], rtol=0, atol=1e-12) | np.isclose(p[:, 0], xs[-2], rtol=0, atol=1e-12)
+    ey = np.isclose(p[:, 1], ys[1], rtol=0, atol=1e-12) | np.isclose(p[:, 1], ys[-2], rtol=0, atol=1e-12)
+    return bool(np.all(ex | ey))
+
+
+def cut_positions(p, starts):
+    """Indices in ``p`` of the given chord start points (each found once, in order)."""
+    out = []
+    for a in starts:
+        hits = np.flatnonzero(np.all(p == a, axis=1))
+        if hits.size:
+            out.append(int(hits[0]))
+    return sorted(set(out))

@@ -16,7 +16,11 @@ where undefined); every step below evaluates all the points it needs, of all the
    a chord estimated within ``tol / 2`` is kept, any other is measured by a root of ``F`` along
    its normal through ``m`` and, if that root is more than ``tol`` away, split into as many
    pieces as its curvature needs (``sqrt(deviation / (tol / 2))``, the new vertices roots of ``F``
-   near the parabola through the three known points), round after round. So every point of a
+   near the parabola through the three known points), round after round. A chord with no zero at
+   those samples is searched again at distances from its middle falling geometrically to ``tol / 4``
+   (a strip, or a saddle's thin wedge, narrower than their spacing); one from one side of a strip to the
+   other (:func:`~gearkit.blocking.brackets.two_lines`) is cut, not split (a zigzag across the strip lost
+   an arm with it: 46/49's interference.1 beside (1, 1)), its ends carried on (ends). So every point of a
    polyline lies within about ``tol + tol / 4`` of its curve, and the number of vertices is what
    the curvature needs at that tolerance: coarser tolerances cost less.
 
@@ -36,11 +40,11 @@ from __future__ import annotations
 import numpy as np
 
 from gearkit.blocking.band import band_lines, once
-from gearkit.blocking.brackets import NearestBracket, segment_roots
+from gearkit.blocking.brackets import NearestBracket, segment_roots, two_lines
 from gearkit.blocking.corners import corner_splits
 from gearkit.blocking.edges import touchdowns, toward_edge
 from gearkit.blocking.ends import extend_ends
-from gearkit.blocking.grid import bridge_pieces, edge_nodes, true_runs
+from gearkit.blocking.grid import bridge_pieces, cut_positions, edge_nodes, on_frame, true_runs
 from gearkit.blocking.onsets import onset_vertices
 from gearkit.blocking.region import reconnect
 from gearkit.blocking.tips import carry_to_tips
@@ -64,6 +68,7 @@ NRAYS = 1  #: directions searched: the normal only (a diagonal ray's zero may li
 #: saddle: a chord joining two branches was kept 3.8e-5 off its line at every tol below 1e-4)
 PLAIN = (5, 6)  #: the samples a measured curve's search reads: the reach, then twice it (an acute corner)
 WIDE_REGION = True  #: the wider search for measured curves too
+STRIP_PROBE = 0.5  #: a chord whose middle lies between two zeros is read this many tol beside its ends (two_lines)
 JUMP_FACTOR = 100.0  #: a solved vertex with |F| above this times slope x tol sits on a jump, not a zero
 JUMP_FALL = 0.5  #: ... and |F| there above this fraction of the smaller |F| at the bracket's ends (the
 #: solver keeps the better end: a real zero is far below it at any tol, a pole or a jump is not)
@@ -88,7 +93,7 @@ def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), 
         gen = contourpy.contour_generator(xs, ys, np.ma.masked_invalid(values), name="serial",
                                           line_type="Separate")
         for p in gen.lines(0.0):
-            if len(p) == 2 and k not in measure and not _on_frame(np.asarray(p, float), xs, ys):
+            if len(p) == 2 and k not in measure and not on_frame(np.asarray(p, float), xs, ys):
                 specks.append((k, np.mean(p, axis=0)))
                 continue  # one cell beside undefined ones: a speck the grid barely sees, at any tol alike
             if len(p) >= 2:
@@ -136,10 +141,11 @@ def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), 
     lines = band_lines(F, lines, grids, tol, measure, many, carry, specks)
     lines = bridge_pieces(lines, grids, measure, BRIDGE_CELLS, BRIDGE_COS)
     # a run of one chord off the frame, bridged to none: a speck (see above)
-    lines = [(k, q, g) for k, q, g in lines if len(q) >= 3 or k in measure or _on_frame(q, *grids[k][:2])]
+    lines = [(k, q, g) for k, q, g in lines if len(q) >= 3 or k in measure or on_frame(q, *grids[k][:2])]
     vtol = VERTEX_FRACTION * tol
     kept = []  # the region's chords with no zero across them: loops cut across a thin part, re-joined (reconnect)
-    lines = densify(F, onset_vertices(F, lines, *onsets, vtol), tol, max_step, measure, kinked, True, kept)
+    lines = densify(F, onset_vertices(F, lines, *onsets, vtol), tol, max_step, measure, kinked, True, kept,
+                    loose=carry)
     # lines the grid cut short of their ends (a saddle): carried on to them (ends)
     lines = extend_ends(F, lines, grids, tol, measure, carry)
     lines = densify(F, onset_vertices(F, lines, *onsets, vtol), tol, max_step, measure, kinked, True, kept)
@@ -152,15 +158,8 @@ def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), 
     return out
 
 
-def _on_frame(p, xs, ys) -> bool:
-    """True when both vertices of ``p`` lie on the inner frame of the padded grid (the window's edge)."""
-    ex = np.isclose(p[:, 0], xs[1], rtol=0, atol=1e-12) | np.isclose(p[:, 0], xs[-2], rtol=0, atol=1e-12)
-    ey = np.isclose(p[:, 1], ys[1], rtol=0, atol=1e-12) | np.isclose(p[:, 1], ys[-2], rtol=0, atol=1e-12)
-    return bool(np.all(ex | ey))
-
-
 def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kinked=(), slopes=False,
-            kept=None, dips=True) -> list:
+            kept=None, dips=True, loose=None) -> list:
     """``lines`` (a list of ``(k, points (n, 2), slope (n,))``: curve index, vertices on the curve, and
     estimates of ``|grad F_k|`` there, NaN if unknown) with vertices added until every chord lies
     within ``tol`` of its curve and is at most ``max_step`` long (a fourth entry, a mask of the
@@ -171,7 +170,8 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
     branches of one margin, e.g. the contact ratio where its limiting end changes: an acute wedge's
     middle value says nothing of its tip), which are otherwise traced as the rest. ``kept``: a list to
     which a measured curve's chords with no zero found across them are added as ``(k, start, end)``. ``dips``:
-    lines dipping to the no-pair edge carried to it (:func:`~gearkit.blocking.edges.touchdowns`)."""
+    lines dipping to the no-pair edge carried to it (:func:`~gearkit.blocking.edges.touchdowns`). ``loose``: a
+    list to which the ends of a line's chords cut are added as ``(k, end, chord length)``, to carry on (ends)."""
     vtol = VERTEX_FRACTION * tol
     step = np.inf if not max_step else float(max_step)
     state = [(ln[0], np.asarray(ln[1], float), np.asarray(ln[2], float),
@@ -214,10 +214,13 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
         # between its ends; at a saddle's corner the normal only touches zero)
         best = NearestBracket(mm, f0)
         out_dir = np.full(mm.shape, np.nan)  # towards the no-pair area, where the normal runs into it
+        strip = estimate[km]  # the middle between two zeros along the normal: in a strip (not a kink's acute wedge)?
         for sgn in (1.0, -1.0):
             end = mm + sgn * 0.5 * Lm[:, None] * nm_
             fe = F(end, km)
             best.consider(np.arange(meas.size), mm, f0, end, fe)
+            with np.errstate(invalid="ignore"):
+                strip &= np.isfinite(fe) & ((fe > 0) != (f0 > 0))
             edge = np.flatnonzero(np.isnan(fe) & trust[km])
             if edge.size:  # into the no-pair area: the zero nearest the middle among samples from its edge up
                 out_dir[edge] = sgn * nm_[edge]
@@ -254,7 +257,12 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
                 lo = np.where(start[:, None], ps[rw, prev], mm[wide])
                 flo = np.where(start, vs[rw, prev], f0[wide])
                 best.consider(wide[ok], lo[ok], flo[ok], ps[rw, j][ok], vs[rw, j][ok], diagonal=r >= 2)
-        found = best.have.copy()
+        thin = np.flatnonzero(~best.have & trust[km] & (Lm > vtol))
+        if thin.size:  # no zero at the samples: a strip narrower than their spacing, searched on a ladder
+            best.ladder(F, thin, nm_[thin], 0.5 * Lm[thin], km[thin], vtol)
+        # a chord from one side of a strip to the other is cut (not split into a zigzag across it), its ends
+        # carried on along their lines (loose: ends)
+        found = best.have & ~two_lines(F, A[meas], B[meas], nm_, km, strip, STRIP_PROBE * tol)
         root = mm.copy()
         g_root = np.full(len(mm), np.nan)  # |grad F| at the root, off its last bracket (see zero_lines)
         if found.any():
@@ -278,6 +286,8 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
         if kept is not None:  # a measured curve's chord with no zero across it: kept as it is, and noted
             kept += [(int(which[r]), A[r].copy(), B[r].copy()) for r in meas[~found & live[meas] & ~trust[km]]]
         cut = set(meas[lost].tolist())
+        if loose is not None:  # (k, end, the chord's length: the first step of its continuation)
+            loose += [(int(which[r]), P.copy(), float(L[r])) for r in meas[lost] for P in (A[r], B[r])]
         touch = {}  # chord row -> (new vertices, the first of the chord to cut)
         lost = lost[np.isfinite(out_dir[lost, 0])]
         if lost.size and dips:
@@ -367,7 +377,7 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
             state[n] = (k, p, g, todo)
         for n, chords in cuts.items():  # positions of cut chords after this round's insertions
             k, p, g, todo = state[n]
-            at = _cut_positions(p, chords)
+            at = cut_positions(p, chords)
             pieces = np.split(np.arange(len(p)), [i + 1 for i in at])
             first = True
             for piece in pieces:
@@ -387,13 +397,3 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
         done = [out[n] if slopes else out[n][:2] for n in range(len(out)) if n not in again]
         return done + densify(F, [out[n] for n in sorted(again)], tol, max_step, measure, kinked, slopes, kept)
     return out if slopes else [(k, p) for k, p, _ in out]
-
-
-def _cut_positions(p, starts):
-    """Indices in ``p`` of the given chord start points (each found once, in order)."""
-    out = []
-    for a in starts:
-        hits = np.flatnonzero(np.all(p == a, axis=1))
-        if hits.size:
-            out.append(int(hits[0]))
-    return sorted(set(out))

@@ -1,0 +1,92 @@
+"""Lines beside the no-pair edge that the grid cannot see, and strips narrower than a chord: the
+sliding hairpin of 14/46 (smaller than a grid cell, in cells whose corners all have one sign) and
+46/49's interference.1, whose two thin wedges meet at a saddle at (x1, x2) = (1, 1) (a chord from
+one side of a wedge to the other was cut there, and the arms stopped 0.02 to 0.04 short of it).
+Oracle: the exact zeros of the scalar margin (``PairField.margin``) along rows x2 = const through
+them, sampled densely and solved by brentq."""
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+
+from gearkit.blocking import blocking_contour
+from gearkit.distances import distances_to_polyline
+from gearkit.families.involute import ShaperCutter
+from gearkit.pair import PairSpec
+
+CONTRACT = 2.0  #: every exact zero within this many tol of its traced line
+SAMPLES = 4001  #: samples of a row between brentq brackets
+
+
+def _row_zeros(field, name, x2, lo, hi):
+    """The zeros of margin ``name`` on the row x2 = const between x1 = lo and hi (a sign change
+    where |F| falls: a zero, not a jump)."""
+    def f(x):
+        return field.margin(name, x, x2)
+    x = np.linspace(lo, hi, SAMPLES)
+    v = np.array([f(t) for t in x])
+    out = []
+    for i in np.flatnonzero(np.isfinite(v[:-1]) & np.isfinite(v[1:]) & ((v[:-1] > 0) != (v[1:] > 0))):
+        t = brentq(f, x[i], x[i + 1], xtol=1e-15, rtol=1e-15)
+        if abs(f(t)) <= 0.5 * min(abs(v[i]), abs(v[i + 1])):
+            out.append(t)
+    return np.array(out)
+
+
+def _farthest(contour, name, rows, lo, hi):
+    """Largest distance, in tol, of the exact zeros on ``rows`` from the traced line ``name``; the
+    number of zeros seen."""
+    comps = contour.line(name).components
+    worst, seen = 0.0, 0
+    for x2 in rows:
+        z = _row_zeros(contour.field, name, x2, lo, hi)
+        seen += len(z)
+        if len(z):
+            pts = np.column_stack([z, np.full(len(z), x2)])
+            d = np.min([distances_to_polyline(pts, q) for q in comps], axis=0)
+            worst = max(worst, float(d.max()))
+    return worst / contour.tol, seen
+
+
+@pytest.mark.parametrize("tol", [1e-3, 1e-5])
+def test_a_sliding_hairpin_smaller_than_a_grid_cell_is_traced(tol):
+    """14/46: the sliding line's hairpin beside (0.02, -1.15), in grid cells whose corners all have one
+    sign (the grid traced nothing there, and the band's piece was cut at them: 44 tol short at 1e-3,
+    4374 at 1e-5)."""
+    c = blocking_contour(PairSpec(14, 46, 1.0), tol=tol, lines=["sliding"])
+    rows = np.linspace(-1.2, -1.1, 21)
+    worst, seen = _farthest(c, "sliding", rows, -0.2, 0.25)
+    assert seen > 0
+    assert worst <= CONTRACT
+
+
+def test_the_arms_of_two_thin_wedges_are_traced_to_their_saddle():
+    """46/49 at tol 1e-3: interference.1's two thin negative wedges meeting at (1, 1); every zero on
+    rows from 0.01 below to 0.05 above the saddle within 2 tol of the traced line (the upper wedge's
+    arms stopped 0.017 and 0.04 short of it: a chord from one side of the wedge to the other was cut,
+    and nothing carried the ends beside the no-pair edge)."""
+    spec = PairSpec(46, 49, 1.0, kind="internal", tool2=ShaperCutter(20))
+    c = blocking_contour(spec, tol=1e-3, lines=["interference.1"])
+    rows = np.linspace(0.99, 1.05, 25)
+    worst, seen = _farthest(c, "interference.1", rows, 0.95, 1.1)
+    assert seen >= 2 * len(rows) - 2
+    assert worst <= CONTRACT
+
+
+@pytest.mark.parametrize("width", [1.2, 1.8, 3.0])
+def test_a_chord_from_one_side_of_a_strip_to_the_other_is_cut_not_split(width):
+    """densify on a hairpin across a strip ``width`` tol wide (F = y (y - w), negative between the lines
+    y = 0 and y = w): the chord from one side to the other is cut, so each piece lies on one line (the
+    closed form) and every vertex within tol / 4 of it; split instead, it zigzagged across the strip."""
+    from gearkit.blocking.level import densify
+
+    tol = 1e-3
+    w = width * tol
+    F = lambda p, k: p[:, 1] * (p[:, 1] - w)  # noqa: E731
+    hairpin = np.array([[0.0, 0.0], [0.5, 0.0], [1.0, 0.0], [0.6, w], [0.1, w]])
+    out = densify(F, [(0, hairpin, np.full(len(hairpin), np.nan))], tol)
+    assert len(out) == 2
+    for _, q in out:
+        side = np.abs(q[:, 1]) <= tol / 4
+        assert side.all() or (np.abs(q[:, 1] - w) <= tol / 4).all()
+    covered = sorted((float(q[:, 0].min()), float(q[:, 0].max())) for _, q in out)
+    assert covered == [(0.0, 1.0), (0.1, 0.6)]
