@@ -73,6 +73,8 @@ def corner_splits(F, lines, tol: float, curves, split: float, vtol: float) -> se
     inserts = {}
     for r, q, dv in zip(found[far], root[far], dev[far]):
         n, i, _ = rows[r]
+        if np.min(np.hypot(*(lines[n][1] - q).T)) <= vtol:  # a vertex of the polyline already (31/66's
+            continue  # region: the tip of a wedge it passes elsewhere, put again and again, without end)
         inserts.setdefault(n, {})[i] = (q, abs(fp[r]) / dv)
     for n, at in inserts.items():
         k, p, g = lines[n]

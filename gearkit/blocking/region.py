@@ -24,6 +24,7 @@ SPLIT_DEPTH = 20  #: most self-crossings split out of one loop
 FINE = 41  #: nodes per side of the local grid that looks for the best point of an empty region
 SLIVER = 0.5  #: a loop split off narrower than this fraction of tol on average is a fold (_simple_loops)
 RECONNECT_ROUNDS = 3  #: rounds of re-joining loops cut across a thin part (:func:`reconnect`)
+PAIR_REACH = 4.0  #: two cuts pair when their middles lie within this many times the longer one apart
 
 
 def polygon_area(p) -> float:
@@ -173,7 +174,7 @@ def _rejoin(F, lines, kept, tol: float):
         side_v = np.sign(D[v, 0] * (gap - P[v])[:, 1] - D[v, 1] * (gap - P[v])[:, 0])
         near = np.hypot(*(M[u] - M[v]).T)
         ok = (K[u] == K[v]) & (np.einsum("ij,ij->i", D[u], D[v]) < 0) & (side_u == side_v) & (side_u != 0) \
-            & (near <= 2.0 * np.fmax(L[u], L[v]))
+            & (near <= PAIR_REACH * np.fmax(L[u], L[v]))
         u, v, gap, side, near = u[ok], v[ok], gap[ok], side_u[ok], near[ok]
         fg = F(gap, K[u]) if u.size else np.zeros(0)
         wrong = np.isfinite(fg) & (np.sign(fg) == -side)  # F there has the sign of the chords' other side
