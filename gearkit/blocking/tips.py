@@ -155,6 +155,14 @@ def _segment_distance(A, B, P) -> np.ndarray:
     return np.hypot(*(A + t[:, None] * d - P).T)
 
 
+def _along(path, P, reach) -> np.ndarray:
+    """True for each point of ``P`` within ``reach`` of the polyline ``path``."""
+    d = np.full(len(P), np.inf)
+    for u, v in zip(path[:-1], path[1:]):
+        d = np.minimum(d, _segment_distance(np.broadcast_to(u, P.shape), np.broadcast_to(v, P.shape), P))
+    return d <= reach
+
+
 def carry_to_tips(F, G, lines, kept, region: int, tol: float, trace) -> list:
     """``lines`` (``[(k, points, slopes)]``) with the region's chords (curve ``region`` of ``F``) that cut
     a corner farther than ``tol`` from them carried to it, and the chords listed in ``kept``
@@ -215,6 +223,7 @@ def carry_to_tips(F, G, lines, kept, region: int, tol: float, trace) -> list:
         if not _on_edge(F, G, path, part, region, tol):
             continue
         touching = np.all(OA == a, axis=1) | np.all(OB == a, axis=1) | np.all(OA == b, axis=1) | np.all(OB == b, axis=1)
+        touching |= _along(path, OA, 2 * tol) & _along(path, OB, 2 * tol)  # a fold of the outline along the path
         if np.any(_crosses(path[:-1], path[1:], OA[~touching], OB[~touching])):
             continue
         w = locate_chord(lines, region, np.array(a), np.array(b))
