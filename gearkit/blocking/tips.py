@@ -222,15 +222,29 @@ def carry_to_tips(F, G, lines, kept, region: int, tol: float, trace) -> list:
         part = np.concatenate([np.full(len(p) - 1, k) for p, (k, _, _) in zip(got, ss)])
         if not _on_edge(F, G, path, part, region, tol):
             continue
-        touching = np.all(OA == a, axis=1) | np.all(OB == a, axis=1) | np.all(OA == b, axis=1) | np.all(OB == b, axis=1)
-        touching |= _along(path, OA, 2 * tol) & _along(path, OB, 2 * tol)  # a fold of the outline along the path
-        if np.any(_crosses(path[:-1], path[1:], OA[~touching], OB[~touching])):
-            continue
         w = locate_chord(lines, region, np.array(a), np.array(b))
-        if w is not None:
-            m, j = w
-            k, q, g = lines[m]
-            lines[m] = (k, np.insert(q, j + 1, path[1:-1], axis=0), np.insert(g, j + 1, np.full(len(path) - 2, np.nan)))
+        if w is None:
+            continue
+        m, j = w
+        k, q, g = lines[m]
+        # the outline's vertices next to the chord's ends that lie along the new path (within 2 tol): a fold
+        # of the outline back along the wedge's side beside the cut, dropped with the chord
+        near = _along(path, q, 2 * tol)
+        lo, hi = j, j + 1
+        while lo > 1 and near[lo - 1]:
+            lo -= 1
+        while hi < len(q) - 2 and near[hi + 1]:
+            hi += 1
+        fold = np.concatenate([q[lo:j], q[j + 2:hi + 1]])
+        touching = np.all(OA == a, axis=1) | np.all(OB == a, axis=1) | np.all(OA == b, axis=1) | np.all(OB == b, axis=1)
+        for v in fold:
+            touching |= np.all(OA == v, axis=1) | np.all(OB == v, axis=1)
+        touching |= _along(path, OA, 2 * tol) & _along(path, OB, 2 * tol)  # a fold of the outline along the path
+        if np.any(_crosses(path[:-1], path[1:], OA[~touching], OB[~touching])) or len(q) - len(fold) < 4:
+            continue
+        inner = np.full(len(path) - 2, np.nan)
+        lines[m] = (k, np.vstack([q[:lo], path, q[hi + 1:]]),
+                    np.concatenate([g[:lo], g[j:j + 1], inner, g[j + 1:j + 2], g[hi + 1:]]))
     return lines
 
 
