@@ -108,15 +108,42 @@ def test_a_margin_at_a_point_does_not_depend_on_the_points_beside_it(key):
         np.testing.assert_array_equal(F(p, which), alone, err_msg=names[k])
 
 
-def test_a_line_along_the_edge_below_the_bands_rows_is_traced_on():
-    """51/101's interference.1 runs along the no-pair edge near the bottom frame: the band's rows stand
-    on the multisection's edge points (rows placed from the solved edge, 1e-15 away, lost the piece:
-    7 tol at 1e-3). The bench's scan: exact zeros on scan lines, each within 2 tol of a traced line."""
+@pytest.mark.parametrize("ulps", [-4, -1, 0, 1, 4])
+def test_a_line_along_the_edge_below_the_bands_rows_is_traced_on_from_any_round_off_edge(ulps, monkeypatch):
+    """51/101's interference.1 runs along the no-pair edge near the bottom frame and crosses the band's
+    edge row on its way there: its piece below that row is carried on whichever of the edge points
+    within a few ulps of each other the search returns (every solved edge moved that many ulps towards
+    the undefined area or back: the piece was lost, 7 tol at 1e-3, with the solved edge as found and
+    4 ulps beyond it). The bench's scan: exact zeros on scan lines, each within 2 tol of a traced line."""
     from gearkit.blocking import blocking_contour
     from gearkit.bench.topology import scan_gap
 
+    solved = edges.by_slack
+
+    def moved(S, a, b, which, close):
+        e = solved(S, a, b, which, close)
+        for _ in range(abs(ulps)):
+            e = np.nextafter(e, b if ulps > 0 else a)
+        return e
+    monkeypatch.setattr(edges, "by_slack", moved)
     c = blocking_contour(PairSpec(51, 101, 1.0), tol=1e-3)
     assert scan_gap(c)[0] <= 2e-3
+
+
+def test_a_vertex_on_the_lattices_boundary_to_round_off_is_on_it():
+    """The contour generator interpolates a row's index as ``(1 - f) j + f j``: a vertex on the edge's
+    row of an 82-row lattice between columns 72 and 73 came as 81.00000000000001 for some values at the
+    nodes; it is on that row (it was not: its line was not carried on below the row)."""
+    from gearkit.blocking.band import _off_lattice
+
+    f = np.linspace(0.0, 1.0, 2001)
+    row, col = (1.0 - f) * 81.0 + f * 81.0, (1.0 - f) * 86.0 + f * 86.0  # the interpolation, round-off and all
+    assert np.any(row != 81.0) and np.any(col != 86.0)  # (it does miss them)
+    for r, c in zip(row, col):
+        assert _off_lattice((72.037, r), 82, 87)  # on the last row, between two nodes
+        assert _off_lattice((c, 40.5), 82, 87)  # on the last column, between two rows
+        assert not _off_lattice((72.0, r), 82, 87) and not _off_lattice((c, 40.0), 82, 87)  # nodes
+        assert not _off_lattice((60.5, r - 1.0), 82, 87)  # inside
 
 
 def test_a_segment_shorter_than_the_resolution_among_others_is_its_own_start():

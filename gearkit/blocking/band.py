@@ -66,6 +66,7 @@ JUMP_FALL = 0.5  #: a solved vertex whose |F| is above this fraction of its edge
 JOIN_REACH = 0.5  #: a band piece entering a traced cell joins a grid line's end within this many of its chord
 SAME = 2.0  #: a band run within this many tol of a line of the same function traced already is dropped
 ENTRY_SAMPLES = 64  #: samples of that chord locating where it enters the traced cell
+INDEX_ROUND = 1e-9  #: lattice indices closer than this to a whole number are on that row or column
 THIN = 0.25  #: successive vertices of a band piece closer than this many tol are one (a line crossing the chord
 #: between two columns' edge points, where the edge has a corner: the rows next to the edge all put theirs there)
 
@@ -193,11 +194,14 @@ def _pieces(F, P, valid, V, ks, tol, carry=None):
 
 def _off_lattice(v, rows, cols) -> bool:
     """True when the index-space vertex ``v`` lies on the lattice's boundary between two nodes: its
-    last row (the edge's row) or its first or last column."""
+    last row (the edge's row) or its first or last column (to ``INDEX_ROUND``: the contour generator
+    interpolates the index of a row as ``(1 - f) j + f j``, 51/101's interference.1 ended on the
+    edge's row at 81.00000000000001 or at 81 as the values at its nodes moved by an ulp, and its
+    piece beside the edge below that row was lost, 7 tol at 1e-3, with the one or the other)."""
     i, j = v
-    on_row = j == rows - 1 and i != round(i)
-    on_side = (i == 0 or i == cols - 1) and j != round(j)
-    return bool(on_row or on_side)
+    on = [abs(i - c) <= INDEX_ROUND for c in (0, cols - 1)] + [abs(j - (rows - 1)) <= INDEX_ROUND]
+    between = [abs(i - round(i)) > INDEX_ROUND, abs(j - round(j)) > INDEX_ROUND]
+    return bool((on[2] and between[0]) or ((on[0] or on[1]) and between[1]))
 
 
 def _thin(q, close):

@@ -2,7 +2,7 @@
 where the area's edge crosses them once between two grid rows, ``BAND_COLUMNS`` per grid cell, or
 rows x2 = const where the edge is steep (the transposed problem); along each, nodes at distances from
 the edge falling geometrically by ``BAND_RATIO`` from beyond the masked cells down to round-off, and
-the edge itself (found by multisection, :func:`~gearkit.blocking.edges.edge_point`)."""
+the edge itself (solved for to round-off, :func:`~gearkit.blocking.edges.edge_point`)."""
 from __future__ import annotations
 
 import numpy as np
@@ -151,9 +151,7 @@ def band_lattice(F, grid, k0, cells=None, extra=(), sense=None):
     span = float(np.hypot(X[-1] - X[0], Y[-1] - Y[0]))
     E = np.full(A.shape, np.nan)
     if ok.any():
-        # (the multisection's last defined sample, not the solved edge: the rows below fall to round-off
-        # from it, and 51/101's interference.1 piece was lost from rows placed 1e-15 otherwise: 7 tol at 1e-3)
-        E[ok] = edge_point(F, A[ok], B[ok], np.full(np.count_nonzero(ok), k0), span, solve=False)
+        E[ok] = edge_point(F, A[ok], B[ok], np.full(np.count_nonzero(ok), k0), span)
     E[frame] = B[frame]  # the edge past the frame: the band ends on it
     ok |= frame
     dy = Y[1] - Y[0]
