@@ -223,3 +223,33 @@ def test_12_30_lines_reach_the_edge_where_the_tip_of_gear_2_meets_its_base_circl
         seen += len(zeros)
         assert _nearest(np.array(zeros), c.line(name).components).max() <= CONTRACT * tol, name
     assert seen >= 2 * SCAN_ROWS
+
+
+@pytest.mark.parametrize("ulps", [-4, 0, 4])
+@pytest.mark.parametrize("delta", [2e-14, 1e-12])
+def test_across_sees_a_zero_within_round_off_of_the_edge_from_any_edge_point(delta, ulps, monkeypatch):
+    """Samples from the edge reach down to the round-off of its coordinates, wherever within a few ulps
+    of the edge its search puts the edge point (moved ``ulps`` towards the undefined area or back): a
+    line meeting the edge at a small angle comes that close to it, and where its zero is seen is
+    where the continuation's front stops (from ``FLOOR * span``, 1e-13 here, a zero 2e-14 from the edge
+    was not seen). F = cbrt(1 - y) - cbrt(delta) below y = 1, its conditions ``1 - y`` (solved for);
+    the zero at y = 1 - delta in closed form."""
+    from gearkit.blocking import edges
+    from gearkit.blocking.edges import across
+
+    def F(p, k):
+        return np.where(p[:, 1] < 1.0, np.cbrt(1.0 - p[:, 1]) - np.cbrt(delta), np.nan)
+    F.slack = lambda p, k: np.repeat((1.0 - p[:, 1])[:, None], 4, axis=1)
+    solved = edges.by_slack
+
+    def moved(S, a, b, which, close):
+        e = solved(S, a, b, which, close)
+        for _ in range(abs(ulps)):
+            e = np.nextafter(e, b if ulps > 0 else a)
+        return e
+    monkeypatch.setattr(edges, "by_slack", moved)
+    Q, N = np.array([[0.0, 0.5]]), np.array([[0.0, 1.0]])
+    (s, v, c), = across(F, Q, N, np.array([1.0]), np.array([-1.0]), np.array([0]), 1.0, 1e-4)
+    assert c >= 0
+    zero = 0.5 - delta  # along the normal from Q
+    assert s[c] <= zero <= s[c + 1] and s[c + 1] - s[c] <= 1.1 * delta

@@ -2,7 +2,7 @@
 
 A margin ``F`` is undefined (NaN) where no pair exists. A zero of ``F`` beside that area may lie
 closer to its edge than any grid node or ray sample: here the edge point between a defined and an
-undefined point is found by multisection to round-off (:func:`edge_point`), and ``F`` is sampled
+undefined point is solved for to round-off (:func:`edge_point`), and ``F`` is sampled
 at distances from it shrinking geometrically to round-off (:func:`ladder`): a zero between a
 sample and the edge is seen however close to the edge it lies. :func:`across` looks for the
 nearest oriented zero along normals (for the continuation of :mod:`gearkit.blocking.ends`),
@@ -27,6 +27,7 @@ __all__ = ["edge_point", "by_slack", "toward_edge", "touchdowns", "ahead_on_edge
 
 LADDER = 0.5  #: ratio of the geometric sample distances
 FLOOR = 1e-13  #: the smallest sample distance, relative to the window's size
+EDGE_ULPS = 8.0  #: :func:`across` samples from the edge down to this many units of round-off of its coordinates
 SPLITS = 15  #: points per round of the multisection for the edge of the defined area
 EDGE_REACH = 3.0  #: an end beside the no-pair area is carried on when its tangent meets the area's edge
 #: within this many grid cell diagonals ...
@@ -46,13 +47,12 @@ GUARDS = np.array([0.1, 1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12])  #: fractions of 
 #: guard beyond the false position's error
 
 
-def edge_point(F, a, b, which, span, within=None, solve=True):
+def edge_point(F, a, b, which, span, within=None):
     """The last defined point from ``a`` (defined) towards ``b`` (undefined), to ``span * FLOOR``
     (or to ``within``, a length, where that is enough). With a measure of the undefined area
-    (``F.slack``, see :func:`by_slack`) the edge is solved for; without, or with ``solve=False``,
-    found by multisection."""
+    (``F.slack``, see :func:`by_slack`) the edge is solved for; without, found by multisection."""
     close = FLOOR * span if within is None else max(float(within), FLOOR * span)
-    if solve and getattr(F, "slack", None) is not None and len(a):
+    if getattr(F, "slack", None) is not None and len(a):
         return by_slack(F.slack, a, b, which, close)
     return _multisection(F, a.copy(), b.copy(), which, close)
 
@@ -286,11 +286,14 @@ def across(F, Q, N, reach, sig, which, span, floor=None):
         idx = np.array([e for e, _, _ in edge])
         A = Q[idx] + np.array([a for _, a, _ in edge])[:, None] * N[idx]
         B = Q[idx] + np.array([b for _, _, b in edge])[:, None] * N[idx]
-        E = edge_point(F, A, B, which[idx], span, solve=False)  # (the multisection's point: from the solved
-        # edge, 1e-15 away, 12/30's ladder lost a piece at tol 1e-9, 58 tol)
-        # from the edge to round-off whatever ``floor``: a line meeting the edge at a small angle runs
-        # closer to it than any sample about Q (the margins vary as the cube root of the distance)
-        d = ladder(1.0, FLOOR * span / max(float(np.max(np.hypot(*(A - E).T))), 1e-300))
+        E = edge_point(F, A, B, which[idx], span)
+        # from the edge down to the round-off of its coordinates (EDGE_ULPS), whatever ``floor``: a line
+        # meeting the edge at a small angle runs closer to it than any sample about Q (the margins vary
+        # as the cube root of the distance), and where it comes within the samples' reach of the edge
+        # is where its front stops (12/30 at tol 1e-9: from FLOOR * span, 1e-12, the front stopped 1.8e-7
+        # or 3.4e-9 short of the reference's as the edge point moved by 1e-13)
+        ulp = EDGE_ULPS * np.finfo(float).eps * max(1.0, float(np.max(np.abs(E))))
+        d = ladder(1.0, ulp / max(float(np.max(np.hypot(*(A - E).T))), 1e-300))
         P = E[:, None, :] + d[None, :, None] * (A - E)[:, None, :]
         W = F(P.reshape(-1, 2), np.repeat(which[idx], d.size)).reshape(len(idx), d.size)
         for r, e in enumerate(idx):
