@@ -68,6 +68,7 @@ NRAYS = 1  #: directions searched: the normal only (a diagonal ray's zero may li
 #: saddle: a chord joining two branches was kept 3.8e-5 off its line at every tol below 1e-4)
 PLAIN = (5, 6)  #: the samples a measured curve's search reads: the reach, then twice it (an acute corner)
 WIDE_REGION = True  #: the wider search for measured curves too
+SHORT_KEEP = 2.5  #: a line's chord this short (tol) with no zero beside it (a saddle's neck) stays: within 1.25 tol
 STRIP_PROBE = 0.5  #: a chord whose middle lies between two zeros is read this many tol beside its ends (two_lines)
 JUMP_FACTOR = 100.0  #: a solved vertex with |F| above this times slope x tol sits on a jump, not a zero
 JUMP_FALL = 0.5  #: ... and |F| there above this fraction of the smaller |F| at the bracket's ends (the
@@ -282,7 +283,7 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
         split_m = found & ((dev > limit) | long[meas])
         # no zero across a line's chord: two components (a region's loop stays closed), each carried to where
         # it meets the no-pair area's edge when the chord runs beside it (a line dipping to the edge)
-        lost = np.flatnonzero(~found & live[meas] & trust[which[meas]])
+        lost = np.flatnonzero(~found & live[meas] & trust[which[meas]] & (best.have | (Lm > SHORT_KEEP * tol)))
         if kept is not None:  # a measured curve's chord with no zero across it: kept as it is, and noted
             kept += [(int(which[r]), A[r].copy(), B[r].copy()) for r in meas[~found & live[meas] & ~trust[km]]]
         cut = set(meas[lost].tolist())
