@@ -78,7 +78,8 @@ def band_lines(F, lines, grids, tol: float, measure=(), many=None, carry=None, s
     traced in the band. ``carry``: a list to which the ends of the band's pieces that
     leave the lattice through its boundary off the no-pair edge are appended (``(k, point)``): the
     lattice's last row is a chord between the edge's points on two columns, or the window's frame
-    on one of them, and a line may go on beside the edge below it (see
+    on one of them, or a column's rows from the edge end under the frame, and a line may go on beside
+    the edge below it or to the frame (see
     :func:`~gearkit.blocking.ends.extend_ends`). ``specks`` (``(k, point)``): grid cells whose piece
     of function k the grid dropped (one chord beside undefined nodes): the band's pieces go on through
     them (44/112's tip thickness line from the edge to the window's top frame crosses one such cell
@@ -130,10 +131,12 @@ def band_lines(F, lines, grids, tol: float, measure=(), many=None, carry=None, s
 def _pieces(F, P, valid, V, ks, tol, carry=None):
     """Each function's zero lines on the lattice: ``[(k, points, slopes)]`` (vertices solved on their
     lattice edges to ``tol / 4``, split where a sign change is a pole or a jump); the ends leaving the
-    lattice through its boundary where a pair exists beyond (not on the edge) appended to ``carry``."""
+    lattice through its boundary where a pair exists beyond (not on the edge), or where its rows end
+    under the window's frame, appended to ``carry``."""
     import contourpy
 
     rows, cols = valid.shape
+    framed = ~valid & valid.any(axis=0)[None, :]  # nodes of a column with an edge beyond the window's frame
     ci, ri = np.arange(cols, dtype=float), np.arange(rows, dtype=float)
     raw = []  # (k, index-space vertices)
     for n, k in enumerate(ks):
@@ -185,7 +188,7 @@ def _pieces(F, P, valid, V, ks, tol, carry=None):
                 out.append((k, q[lo:hi][keep], g[lo:hi][keep], closed))
                 if carry is not None and not closed:
                     carry += [(k, q[j]) for j, at_end in ((lo, lo == 0), (hi - 1, hi == len(p)))
-                              if at_end and _off_lattice(p[j], rows, cols)]
+                              if at_end and (_off_lattice(p[j], rows, cols) or _at_frame(p[j], framed))]
     if carry:  # a vertex on the edge itself (undefined to round-off) ends its line there
         keep = np.isfinite(F(np.array([c[1] for c in carry]), np.array([c[0] for c in carry])))
         carry[:] = [c for c, kp in zip(carry, keep) if kp]
@@ -202,6 +205,23 @@ def _off_lattice(v, rows, cols) -> bool:
     on = [abs(i - c) <= INDEX_ROUND for c in (0, cols - 1)] + [abs(j - (rows - 1)) <= INDEX_ROUND]
     between = [abs(i - round(i)) > INDEX_ROUND, abs(j - round(j)) > INDEX_ROUND]
     return bool((on[2] and between[0]) or ((on[0] or on[1]) and between[1]))
+
+
+def _at_frame(v, framed) -> bool:
+    """True when the index-space vertex ``v`` lies on a lattice edge of a cell with a node ``framed``
+    (beyond the window's frame, in a column whose edge was found): the lattice ends there short of the
+    frame by up to a row (25/49 z0 37: interference.1 and tip_interference, in a strip 0.015 wide
+    beside the steep no-pair edge, stopped at x2 = 0.092 and 0.089 on the lattice, short of the frame
+    at 0.1: 10.3 tol at 1e-3)."""
+    rows, cols = framed.shape
+    i, j = v
+    if abs(j - round(j)) <= INDEX_ROUND:  # on a row: the cells below and above its edge
+        r, c = int(round(j)), int(np.floor(i))
+        nodes = [(rr, cc) for rr in (r - 1, r + 1) for cc in (c, c + 1)]
+    else:  # on a column: the cells left and right of its edge
+        r, c = int(np.floor(j)), int(round(i))
+        nodes = [(rr, cc) for rr in (r, r + 1) for cc in (c - 1, c + 1)]
+    return any(0 <= rr < rows and 0 <= cc < cols and framed[rr, cc] for rr, cc in nodes)
 
 
 def _thin(q, close):
