@@ -1,5 +1,7 @@
 """The oracle of the blocking tests for lines beside the no-pair edge: exact zeros of a scalar margin
-along one row or column, found from the edge (bisected to round-off) by sampling and brentq."""
+along one row or column, found from the edge (bisected to round-off) by sampling and brentq; and the
+solved edge moved by a few ulps (:func:`move_solved_edges`: a result must not hang on which of the
+edge points within round-off the search returns)."""
 import numpy as np
 from scipy.optimize import brentq
 
@@ -26,3 +28,18 @@ def zeros_from_edge(f, lo, hi, top, distances):
         if abs(f(t)) <= FALL * min(abs(v[i]), abs(v[i + 1])):
             out.append(t)
     return out
+
+
+def move_solved_edges(monkeypatch, ulps):
+    """Every edge point the edge search solves (``edges.by_slack``) moved ``ulps`` ulps towards the
+    defined end of its segment (positive) or the undefined one (negative), for this test."""
+    from gearkit.blocking import edges
+
+    solved = edges.by_slack
+
+    def moved(S, a, b, which, close):
+        e = solved(S, a, b, which, close)
+        for _ in range(abs(ulps)):
+            e = np.nextafter(e, b if ulps > 0 else a)
+        return e
+    monkeypatch.setattr(edges, "by_slack", moved)

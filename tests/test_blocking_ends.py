@@ -18,6 +18,8 @@ from gearkit.blocking.region import pad, padded_grid
 from gearkit.distances import distances_to_polyline
 from gearkit.pair import PairSpec
 
+from edgezeros import move_solved_edges
+
 CONTRACT = 2.0  #: achieved / tol (issue 19)
 FD_STEP = 1e-4  #: central-difference step of the saddle's gradient (shift units; the margin is
 #: quadratic there, so the difference is exact to round-off / FD_STEP ~ 1e-12)
@@ -234,20 +236,12 @@ def test_across_sees_a_zero_within_round_off_of_the_edge_from_any_edge_point(del
     where the continuation's front stops (from ``FLOOR * span``, 1e-13 here, a zero 2e-14 from the edge
     was not seen). F = cbrt(1 - y) - cbrt(delta) below y = 1, its conditions ``1 - y`` (solved for);
     the zero at y = 1 - delta in closed form."""
-    from gearkit.blocking import edges
     from gearkit.blocking.edges import across
 
     def F(p, k):
         return np.where(p[:, 1] < 1.0, np.cbrt(1.0 - p[:, 1]) - np.cbrt(delta), np.nan)
     F.slack = lambda p, k: np.repeat((1.0 - p[:, 1])[:, None], 4, axis=1)
-    solved = edges.by_slack
-
-    def moved(S, a, b, which, close):
-        e = solved(S, a, b, which, close)
-        for _ in range(abs(ulps)):
-            e = np.nextafter(e, b if ulps > 0 else a)
-        return e
-    monkeypatch.setattr(edges, "by_slack", moved)
+    move_solved_edges(monkeypatch, ulps)
     Q, N = np.array([[0.0, 0.5]]), np.array([[0.0, 1.0]])
     (s, v, c), = across(F, Q, N, np.array([1.0]), np.array([-1.0]), np.array([0]), 1.0, 1e-4)
     assert c >= 0

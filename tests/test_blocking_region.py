@@ -53,15 +53,7 @@ def test_a_strip_narrower_than_a_grid_cell_is_not_cut_across():
     spec = PairSpec(33, 78, 1.0)
     field = PairField(spec)
     c = blocking_contour(spec, tol=tol, lines=[])
-    for y in np.linspace(1.60, 1.70, 6):
-        xs = np.linspace(-1.30, -1.13, 35)
-        exact = _zeros(lambda x: _smallest(field, x, y), xs)
-        assert len(exact) == 2, (y, exact)  # the strip's two edges
-        a, b = np.array([xs[0], y]), np.array([xs[-1], y])
-        got = xs[0] + _crossings(c.region, a, b) * (xs[-1] - xs[0])
-        assert len(got) == 2 and np.max(np.abs(got - exact)) <= CONTRACT * tol, (y, exact, got)
-        mid = 0.5 * (exact[0] + exact[1])
-        assert check_pair(PairSpec(33, 78, 1.0, float(mid), float(y))).ok and c.in_region(mid, y), (y, mid)
+    _rows_cross_the_strip((33, 78), field, c, np.linspace(-1.30, -1.13, 35), np.linspace(1.60, 1.70, 6), tol)
 
 
 @pytest.mark.parametrize("pair, tol, xr, rows", [((32, 77), 1e-3, (-1.13, -1.04), (1.22, 1.23, 1.24)),
@@ -81,8 +73,14 @@ def test_a_strip_cut_across_twice_is_taken_once(pair, tol, xr, rows):
     spec = PairSpec(*pair, 1.0)
     field = PairField(spec)
     c = blocking_contour(spec, tol=tol, lines=[])
+    _rows_cross_the_strip(pair, field, c, np.linspace(*xr, 37), rows, tol)
+
+
+def _rows_cross_the_strip(pair, field, c, xs, rows, tol):
+    """On each row x2 = y of ``rows`` (x1 sampled at ``xs``) of the pair ``pair`` (z1, z2), the region's polygons cross where the
+    check's smallest hard margin does (brentq: the strip's two edges), within 2 tol, and the strip's
+    middle passes check_pair and is in the region."""
     for y in rows:
-        xs = np.linspace(*xr, 37)
         exact = _zeros(lambda x: _smallest(field, x, y), xs)
         assert len(exact) == 2, (y, exact)  # the strip's two edges
         a, b = np.array([xs[0], y]), np.array([xs[-1], y])

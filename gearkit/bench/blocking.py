@@ -337,6 +337,11 @@ def _measured(v) -> str:
     return "not measured" if v is None else text_number(v, ".2e")
 
 
+def _where(r) -> str:
+    """The worst scan zero of a row (its line and point), for the report."""
+    return "" if r.get("scan_line") is None else f"  {r['scan_line']} at ({r['scan_at'][0]:.4f}, {r['scan_at'][1]:.4f})"
+
+
 def format_section(res: dict) -> list:
     """Lines of the bench report for the blocking targets and the atlas throughput."""
     lines = ["", "blocking contours: targets (load average %s)" % res["meta"].get("load_before")]
@@ -354,8 +359,7 @@ def format_section(res: dict) -> list:
         lines.append(f"  {'tol':>8} {'exact':>10} {'gap':>10} {'scan gap':>10} {'ach/tol':>8} {'loops':>7} {'dup':>4} "
                      f"{'vertices':>9} {'evals':>9} {'time':>9}  worst scan zero")
         for r in ladder:
-            where = "" if r.get("scan_line") is None else f"  {r['scan_line']} at ({r['scan_at'][0]:.4f}, " \
-                f"{r['scan_at'][1]:.4f})"
+            where = _where(r)
             lines.append(f"  {r['tol']:8.0e} {r['exact']:10.2e} {r['gap']:10.2e} {_measured(r.get('scan')):>10} "
                          f"{r['achieved'] / r['tol']:8.2f} "
                          f"{'%d/%d' % tuple(r['loops']):>7} {r['duplicates']:4d} {r['vertices']:9d} "
@@ -367,8 +371,7 @@ def format_section(res: dict) -> list:
         lines.append(f"  {'case':26} {'tol':>8} {'exact':>10} {'scan gap':>10} {'ach/tol':>8} {'evals':>9} "
                      f"{'CPU':>9}  worst scan zero")
         for r in rows:
-            where = "" if r.get("scan_line") is None else f"  {r['scan_line']} at ({r['scan_at'][0]:.4f}, " \
-                f"{r['scan_at'][1]:.4f})"
+            where = _where(r)
             lines.append(f"  {r['case']:26} {r['tol']:8.0e} {r['exact']:10.2e} {r['scan']:10.2e} "
                          f"{r['achieved'] / r['tol']:8.2f} {r['evaluations']:9d} {r['seconds']:8.3f}s{where}")
     rows = res.get("atlas", [])
