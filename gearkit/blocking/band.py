@@ -76,7 +76,8 @@ def band_lines(F, lines, grids, tol: float, measure=(), many=None, carry=None, s
     to them (see the module notes). ``many(points, ks) -> (len(ks), n)``: all functions ``ks`` at the
     same points (one evaluation); None: ``F`` once per function; every curve but ``measure`` is
     traced in the band. ``carry``: a list to which the ends of the band's pieces that
-    leave the lattice through its boundary off the no-pair edge are appended (``(k, point)``): the
+    leave the lattice through its boundary off the no-pair edge are appended (``(k, point, inf)``: no
+    limit on the first step of their continuation): the
     lattice's last row is a chord between the edge's points on two columns, or the window's frame
     on one of them, or a column's rows from the edge end under the frame, and a line may go on beside
     the edge below it or to the frame (see
@@ -187,7 +188,7 @@ def _pieces(F, P, valid, V, ks, tol, carry=None):
             if keep.size >= 2:
                 out.append((k, q[lo:hi][keep], g[lo:hi][keep], closed))
                 if carry is not None and not closed:
-                    carry += [(k, q[j]) for j, at_end in ((lo, lo == 0), (hi - 1, hi == len(p)))
+                    carry += [(k, q[j], np.inf) for j, at_end in ((lo, lo == 0), (hi - 1, hi == len(p)))
                               if at_end and (_off_lattice(p[j], rows, cols) or _at_frame(p[j], framed))]
     if carry:  # a vertex on the edge itself (undefined to round-off) ends its line there
         keep = np.isfinite(F(np.array([c[1] for c in carry]), np.array([c[0] for c in carry])))

@@ -56,8 +56,9 @@ MAX_STEPS = 400  #: steps of one front
 def extend_ends(F, lines, grids, tol, measure=(), carry=()):
     """Carry every open end of ``lines`` (``[(k, points, slopes)]``, the curves ``measure`` aside)
     that lies inside the window, off its frame and away from the undefined area, on along its line
-    (see the module notes); so too the ends ``carry`` (``(k, point)``: where the band's lattice ended
-    a line beside the edge, :func:`~gearkit.blocking.band.band_lines`), no farther than ``EDGE_REACH``
+    (see the module notes); so too the ends ``carry`` (``(k, point, first step)``: where the band's
+    lattice ended a line beside the edge, :func:`~gearkit.blocking.band.band_lines`, step inf; the ends
+    of a chord :func:`~gearkit.blocking.level.densify` cut, its length), no farther than ``EDGE_REACH``
     grid cells. Returns ``[(k, points, slopes, todo)]``: ``todo`` marks the chords to refine (the new
     ones).
 
@@ -110,7 +111,7 @@ def extend_ends(F, lines, grids, tol, measure=(), carry=()):
     # at (1, 1)): a first step of two cells passed the saddle onto them and stopped there
     first = {}
     for c in carry:
-        if len(c) > 2:
+        if np.isfinite(c[2]):
             for n, e in enumerate(starts):
                 if c[0] == recs[e[0]][0] and np.hypot(*(c[1] - e[2])) <= tol:
                     first[n] = min(first.get(n, np.inf), c[2])
