@@ -8,6 +8,23 @@ specific sliding, constant centre distance). Every line is traced by root findin
 tolerance from the same pair formulas and check functions as ``gearkit check``, evaluated as
 arrays (:mod:`gearkit.blocking.arrays`); the region is the map of the check.
 
+Modules, in the order a contour is made:
+
+* margins: :mod:`~gearkit.blocking.field` (the check as functions of the shifts; lazily per point in
+  :mod:`~gearkit.blocking.point`) and the same on arrays, :mod:`~gearkit.blocking.arrays` with the
+  per-gear :mod:`~gearkit.blocking.gear_arrays` and the internal pair's :mod:`~gearkit.blocking.ring_arrays`;
+* lines: :mod:`~gearkit.blocking.tracing` drives :mod:`~gearkit.blocking.level` (marching squares on
+  the grids of :mod:`~gearkit.blocking.grid`, chords refined until they keep the tolerance, roots and
+  strips in :mod:`~gearkit.blocking.brackets`, kinked corners in :mod:`~gearkit.blocking.corners`);
+  beside the no-pair area, :mod:`~gearkit.blocking.band` on the lattice of
+  :mod:`~gearkit.blocking.lattice`, its edge in :mod:`~gearkit.blocking.edges`; lines the grid cut short
+  carried on by :mod:`~gearkit.blocking.ends`, undercut onsets made exact by
+  :mod:`~gearkit.blocking.onsets`;
+* region: :mod:`~gearkit.blocking.region` (polygons where the check passes), its thin wedges traced to
+  their tips by :mod:`~gearkit.blocking.tips`;
+* use: :mod:`~gearkit.blocking.contour` (the result and point queries), :mod:`~gearkit.blocking.recommend`,
+  :mod:`~gearkit.blocking.plot` (pictures, JSON), :mod:`~gearkit.blocking.atlas` (many pairs in parallel).
+
 >>> from gearkit.pair import PairSpec
 >>> c = blocking_contour(PairSpec(13, 16, 1.0), tol=1e-6, lines=["undercut.1"])
 >>> round(float(c.line("undercut.1").points[0, 0]), 6), c.contains(0.5, 0.3)
