@@ -3,7 +3,9 @@ sliding hairpin of 14/46 (smaller than a grid cell, in cells whose corners all h
 46/49's interference.1, whose two thin wedges meet at a saddle at (x1, x2) = (1, 1) (a chord from
 one side of a wedge to the other was cut there, and the arms stopped 0.02 to 0.04 short of it).
 Oracle: the exact zeros of the scalar margin (``PairField.margin``) along rows x2 = const through
-them, sampled densely and solved by brentq."""
+them, sampled densely and solved by brentq. So too where a chord cut from one side of a thin loop or
+wedge to the other had its ends carried on round the turn onto a piece traced there already (14/55's
+sliding loop, 56/59's interference.1 wedge)."""
 import numpy as np
 import pytest
 from scipy.optimize import brentq
@@ -90,3 +92,31 @@ def test_a_chord_from_one_side_of_a_strip_to_the_other_is_cut_not_split(width):
         assert side.all() or (np.abs(q[:, 1] - w) <= tol / 4).all()
     covered = sorted((float(q[:, 0].min()), float(q[:, 0].max())) for _, q in out)
     assert covered == [(0.0, 1.0), (0.1, 0.6)]
+
+
+@pytest.mark.parametrize("tol", [1e-3, 1e-5])
+def test_a_thin_loop_cut_across_is_carried_round_its_turn(tol):
+    """14/55: sliding's leg ``sliding.same`` is a thin loop 0.07 wide beside (-0.3, -0.8) that the grid
+    saw as two loops; the chord from one side to the other of the upper one was cut, and its ends'
+    fronts ran at their first step onto the lower one (closed, no end to join) and stopped where they
+    stood: 0.09 of its right side and 0.017 of its left side untraced (42 tol at 1e-3, 4197 at 1e-5).
+    Every zero on rows across the loop within 2 tol of the traced line."""
+    c = blocking_contour(PairSpec(14, 55, 1.0), tol=tol, lines=["sliding"])
+    rows = np.linspace(-0.92, -0.65, 28)
+    worst, seen = _farthest(c, "sliding", rows, -0.45, -0.2)
+    assert seen >= 2 * len(rows)
+    assert worst <= CONTRACT
+
+
+def test_a_wedge_arm_cut_beside_the_edge_is_carried_to_the_piece_traced_there():
+    """56/59 with a 26-tooth shaper at tol 1e-3: interference.1's negative wedge opening from the saddle
+    at (1, 1) beside the no-pair edge; the chord across it from (1.074, 1.061) to (1.091, 1.122) was cut,
+    and the upper arm's front ran onto the piece the grid traced from (1.0625, 1.0825), whose end beside
+    the edge is not carried on: 0.048 of the arm untraced (21.7 tol). Every zero on rows from the saddle
+    up the wedge within 2 tol of the traced line."""
+    spec = PairSpec(56, 59, 1.0, kind="internal", tool2=ShaperCutter(26))
+    c = blocking_contour(spec, tol=1e-3, lines=["interference.1"])
+    rows = np.linspace(1.01, 1.15, 15)
+    worst, seen = _farthest(c, "interference.1", rows, 0.95, 1.2)
+    assert seen >= 2 * len(rows)
+    assert worst <= CONTRACT

@@ -221,7 +221,9 @@ def two_lines(F, A, B, n, which, mask, h):
     on two different zero lines: ``F`` grows towards opposite sides of the chord at its two ends (read
     ``h`` to either side of each along ``n``). A chord of one line has ``F`` growing towards the same side
     at both ends (its line turns by less than a right angle from the chord's direction); a chord from
-    one side of a strip to the other (the two lines bounding a thin region of one sign) has not.
+    one side of a strip to the other (the two lines bounding a thin region of one sign) has not. Nor has
+    a chord across a thin loop or a wedge, whose two sides are one line joined round its turn: cut too,
+    its ends are carried on round the turn (:func:`~gearkit.blocking.ends.extend_ends`).
 
     >>> F = lambda p, w: np.abs(p[:, 1]) - 1e-3  # a strip |y| < 1e-3
     >>> A, B = np.array([[0.0, -1e-3]]), np.array([[0.1, 1e-3]])  # from one side to the other
