@@ -187,11 +187,13 @@ class NearestBracket:
         self.have[i] = True
         self.diagonal[i] = diagonal
 
-    def ladder(self, F, idx, n, reach, which, floor):
+    def ladder(self, F, idx, n, reach, which, floor, one_side=None):
         """Offer the chords ``idx`` the sign change nearest to their middles along their normals ``n``,
         sampled at distances falling geometrically by ``LADDER_RATIO`` from ``reach`` down to ``floor`` to
         either side: a zero of a strip (or of a saddle's thin wedge) narrower than a sampled search's
-        spacing is seen.
+        spacing is seen. ``one_side`` (a mask over ``idx``): those chords are offered a sign change only
+        where their normal meets none on the other side (a chord lying inside a thin part, both sides
+        near, is not on either).
 
         >>> F = lambda p, w: np.abs(p[:, 1] - 3e-4) - 1e-4  # a strip 2e-4 wide, 3e-4 from the middle
         >>> b = NearestBracket(np.zeros((1, 2)), np.array([2e-4]))
@@ -206,14 +208,18 @@ class NearestBracket:
                                                                               / -np.log(LADDER_RATIO))) + 1))
             s = np.concatenate([-d, [0.0], d[::-1]])
             v = F(self.m[i] + s[:, None] * n[r], np.full(s.size, which[r]))
+            seen = []
             for side in (slice(d.size, None), slice(d.size, None, -1)):  # outward from the middle, each way
                 ss, vv = s[side], v[side]
                 with np.errstate(invalid="ignore"):
                     ch = np.flatnonzero(np.isfinite(vv[1:]) & np.isfinite(vv[:-1]) & ((vv[1:] > 0) != (vv[:-1] > 0)))
                 if ch.size:
-                    j = ch[0]
-                    self.consider(np.array([i]), (self.m[i] + ss[j] * n[r])[None], vv[j:j + 1],
-                                  (self.m[i] + ss[j + 1] * n[r])[None], vv[j + 1:j + 2])
+                    seen.append((ss, vv, ch[0]))
+            if one_side is not None and one_side[r] and len(seen) > 1:
+                continue
+            for ss, vv, j in seen:
+                self.consider(np.array([i]), (self.m[i] + ss[j] * n[r])[None], vv[j:j + 1],
+                              (self.m[i] + ss[j + 1] * n[r])[None], vv[j + 1:j + 2])
 
 
 def two_lines(F, A, B, n, which, mask, h):

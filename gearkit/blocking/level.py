@@ -13,16 +13,14 @@ where undefined); every step below evaluates all the points it needs, of all the
    a guard beside a settling estimate and bisection safeguards) to ``tol / 4`` in x.
 3. **Chords on the curve** (:func:`densify`): a chord's deviation from its curve is estimated at
    its middle ``m`` from ``|F(m)| / |grad F|`` (the slope known from the roots that made its ends);
-   a chord estimated within ``tol / 2`` is kept, any other is measured by a root of ``F`` along
-   its normal through ``m`` and, if that root is more than ``tol`` away, split into as many
-   pieces as its curvature needs (``sqrt(deviation / (tol / 2))``, the new vertices roots of ``F``
-   near the parabola through the three known points), round after round. A chord with no zero at
-   those samples is searched again at distances from its middle falling geometrically to ``tol / 4``
-   (a strip, or a saddle's thin wedge, narrower than their spacing); one from one side of a strip to the
-   other (:func:`~gearkit.blocking.brackets.two_lines`) is cut, not split (a zigzag across the strip lost
-   an arm with it: 46/49's interference.1 beside (1, 1)), its ends carried on (ends). So every point of a
-   polyline lies within about ``tol + tol / 4`` of its curve, and the number of vertices is what
-   the curvature needs at that tolerance: coarser tolerances cost less.
+   a chord estimated within ``tol / 2`` is kept, any other is measured by a root of ``F`` along its normal
+   through ``m`` and, if that root is more than ``tol`` away, split into as many pieces as its curvature needs
+   (``sqrt(deviation / (tol / 2))``, new vertices solved near the parabola through the three known points),
+   round after round. A chord with no zero at those samples is searched again at distances from its middle
+   falling geometrically to ``tol / 4`` (a strip, a saddle's thin wedge, or beside a region's edge a strip of
+   it, narrower than their spacing); one from one side of a strip to the other (brackets.two_lines) is cut,
+   not split (a zigzag across the strip lost an arm: 46/49's interference.1 beside (1, 1)), its ends carried
+   on (ends). So every point of a polyline lies within about ``1.25 tol`` of its curve; coarser tols cost less.
 
 4. **Saddles the grid got wrong**: loops cut across a thin part re-joined (:func:`~gearkit.blocking.region.reconnect`),
    wedges cut short of their tips carried to them (:func:`~gearkit.blocking.tips.carry_to_tips`).
@@ -69,6 +67,7 @@ NRAYS = 1  #: directions searched: the normal only (a diagonal ray's zero may li
 PLAIN = (5, 6)  #: the samples a measured curve's search reads: the reach, then twice it (an acute corner)
 WIDE_REGION = True  #: the wider search for measured curves too
 SHORT_KEEP = 2.5  #: a line's chord this short (tol) with no zero beside it (a saddle's neck) stays: within 1.25 tol
+MEASURED_LADDER = 0.125  #: a measured curve's chord's ladder starts this many chord lengths from its middle
 STRIP_PROBE = 0.5  #: a chord whose middle lies between two zeros is read this many tol beside its ends (two_lines)
 JUMP_FACTOR = 100.0  #: a solved vertex with |F| above this times slope x tol sits on a jump, not a zero
 JUMP_FALL = 0.5  #: ... and |F| there above this fraction of the smaller |F| at the bracket's ends (the
@@ -258,9 +257,10 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
                 lo = np.where(start[:, None], ps[rw, prev], mm[wide])
                 flo = np.where(start, vs[rw, prev], f0[wide])
                 best.consider(wide[ok], lo[ok], flo[ok], ps[rw, j][ok], vs[rw, j][ok], diagonal=r >= 2)
-        thin = np.flatnonzero(~best.have & trust[km] & (Lm > vtol))
-        if thin.size:  # no zero at the samples: a strip narrower than their spacing, searched on a ladder
-            best.ladder(F, thin, nm_[thin], 0.5 * Lm[thin], km[thin], vtol)
+        thin = np.flatnonzero(~best.have & (Lm > vtol))
+        if thin.size:  # no zero at the samples: a strip narrower than their spacing, searched on a ladder (a
+            meas_t = ~trust[km[thin]]  # measured curve's near its middle, to one side only: a cut meets none or two)
+            best.ladder(F, thin, nm_[thin], np.where(meas_t, MEASURED_LADDER, 0.5) * Lm[thin], km[thin], vtol, meas_t)
         # a chord from one side of a strip to the other is cut (not split into a zigzag across it), its ends
         # carried on along their lines (loose: ends)
         found = best.have & ~two_lines(F, A[meas], B[meas], nm_, km, strip, STRIP_PROBE * tol)
