@@ -231,3 +231,37 @@ def test_a_wedge_beside_a_fold_of_the_outline_is_traced_to_its_tip(tol):
     2 tol of it, and crosses the rows below it where the margins do (see the wedge test above)."""
     test_a_thin_wedge_is_traced_to_its_tip((32, 86), "interference.2", "interference.1", (-1.10, -1.06),
                                            (1.24, 1.26), tol)
+
+
+def test_a_wedge_bounded_beside_the_tip_sweeps_kink_is_traced_to_its_tip():
+    """25/54 internal (shaper z0 20) at tol 1e-3: interference.1 and exit jamming leave a wedge about 0.1
+    long and 0.02 wide at most, tip near (0.551, -0.026), narrower than the region grid's cells; inside it
+    the tip sweep's margin is flat at its resolution (1e-4: no penetration) and smallest, and it kinks down
+    where exit jamming crosses zero. The grid saw the wedge as a chain of diamonds, the outline was closed
+    across it at x2 = 0.06 (the chord 9 tol off) and its end beside the kink read as bound by the tip sweep,
+    whose corners are not carried. The tip is solved apart from the tracing (brentq on the two margins'
+    zeros along rows, then on their difference): the outline passes within 2 tol of it; on rows above it
+    the outline crosses exactly where the two margins do, within 2 tol, and the wedge's middle is in the
+    region and passes check_pair."""
+    import dataclasses
+
+    from gearkit.families.involute import ShaperCutter
+
+    tol = 1e-3
+    spec = PairSpec(25, 54, 1.0, kind="internal", tool2=ShaperCutter(20))
+    field = PairField(spec)
+    c = blocking_contour(spec, tol=tol, lines=[])
+    span = lambda y: (y + 0.50, y + 0.59)  # noqa: E731 (the rows' x1 short of the no-pair edge, x1 - x2 = 0.594)
+    edge = lambda name, y: _edge(field, name, y, *span(y))  # noqa: E731
+    yt = brentq(lambda y: edge("interference.1", y) - edge("exit_jamming", y), -0.04, -0.01, xtol=1e-14)
+    assert _distance_to_outline(c.region, np.array([edge("interference.1", yt), yt])) <= CONTRACT * tol, yt
+    for d in (0.08, 0.04, 0.02, 0.01, 3e-3):
+        y = yt + d
+        exact = np.array([edge("interference.1", y), edge("exit_jamming", y)])
+        mid = 0.5 * (exact[0] + exact[1])
+        assert _smallest(field, mid, y) > 0 and check_pair(dataclasses.replace(spec, shift1=float(mid),
+                                                                               shift2=float(y))).ok, (d, mid)
+        assert c.in_region(mid, y), (d, mid)
+        lo, hi = span(y)
+        got = lo + _crossings(c.region, np.array([lo, y]), np.array([hi, y])) * (hi - lo)
+        assert len(got) == 2 and np.max(np.abs(got - exact)) <= CONTRACT * tol, (d, exact, got)

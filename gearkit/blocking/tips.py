@@ -14,8 +14,10 @@ binding part changes from ``a`` to ``b`` along a chord ``A -> B``: the crossing 
 replaces the chord by the line ``a = 0`` from ``A`` to ``T`` and ``b = 0`` from ``T`` to ``B``, each
 traced to ``tol`` as a smooth curve of its own. A chord kept with no zero found across it whose ends
 bind the same part (along a strip of the region narrower than itself, its middle beside the strip)
-is replaced by that part's line. A new outline is taken only where it is the region's edge: every
-chord's middle within ``tol`` of its part's zero, every new vertex on no other part's wrong side, and
+is replaced by that part's line. An end beside the tip sweep's kink, where its margin is flat at the
+sweep's resolution and smallest, binds the part whose zero lies there (exit jamming, where the tip
+sweep starts to penetrate: 25/54 z0 20's wedge). A new outline is taken only where it is the region's
+edge: every chord's middle within ``tol`` of its part's zero, every new vertex on no other part's wrong side, and
 no chord crossing the rest of the region's outline.
 
 >>> import numpy as np
@@ -40,10 +42,12 @@ def part_evaluator(field, window, count=None):
     ``points[i]``: the hard margins of ``field`` (NaN where no pair exists), then the distances to the
     window's four edges (x1 - lo, hi - x1, x2 - lo, hi - x2); ``G.size`` parts, ``G.window``, and
     ``G.many(points)``: every part at the points, ``(G.size, n)``; ``G.costly``: the parts whose
-    corners are not carried (the tip sweep). The region's function
+    corners are not carried (the tip sweep); ``G.flat``: part -> the level at which it is flat (the tip
+    sweep's resolution, where it finds no penetration). The region's function
     (:func:`~gearkit.blocking.arrays.evaluator`'s ``"region"``) is their smallest. ``count``: a list
     whose first item counts the points evaluated (times the parts, for ``G.many``)."""
     from gearkit.blocking.arrays import evaluator
+    from gearkit.pair.internal import SWEEP_RESOLUTION
 
     hard = list(field.hard)
     M = evaluator(field, hard, None)
@@ -91,6 +95,7 @@ def part_evaluator(field, window, count=None):
     # and not smooth below: its corners are left as the outline has them (traced as one of its parts, a side
     # took minutes on 20/49 internal at tol 1e-3)
     G.costly = [i for i, n in enumerate(hard) if n == "tip_interference"]
+    G.flat = {i: SWEEP_RESOLUTION for i in G.costly}  # its margin where it finds no penetration (its kink's level)
     return G
 
 
@@ -142,10 +147,31 @@ def _crosses(P, Q, A, B) -> np.ndarray:
     return np.any(hit, axis=1)
 
 
-def _binding(G, P) -> np.ndarray:
-    """The part smallest at each point of ``P`` (``(n,)`` int; -1 where one is undefined: no pair)."""
+def _binding(G, P, tol: float) -> np.ndarray:
+    """The part smallest at each point of ``P`` (``(n,)`` int; -1 where one is undefined: no pair). Where
+    that is a costly part at its flat level (``G.flat``: the tip sweep finding no penetration, its margin
+    the sweep's resolution, its slope nil) and the smallest of the others lies within ``tol`` of its zero
+    (its value over its slope), the other: the edge there is the other's zero, the costly part's kink
+    beside it (25/54 z0 20: exit jamming, where the tip sweep starts to penetrate)."""
     V = G.many(P)
-    return np.where(np.all(np.isfinite(V), axis=0), np.argmin(np.where(np.isfinite(V), V, np.inf), axis=0), -1)
+    fin = np.all(np.isfinite(V), axis=0)
+    V = np.where(np.isfinite(V), V, np.inf)
+    b = np.argmin(V, axis=0)
+    flat = np.zeros(len(b), bool)
+    for k, level in G.flat.items():
+        flat |= (b == k) & (V[k] >= level * (1 - 1e-9))
+    i = np.flatnonzero(flat & fin)
+    if i.size:
+        W = V[:, i].copy()
+        W[G.costly] = np.inf
+        c = np.argmin(W, axis=0)
+        v = W[c, np.arange(i.size)]
+        p = P[i]
+        g = np.hypot(G(p + [STEP_H, 0.0], c) - v, G(p + [0.0, STEP_H], c) - v) / STEP_H
+        with np.errstate(invalid="ignore"):
+            near = np.abs(v) <= tol * g
+        b[i[near]] = c[near]
+    return np.where(fin, b, -1)
 
 
 def _segment_distance(A, B, P) -> np.ndarray:
@@ -177,7 +203,7 @@ def carry_to_tips(F, G, lines, kept, region: int, tol: float, trace) -> list:
     if not own:
         return lines
     P = np.concatenate([q for _, q in own])
-    bind = _binding(G, P)
+    bind = _binding(G, P, tol)
     first = np.cumsum([0] + [len(q) for _, q in own])
     A, B, ia, ib, before, after = [], [], [], [], [], []  # the chords, their parts, the chords beside them
     for (m, q), s in zip(own, first):
@@ -204,7 +230,7 @@ def carry_to_tips(F, G, lines, kept, region: int, tol: float, trace) -> list:
     along = [(a, b) for k, a, b in kept if k == region and locate_chord(lines, k, a, b) is not None]
     if along:
         a, b = np.array([c[0] for c in along]), np.array([c[1] for c in along])
-        ba, bb = _binding(G, a), _binding(G, b)
+        ba, bb = _binding(G, a, tol), _binding(G, b, tol)
         for i in np.flatnonzero((ba == bb) & (ba >= 0) & ~np.isin(ba, G.costly)):
             sides.setdefault((tuple(a[i]), tuple(b[i])), [(int(ba[i]), a[i], b[i])])
     todo = [s for ss in sides.values() for s in ss]
