@@ -22,7 +22,11 @@ _INV_SERIES = (
     929569.0 / 638512875.0,
     6404582.0 / 10854718875.0,
 )
+_SERIES_REVERSED = tuple(reversed(_INV_SERIES))
+_SERIES_ARRAYS = tuple(np.asarray(c) for c in _SERIES_REVERSED)
 SERIES_LIMIT = 0.05  # |a| below which the series beats tan(a) - a (cancellation)
+SERIES_FEW = 12  #: :func:`inv_series` sums on floats for at most this many angles (numpy's cost per call
+#: outweighs the arithmetic; the same roundings)
 
 
 def _is_scalar(x) -> bool:
@@ -30,14 +34,19 @@ def _is_scalar(x) -> bool:
     return isinstance(x, (float, int)) and not isinstance(x, bool) and math.isfinite(x)
 
 
+def _series_scalar(a: float) -> float:
+    """The series of ``inv`` at one float: :func:`inv_series`'s steps, each the same IEEE operation."""
+    a2 = a * a
+    series = 0.0
+    for c in _SERIES_REVERSED:
+        series = series * a2 + c
+    return series * a2 * a
+
+
 def _inv_scalar(a: float) -> float:
     """``inv`` of one float, with the same series below ``SERIES_LIMIT``."""
     if abs(a) < SERIES_LIMIT:
-        a2 = a * a
-        series = 0.0
-        for c in reversed(_INV_SERIES):
-            series = series * a2 + c
-        return series * a2 * a
+        return _series_scalar(a)
     return math.tan(a) - a
 
 
@@ -80,11 +89,16 @@ def inv_series(a):
     >>> bool(abs(inv_series(np.array([0.01]))[0] - (np.tan(0.01) - 0.01)) < 1e-18)
     True
     """
+    if a.size <= SERIES_FEW:
+        return np.array([_series_scalar(v) for v in a.ravel().tolist()], dtype=float).reshape(a.shape)
     a2 = a * a
-    series = np.zeros_like(a)
-    for c in reversed(_INV_SERIES):
-        series = series * a2 + c
-    return series * a2 * a
+    series = np.full(a.shape, _SERIES_REVERSED[0])  # (0 a2 + c is c)
+    for c in _SERIES_ARRAYS[1:]:  # Horner in place, on 0-d coefficients (numpy converts a float on every call)
+        series *= a2
+        series += c
+    series *= a2
+    series *= a
+    return series
 
 
 def inv_inverse(value):

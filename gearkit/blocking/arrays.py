@@ -26,72 +26,79 @@ import math
 import numpy as np
 
 from gearkit.curves import inv
-from gearkit.blocking.gear_arrays import form_roll_lengths, gear_forms, inv_inverse, ring_settings
+from gearkit.blocking.gear_arrays import (PairScalars, form_roll_lengths, gear_forms, half_angles, inv_inverse,
+                                          rack_forms, ring_settings)
 from gearkit.blocking.ring_arrays import exit_jamming, plunge_gap, tip_clearance_margin
-from gearkit.pair.tooling import graded_tip_radius, half_angle
+from gearkit.pair.tooling import graded_tip_radius
 
 __all__ = ["margins", "evaluator", "sliding_ends", "SLIDING_LEGS"]
 
 SLIDING_LEGS = ("sliding.same", "sliding.opposite")  #: the factors of the sliding margin (:meth:`_Pair.sliding_factors`)
+_AT_POINTS = ("tip_interference", "trimming.plunge")  #: margins swept at the points asked for alone (costly)
 
 
-def _no_thinning(thinning) -> bool:
-    """True for a thinning of +0 (``d - 0.0`` is ``d`` to the bit; ``-0.0`` would turn a ``-0.0`` into ``+0.0``)."""
-    return thinning == 0 and math.copysign(1.0, thinning) > 0
+def _graded_tip(rack, sec, z, x, tool, internal, blank, mn):
+    """:func:`~gearkit.pair.tooling.graded_tip_radius` (``rack``: the rack's scalars of
+    :class:`~gearkit.blocking.gear_arrays.PairScalars`, its cut tip ``r + (x + h_fP*) m_n`` worked out here)."""
+    if rack is None:
+        return graded_tip_radius(sec, z, x, tool, internal, blank)
+    return (np.maximum if internal else np.minimum)(blank, rack[6] + (x + rack[2]) * mn)
 
 
 class _Pair:
     """The tight-mesh pair geometry at arrays of shifts (transverse section, mm)."""
 
-    def __init__(self, field, x1, x2):
+    def __init__(self, field, x1, x2, k=None):
+        k = PairScalars(field) if k is None else k  # (an evaluator works them out once)
         t = field.template
         sec = field._sec
-        self.field, self.sec = field, sec
+        self.field, self.sec, self.k = field, sec, k
         self.internal = internal = field.internal
-        mn, mt, at = sec.mn, sec.mt, sec.alpha_t
+        mn = k.mn
         tool1, tool2 = field._tools
-        z1, z2 = t.teeth1, t.teeth2
         self.x1, self.x2 = x1, x2
-        self.z1, self.z2 = z1, z2
-        r1, r2 = z1 * mt / 2, z2 * mt / 2
-        rb1, rb2 = r1 * math.cos(at), r2 * math.cos(at)
-        self.r1, self.r2, self.rb1, self.rb2 = r1, r2, rb1, rb2
+        self.z1, self.z2 = z1, z2 = k.z1, k.z2
+        self.r1, self.r2, self.rb1, self.rb2 = r1, r2, rb1, rb2 = k.r1, k.r2, k.rb1, k.rb2
         # a ring's shift read by the ISO convention is cut by the shaper setting x2c (closed form);
         # the thickness allowance feeds the tool in (generating shift x_E) for roots and form circles
         x2c = ring_settings(sec, t, x2) if internal and t.shift_convention == "iso" else x2
-        k_e = 2 * mn * math.tan(sec.alpha_n)
         # generating shifts (x itself without thinning)
-        xe1 = x1 if _no_thinning(t.thinning1) else x1 - t.thinning1 / k_e
-        xe2 = x2c if _no_thinning(t.thinning2) else x2c - t.thinning2 / k_e
-        d1, rf1, rho_l1, _ = gear_forms(sec, z1, x1, tool1, False)
+        xe1 = x1 if k.plain1 else x1 - k.thin1
+        xe2 = x2c if k.plain2 else x2c - k.thin2
+        forms = (lambda x, rack, z, tool, ring: rack_forms(x, k, rack) if rack is not None
+                 else gear_forms(sec, z, x, tool, ring))
+        d1, rf1, rho_l1, _ = forms(x1, k.rack1, z1, tool1, False)
         if t.thinning1:
-            _, rf1, rho_l1, _ = gear_forms(sec, z1, xe1, tool1, False)
-        d2, rf2, rho_l2, a02 = gear_forms(sec, z2, x2c, tool2, internal)
+            _, rf1, rho_l1, _ = forms(xe1, k.rack1, z1, tool1, False)
+        d2, rf2, rho_l2, a02 = forms(x2c, k.rack2, z2, tool2, internal)
         if t.thinning2:
-            _, rf2, rho_l2, _ = gear_forms(sec, z2, xe2, tool2, internal)
+            _, rf2, rho_l2, _ = forms(xe2, k.rack2, z2, tool2, internal)
         self.a02 = a02
         # (the callers hold an errstate that ignores invalid and divide: :func:`_quiet`)
         if internal:
-            value = inv(at) - (d1 + d2) / (z2 - z1)
-            base, a_ref, x_sum = rb2 - rb1, r2 - r1, x2 - x1
+            value = k.c_inv_at - (d1 + d2) / k.z_sum
         else:
-            value = inv(at) + (d1 + d2) / (z1 + z2)
-            base, a_ref, x_sum = rb1 + rb2, r1 + r2, x1 + x2
-        bad = ~(value > 1e-9)
-        alpha_tight = inv_inverse(np.where(bad, 1.0, value))
-        a_w = np.where(bad, np.nan, base / np.cos(alpha_tight))
+            value = k.c_inv_at + (d1 + d2) / k.z_sum
+        base = k.base
+        bad = ~(value > k.tiny)
+        alpha_tight = inv_inverse(np.where(bad, k.one, value))
+        a_w = np.where(bad, k.nan, k.c_base / np.cos(alpha_tight))
         self._tight = (value, a_w, base)  # (for :meth:`conditions`)
-        bad |= ~(a_w > base * (1 + 1e-12))
-        a_w = np.where(bad, np.nan, a_w)
-        alpha_w = np.arccos(base / a_w)
-        y = (a_w - a_ref) / mn
-        dy = y - x_sum if internal else x_sum - y
-        cut = dy if t.tip_rule == "shortened" else 0.0
-        ha = t.addendum
+        bad |= ~(a_w > k.base_min)
+        a_w = np.where(bad, k.nan, a_w)
+        alpha_w = np.arccos(k.c_base / a_w)
+        ha = k.ha
+        if t.tip_rule == "shortened":
+            y = (a_w - k.c_a_ref) / mn
+            cut = y - (x2 - x1) if internal else (x1 + x2) - y
+            blank1 = k.c_r1 + mn * (ha + x1 - cut)
+            blank2 = k.c_r2 - mn * (ha - x2 - cut) if internal else k.c_r2 + mn * (ha + x2 - cut)
+        else:  # (x - 0.0 is x to the bit)
+            blank1 = k.c_r1 + mn * (ha + x1)
+            blank2 = k.c_r2 - mn * (ha - x2) if internal else k.c_r2 + mn * (ha + x2)
         # the tips the check grades: the blank's, cut down to what the tools leave (one function)
-        ra1 = graded_tip_radius(sec, z1, xe1, tool1, False, r1 + mn * (ha + x1 - cut))
-        ra2 = graded_tip_radius(sec, z2, xe2, tool2, internal,
-                                r2 - mn * (ha - x2 - cut) if internal else r2 + mn * (ha + x2 - cut))
+        ra1 = _graded_tip(k.rack1, sec, z1, xe1, tool1, False, blank1, mn)
+        ra2 = _graded_tip(k.rack2, sec, z2, xe2, tool2, internal, blank2, mn)
         bad |= ~(ra1 > rb1)
         bad |= ~(ra2 < rf2) if internal else ~(ra2 > rb2)
         self.bad = bad | np.isnan(d1) | np.isnan(d2)
@@ -99,8 +106,9 @@ class _Pair:
         rhoF2 = form_roll_lengths(field, 2, x2, rho_l2, rb2)
         self.bad |= np.isnan(rhoF1) | np.isnan(rhoF2)
         g_line = a_w * np.sin(alpha_w)
-        u_e = np.sqrt(ra1 ** 2 - rb1 ** 2)
+        u_e = np.sqrt(ra1 ** 2 - k.rb1_sq)
         if internal:
+            mt, at = sec.mt, sec.alpha_t
             nu = np.sqrt(a02 ** 2 + 2 * rb2 * (tool2.teeth * mt * math.cos(at) / 2)
                          - (tool2.teeth * mt * math.cos(at) / 2) ** 2)
             inner2 = np.maximum(np.maximum(ra2, rb2), nu)
@@ -110,31 +118,34 @@ class _Pair:
             lo = np.maximum(np.maximum(u_a, rhoF1), u_lo2)
             self.nu = nu
         else:
-            u_a = g_line - np.sqrt(ra2 ** 2 - rb2 ** 2)
+            u_a = g_line - np.sqrt(ra2 ** 2 - k.rb2_sq)
             u_hi = g_line - rhoF2
             lo = np.maximum(u_a, rhoF1)
         hi = np.minimum(u_e, u_hi)
-        self.p_bt = p_bt = math.pi * mt * math.cos(at)
-        self.eps = np.maximum(hi - lo, 0.0) / p_bt
+        self.p_bt = k.p_bt
+        self.eps = np.maximum(hi - lo, k.zero) / k.c_p_bt
         self.u_a, self.u_e, self.rhoF1, self.u_hi = u_a, u_e, rhoF1, u_hi
         self.lo, self.hi, self.g_line = lo, hi, g_line
         # a gear without thinning: d - 0.0 is d itself, to the bit
-        t1 = d1 if _no_thinning(t.thinning1) else d1 - t.thinning1 / mn
-        t2 = d2 if _no_thinning(t.thinning2) else d2 - t.thinning2 / mn
+        t1 = d1 if k.plain1 else d1 - t.thinning1 / sec.mn
+        t2 = d2 if k.plain2 else d2 - t.thinning2 / sec.mn
         self.a_w, self.alpha_w, self.ra1, self.ra2, self.rf1, self.rf2 = a_w, alpha_w, ra1, ra2, rf1, rf2
         self.t1, self.t2 = t1, t2
-        self._tips = None
+        self._tips = self._slide = None
+        self._margins = {}
 
     def conditions(self):
         """The conditions for a pair, ``(n, 4)`` (a tight mesh, its centre distance beyond the base
         circles', each tip beyond its base circle or, for a ring, inside its root circle): every one
         positive exactly where a pair exists (one is NaN where an earlier one fails); where none
         exists for another reason (no tooth, no cutter setting) there is no measure: all NaN."""
-        value, a_w, base = self._tight
-        mn = self.sec.mn
+        value, a_w, _ = self._tight
+        k = self.k
         far = (self.rf2 - self.ra2) if self.internal else (self.ra2 - self.rb2)
-        parts = np.column_stack([value - 1e-9, (a_w - base * (1 + 1e-12)) / mn, (self.ra1 - self.rb1) / mn, far / mn])
-        parts[self.bad & np.all(parts > 0, axis=1)] = np.nan
+        parts = np.empty((len(value), 4))
+        parts[:, 0], parts[:, 1] = value - k.tiny, (a_w - k.base_min) / k.mn
+        parts[:, 2], parts[:, 3] = (self.ra1 - self.rb1) / k.mn, far / k.mn
+        parts[self.bad & (parts > 0).all(axis=1)] = np.nan
         return parts
 
     @property
@@ -177,7 +188,7 @@ class _Pair:
                            (self.z2, self.t2, self.ra2, self.r2, self.rb2))
         internal = self.internal and which == 2
         rr = np.maximum(ra, rb)
-        s_at = 2 * rr * half_angle(sec, z, t, rr, internal)
+        s_at = (rr + rr) * half_angles(self.k, which, t, rr, internal)  # (2 rr: rr + rr to the bit)
         if not sec.beta:  # spur: the normal section is the transverse one
             return s_at
         beta_a = np.arctan(math.tan(sec.beta) * ra / r)
@@ -205,22 +216,36 @@ class _Pair:
         """The factors of |zeta1| - |zeta2|: zeta1 - zeta2 and zeta1 + zeta2, each times
         ``u0 rho1 / g**2`` (g = N1N2): smooth, pole-free, zero on the sliding line's two legs,
         which cross where both slidings vanish (a saddle of the absolute form)."""
-        ratio, u0, rho0, u1, rho1 = self._path_ends()
-        d = ratio * self.g_line ** 2
-        return (ratio * ratio * u0 * u1 - rho0 * rho1) / d, (2 * ratio * u0 * rho1 - rho0 * rho1 - ratio * ratio * u0 * u1) / d
+        if self._slide is None:  # (both legs are read off one evaluation)
+            ratio, u0, rho0, u1, rho1 = self._path_ends()
+            d = ratio * self.g_line ** 2
+            self._slide = ((ratio * ratio * u0 * u1 - rho0 * rho1) / d,
+                           (2 * ratio * u0 * rho1 - rho0 * rho1 - ratio * ratio * u0 * u1) / d)
+        return self._slide
 
     def margin(self, name, sel=None):
-        """Margin ``name`` (see :func:`margins`) at the points ``sel`` (indices; None: all)."""
+        """Margin ``name`` (see :func:`margins`) at the points ``sel`` (indices; None: all). Each is worked
+        out once at all the points and read at ``sel`` (an evaluation of several functions reads the hard
+        margins for the region and for their own lines), but for the sweeps read at the points alone."""
         if name.startswith("undercut."):
             i = int(name[-1])
             v = (self.x1, self.x2)[i - 1] - self.field.x_min[i - 1]
             return v if sel is None else v[sel]
-        return np.where(self.bad if sel is None else self.bad[sel], np.nan, self._value(name, sel))
+        if name in _AT_POINTS:
+            return np.where(self.bad if sel is None else self.bad[sel], self.k.nan, self._value(name, sel))
+        m = self._margins.get(name)
+        if m is None:
+            m = self._margins[name] = np.where(self.bad, self.k.nan, self._value(name, None))
+        return m if sel is None else m[sel]
 
     def smallest(self, names, sel):
-        """The smallest of the margins ``names`` at the points ``sel``: NaN where no pair exists."""
-        m = np.minimum.reduce([self._value(n, sel) for n in names])
-        return np.where(self.bad if sel is None else self.bad[sel], np.nan, m)
+        """The smallest of the margins ``names`` at the points ``sel``: NaN where no pair exists (a new array)."""
+        if any(n in _AT_POINTS for n in names):
+            m = np.minimum.reduce([self.margin(n, sel) for n in names])
+        else:  # (each margin at all the points: see margin)
+            m = np.minimum.reduce([self.margin(n) for n in names])
+            m = m if sel is None else m[sel]
+        return np.where(self.bad if sel is None else self.bad[sel], self.k.nan, m)
 
     def _value(self, name, sel):
         """Margin ``name`` at the points ``sel`` (None: all), read where a pair exists."""
@@ -299,6 +324,8 @@ def evaluator(field, names, window):
     and, with a ``window``, the distances to its edges (-1 where no pair exists:
     the function of :mod:`gearkit.blocking.region`)."""
     hard = list(field.hard)
+    k = PairScalars(field)
+    frame = None if window is None else [np.asarray(float(v)) for v in window]  # (0-d: see PairScalars)
     sweep = "tip_interference" in hard  # the costly one: see "region" below
     cheap = [n for n in hard if n != "tip_interference"]  # not the backlash: zero at the tight mesh by construction (the check
     # forgives 1e-9 m_n of round-off); a plateau at 1e-9 would hide the region's real edges
@@ -314,22 +341,23 @@ def evaluator(field, names, window):
         if window is None:
             return m
         q = p if sel is None else p[sel]
-        w = np.minimum(np.minimum(q[:, 0] - window[0], window[1] - q[:, 0]),
-                       np.minimum(q[:, 1] - window[2], window[3] - q[:, 1]))
+        w = np.minimum(np.minimum(q[:, 0] - frame[0], frame[1] - q[:, 0]),
+                       np.minimum(q[:, 1] - frame[2], frame[3] - q[:, 1]))
         v = np.minimum(w, m)
-        return np.where(np.isnan(v), np.minimum(w, -1.0), v)
+        return np.where(np.isnan(v), np.minimum(w, k.minus_one), v)
 
     def values(p, which):
         """(the pair geometry, the functions ``names[which[i]]`` at ``p[i]``)."""
         p = np.asarray(p, dtype=float).reshape(-1, 2)
         which = np.asarray(which)
         with np.errstate(invalid="ignore", divide="ignore"):
-            g = _Pair(field, p[:, 0].copy(), p[:, 1].copy())
+            g = _Pair(field, p[:, 0].copy(), p[:, 1].copy(), k)
             if len(p) and not np.count_nonzero(which != which[0]):  # one function (most calls): in place
                 return g, np.asarray(one(g, p, names[which[0]], None), dtype=float)
             out = np.empty(len(p))
             order = np.argsort(which, kind="stable")  # each function's points, in their order
-            ends = np.flatnonzero(np.diff(which[order])).tolist() + [len(p) - 1]
+            ws = which[order]
+            ends = (ws[1:] != ws[:-1]).nonzero()[0].tolist() + [len(p) - 1]
             for lo, hi in zip([-1] + ends, ends if len(p) else []):
                 sel = order[lo + 1:hi + 1]
                 out[sel] = one(g, p, names[which[sel[0]]], sel)
@@ -346,15 +374,15 @@ def evaluator(field, names, window):
         g, v = values(p, which)
         fin = np.isfinite(v)[:, None]
         s = g.conditions()
-        ok = np.all(s > 0, axis=1)[:, None]
-        return np.where(fin, np.where(ok, s, np.inf), np.where(ok, np.nan, s))
+        ok = (s > 0).all(axis=1)[:, None]
+        return np.where(fin, np.where(ok, s, k.inf), np.where(ok, k.nan, s))
 
     def many(p, which):
         """Functions ``names[w]`` for every ``w`` in ``which`` at all the points ``p``: ``(len(which), n)``,
         from one evaluation of the pair formulas."""
         p = np.asarray(p, dtype=float).reshape(-1, 2)
         with np.errstate(invalid="ignore", divide="ignore"):
-            g = _Pair(field, p[:, 0].copy(), p[:, 1].copy())
+            g = _Pair(field, p[:, 0].copy(), p[:, 1].copy(), k)
             return np.array([one(g, p, names[w], None) for w in which], dtype=float).reshape(len(which), len(p))
     F.many, F.slack = many, slack
     return F

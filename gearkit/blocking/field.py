@@ -47,9 +47,9 @@ GENERATED_CACHE = 4096  #: generated form circles kept per process (an atlas mee
 _GENERATED: OrderedDict = OrderedDict()
 
 
-def _clenshaw(u: float, c: list) -> float:
-    """The Chebyshev series ``c`` at one ``u``: numpy's ``chebval`` recurrence, step for step, on floats
-    (the same roundings: each step one IEEE operation either way)."""
+def _clenshaw(u, c):
+    """The Chebyshev series ``c`` at one ``u`` (or at an array of them, ``c`` then best 0-d arrays): numpy's
+    ``chebval`` recurrence, step for step (the same roundings: each step one IEEE operation either way)."""
     c0, c1, x2 = c[-2], c[-1], 2 * u
     for ci in c[-3::-1]:
         c0, c1 = ci - c1, c0 + c1 * x2
@@ -341,18 +341,18 @@ class PairField:
             nodes = np.cos(math.pi * (np.arange(n) + 0.5) / n)
             xs = (lo + hi) / 2 + (hi - lo) / 2 * nodes
             coef = np.polynomial.chebyshev.chebfit(nodes, [roll(x) for x in xs], n - 1).tolist()
-
             r_hi = float(np.polynomial.chebyshev.chebval(1.0, coef))
 
-            def interp_roll(x, _c=coef, _lo=lo, _hi=hi, _x0=x_min, _r_hi=r_hi):
-                # array; the last FORM_GAP: straight to rho_F = 0 at the onset
+            def interp_roll(x, _c=coef, _lo=lo, _hi=hi, _x0=x_min, _r_hi=r_hi,
+                            _a=tuple(np.asarray(v) for v in coef + [lo, hi, x_min, r_hi, hi - lo, x_min - hi])):
+                # array; the last FORM_GAP: straight to rho_F = 0 at the onset (numpy's cost per call: floats, 0-d)
                 xa = np.asarray(x, dtype=float)
                 if xa.size <= FEW_SHIFTS:
                     return np.array([_r_hi * (_x0 - v) / (_x0 - _hi) if v > _hi else
                                      _clenshaw((2 * v - _lo - _hi) / (_hi - _lo), _c)
                                      for v in xa.ravel().tolist()]).reshape(xa.shape)
-                return np.where(xa > _hi, _r_hi * (_x0 - xa) / (_x0 - _hi),
-                                np.polynomial.chebyshev.chebval((2 * xa - _lo - _hi) / (_hi - _lo), _c))
+                lo_, hi_, x0_, r_hi_, width, gap = _a[-6:]  # (chebval's recurrence on 0-d arrays: the same roundings)
+                return np.where(xa > hi_, r_hi_ * (x0_ - xa) / gap, _clenshaw((2 * xa - lo_ - hi_) / width, _a[:-6]))
 
             def interp(x, _rb=rb):
                 d = 2.0 * np.hypot(_rb, interp_roll(x))

@@ -21,7 +21,8 @@ from gearkit.curves import SERIES_LIMIT, inv, inv_series
 from gearkit.families.involute.tools import BasicRack
 from gearkit.pair.tooling import cutter_radii
 
-__all__ = ["inv_inverse", "gear_forms", "ring_settings", "form_roll_lengths"]
+__all__ = ["inv_inverse", "gear_forms", "ring_settings", "form_roll_lengths", "PairScalars", "half_angles",
+           "rack_forms"]
 
 NEWTON = 12  #: most Newton steps of the inverse involute (quadratic from the start: 4 to 6 suffice)
 SERIES_BELOW = 0.1  #: no iterate falls below this angle (rad) unless v < inv of it: only then are the angles
@@ -29,6 +30,7 @@ SERIES_BELOW = 0.1  #: no iterate falls below this angle (rad) unless v < inv of
 #: read off the tangent the Newton step has anyway)
 _INV_SERIES_BELOW = inv(SERIES_BELOW)
 NEWTON_DONE = 1e-13  #: a Newton step of inv_inverse below this fraction of the angle ends it
+_ZERO = np.asarray(0.0)  #: (0-d: see :class:`PairScalars`)
 HEIGHTS_KEPT = 64  #: racks whose straight-flank height is remembered (each kept alive: its id stays its own)
 _HEIGHTS: dict = {}
 
@@ -46,27 +48,31 @@ def inv_inverse(v):
     >>> bool(np.max(np.abs(inv(inv_inverse(v)) - v) / v) < 1e-12)
     True
     """
-    a = np.minimum(np.cbrt(3.0 * v), np.arctan(v + np.pi / 2.0))
-    # the iterates fall to the root from the right: none falls below SERIES_BELOW where every value is above its inv
-    series = bool(np.count_nonzero(v < _INV_SERIES_BELOW))  # (count_nonzero: one C call; .any() wraps one in Python)
+    v = np.asarray(v, dtype=float)
+    if not v.ndim:
+        return inv_inverse(v.reshape(1)).reshape(())
     with np.errstate(invalid="ignore"):
+        a = np.minimum(np.cbrt(3.0 * v), np.arctan(v + np.pi / 2.0))
+        # the iterates fall to the root from the right: none falls below SERIES_BELOW where every value is above its inv
+        series = bool(np.count_nonzero(v < _INV_SERIES_BELOW))  # (count_nonzero: one C call; .any() wraps one)
         going = v > 0
-    last = np.full(np.shape(a), np.inf)
-    for _ in range(NEWTON):
-        t = np.tan(a)
-        f = t - a
-        if series:
-            small = np.abs(a) < SERIES_LIMIT
-            if np.count_nonzero(small):  # inv's series at the small angles alone: f is tan a - a elsewhere
-                f[small] = inv_series(a[small])
-        step = (f - v) / (t * t)
-        a = np.where(going, a - step, a)  # an angle that has stopped stays: each its own iterates, however
-        size = np.abs(step)  # many share the array (the same angle alone or among others, to the bit)
-        with np.errstate(invalid="ignore"):
-            going &= (size > NEWTON_DONE * a) & (size < 0.5 * last)
-        if not np.count_nonzero(going):
-            break
-        last = size
+        half = np.inf  # half the last step's size (none yet)
+        for _ in range(NEWTON):  # (in place where an array is new: each step the same roundings, fewer numpy calls)
+            t = np.tan(a)
+            f = t - a
+            if series:  # inv's series at the small angles alone (f is tan a - a elsewhere), those still going
+                small = ((np.abs(a) < SERIES_LIMIT) & going).nonzero()[0]  # (a stopped angle's f is not read)
+                if small.size:
+                    f[small] = inv_series(a[small])
+            f -= v
+            t *= t
+            step = np.divide(f, t, out=f)
+            np.subtract(a, step, out=a, where=going)  # an angle that has stopped stays: each its own iterates, however
+            size = np.abs(step, out=step)  # many share the array (the same angle alone or among others, to the bit)
+            going &= (size > NEWTON_DONE * a) & (size < half)
+            if not np.count_nonzero(going):
+                break
+            half = np.multiply(size, 0.5, out=size)
     return a
 
 
@@ -79,6 +85,72 @@ def _straight_height(tool) -> float:
             _HEIGHTS.clear()
         hit = _HEIGHTS[id(tool)] = (tool, tool.straight_height)
     return hit[1]
+
+
+class PairScalars:
+    """The scalars of a field's pair formulas (:class:`~gearkit.blocking.arrays._Pair`), worked out once:
+    those the formulas combine with arrays are kept as 0-d arrays (``np.asarray(v)``): numpy combines an
+    array with a 0-d float64 array in about half the time it takes with a Python float, which it converts
+    on every call; each operation is the same IEEE one either way, to the bit. ``rack1``, ``rack2``: a rack
+    tool's closed forms (:func:`gear_forms`), None for a shaper."""
+
+    def __init__(self, field):
+        t, sec = field.template, field._sec
+        mn, mt, at = sec.mn, sec.mt, sec.alpha_t
+        c = np.asarray
+        self.z1, self.z2 = z1, z2 = t.teeth1, t.teeth2
+        self.r1, self.r2 = r1, r2 = z1 * mt / 2, z2 * mt / 2
+        self.rb1, self.rb2 = rb1, rb2 = r1 * math.cos(at), r2 * math.cos(at)
+        k_e = 2 * mn * math.tan(sec.alpha_n)
+        self.thin1, self.thin2 = c(t.thinning1 / k_e), c(t.thinning2 / k_e)  # (read where the thinning is not +0)
+        self.inv_at = inv(at)
+        if field.internal:
+            self.base, self.a_ref, self.z_sum = rb2 - rb1, r2 - r1, c(float(z2 - z1))
+        else:
+            self.base, self.a_ref, self.z_sum = rb1 + rb2, r1 + r2, c(float(z1 + z2))
+        self.base_min = c(self.base * (1 + 1e-12))
+        self.c_base, self.c_a_ref, self.c_inv_at = c(self.base), c(self.a_ref), c(self.inv_at)
+        self.mn, self.c_r1, self.c_r2, self.ha = c(mn), c(r1), c(r2), c(t.addendum)
+        self.rb1_sq, self.rb2_sq = c(rb1 ** 2), c(rb2 ** 2)
+        self.p_bt = p_bt = math.pi * mt * math.cos(at)
+        self.c_p_bt = c(p_bt)
+        self.tiny, self.one, self.zero, self.nan = c(1e-9), c(1.0), c(0.0), c(np.nan)
+        self.minus_one, self.inf = c(-1.0), c(np.inf)
+        # a gear without thinning (+0): x and d as they are (x - 0.0 is x to the bit; - -0.0 turns -0.0 to +0.0)
+        self.plain1, self.plain2 = (th == 0 and math.copysign(1.0, th) > 0 for th in (t.thinning1, t.thinning2))
+        # half_angle's scalars: pi / 2, each gear's base radius as it works it out, and its teeth
+        self.half_pi, self.half_rb = c(math.pi / 2), (c(z1 * mt * math.cos(at) / 2), c(z2 * mt * math.cos(at) / 2))
+        self.c_z = (c(float(z1)), c(float(z2)))
+        self.rack1, self.rack2 = (self._rack(sec, z, tool) if isinstance(tool, BasicRack) else None
+                                  for z, tool in ((z1, field._tools[0]), (z2, field._tools[1])))
+
+    @staticmethod
+    def _rack(sec, z, tool):
+        """(tan a_n, r, dedendum, r sin a_t, straight-flank height, sin a_t, the tip the rack leaves at x = 0)."""
+        r, s, mn = z * sec.mt / 2, math.sin(sec.alpha_t), sec.mn
+        return tuple(np.asarray(v) for v in (math.tan(sec.alpha_n), r, tool.dedendum, r * s, _straight_height(tool),
+                                              s, z * sec.mt / 2))
+
+
+def half_angles(k, which, delta, radius, internal):
+    """:func:`~gearkit.pair.tooling.half_angle` of gear ``which`` at the radii ``radius`` (an array), with
+    the scalars of :class:`PairScalars` (``k``): each operation as there (``inv`` as :func:`~gearkit.curves.inv`
+    takes it; the caller holds an errstate that ignores invalid values)."""
+    ay = np.arccos(np.minimum(np.maximum(k.half_rb[which - 1] / radius, k.minus_one), k.one))
+    inv_ay = np.tan(ay) - ay
+    small = (np.abs(ay) < SERIES_LIMIT).nonzero()[0]
+    if small.size:
+        inv_ay[small] = inv_series(ay[small])
+    d = k.c_inv_at - inv_ay
+    return (k.half_pi + delta) / k.c_z[which - 1] + (np.negative(d) if internal else d)
+
+
+def rack_forms(x, k, rack):
+    """:func:`gear_forms` of a rack-cut gear at shifts ``x`` (array), with the scalars of :class:`PairScalars`
+    (``k``; ``rack``: its ``rack1`` or ``rack2``): each operation as :func:`gear_forms` does it."""
+    tan_n, r, ded, rs, height, s, _ = rack
+    mn = k.mn
+    return (x + x) * tan_n, r + (x - ded) * mn, rs - (height - x) * mn / s, None
 
 
 def gear_forms(sec, z, x, tool, internal):
@@ -130,15 +202,13 @@ def form_roll_lengths(field, which, x, rho_l, rb):
     :class:`~gearkit.blocking.field.PairField`) at shifts ``x``, from the closed-form roll lengths
     ``rho_l``: the closed form where the gear is not undercut, the generated one where it is (the
     field's interpolant inside its range, the generated gear outside it), NaN where no gear exists."""
-    rho = np.maximum(rho_l, 0.0)
+    rho = np.maximum(rho_l, _ZERO)
     if which == 2 and field.internal:
         return rho
-    under = rho_l < 0
-    if not np.count_nonzero(under):
+    idx = (rho_l < _ZERO).nonzero()[0]  # (rho_l is 1-d)
+    if not idx.size:
         return rho
-    rho = rho.copy()
     fit = field.form_interpolant(which) if field.x_ranges is not None else None
-    idx = np.flatnonzero(under)
     xs = x[idx]
     r = np.full(xs.shape, np.nan)
     if fit is not None:  # the interpolant's roll length itself (read off d_F it loses 2e-7 mm near zero)
