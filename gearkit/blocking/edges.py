@@ -22,7 +22,7 @@ import math
 import numpy as np
 
 
-__all__ = ["edge_point", "by_slack", "toward_edge", "touchdowns", "ahead_on_edge", "ladder", "nearest_change",
+__all__ = ["edge_point", "by_slack", "toward_edge", "touchdowns", "step_ends", "ladder", "nearest_change",
            "across", "crossing_ends", "EDGE_REACH"]
 
 LADDER = 0.5  #: ratio of the geometric sample distances
@@ -45,6 +45,9 @@ EDGE_FAN_DEG = 10.0  #: the edge's direction there: from its points on rays this
 GUARDS = np.array([0.1, 1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12])  #: fractions of the bracket about the false
 #: position that :func:`by_slack` samples (2 * 7 + 1 = SPLITS points): the next bracket is about the first
 #: guard beyond the false position's error
+_EVEN = np.arange(1, SPLITS + 1) / (SPLITS + 1)  #: :func:`by_slack`'s even splits of a bracket ...
+_GUARDS = np.concatenate([-GUARDS, [0.0], GUARDS[::-1]])  #: ... and its samples about a false position
+_ZERO, _ONE = np.asarray(0.0), np.asarray(1.0)
 
 
 def edge_point(F, a, b, which, span, within=None):
@@ -94,8 +97,7 @@ def by_slack(S, a, b, which, close):
     length = np.maximum(np.hypot(*d.T), 1e-300)
     lo, hi = np.zeros(n), np.ones(n)
     s_lo = s_hi = None
-    even = np.arange(1, SPLITS + 1) / (SPLITS + 1)
-    guards = np.concatenate([-GUARDS, [0.0], GUARDS[::-1]])
+    even, guards = _EVEN, _GUARDS
     live = np.arange(n)
     for _ in range(40):
         live = live[(hi[live] - lo[live]) * length[live] > close]
@@ -108,18 +110,18 @@ def by_slack(S, a, b, which, close):
             with np.errstate(invalid="ignore", divide="ignore"):
                 fails = np.isfinite(a_s) & np.isfinite(b_s) & (a_s > 0) & (b_s <= 0)
                 f = np.where(fails, a_s / (a_s - b_s), np.inf).min(axis=1)  # the first condition's false position
-            m = np.flatnonzero(np.isfinite(f))
-            t[m] = lo[live[m], None] + np.clip(f[m, None] + guards[None, :], 0.0, 1.0) * w[m, None]
+            m = np.isfinite(f).nonzero()[0]  # (f + guards is finite there: clipped by its bounds, as np.clip does)
+            t[m] = lo[live[m], None] + np.minimum(np.maximum(f[m, None] + guards[None, :], _ZERO), _ONE) * w[m, None]
         P = a[live, None, :] + t[:, :, None] * d[live, None, :]
         if s_lo is None:  # the start's own measure, with the first samples
             v = S(np.concatenate([a, P.reshape(-1, 2)]), np.concatenate([which, np.repeat(which[live], SPLITS)]))
             s_lo, s_hi = v[:n].copy(), np.full((n, v.shape[1]), np.nan)
             v = v[n:].reshape(live.size, SPLITS, -1)  # (a segment already shorter than close takes none)
-            hi[~np.all(s_lo > 0, axis=1)] = 0.0  # a start that is not defined is its own edge (as in the multisection)
+            hi[~(s_lo > 0).all(axis=1)] = 0.0  # a start that is not defined is its own edge (as in the multisection)
         else:
             v = S(P.reshape(-1, 2), np.repeat(which[live], SPLITS)).reshape(live.size, SPLITS, -1)
         within = (t > lo[live, None]) & (t < hi[live, None])
-        ok = np.all(v > 0, axis=2)
+        ok = (v > 0).all(axis=2)
         inside, out = ok & within, ~ok & within
         j = np.where(out.any(axis=1), np.argmax(out, axis=1), SPLITS)  # the first undefined sample
         r = np.arange(live.size)
@@ -216,28 +218,36 @@ def touchdowns(F, A, B, D, which, res):
     return T[:n], T[n:]
 
 
-def ahead_on_edge(F, P, T, h, which, span, res):
-    """For points ``P`` (n, 2) beside the edge whose steps ``h`` along the directions ``T`` end in
-    the undefined area: the edge's point a whole step ahead, reached from the defined side along the
-    normal (to ``res``; NaN where neither side of the normal is defined within ``h``), for a line
-    running along the edge closer to it than its tangent's meeting with it.
+def step_ends(F, P, T, h, which, span, res):
+    """The predictions ``Q = P + h T`` of steps from points ``P`` (n, 2) along ``T`` and, for those that
+    leave the defined area (indices ``out``), the last defined point towards each (:func:`edge_point`, to
+    ``res``) and, for a line running along the edge closer to it than its tangent's meeting with it, the
+    edge's point a whole step ahead, reached from the defined side of the normal there (``h`` to the left
+    where defined, else to the right; NaN where neither is): ``(Q, out, E, ahead)``, from one evaluation of
+    ``F`` (the predictions and the points beside them) and one edge search.
 
     >>> F = lambda p, k: np.where(p[:, 1] >= p[:, 0] ** 2, 0.0, np.nan)  # defined above y = x^2
-    >>> q = ahead_on_edge(F, np.array([[0.0, 1e-9]]), np.array([[1.0, 0.0]]), np.array([0.5]), np.array([0]), 1.0, 1e-12)
-    >>> bool(abs(q[0, 0] - 0.5) < 1e-12 and abs(q[0, 1] - 0.25) < 1e-11)
-    True
+    >>> Q, out, E, q = step_ends(F, np.array([[0.0, 1e-9]]), np.array([[1.0, 0.0]]), np.array([0.5]), np.array([0]),
+    ...                          1.0, 1e-12)
+    >>> out.tolist(), bool(E[0, 0] < 1e-4), bool(abs(q[0, 0] - 0.5) < 1e-12 and abs(q[0, 1] - 0.25) < 1e-11)
+    ([0], True, True)
     """
-    ahead = P + h[:, None] * T
+    Q = P + h[:, None] * T
     N = np.column_stack([-T[:, 1], T[:, 0]])
-    out = np.full(P.shape, np.nan)
-    todo = np.isnan(F(ahead, which))
-    for sgn in (1.0, -1.0):
-        inside = ahead + sgn * h[:, None] * N
-        ok = todo & np.isfinite(F(inside, which))
-        if ok.any():
-            out[ok] = edge_point(F, inside[ok], ahead[ok], which[ok], span, res)
-            todo &= ~ok
-    return out
+    left, right = Q + h[:, None] * N, Q + -1.0 * h[:, None] * N
+    V = F(np.concatenate([Q, left, right]), np.concatenate([which, which, which])).reshape(3, -1)
+    out = np.flatnonzero(np.isnan(V[0]))
+    ok_l = np.isfinite(V[1, out])
+    ok_r = ~ok_l & np.isfinite(V[2, out])
+    E, ahead = np.zeros((0, 2)), np.full((out.size, 2), np.nan)
+    if out.size:
+        k = which[out]
+        R = edge_point(F, np.concatenate([P[out], left[out][ok_l], right[out][ok_r]]),
+                       np.concatenate([Q[out], Q[out][ok_l], Q[out][ok_r]]), np.concatenate([k, k[ok_l], k[ok_r]]),
+                       span, res)
+        n_l = out.size + np.count_nonzero(ok_l)
+        E, ahead[ok_l], ahead[ok_r] = R[:out.size], R[out.size:n_l], R[n_l:]
+    return Q, out, E, ahead
 
 
 def ladder(h, floor):
@@ -266,14 +276,14 @@ def across(F, Q, N, reach, sig, which, span, floor=None):
     runs into the undefined area, from that edge towards ``Q`` from round-off up (a zero closer to
     the edge than ``floor`` is seen)."""
     floor = FLOOR * span if floor is None else floor
-    plans, pts, ks = [], [], []
-    for q, n, h, k in zip(Q, N, reach, which):
+    plans = []
+    for h in reach:
         d = ladder(h, floor)
-        s = np.concatenate([-d, [0.0], d[::-1]])
-        plans.append(s)
-        pts.append(q[None] + s[:, None] * n[None])
-        ks.append(np.full(s.size, k))
-    V = np.split(F(np.concatenate(pts), np.concatenate(ks)), np.cumsum([s.size for s in plans])[:-1])
+        plans.append(np.concatenate([-d, [0.0], d[::-1]]))
+    sizes = [s.size for s in plans]
+    rows = np.repeat(np.arange(len(plans)), sizes)  # each point's samples in one array (each as q + s n)
+    S = np.concatenate(plans) if plans else np.zeros(0)
+    V = np.split(F(Q[rows] + S[:, None] * N[rows], np.asarray(which)[rows]), np.cumsum(sizes)[:-1])
     out = [[s, v, nearest_change(s, v, sg)] for s, v, sg in zip(plans, V, sig)]
     edge = []  # (entry, s defined, s undefined)
     for e, (s, v, c) in enumerate(out):

@@ -43,7 +43,7 @@ import math
 import numpy as np
 
 from gearkit.blocking.brackets import segment_roots
-from gearkit.blocking.edges import EDGE_REACH, across, ahead_on_edge, crossing_ends, edge_point
+from gearkit.blocking.edges import EDGE_REACH, across, crossing_ends, step_ends
 
 __all__ = ["extend_ends"]
 
@@ -156,13 +156,16 @@ def _run(F, front, new, recs, joins, geo):
             break
         _join(F, front, active, act, recs, joins, span, vtol)
         act = [i for i in act if active[i]]
-        for i in act:  # the frame: no step past it
-            f = front[i]
+        if act:  # the frame: no step past it (every front's distance to it along its tangent at once)
+            T = np.array([front[i][3] for i in act])
+            P = np.array([front[i][2] for i in act])
             with np.errstate(divide="ignore", invalid="ignore"):
-                lim = np.where(f[3] > 0, (hi - f[2]) / f[3], np.where(f[3] < 0, (lo - f[2]) / f[3], np.inf))
-            f[5] = min(f[5], float(np.min(lim)))
-            if f[5] <= vtol:
-                active[i] = False
+                lim = np.where(T > 0, (hi - P) / T, np.where(T < 0, (lo - P) / T, np.inf)).min(axis=1)
+            for i, m in zip(act, lim.tolist()):
+                f = front[i]
+                f[5] = min(f[5], m)
+                if f[5] <= vtol:
+                    active[i] = False
         act = [i for i in act if active[i]]
         if act:
             _step(F, front, act, active, recs, joins, vtol, span, hmax, turn, lo, hi)
@@ -227,12 +230,10 @@ def _step(F, front, act, active, recs, joins, vtol, span, hmax, turn, lo, hi):
     """One predictor-corrector step of the fronts ``act``."""
     T = np.array([front[i][3] for i in act])
     P = np.array([front[i][2] for i in act])
-    Q = P + np.array([front[i][5] for i in act])[:, None] * T
-    out = np.flatnonzero(np.isnan(F(Q, np.array([recs[front[i][0]][0] for i in act]))))
+    h = np.array([front[i][5] for i in act])
+    Q, out, E, ahead = step_ends(F, P, T, h, np.array([recs[front[i][0]][0] for i in act]), span, vtol / 4)
     if out.size:  # the prediction left the defined area: the step ends just before its edge
-        ks = np.array([recs[front[act[r]][0]][0] for r in out])
-        h = np.array([front[act[r]][5] for r in out])
-        E = edge_point(F, P[out], Q[out], ks, span, vtol / 4)
+        h = h[out]
         for r, q in zip(out, E):
             f = front[act[r]]
             f[5] = float(np.dot(q - P[r], T[r]))
@@ -240,11 +241,9 @@ def _step(F, front, act, active, recs, joins, vtol, span, hmax, turn, lo, hi):
         # a line running along the edge, closer to it than vtol where its tangent meets it: predicted on
         # the edge a whole step ahead instead (moved back to it along the normal), and corrected from there
         along = np.flatnonzero(np.array([front[act[r]][5] < vtol for r in out]))
-        if along.size:
-            on = ahead_on_edge(F, P[out[along]], T[out[along]], h[along], ks[along], span, vtol / 4)
-            for r, q, hh in zip(out[along], on, h[along]):
-                if np.isfinite(q[0]):
-                    Q[r], front[act[r]][5] = q, float(hh)
+        for r, q, hh in zip(out[along], ahead[along], h[along]):
+            if np.isfinite(q[0]):
+                Q[r], front[act[r]][5] = q, float(hh)
         stop = [act[r] for r in out if front[act[r]][5] < vtol]
         for i in stop:
             active[i] = False
@@ -310,7 +309,7 @@ def _collides(i, r, u, L, front, active, recs, joins, close, turn):
     front's orientation cannot tell from its own there (25/58's interference.2 beside (-1, 1),
     where F is 1e-9: the arms of the upper branch stopped on the lower one, 0.02 apart at tol 1e-5);
     the front is not stopped."""
-    from gearkit.distances import distances_to_polyline
+    from gearkit.chords import chord_distance
 
     f = front[i]
     k = recs[f[0]][0]
@@ -320,7 +319,7 @@ def _collides(i, r, u, L, front, active, recs, joins, close, turn):
         q = np.vstack([np.reshape(hd[::-1], (-1, 2)), p, np.reshape(tl, (-1, 2))])
         if len(q) < 2:
             continue
-        dist = float(distances_to_polyline(r[None], q)[0])
+        dist = float(np.min(chord_distance(q[:-1], q[1:], r)))  # (one point: every chord at once, exact)
         if dist > close:
             continue
         if L > close:
