@@ -152,3 +152,47 @@ def test_a_segment_shorter_than_the_resolution_among_others_is_its_own_start():
     e = edges.by_slack(F.slack, a, b, np.array([0, 1, 0]), 1e-13)
     np.testing.assert_array_equal(e[1], a[1])
     np.testing.assert_allclose(e[[0, 2]].sum(axis=1), edge, rtol=0, atol=1e-13)
+
+
+@pytest.mark.parametrize("key", ["20/40", "46/49 internal"])
+def test_functions_read_together_are_each_as_read_alone(key):
+    """Several functions at once (each point its own, in any order) and their conditions for a pair
+    (``F.slack``) equal each function read at its points alone, to the bit (one evaluation of the pair
+    formulas serves them all: the hard margins, worked out once, are read by the region and by their
+    own lines)."""
+    f, names, _ = _field(key)
+    names = list(dict.fromkeys(names + list(f.hard))) + ["region"]
+    F = evaluator(f, names, (-1.5, 2.0, -1.5, 2.0))
+    rng = np.random.default_rng(7)
+    p = rng.uniform(-2.0, 2.5, (300, 2))
+    which = rng.integers(0, len(names), len(p))
+    both, conditions = F(p, which), F.slack(p, which)
+    for k in range(len(names)):
+        sel = np.flatnonzero(which == k)
+        np.testing.assert_array_equal(both[sel], F(p[sel], np.full(sel.size, k)), err_msg=names[k])
+        np.testing.assert_array_equal(conditions[sel], F.slack(p[sel], np.full(sel.size, k)), err_msg=names[k])
+
+
+def test_a_steps_edge_points_are_those_of_each_search_alone():
+    """:func:`edges.step_ends` reads every step's prediction and the points a step to either side of it in
+    one evaluation and makes both edge searches in one: each edge point equals the one
+    :func:`edges.edge_point` finds for that step alone (before the prediction; a whole step ahead, from the
+    left side of the normal where it is defined, else the right), to the bit."""
+    f, names, F = _field("20/40")
+    rng = np.random.default_rng(5)
+    P = rng.uniform(-1.5, 0.5, (150, 2))
+    angle = rng.uniform(0.0, 2 * math.pi, len(P))
+    T = np.column_stack([np.cos(angle), np.sin(angle)])
+    h = rng.uniform(0.05, 0.8, len(P))
+    which = rng.integers(0, len(names), len(P))
+    P, T, h, which = (v[np.isfinite(F(P, which))] for v in (P, T, h, which))  # steps from defined points
+    Q, out, E, ahead = edges.step_ends(F, P, T, h, which, 4.0, 1e-9)
+    assert 5 <= out.size < len(P) and np.isfinite(ahead[:, 0]).sum() >= 3
+    for r, e, q in zip(out, E, ahead):
+        one = slice(r, r + 1)
+        np.testing.assert_array_equal(e, edges.edge_point(F, P[one], Q[one], which[one], 4.0, 1e-9)[0])
+        N = np.array([[-T[r, 1], T[r, 0]]])
+        left, right = Q[one] + h[one, None] * N, Q[one] + -1.0 * h[one, None] * N
+        side = left if np.isfinite(F(left, which[one])[0]) else right if np.isfinite(F(right, which[one])[0]) else None
+        expected = np.full(2, np.nan) if side is None else edges.edge_point(F, side, Q[one], which[one], 4.0, 1e-9)[0]
+        np.testing.assert_array_equal(q, expected)
