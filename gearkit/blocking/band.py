@@ -122,18 +122,23 @@ def band_lines(F, lines, grids, tol: float, measure=(), many=None, carry=None, s
             V = np.stack([F(nodes, np.full(len(nodes), k)) for k in ks])
         else:
             V = np.asarray(many(nodes, ks), dtype=float)
-        pieces = _pieces(F, P, valid, V, ks, tol, carry)
+        far = []
+        pieces = _pieces(F, P, valid, V, ks, tol, carry, far)
+        if carry is not None:  # leaving through the far end into a cell the grid traced nothing in: carried on
+            carry += [(k, q, np.inf) for k, q in far if not traced(k, q[None])[0]]
         lines = _merge(lines, pieces, traced, tol)
         if flip:  # the column lattice's pieces are cut where they enter the rows' band
             traced = covering(traced, lattice)
     return lines
 
 
-def _pieces(F, P, valid, V, ks, tol, carry=None):
+def _pieces(F, P, valid, V, ks, tol, carry=None, far=None):
     """Each function's zero lines on the lattice: ``[(k, points, slopes)]`` (vertices solved on their
     lattice edges to ``tol / 4``, split where a sign change is a pole or a jump); the ends leaving the
     lattice through its boundary where a pair exists beyond (not on the edge), or where its rows end
-    under the window's frame, appended to ``carry``."""
+    under the window's frame, appended to ``carry``; those leaving through its far end (``(k, point)``) to
+    ``far`` (34/105's tip thickness line, from the steep edge's corner cell to the frame through a cell
+    whose grid piece was dropped, left the lattice 5.5e-4 under the frame: nothing went on from there)."""
     import contourpy
 
     rows, cols = valid.shape
@@ -190,6 +195,9 @@ def _pieces(F, P, valid, V, ks, tol, carry=None):
                 if carry is not None and not closed:
                     carry += [(k, q[j], np.inf) for j, at_end in ((lo, lo == 0), (hi - 1, hi == len(p)))
                               if at_end and (_off_lattice(p[j], rows, cols) or _at_frame(p[j], framed))]
+                if far is not None and not closed:
+                    far += [(k, q[j]) for j, at_end in ((lo, lo == 0), (hi - 1, hi == len(p)))
+                            if at_end and abs(p[j][1]) <= INDEX_ROUND and abs(p[j][0] - round(p[j][0])) > INDEX_ROUND]
     if carry:  # a vertex on the edge itself (undefined to round-off) ends its line there
         keep = np.isfinite(F(np.array([c[1] for c in carry]), np.array([c[0] for c in carry])))
         carry[:] = [c for c, kp in zip(carry, keep) if kp]

@@ -51,7 +51,8 @@ def steep_cells(fin, sense=None):
     """For ``fin`` ``[i, j]`` (the defined grid nodes, transposed: a row of it is a grid column), per
     cell between grid rows j, j + 1: True where the edge crosses both rows once, the same way round,
     within one grid column (steeper than about 45 degrees in grid units); gaps of one cell between
-    such runs filled, runs of one cell dropped."""
+    such runs filled, runs of one cell dropped but at the window's frame (34/105's edge leaves through the
+    top frame after one such cell, the frame's column crossing it twice: no column lattice there)."""
     t = crossings(fin, sense)  # (``sense``: see :func:`crossings`)
     n = len(t) - 1
     s = np.array([t[j] is not None and t[j + 1] is not None and t[j][1] == t[j + 1][1] and t[j][0] == t[j + 1][0]
@@ -62,7 +63,7 @@ def steep_cells(fin, sense=None):
     fill &= ok
     out = fill.copy()
     for lo, hi in true_runs(fill):
-        if hi - lo < 2:
+        if hi - lo < 2 and 0 < lo and hi < n:
             out[lo:hi] = False
     return out
 
