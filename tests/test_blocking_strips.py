@@ -120,3 +120,17 @@ def test_a_wedge_arm_cut_beside_the_edge_is_carried_to_the_piece_traced_there():
     worst, seen = _farthest(c, "interference.1", rows, 0.95, 1.2)
     assert seen >= 2 * len(rows)
     assert worst <= CONTRACT
+
+
+def test_a_front_running_onto_a_piece_past_a_saddle_does_not_jump_to_the_other_branch():
+    """58/63 with a 16-tooth shaper at tol 1e-3: interference.1's two branches cross at a small angle at
+    the saddle (1, 1); a front carried down the wedge's upper arm that ran onto the other branch's piece
+    beyond the saddle with a step of two cells, taken whole, joined the arm to that branch and left the
+    arm above (1.1, 1.15) untraced (38 tol on 19a2229): a long step onto a piece with no end to join is
+    halved. Every zero on rows from the saddle up the wedge within 2 tol of the traced line."""
+    spec = PairSpec(58, 63, 1.0, kind="internal", tool2=ShaperCutter(16))
+    c = blocking_contour(spec, tol=1e-3, lines=["interference.1"])
+    rows = np.linspace(1.01, 1.25, 13)
+    worst, seen = _farthest(c, "interference.1", rows, 0.95, 1.35)
+    assert seen >= 2 * len(rows)
+    assert worst <= CONTRACT

@@ -277,8 +277,11 @@ def _step(F, front, act, active, recs, joins, vtol, span, hmax, turn, lo, hi):
             if f[5] < vtol:
                 active[i] = False
             continue
-        hit = _collides(i, r, d / L, L, front, active, recs, joins, 8 * vtol, turn)
-        if hit == ACROSS:  # a long step onto another branch, across the line's path (past a saddle): shorter
+        close = 8 * vtol
+        hit = _collides(i, r, d / L, L, front, active, recs, joins, close, turn)
+        # a long step onto another branch, across the line's path (past a saddle), or onto a piece with no end
+        # to join there (it may have passed a saddle onto a branch at a small angle to its own): shorter
+        if hit == ACROSS or hit == ONTO and L > close:
             f[5] *= 0.5
             continue
         if hit is True:
@@ -289,7 +292,7 @@ def _step(F, front, act, active, recs, joins, vtol, span, hmax, turn, lo, hi):
             active[i], f[4] = False, 0.0
             continue
         recs[f[0]][3 + f[1]].append(r)
-        if hit == ONTO:  # the step ran onto a piece traced already with no end to join: it stops there
+        if hit == ONTO:  # a short step onto a piece traced already with no end to join: it stops there
             active[i] = False
             continue
         f[2], f[3] = r, d / L
@@ -300,10 +303,11 @@ def _collides(i, r, u, L, front, active, recs, joins, close, turn):
     """True when front ``i``'s next point ``r`` (a step of length ``L`` along ``u``) lies within
     ``close`` of a line of the same function traced already (another record): the front has run
     onto it. It joins that line's nearest open end within ``2 L`` (heading back); with none to join,
-    ``ONTO``: the step is taken and the front stops there (a line cut on both sides of a loop's or a
-    wedge's turn, whose front ran onto the piece the grid traced round the turn as a loop of its own or
-    with its end beside the no-pair edge, not carried: 14/55's sliding, 56/59's interference.1, stopped
-    where they stood 0.05 to 0.09 short of it). ``ACROSS``
+    ``ONTO``: a step no longer than ``close`` is taken and the front stops there, a longer one is halved (a
+    line cut on both sides of a loop's or a wedge's turn, whose front ran onto the piece the grid traced
+    round the turn as a loop of its own or with its end beside the no-pair edge, not carried: 14/55's
+    sliding, 56/59's interference.1, stopped where they stood 0.05 to 0.09 short of it; taken whole, a
+    step of two cells passed 58/63's saddle at (1, 1) onto the other branch). ``ACROSS``
     when the step is longer than ``close`` and that line runs across it (at more than the angle
     whose cosine is ``turn``): a step past a saddle onto another branch, whose side of ``F`` the
     front's orientation cannot tell from its own there (25/58's interference.2 beside (-1, 1),
