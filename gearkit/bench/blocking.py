@@ -1,10 +1,10 @@
 """Bench of the blocking contours: the tolerance ladder, the in-process targets, atlas throughput.
 
 * **Ladder** (12/30 pair, every line and the region) at tol 1e-2 ... 1e-9 shift units: the achieved
-  deviation is the larger of (a) the largest distance of the traced polylines from the exact lines,
-  measured at every vertex and every chord's middle as the nearest zero of the margin on eight rays
-  (the chord's normal, the chord, the diagonals) solved to 1e-14 (and, where none lies within tol / 16,
-  along the normal down to round-off: a strip narrower than the shortest ray beside a point), and (b) the largest distance of a
+  deviation is the larger of (a) the largest distance of the traced polylines from the exact lines
+  (:mod:`gearkit.bench.exact`: at every vertex and every chord's middle the nearest zero of the margin
+  on eight rays solved to 1e-14, and where none lies within tol / 16 along the normal down to
+  round-off), and (b) the largest distance of a
   much finer trace (tol 1e-10) from the traced lines (a piece missing: a gap), and (c) the largest
   distance of an exact zero found on scan lines across the window (no trace involved) from the traced
   lines (a piece every trace misses, the reference's too). The contract is
@@ -27,11 +27,11 @@ import time
 
 import numpy as np
 
-from gearkit.bench.topology import MEASURE_TOL, ROUND_OFF, leg, scan_gap, topology
-from gearkit.blocking.tracing import LEGS
+from gearkit.bench.exact import deviation, point_distances, polyline_deviation
+from gearkit.bench.topology import scan_gap, topology
 from gearkit.export import text_number
 
-__all__ = ["ladder_rows", "target_rows", "contract_rows", "atlas_rows", "deviation", "polyline_deviation", "scan_gap", "format_section"]
+__all__ = ["ladder_rows", "target_rows", "contract_rows", "atlas_rows", "deviation", "polyline_deviation", "point_distances", "scan_gap", "format_section"]
 
 LADDER = (1e-2, 1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9)
 QUICK_LADDER = (1e-3, 1e-6)
@@ -39,9 +39,6 @@ REFERENCE_TOL = 1e-10  #: the much finer trace the ladder's rows are measured ag
 QUICK_REFERENCE_TOL = 1e-8
 CONTOUR_TARGET = 0.3  #: s, in-process contour of 13/16 and 20/40 (issue 15)
 RATIO_TARGET = 2.0  #: achieved / tol (issue 19)
-RAY_ROUNDS = 10  #: ray lengths tol / 16 ... tol 4**8: the nearest zero first
-SHORT_RATIO = 8.0  #: below tol / 16, the normal is sampled at distances shrinking by this factor
-FLOOR = 1e-13  #: ... down to this fraction of the window's diagonal (round-off)
 ATLAS_GRID = (10, 20, 30, 40)
 CONTRACT_PAIRS = 8  #: random external pairs (z1 8..60, z2 z1..120) the contract is measured on
 CONTRACT_SEED = 19  #: their seed (the same pairs in every run)
@@ -56,149 +53,6 @@ def _median_time(fn, repeats):
         out = fn()
         times.append(time.perf_counter() - t)
     return float(np.median(times)), out
-
-
-def deviation(contour) -> float:
-    """Largest distance of the contour's traced lines and region boundary from the exact zero sets
-    (at each vertex and each chord's middle: the nearest zero on eight rays, to ``MEASURE_TOL``). A line
-    whose margin is ``|a| - |b|`` (the sliding line) is measured against the factor ``a - b`` or ``a + b``
-    each component lies on (:func:`~gearkit.bench.topology.leg`): its zero set is theirs, but where the
-    two factors' zeros cross at a small angle ``|a| - |b|`` changes sign only across a sliver far
-    narrower than the rays' steps beside the crossing, and a chord 0.4 tol from its line read 11.5 tol
-    (9/21 at tol 1e-5).
-
-    Examples
-    --------
-    >>> from gearkit.blocking import blocking_contour
-    >>> from gearkit.pair import PairSpec
-    >>> c = blocking_contour(PairSpec(13, 16, 1.0), tol=1e-4, lines=["undercut.1"])
-    >>> deviation(c) <= 1e-4
-    True
-    """
-    from gearkit.blocking.arrays import evaluator
-
-    names = [ln.name for ln in contour.lines] + ["region"]
-    legs = [[] for _ in names]
-    for k, ln in enumerate(contour.lines):
-        for f in LEGS.get(ln.name, ()):
-            legs[k].append(len(names))
-            names.append(f)
-    F = evaluator(contour.field, names, contour.window)
-    polys = [(legs[k][leg(F, legs[k], c)] if legs[k] else k, c) for k, ln in enumerate(contour.lines)
-             for c in ln.components]
-    polys += [(len(contour.lines), p) for p in contour.region]
-    return polyline_deviation(F, polys, contour.tol, _span(contour.window))
-
-
-def polyline_deviation(F, polys, tol: float, span: float) -> float:
-    """Largest distance of the polylines ``polys`` (``[(k, (n, 2))]``: function ``k`` of ``F``) from
-    the zero sets of their functions, at each vertex and chord middle: the nearest zero on eight rays
-    (the chord's normal, the chord, the diagonals) of lengths ``tol / 16`` ... ``tol * 4**8``, solved
-    to ``MEASURE_TOL``, and, where none lies within ``tol / 16``, along the normal at distances
-    shrinking to round-off (``span``: the window's diagonal): a strip narrower than ``tol / 16``
-    beside a point (both its zeros crossed by the shortest ray) is seen.
-
-    Examples
-    --------
-    >>> F = lambda p, k: 1e12 * p[:, 1] * (p[:, 1] - 1e-6) * (p[:, 1] - 0.3)  # zeros y = 0, 1e-6, 0.3
-    >>> line = np.array([[0.0, -1e-7], [1.0, -1e-7]])  # 1e-7 below the strip 0 < y < 1e-6
-    >>> bool(abs(polyline_deviation(F, [(0, line)], 1e-3, 1.0) - 1e-7) < 1e-12)
-    True
-    """
-    from gearkit.blocking.brackets import segment_roots
-    from gearkit.blocking.edges import toward_edge
-
-    pts, nrm, ids = [], [], []
-    for k, c in polys:
-        if len(c) < 2:
-            continue
-        d = np.diff(c, axis=0)
-        n = np.column_stack([-d[:, 1], d[:, 0]]) / np.maximum(np.hypot(d[:, 0], d[:, 1]), 1e-300)[:, None]
-        pts += [c[:-1], 0.5 * (c[:-1] + c[1:])]
-        nrm += [n, n]
-        ids.append(np.full(2 * len(d), k))
-    if not pts:
-        return 0.0
-    P, N, K = np.concatenate(pts), np.concatenate(nrm), np.concatenate(ids)
-    f0 = F(P, K)
-    worst = 0.0
-    # |F| at round-off: on the zero set (also where F only touches zero, with no sign change near)
-    todo = np.flatnonzero(np.isfinite(f0) & (np.abs(f0) > ROUND_OFF))
-    # rays start short (a ray across a strip narrower than itself sees no sign change) and grow
-    r = tol / 16
-    T = np.column_stack([N[:, 1], -N[:, 0]])
-    rays = [s * D for D in (N, T, (N + T) / np.sqrt(2), (N - T) / np.sqrt(2)) for s in (1.0, -1.0)]
-    for rnd in range(RAY_ROUNDS):  # the nearest zero on 8 rays of growing length (the normal, the chord, diagonals)
-        if not todo.size:
-            break
-        if rnd == 1:  # none within tol / 16: a strip narrower than that beside the point, along the normal
-            found_at = []
-            todo = todo[~_short_zero(F, P[todo], N[todo], f0[todo], K[todo], tol / 16, span, found_at)]
-            worst = max([worst] + found_at)
-            if not todo.size:
-                break
-        best = np.full(todo.size, np.inf)
-        for D in rays:
-            end = P[todo] + r * D[todo]
-            fe = F(end, K[todo])
-            edge = np.isnan(fe)
-            if edge.any():  # a ray into the no-pair area ends at its edge: the sign change nearest before it
-                i = todo[edge]
-                lo, flo, hi, fhi = toward_edge(F, P[i], f0[i], end[edge], K[i])
-                found = np.any(lo != hi, axis=1)
-                end[edge] = np.where(found[:, None], hi, end[edge])
-                fe[edge] = np.where(found, fhi, fe[edge])
-            hit = np.isfinite(fe) & ((fe > 0) != (f0[todo] > 0))
-            if hit.any():
-                i = todo[hit]
-                root = segment_roots(F, P[i], end[hit], f0[i], fe[hit], MEASURE_TOL, K[i])
-                best[hit] = np.minimum(best[hit], np.hypot(*(root - P[i]).T))
-        found = np.isfinite(best)
-        if found.any():
-            worst = max(worst, float(best[found].max()))
-        todo = todo[~found]
-        r *= 4
-    if todo.size:  # no zero along the normal (F only nears zero there): |F| / |grad F|, first order
-        e = 1e-7
-        g = np.hypot(F(P[todo] + [e, 0.0], K[todo]) - f0[todo], F(P[todo] + [0.0, e], K[todo]) - f0[todo]) / e
-        with np.errstate(divide="ignore", invalid="ignore"):
-            est = np.abs(f0[todo]) / g
-        worst = max(worst, float(np.nanmax(np.where(np.isfinite(est), est, r / 4))))
-    return worst
-
-
-def _span(window) -> float:
-    """The window's diagonal."""
-    return float(np.hypot(window[1] - window[0], window[3] - window[2]))
-
-
-def _short_zero(F, P, N, f0, K, reach, span, found_at):
-    """True where a zero lies on the normal through ``P`` closer than ``reach``: samples at distances
-    shrinking by ``SHORT_RATIO`` from ``reach`` down to round-off on both sides (beside the no-pair edge
-    the margins vary as the cube root of the distance to it: a strip there may be 1e-6 wide at any
-    tol), the sign change nearest to ``P`` solved to ``MEASURE_TOL``; its largest distance is appended
-    to ``found_at``."""
-    from gearkit.blocking.brackets import segment_roots
-
-    n = max(1, int(np.ceil(np.log(reach / (FLOOR * span)) / np.log(SHORT_RATIO))))
-    d = reach * SHORT_RATIO ** -np.arange(n + 1)[::-1]  # ascending, up to reach
-    best = np.full(len(P), np.inf)
-    for s in (1.0, -1.0):
-        Q = P[:, None, :] + s * d[None, :, None] * N[:, None, :]
-        V = np.column_stack([f0, F(Q.reshape(-1, 2), np.repeat(K, d.size)).reshape(len(P), d.size)])
-        ch = np.isfinite(V[:, :-1]) & np.isfinite(V[:, 1:]) & ((V[:, :-1] > 0) != (V[:, 1:] > 0))
-        j = np.argmax(ch, axis=1)
-        r = np.flatnonzero(ch[np.arange(len(P)), j])
-        if not r.size:
-            continue
-        j = j[r]
-        lo = np.where((j > 0)[:, None], Q[r, np.maximum(j - 1, 0)], P[r])
-        root = segment_roots(F, lo, Q[r, j], V[r, j], V[r, j + 1], MEASURE_TOL, K[r])
-        best[r] = np.minimum(best[r], np.hypot(*(root - P[r]).T))
-    ok = np.isfinite(best)
-    if ok.any():
-        found_at.append(float(best[ok].max()))
-    return ok
 
 
 def ladder_rows(quick: bool):
