@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from gearkit.bench.topology import MEASURE_TOL, ROUND_OFF
+from gearkit.bench.topology import MEASURE_TOL, ROUND_OFF, leg
 from gearkit.blocking.tracing import LEGS
 
 __all__ = ["deviation", "polyline_deviation", "point_distances"]
@@ -47,9 +47,14 @@ def deviation(contour) -> float:
     plain += [(len(contour.lines), p) for p in contour.region]
     worst = polyline_deviation(F, plain, contour.tol, span)
     factored = [(legs[k], c) for k, ln in enumerate(contour.lines) if legs[k] for c in ln.components]
-    if factored:  # each point to the nearer of its factors' zero sets
-        d = np.min([point_distances(F, [(w[j], c) for w, c in factored], contour.tol, span)
-                    for j in range(len(factored[0][0]))], axis=0)
+    if factored:  # each point to the nearer of its factors' zero sets: its own first (the component's),
+        own = [leg(F, w, c) for w, c in factored]  # the others where that is farther than the worst yet
+        d = point_distances(F, [(w[j], c) for (w, c), j in zip(factored, own)], contour.tol, span)
+        for i in range(1, len(factored[0][0])):
+            far = d > worst
+            if far.any():
+                d = np.minimum(d, np.where(far, point_distances(
+                    F, [(w[(j + i) % len(w)], c) for (w, c), j in zip(factored, own)], contour.tol, span, far), np.inf))
         worst = max(worst, float(d.max()) if d.size else 0.0)
     return worst
 
@@ -73,10 +78,10 @@ def polyline_deviation(F, polys, tol: float, span: float) -> float:
     return float(d.max()) if d.size else 0.0
 
 
-def point_distances(F, polys, tol: float, span: float) -> np.ndarray:
+def point_distances(F, polys, tol: float, span: float, keep=None) -> np.ndarray:
     """What :func:`polyline_deviation` takes the largest of: the distance of each vertex but the last
     and each chord's middle of the polylines ``polys`` from their function's zero set, in that order
-    (0 where the function is at round-off or undefined).
+    (0 where the function is at round-off or undefined, or where the mask ``keep`` is False).
 
     >>> F = lambda p, k: p[:, 1] - 0.5
     >>> point_distances(F, [(0, np.array([[0.0, 0.4], [1.0, 0.4]]))], 1e-3, 1.0).round(12).tolist()
@@ -100,7 +105,7 @@ def point_distances(F, polys, tol: float, span: float) -> np.ndarray:
     f0 = F(P, K)
     dist = np.zeros(len(P))
     # |F| at round-off: on the zero set (also where F only touches zero, with no sign change near)
-    todo = np.flatnonzero(np.isfinite(f0) & (np.abs(f0) > ROUND_OFF))
+    todo = np.flatnonzero(np.isfinite(f0) & (np.abs(f0) > ROUND_OFF) & (True if keep is None else keep))
     # rays start short (a ray across a strip narrower than itself sees no sign change) and grow
     r = tol / 16
     T = np.column_stack([N[:, 1], -N[:, 0]])

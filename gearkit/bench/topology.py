@@ -6,7 +6,7 @@ import numpy as np
 
 from gearkit.blocking.tracing import LEGS
 
-__all__ = ["topology", "duplicates", "scan_gap"]
+__all__ = ["topology", "duplicates", "scan_gap", "leg"]
 
 SCANS = 80  #: scan lines per axis of the independent gap measure (:func:`scan_gap`)
 SCAN_SAMPLES = 800  #: samples per scan line
@@ -66,7 +66,7 @@ def _sides_of_a_sliver(F, k, v, w, tol):
         return apart & np.isfinite(vals[0]) & (np.isfinite(vals[1]) | np.isfinite(vals[2])) & flips[0] & flips[1]
 
 
-def _leg(F, legs, q) -> int:
+def leg(F, legs, q) -> int:
     """Which of the functions ``legs`` of ``F`` vanishes on the polyline ``q`` (-1 without legs): the one
     whose median |value| at its vertices is least."""
     if not legs:
@@ -93,7 +93,7 @@ def duplicates(polylines, tol: float, F=None, k: int = 0, legs=()) -> int:
     from gearkit.distances import distances_to_polyline
 
     count = 0
-    on = [_leg(F, legs, q) for q in polylines] if F is not None else [-1] * len(polylines)
+    on = [leg(F, legs, q) for q in polylines] if F is not None else [-1] * len(polylines)
     for i, q in enumerate(polylines):
         inner = q[1:-1] if len(q) > 2 else q
         for j, r in enumerate(polylines):
