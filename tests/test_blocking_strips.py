@@ -108,29 +108,21 @@ def test_a_thin_loop_cut_across_is_carried_round_its_turn(tol):
     assert worst <= CONTRACT
 
 
-def test_a_wedge_arm_cut_beside_the_edge_is_carried_to_the_piece_traced_there():
-    """56/59 with a 26-tooth shaper at tol 1e-3: interference.1's negative wedge opening from the saddle
-    at (1, 1) beside the no-pair edge; the chord across it from (1.074, 1.061) to (1.091, 1.122) was cut,
-    and the upper arm's front ran onto the piece the grid traced from (1.0625, 1.0825), whose end beside
-    the edge is not carried on: 0.048 of the arm untraced (21.7 tol). Every zero on rows from the saddle
-    up the wedge within 2 tol of the traced line."""
-    spec = PairSpec(56, 59, 1.0, kind="internal", tool2=ShaperCutter(26))
+@pytest.mark.parametrize("z1, z2, z0, top, n, right", [(56, 59, 26, 1.15, 15, 1.2), (58, 63, 16, 1.25, 13, 1.35)],
+                         ids=["arm-beside-the-edge", "past-the-saddle"])
+def test_a_wedge_arm_cut_across_is_carried_to_the_piece_traced_there(z1, z2, z0, top, n, right):
+    """interference.1's negative wedge opening from the saddle at (1, 1) beside the no-pair edge, tol 1e-3.
+    56/59 with a 26-tooth shaper: the chord across it from (1.074, 1.061) to (1.091, 1.122) was cut, and
+    the upper arm's front ran onto the piece the grid traced from (1.0625, 1.0825), whose end beside the
+    edge is not carried on: 0.048 of the arm untraced (21.7 tol). 58/63 with a 16-tooth shaper: the two
+    branches cross at a small angle at the saddle; a front carried down the upper arm that ran onto the
+    other branch's piece beyond the saddle with a step of two cells, taken whole, joined the arm to that
+    branch and left the arm above (1.1, 1.15) untraced (38 tol on 19a2229): a long step onto a piece with
+    no end to join is halved. Every zero on rows from the saddle up the wedge within 2 tol of the traced
+    line."""
+    spec = PairSpec(z1, z2, 1.0, kind="internal", tool2=ShaperCutter(z0))
     c = blocking_contour(spec, tol=1e-3, lines=["interference.1"])
-    rows = np.linspace(1.01, 1.15, 15)
-    worst, seen = _farthest(c, "interference.1", rows, 0.95, 1.2)
-    assert seen >= 2 * len(rows)
-    assert worst <= CONTRACT
-
-
-def test_a_front_running_onto_a_piece_past_a_saddle_does_not_jump_to_the_other_branch():
-    """58/63 with a 16-tooth shaper at tol 1e-3: interference.1's two branches cross at a small angle at
-    the saddle (1, 1); a front carried down the wedge's upper arm that ran onto the other branch's piece
-    beyond the saddle with a step of two cells, taken whole, joined the arm to that branch and left the
-    arm above (1.1, 1.15) untraced (38 tol on 19a2229): a long step onto a piece with no end to join is
-    halved. Every zero on rows from the saddle up the wedge within 2 tol of the traced line."""
-    spec = PairSpec(58, 63, 1.0, kind="internal", tool2=ShaperCutter(16))
-    c = blocking_contour(spec, tol=1e-3, lines=["interference.1"])
-    rows = np.linspace(1.01, 1.25, 13)
-    worst, seen = _farthest(c, "interference.1", rows, 0.95, 1.35)
+    rows = np.linspace(1.01, top, n)
+    worst, seen = _farthest(c, "interference.1", rows, 0.95, right)
     assert seen >= 2 * len(rows)
     assert worst <= CONTRACT

@@ -5,8 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from gearkit.bench.topology import MEASURE_TOL, ROUND_OFF, leg
-from gearkit.blocking.tracing import LEGS
+from gearkit.bench.topology import MEASURE_TOL, ROUND_OFF, leg, line_evaluator
 
 __all__ = ["deviation", "polyline_deviation", "point_distances"]
 
@@ -33,15 +32,7 @@ def deviation(contour) -> float:
     >>> deviation(c) <= 1e-4
     True
     """
-    from gearkit.blocking.arrays import evaluator
-
-    names = [ln.name for ln in contour.lines] + ["region"]
-    legs = [[] for _ in names]
-    for k, ln in enumerate(contour.lines):
-        for f in LEGS.get(ln.name, ()):
-            legs[k].append(len(names))
-            names.append(f)
-    F = evaluator(contour.field, names, contour.window)
+    F, legs = line_evaluator(contour)
     span = _span(contour.window)
     plain = [(k, c) for k, ln in enumerate(contour.lines) if not legs[k] for c in ln.components]
     plain += [(len(contour.lines), p) for p in contour.region]

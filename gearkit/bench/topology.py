@@ -6,7 +6,7 @@ import numpy as np
 
 from gearkit.blocking.tracing import LEGS
 
-__all__ = ["topology", "duplicates", "scan_gap", "leg"]
+__all__ = ["topology", "duplicates", "scan_gap", "leg", "line_evaluator"]
 
 SCANS = 80  #: scan lines per axis of the independent gap measure (:func:`scan_gap`)
 SCAN_SAMPLES = 800  #: samples per scan line
@@ -64,6 +64,22 @@ def _sides_of_a_sliver(F, k, v, w, tol):
         apart = np.hypot(*(v - w).T) > 0.25 * tol
         flips = [np.isnan(vals[i]) | ((vals[0] > 0) != (vals[i] > 0)) for i in (1, 2)]
         return apart & np.isfinite(vals[0]) & (np.isfinite(vals[1]) | np.isfinite(vals[2])) & flips[0] & flips[1]
+
+
+def line_evaluator(contour):
+    """``(F, legs)``: an evaluator of the contour's lines (function ``k`` the ``k``-th line), its region
+    (the next) and, after them, the factors of the lines traced as factors (``legs[k]``: the factors'
+    functions of line ``k``, empty for the others)."""
+    from gearkit.blocking.arrays import evaluator
+
+    names = [ln.name for ln in contour.lines] + ["region"]
+    legs = [[] for _ in names]
+    for k, ln in enumerate(contour.lines):
+        for f in LEGS.get(ln.name, ()):
+            legs[k].append(len(names))
+            names.append(f)
+    F = evaluator(contour.field, names, contour.window)
+    return F, legs
 
 
 def leg(F, legs, q) -> int:
@@ -210,17 +226,9 @@ def topology(contour, reference) -> dict:
     >>> t["gap"] <= 2e-3 and t["extra"] <= 2e-3, t["loops"], t["duplicates"]
     (True, (1, 1), 0)
     """
-    from gearkit.blocking.arrays import evaluator
-
     pairs = [(ln.components, reference.line(ln.name).components) for ln in contour.lines]
     pairs.append((contour.region, reference.region))
-    names = [ln.name for ln in contour.lines] + ["region"]
-    legs = [[] for _ in names]
-    for k, ln in enumerate(contour.lines):
-        for f in LEGS.get(ln.name, ()):
-            legs[k].append(len(names))
-            names.append(f)
-    F = evaluator(contour.field, names, contour.window)
+    F, legs = line_evaluator(contour)
     gap = extra = 0.0
     loops, loops_ref, dup = 0, 0, 0
     for k, (mine, ref) in enumerate(pairs):
