@@ -165,3 +165,43 @@ def test_overhead_ratio_is_measured_on_a_coarse_cpu_clock(monkeypatch):
     out = overhead(3)
     assert out["baseline_seconds"] > 0 and math.isfinite(out["overhead_ratio"]) and out["overhead_ratio"] > 0
     assert math.isfinite(out["overhead_ratio_sampling"]) and out["overhead_ratio_sampling"] > 0
+
+
+def test_the_blocking_measure_finds_the_zero_where_a_line_leaves_the_no_pair_edge_at_a_small_angle():
+    """A line ending on the no-pair edge may leave it at a small angle: its function's zeros on one
+    side of it fill only the wedge between the line and the edge, and a point on the edge beside the
+    line's end is as far from the zero set as from that end. Two cases with that distance known
+    independently: a linear function defined on x >= 0 (its zero line leaves the edge x = 0 at 13
+    degrees), and 51/127 z0 19 (internal), whose contact-ratio line eps_alpha = 1.2 tip to tip leaves
+    the edge x1 = const below which the generated pinion has no tooth left at about the same angle: there the end is found by bisection for
+    the edge along a row and scipy's brentq along the edge. The eight fixed rays missed the wedge and
+    read the point 4.2 mm off."""
+    from scipy.optimize import brentq
+
+    from gearkit.bench.exact import polyline_deviation
+    from gearkit.blocking import default_window
+    from gearkit.blocking.arrays import evaluator
+    from gearkit.blocking.field import PairField
+    from gearkit.families.involute import ShaperCutter
+    from gearkit.pair import PairSpec
+
+    tol, off = 1e-3, 1e-6  # the point lies `off` above the line's end on the edge
+    slope = math.tan(math.radians(13.0))
+    lin = lambda p, k: np.where(p[:, 0] >= 0.0, p[:, 0] + slope * p[:, 1], np.nan)
+    line = np.array([[0.0, off], [slope * 1e-3, -1e-3]])  # from beside the end along the zero line
+    assert polyline_deviation(lin, [(0, line)], tol, 1.0) == pytest.approx(off, rel=1e-6)
+
+    field = PairField(PairSpec(51, 127, 1.0, kind="internal", tool2=ShaperCutter(19)))
+    field.x_ranges = ((w := default_window(field))[:2], w[2:])  # as blocking_contour reads the form circles
+    field.exact_forms = False
+    F = evaluator(field, ["contact_ratio_tip=1.2"], None)
+    f = lambda x1, x2: float(F(np.array([[x1, x2]]), np.array([0]))[0])
+    a, b = -2.8, -2.7  # the edge (ra1 = rb1, the same on every row): no pair at a, one at b
+    for _ in range(60):
+        m = 0.5 * (a + b)
+        a, b = (m, b) if math.isnan(f(m, -0.92)) else (a, m)
+    b += 1e-12  # (inside on every row: the edge moves with round-off from row to row)
+    end = brentq(lambda x2: f(b, x2), -0.93, -0.91, xtol=1e-15)  # the line's end on the edge
+    rows = [(brentq(lambda x1: f(x1, x2), b, b + 0.01, xtol=1e-15), x2) for x2 in end - 3e-4 * np.arange(1, 5)]
+    line = np.array([(b, end + off)] + rows)
+    assert polyline_deviation(F, [(0, line)], tol, 8.0) == pytest.approx(off, rel=1e-3)

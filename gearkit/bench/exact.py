@@ -12,6 +12,7 @@ __all__ = ["deviation", "polyline_deviation", "point_distances"]
 RAY_ROUNDS = 10  #: ray lengths tol / 16 ... tol 4**8: the nearest zero first
 SHORT_RATIO = 8.0  #: below tol / 16, the normal is sampled at distances shrinking by this factor
 FLOOR = 1e-13  #: ... down to this fraction of the window's diagonal (round-off)
+EDGE_BISECTIONS = 50  #: the ray along the no-pair edge to pi/4 * 2**-50 rad (see _along_edge)
 
 
 def deviation(contour) -> float:
@@ -54,7 +55,8 @@ def polyline_deviation(F, polys, tol: float, span: float) -> float:
     """Largest distance of the polylines ``polys`` (``[(k, (n, 2))]``: function ``k`` of ``F``) from
     the zero sets of their functions, at each vertex and chord middle: the nearest zero on eight rays
     (the chord's normal, the chord, the diagonals) of lengths ``tol / 16`` ... ``tol * 4**8``, solved
-    to ``MEASURE_TOL``, and, where none lies within ``tol / 16``, along the normal at distances
+    to ``MEASURE_TOL`` (beside the no-pair edge, where none of them finds one, also on the ray along the
+    edge: :func:`_along_edge`), and, where none lies within ``tol / 16``, along the normal at distances
     shrinking to round-off (``span``: the window's diagonal): a strip narrower than ``tol / 16``
     beside a point (both its zeros crossed by the shortest ray) is seen.
 
@@ -101,6 +103,7 @@ def point_distances(F, polys, tol: float, span: float, keep=None) -> np.ndarray:
     r = tol / 16
     T = np.column_stack([N[:, 1], -N[:, 0]])
     rays = [s * D for D in (N, T, (N + T) / np.sqrt(2), (N - T) / np.sqrt(2)) for s in (1.0, -1.0)]
+    angles = np.pi / 4 * np.array([2, 6, 0, 4, 1, 5, 3, 7])  # of the rays from T towards N (for _along_edge)
     for rnd in range(RAY_ROUNDS):  # the nearest zero on 8 rays of growing length (the normal, the chord, diagonals)
         if not todo.size:
             break
@@ -110,10 +113,12 @@ def point_distances(F, polys, tol: float, span: float, keep=None) -> np.ndarray:
             if not todo.size:
                 break
         best = np.full(todo.size, np.inf)
-        for D in rays:
+        ends_out = np.zeros((len(rays), todo.size), dtype=bool)
+        for D, out in zip(rays, ends_out):
             end = P[todo] + r * D[todo]
             fe = F(end, K[todo])
             edge = np.isnan(fe)
+            out[:] = edge
             if edge.any():  # a ray into the no-pair area ends at its edge: the sign change nearest before it
                 i = todo[edge]
                 lo, flo, hi, fhi = toward_edge(F, P[i], f0[i], end[edge], K[i])
@@ -125,6 +130,10 @@ def point_distances(F, polys, tol: float, span: float, keep=None) -> np.ndarray:
                 i = todo[hit]
                 root = segment_roots(F, P[i], end[hit], f0[i], fe[hit], MEASURE_TOL, K[i])
                 best[hit] = np.minimum(best[hit], np.hypot(*(root - P[i]).T))
+        none = np.isinf(best) & ends_out.any(axis=0)  # beside the no-pair edge, no zero on the rays: along it
+        if none.any():
+            i = todo[none]
+            best[none] = _along_edge(F, P[i], T[i], N[i], f0[i], K[i], r, angles, ends_out[:, none])
         found = np.isfinite(best)
         dist[todo[found]] = best[found]
         todo = todo[~found]
@@ -136,6 +145,45 @@ def point_distances(F, polys, tol: float, span: float, keep=None) -> np.ndarray:
             est = np.abs(f0[todo]) / g
         dist[todo] = np.where(np.isfinite(est), est, r / 4)
     return dist
+
+
+def _along_edge(F, P, T, N, f0, K, r, angles, ends_out) -> np.ndarray:
+    """Distance from each point ``P`` to the nearest zero on the ray of length ``r`` that runs along the
+    edge of the no-pair area (inf where there is none): between two neighbouring rays (``angles`` from
+    ``T`` towards ``N``) of which one ends in that area (``ends_out``, per ray and point) and the other
+    does not, the angle is bisected to the last ray whose end is defined. A line ending on the edge
+    leaves it at any angle: where that angle is small, its zeros on one side of it fill only the
+    wedge between the line and the edge, which the eight fixed rays may all miss at every length (51/127
+    z0 19 at tol 1e-3: a contact-ratio line's end on the edge read 4.2 mm off, 2.2e-8 from its zero
+    there); the ray along the edge runs inside that wedge at any length."""
+    from gearkit.blocking.brackets import segment_roots
+
+    best = np.full(len(P), np.inf)
+    order = np.argsort(angles)
+    for a, b in zip(order, np.roll(order, -1)):
+        i = np.flatnonzero(ends_out[a] != ends_out[b])
+        if not i.size:
+            continue
+        ta, tb = angles[a], angles[b] + (2 * np.pi if b == order[0] else 0.0)
+        lo = np.where(ends_out[a][i], tb, ta)  # the angle whose end is defined
+        hi = np.where(ends_out[a][i], ta, tb)
+        for _ in range(EDGE_BISECTIONS):
+            mid = 0.5 * (lo + hi)
+            inside = np.isfinite(F(P[i] + r * _direction(T[i], N[i], mid), K[i]))
+            lo, hi = np.where(inside, mid, lo), np.where(inside, hi, mid)
+        end = P[i] + r * _direction(T[i], N[i], lo)
+        fe = F(end, K[i])
+        hit = np.isfinite(fe) & ((fe > 0) != (f0[i] > 0))
+        if hit.any():
+            j = i[hit]
+            root = segment_roots(F, P[j], end[hit], f0[j], fe[hit], MEASURE_TOL, K[j])
+            best[j] = np.minimum(best[j], np.hypot(*(root - P[j]).T))
+    return best
+
+
+def _direction(T, N, angle):
+    """Unit vectors at ``angle`` (radians) from ``T`` towards ``N``."""
+    return np.cos(angle)[:, None] * T + np.sin(angle)[:, None] * N
 
 
 def _span(window) -> float:
