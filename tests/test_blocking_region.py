@@ -3,6 +3,8 @@ region is thinner than the tracing grid's cells (marching squares' saddle cells:
 the neck of a saddle cut through), against the check's own scalar margins (``PairField.margin``, the
 zeros solved by brentq) and ``check_pair``.
 """
+import functools
+
 import numpy as np
 import pytest
 from scipy.optimize import brentq
@@ -53,7 +55,7 @@ def test_a_strip_narrower_than_a_grid_cell_is_not_cut_across():
     spec = PairSpec(33, 78, 1.0)
     field = PairField(spec)
     c = blocking_contour(spec, tol=tol, lines=[])
-    _rows_cross_the_strip((33, 78), field, c, np.linspace(-1.30, -1.13, 35), np.linspace(1.60, 1.70, 6), tol)
+    _rows_cross_the_strip(spec, field, c, np.linspace(-1.30, -1.13, 35), np.linspace(1.60, 1.70, 6), tol)
 
 
 @pytest.mark.parametrize("pair, tol, xr, rows", [((32, 77), 1e-3, (-1.13, -1.04), (1.22, 1.23, 1.24)),
@@ -76,13 +78,15 @@ def test_a_strip_cut_across_twice_is_taken_once(pair, tol, xr, rows):
     spec = PairSpec(*pair, 1.0)
     field = PairField(spec)
     c = blocking_contour(spec, tol=tol, lines=[])
-    _rows_cross_the_strip(pair, field, c, np.linspace(*xr, 37), rows, tol)
+    _rows_cross_the_strip(spec, field, c, np.linspace(*xr, 37), rows, tol)
 
 
-def _rows_cross_the_strip(pair, field, c, xs, rows, tol):
-    """On each row x2 = y of ``rows`` (x1 sampled at ``xs``) of the pair ``pair`` (z1, z2), the region's polygons cross where the
+def _rows_cross_the_strip(spec, field, c, xs, rows, tol):
+    """On each row x2 = y of ``rows`` (x1 sampled at ``xs``) of the pair ``spec``, the region's polygons cross where the
     check's smallest hard margin does (brentq: the strip's two edges), within 2 tol, and the strip's
     middle passes check_pair and is in the region."""
+    import dataclasses
+
     for y in rows:
         exact = _zeros(lambda x: _smallest(field, x, y), xs)
         assert len(exact) == 2, (y, exact)  # the strip's two edges
@@ -90,7 +94,8 @@ def _rows_cross_the_strip(pair, field, c, xs, rows, tol):
         got = xs[0] + _crossings(c.region, a, b) * (xs[-1] - xs[0])
         assert len(got) == 2 and np.max(np.abs(got - exact)) <= CONTRACT * tol, (y, exact, got)
         mid = 0.5 * (exact[0] + exact[1])
-        assert check_pair(PairSpec(*pair, 1.0, float(mid), float(y))).ok and c.in_region(mid, y), (y, mid)
+        assert check_pair(dataclasses.replace(spec, shift1=float(mid), shift2=float(y))).ok, (y, mid)
+        assert c.in_region(mid, y), (y, mid)
 
 
 def test_the_neck_of_a_saddle_is_not_cut_through():
@@ -265,3 +270,33 @@ def test_a_wedge_bounded_beside_the_tip_sweeps_kink_is_traced_to_its_tip():
         lo, hi = span(y)
         got = lo + _crossings(c.region, np.array([lo, y]), np.array([hi, y])) * (hi - lo)
         assert len(got) == 2 and np.max(np.abs(got - exact)) <= CONTRACT * tol, (d, exact, got)
+
+
+# internal pairs (shaper teeth) at tol 1e-3; the rows across the strip between interference.1 and exit jamming where the
+# tip sweep is flat: x2, and x1 from x2 + lo over a span short of the no-pair edge
+FLAT_STRIPS = {(58, 109, 31): ((-0.995, -0.985, -0.975, -0.965), 0.995, 0.047),
+               (55, 102, 34): ((-0.89, -0.875, -0.86, -0.845), 0.925, 0.036)}
+
+
+@functools.lru_cache(maxsize=None)
+def _internal(z1, z2, z0):
+    from gearkit.families.involute import ShaperCutter
+
+    spec = PairSpec(z1, z2, 1.0, kind="internal", tool2=ShaperCutter(z0))
+    return spec, PairField(spec), blocking_contour(spec, tol=1e-3, lines=[])
+
+
+@pytest.mark.parametrize("key", sorted(FLAT_STRIPS))
+def test_a_strip_where_the_tip_sweep_is_flat_is_not_cut_across(key):
+    """58/109 (shaper z0 31) and 55/102 (z0 34) internal at tol 1e-3: a strip of the region about 0.02 wide between
+    interference.1 and exit jamming, narrower than a grid cell, where the tip sweep's margin is flat at its
+    resolution (1e-4). The grid saw a chain of diamonds; the chords across the strip were kept as cuts, then a
+    corner split a quarter along each put a vertex on the strip's edge beside its end and the outline ran down the
+    strip's edges and back round its loop, so the loops were never re-joined and the outline closed across the
+    strip (11.9 and 8.1 tol off). On rows across it the polygons cross where the check's smallest hard margin does (brentq), within 2 tol,
+    and the strip's middle is in the region and passes check_pair."""
+    spec, field, c = _internal(*key)
+    rows, lo, span = FLAT_STRIPS[key]
+    for y in rows:
+        _rows_cross_the_strip(spec, field, c, np.linspace(y + lo, y + lo + span, 37), [y], 1e-3)
+

@@ -393,7 +393,7 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
                 state[n] = (k, p[:1], g[:1], np.zeros(0, bool))
     out = [(st[0], st[1], st[2]) for st in state if len(st[1]) >= 2]
     corners = set(kinked) | set(measure)
-    again = corner_splits(F, out, tol, corners, SPLIT_FRACTION * tol, VERTEX_FRACTION * tol)
+    again = corner_splits(F, out, tol, corners, SPLIT_FRACTION * tol, VERTEX_FRACTION * tol, kept or ())
     if again:  # the polylines that got a vertex beside a corner: densified again
         done = [out[n] if slopes else out[n][:2] for n in range(len(out)) if n not in again]
         return done + densify(F, [out[n] for n in sorted(again)], tol, max_step, measure, kinked, slopes, kept)
