@@ -300,3 +300,26 @@ def test_a_strip_where_the_tip_sweep_is_flat_is_not_cut_across(key):
     for y in rows:
         _rows_cross_the_strip(spec, field, c, np.linspace(y + lo, y + lo + span, 37), [y], 1e-3)
 
+
+@pytest.mark.parametrize("key", sorted(FLAT_STRIPS))
+def test_the_wedges_of_one_margin_meeting_at_its_saddle_are_traced_to_it(key):
+    """The same pairs: interference.1's two negative wedges meet at its saddle at (1, 1), each bounded by two
+    branches of the one margin's zero set; the outline was closed across each wedge 0.015 to 0.02 short of the
+    saddle (the chords 7.5 and 2.4 tol off), taking the part between the cuts, the wedges' tips, into the region.
+    On rows through both wedges beside the saddle, the polygons cross only where the check's smallest hard margin
+    does (brentq: the wedge's two sides), within 2 tol; the wedge's middle fails check_pair and is outside the
+    region, and points 5e-3 beyond its sides pass it and are inside."""
+    import dataclasses
+
+    spec, field, c = _internal(*key)
+    tol = 1e-3
+    xs = np.linspace(0.96, 1.04, 41)
+    for d in (-0.012, -0.006, -0.003, 0.003, 0.006, 0.012):
+        y = 1.0 + d
+        exact = _zeros(lambda x: _smallest(field, x, y), xs)
+        assert len(exact) == 2, (y, exact)
+        got = xs[0] + _crossings(c.region, np.array([xs[0], y]), np.array([xs[-1], y])) * (xs[-1] - xs[0])
+        assert len(got) == 2 and np.max(np.abs(got - exact)) <= CONTRACT * tol, (y, exact, got)
+        for x, inside in ((0.5 * (exact[0] + exact[1]), False), (exact[0] - 5e-3, True), (exact[1] + 5e-3, True)):
+            assert check_pair(dataclasses.replace(spec, shift1=float(x), shift2=float(y))).ok == inside, (x, y)
+            assert c.in_region(x, y) == inside, (x, y)
