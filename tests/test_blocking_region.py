@@ -323,3 +323,26 @@ def test_the_wedges_of_one_margin_meeting_at_its_saddle_are_traced_to_it(key):
         for x, inside in ((0.5 * (exact[0] + exact[1]), False), (exact[0] - 5e-3, True), (exact[1] + 5e-3, True)):
             assert check_pair(dataclasses.replace(spec, shift1=float(x), shift2=float(y))).ok == inside, (x, y)
             assert c.in_region(x, y) == inside, (x, y)
+
+
+def test_a_notch_whose_tip_is_a_saddle_is_traced_to_it():
+    """34/76 internal (shaper z0 33) at tol 1e-3: interference.1 has a saddle at (x1, x2) = (1, 1), its
+    margin +1e-9 there (the check forgives 1e-9 m_n) and negative in two thin wedges along the diagonal;
+    the lower one notches the region. The grid closed the outline across the notch 0.02 short of the
+    saddle (the chord 8.1 tol off), and with both ends on interference.1 no corner of two parts was
+    there to carry it to. On rows below the saddle, the zeros of the check's margin (brentq) lie within
+    2 tol of the outline, and the notch's middle, where check_pair fails, is outside the region."""
+    from gearkit.families.involute import ShaperCutter
+
+    tol = 1e-3
+    spec = PairSpec(34, 76, 1.0, kind="internal", tool2=ShaperCutter(33))
+    field = PairField(spec)
+    c = blocking_contour(spec, tol=tol, lines=[])
+    for y in np.linspace(0.975, 0.999, 7):
+        exact = _zeros(lambda x: field.margin("interference.1", x, y), np.linspace(0.93, 1.0, 141))
+        assert len(exact) == 2, (y, exact)
+        for x in exact:
+            assert _distance_to_outline(c.region, np.array([x, y])) <= CONTRACT * tol, (x, y)
+        mid = float(np.mean(exact))
+        assert not check_pair(PairSpec(34, 76, 1.0, mid, float(y), kind="internal", tool2=ShaperCutter(33))).ok
+        assert not c.in_region(mid, y), (mid, y)
