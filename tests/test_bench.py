@@ -205,3 +205,31 @@ def test_the_blocking_measure_finds_the_zero_where_a_line_leaves_the_no_pair_edg
     rows = [(brentq(lambda x1: f(x1, x2), b, b + 0.01, xtol=1e-15), x2) for x2 in end - 3e-4 * np.arange(1, 5)]
     line = np.array([(b, end + off)] + rows)
     assert polyline_deviation(F, [(0, line)], tol, 8.0) == pytest.approx(off, rel=1e-3)
+
+
+def test_the_exact_measure_reaches_into_an_acute_corner_of_a_zero_set():
+    """A region's function ``min(a, b)`` whose zeros ``a = 0`` and ``b = 0`` cross at 6 degrees (52/75 z0 15
+    at tol 1e-3: exit jamming and interference.1 at (0.3276, -0.1119)): a polygon's vertex 1e-6 behind the
+    corner, its chords along the two sides just outside them. No ray of the chord (normal, chord, diagonals)
+    enters the corner, and one along the chord met the curved side 0.08 beyond: the vertex read 97 tol (52/75:
+    75 tol) where it lies 1e-6 from the zero set. Oracle: the nearest zero of a point behind an acute corner
+    (outside both sides' normals at the tip) is the tip, at exactly the point's distance from it; a ray's
+    zero is no nearer, and the corner's bisector passes the tip within the chords' 1e-5 / 0.06 of its angle
+    (the zero it meets within a side's 3 degrees: 1.3e-6)."""
+    from gearkit.bench.exact import point_distances
+
+    tol, delta, k = 1e-3, 1e-6, 1.0
+    lo, hi = np.radians(44.0), np.radians(50.0)  # the sides' directions at the tip (the origin)
+
+    def F(p, which):  # inside the corner: below the upper side y = x tan(hi) + k x^2, above the lower one
+        x, y = p[:, 0], p[:, 1]
+        return np.minimum(x * np.tan(hi) + k * x * x - y, y - x * np.tan(lo))
+
+    bis = 0.5 * (lo + hi)
+    P0 = -delta * np.array([np.cos(bis), np.sin(bis)])
+    up = np.array([0.06, 0.06 * np.tan(hi) + k * 0.06 ** 2]) + 1e-5 * np.array([-np.sin(hi), np.cos(hi)])
+    down = 0.06 * np.array([np.cos(lo), np.sin(lo)]) + 1e-5 * np.array([np.sin(lo), -np.cos(lo)])
+    assert F(np.array([P0, up, down]), 0).max() < 0  # all three outside the corner
+    for poly in (np.array([P0, up, down, P0]), np.array([P0, down, up, P0])):  # either way round
+        d = point_distances(F, [(0, poly)], tol, 1.0)
+        assert delta * (1 - 1e-9) <= d[0] <= 2 * delta, d[0] / tol

@@ -3,8 +3,8 @@
 * **Ladder** (12/30 pair, every line and the region) at tol 1e-2 ... 1e-9 shift units: the achieved
   deviation is the larger of (a) the largest distance of the traced polylines from the exact lines
   (:mod:`gearkit.bench.exact`: at every vertex and every chord's middle the nearest zero of the margin
-  on eight rays solved to 1e-14, and where none lies within tol / 16 along the normal down to
-  round-off), and (b) the largest distance of a
+  on eight rays, and at a vertex also its corner's bisector, solved to 1e-14, and where none lies within
+  tol / 16 along the normal down to round-off), and (b) the largest distance of a
   much finer trace (tol 1e-10) from the traced lines (a piece missing: a gap), and (c) the largest
   distance of an exact zero found on scan lines across the window (no trace involved) from the traced
   lines (a piece every trace misses, the reference's too). The contract is
