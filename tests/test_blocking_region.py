@@ -346,3 +346,29 @@ def test_a_notch_whose_tip_is_a_saddle_is_traced_to_it():
         mid = float(np.mean(exact))
         assert not check_pair(PairSpec(34, 76, 1.0, mid, float(y), kind="internal", tool2=ShaperCutter(33))).ok
         assert not c.in_region(mid, y), (mid, y)
+
+
+def test_a_corner_beyond_the_windows_edge_is_not_the_regions():
+    """40/105 internal (shaper z0 33) at tol 1e-3: contact ratio 1 and exit jamming run within a few tol of
+    each other up to the bottom edge of the window and cross at 7 degrees 0.012 below it, at (0.318,
+    -1.012); the outline there binds one and the other in turn, and the corner between them was carried to
+    that crossing, outside the window: the outline zigzagged below the edge and back, split into a loop of 4
+    points and a chord 5.9 tol off the region's edge. On rows just above the edge the polygons cross once,
+    where the check's smallest hard margin does (brentq; -1 where no pair exists, just beyond), within 2 tol;
+    beside it the region's side passes check_pair and is in the region."""
+    import dataclasses
+
+    from gearkit.families.involute import ShaperCutter
+
+    tol = 1e-3
+    spec = PairSpec(40, 105, 1.0, kind="internal", tool2=ShaperCutter(33))
+    field = PairField(spec)
+    c = blocking_contour(spec, tol=tol, lines=[])
+    xs = np.linspace(0.30, 0.37, 15)
+    for y in (-0.9995, -0.998, -0.995, -0.99, -0.98):  # (both lines end within 1e-3 of the no-pair area: -1 there)
+        exact = _zeros(lambda x: np.nan_to_num(_smallest(field, x, y), nan=-1.0), xs)
+        assert len(exact) == 1, (y, exact)
+        got = xs[0] + _crossings(c.region, np.array([xs[0], y]), np.array([xs[-1], y])) * (xs[-1] - xs[0])
+        assert len(got) == 1 and abs(got[0] - exact[0]) <= CONTRACT * tol, (y, exact, got)
+        x = float(exact[0] - 3 * tol)
+        assert check_pair(dataclasses.replace(spec, shift1=x, shift2=y)).ok and c.in_region(x, y), (x, y)

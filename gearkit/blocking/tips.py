@@ -354,10 +354,16 @@ def carry_to_tips(F, G, lines, kept, region: int, tol: float, trace) -> list:
 
 def _on_edge(F, G, path, part, region: int, tol: float) -> bool:
     """True when the traced ``path`` (its chords on the parts ``part``) is the region's edge: every
-    chord's middle within ``tol`` of its part's zero, and at every inner vertex no other part below
-    the vertex's own by more than ``tol`` times its slope."""
+    chord's middle within ``tol`` of its part's zero, at every inner vertex no other part below
+    the vertex's own by more than ``tol`` times its slope, and every inner vertex within ``tol`` of the
+    window (the distances to its edges are parts of slope 1: two lines crossing at a few degrees just
+    beyond the window's edge, the region's corner is on the edge, 40/105 z0 33 at tol 1e-3: contact
+    ratio 1 and exit jamming crossing 0.012 below it)."""
     mid = 0.5 * (path[:-1] + path[1:])
     inner, own = path[1:-1], part[1:]  # the vertex ending each chord but the last: on that chord's part
+    lo, hi = np.array(G.window[0::2]), np.array(G.window[1::2])
+    if np.any((inner < lo - tol) | (inner > hi + tol)):
+        return False
     P = np.concatenate([mid, inner])
     K = np.concatenate([part, own])
     f = G(P, K)
