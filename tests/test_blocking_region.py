@@ -301,6 +301,19 @@ def test_a_strip_where_the_tip_sweep_is_flat_is_not_cut_across(key):
         _rows_cross_the_strip(spec, field, c, np.linspace(y + lo, y + lo + span, 37), [y], 1e-3)
 
 
+def test_a_flat_strip_whose_cuts_cross_is_taken_along_its_edges_to_its_end():
+    """25/59 internal (shaper z0 35) at tol 1e-3: the same flat strip, about 0.015 wide along the row. Two loops of
+    the grid's chain of diamonds overlapped along it, their cuts crossing in an X at (0.57, -0.107), and the
+    loops were joined across the X (the outline 5.6 tol off); the strip's last cut, at its lower end short of
+    trimming.plunge, paired with none. On rows through the X and below the last cut, the polygons cross where the
+    check's smallest hard margin does (brentq: the strip's two edges), within 2 tol, and the strip's middle is in
+    the region and passes check_pair."""
+    spec, field, c = _internal(25, 59, 35)
+    for rows, lo, span in (((-0.112, -0.108, -0.104, -0.101), 0.66, 0.04), ((-0.144, -0.14), 0.672, 0.022)):
+        for y in rows:
+            _rows_cross_the_strip(spec, field, c, np.linspace(y + lo, y + lo + span, 37), [y], 1e-3)
+
+
 @pytest.mark.parametrize("key", sorted(FLAT_STRIPS))
 def test_the_wedges_of_one_margin_meeting_at_its_saddle_are_traced_to_it(key):
     """The same pairs: interference.1's two negative wedges meet at its saddle at (1, 1), each bounded by two

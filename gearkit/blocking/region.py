@@ -24,6 +24,7 @@ SPLIT_DEPTH = 20  #: most self-crossings split out of one loop
 FINE = 41  #: nodes per side of the local grid that looks for the best point of an empty region
 SLIVER = 0.5  #: a loop split off narrower than this fraction of tol on average is a fold (_simple_loops)
 RECONNECT_ROUNDS = 3  #: rounds of re-joining loops cut across a thin part (:func:`reconnect`)
+FOLD_COS = -0.95  #: a joined loop turning back by more than this beside two crossing cuts has a fold there
 PAIR_REACH = 4.0  #: two cuts pair when their middles lie within this many times the longer one apart
 
 
@@ -140,15 +141,25 @@ def reconnect(F, lines, kept, tol: float, refine) -> list:
     rule, 10 tol off): the two loops become one along their lines, their vertices between the chords
     dropped. The lines changed are refined again by ``refine(lines, kept)``
     (:func:`~gearkit.blocking.level.densify`, which adds the chords it finds no zero across to the new
-    ``kept``), round after round (``RECONNECT_ROUNDS``); ``kept`` is extended by their chords kept."""
-    todo = list(kept)
+    ``kept``), round after round (``RECONNECT_ROUNDS``); ``kept`` is extended by their chords kept. Two cuts
+    that cross (two loops overlapping along a strip, 25/59 internal at tol 1e-3) are swapped whatever ``F``
+    between them, the folds of the joined loop beside them taken out. The joined lines still holding a cut
+    that paired with none are refined once more by ``refine(lines, None)``: no cut is then left alone as across a
+    flat strip (:func:`~gearkit.blocking.corners.corner_splits`; a strip's last cut short of its end)."""
+    todo, joined = list(kept), set()
     for _ in range(RECONNECT_ROUNDS):
         lines, changed = _rejoin(F, lines, todo, tol)
         if not changed:
             break
         todo = []
-        lines = [lines[n] for n in range(len(lines)) if n not in changed] + refine([lines[n] for n in changed], todo)
+        new = refine([lines[n] for n in changed], todo)
+        lines = [lines[n] for n in range(len(lines)) if n not in changed] + new
+        joined = {id(q) for _, q, _ in lines} & joined | {id(q) for _, q, _ in new}
         kept += todo
+    left = {w[0] for w in (locate_chord(lines, k, a, b) for k, a, b in kept) if w is not None} \
+        & {n for n, (_, q, _) in enumerate(lines) if id(q) in joined}
+    if left:  # a joined loop's cuts not re-joined: refined with none left alone (no flat strip across them)
+        lines = [lines[n] for n in range(len(lines)) if n not in left] + refine([lines[n] for n in sorted(left)], None)
     return lines
 
 
@@ -173,11 +184,13 @@ def _rejoin(F, lines, kept, tol: float):
         side_u = np.sign(D[u, 0] * (gap - P[u])[:, 1] - D[u, 1] * (gap - P[u])[:, 0])
         side_v = np.sign(D[v, 0] * (gap - P[v])[:, 1] - D[v, 1] * (gap - P[v])[:, 0])
         near = np.hypot(*(M[u] - M[v]).T)
-        ok = (K[u] == K[v]) & (np.einsum("ij,ij->i", D[u], D[v]) < 0) & (side_u == side_v) & (side_u != 0) \
-            & (near <= PAIR_REACH * np.fmax(L[u], L[v]))
-        u, v, gap, side, near = u[ok], v[ok], gap[ok], side_u[ok], near[ok]
+        cross = _crossing(P[u], Q[u], P[v], Q[v])
+        ok = (K[u] == K[v]) & (np.einsum("ij,ij->i", D[u], D[v]) < 0) \
+            & (((side_u == side_v) & (side_u != 0)) | cross) & (near <= PAIR_REACH * np.fmax(L[u], L[v]))
+        u, v, gap, side, near, cross = u[ok], v[ok], gap[ok], side_u[ok], near[ok], cross[ok]
         fg = F(gap, K[u]) if u.size else np.zeros(0)
         wrong = np.isfinite(fg) & (np.sign(fg) == -side)  # F there has the sign of the chords' other side
+        wrong |= cross
         held = np.isfinite(fg) & (np.sign(fg) == side)  # ... or of their side: taken twice when in two loops
         for t in np.argsort(near):
             if u[t] in used or v[t] in used:
@@ -185,11 +198,21 @@ def _rejoin(F, lines, kept, tol: float):
             chords = K[u[t]], P[u[t]], Q[u[t]], P[v[t]], Q[v[t]]
             if wrong[t]:
                 used |= {int(u[t]), int(v[t])}
-                lines, changed = _swap(lines, changed, *chords)
+                lines, changed = _swap(lines, changed, *chords, cross=bool(cross[t]))
             elif held[t] and _overlap(lines, *chords):
                 used |= {int(u[t]), int(v[t])}
                 lines, changed = _swap(lines, changed, *chords, side=side[t])
     return lines, sorted(changed)
+
+
+def _crossing(p1, q1, p2, q2) -> np.ndarray:
+    """True where the chords ``p1 -> q1`` and ``p2 -> q2`` (rows) cross inside both."""
+    d1, d2, w = q1 - p1, q2 - p2, p2 - p1
+    den = d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        s = (w[:, 0] * d2[:, 1] - w[:, 1] * d2[:, 0]) / den
+        t = (w[:, 0] * d1[:, 1] - w[:, 1] * d1[:, 0]) / den
+    return (den != 0) & (s > 0) & (s < 1) & (t > 0) & (t < 1)
 
 
 def _overlap(lines, k, p1, q1, p2, q2) -> bool:
@@ -222,14 +245,16 @@ def _replace(lines, changed, drop, new):
     return [lines[m] for m in keep] + new, changed
 
 
-def _swap(lines, changed, k, p1, q1, p2, q2, side=0):
+def _swap(lines, changed, k, p1, q1, p2, q2, side=0, cross=False):
     """The chords ``p1 -> q1`` and ``p2 -> q2`` of closed polylines replaced by ``p1 -> q2`` and
     ``p2 -> q1`` (see :func:`reconnect`). ``side`` (+-1: the part between the chords on their left or
     right, taken by both loops): the loops joined along their lines instead, each loop's vertices
     between the chords dropped, ``q1 ... p1`` becoming ``p2 ... q2`` and ``q2 ... p2`` becoming
-    ``p1 ... q1``."""
+    ``p1 ... q1``. ``cross``: the chords cross (two loops overlapping along a strip, see
+    :func:`reconnect`): the loops joined, and the folds of the joined loop beside the chords, where it ran
+    along the strip's edge past the other chord and back, taken out (:func:`_unfold`)."""
     w1, w2 = locate_chord(lines, k, p1, q1), locate_chord(lines, k, p2, q2)
-    if w1 is None or w2 is None:
+    if w1 is None or w2 is None or (cross and w1[0] == w2[0]):
         return lines, changed
     (m1, j1), (m2, j2) = w1, w2
     if m1 != m2 and side:  # p2, (q1 ... p1 outside the part between), q2, then p1, (q2 ... p2 outside), q1
@@ -243,7 +268,12 @@ def _swap(lines, changed, k, p1, q1, p2, q2, side=0):
     elif m1 != m2:  # q1 ... p1 then q2 ... p2, closed at q1
         a, ga = _from(lines[m1], j1)
         b, gb = _from(lines[m2], j2)
-        new = [(k, np.vstack([a, b, a[:1]]), np.concatenate([ga, gb, ga[:1]]))]
+        ring, g = np.vstack([a, b, a[:1]]), np.concatenate([ga, gb, ga[:1]])
+        if cross:
+            c1, c2 = 0.5 * (p1 + q1), 0.5 * (p2 + q2)
+            reach = np.hypot(*(c2 - c1)) + max(np.hypot(*(q1 - p1)), np.hypot(*(q2 - p2)))
+            ring, g = _unfold(ring, g, 0.5 * (c1 + c2), reach)
+        new = [(k, ring, g)]
     else:  # one loop in two: q1 ... p2 closed at q1, q2 ... p1 closed at q2
         a, ga = _from(lines[m1], j1)
         s = (j2 - j1) % (len(lines[m1][1]) - 1)  # q2's place from q1
@@ -252,12 +282,30 @@ def _swap(lines, changed, k, p1, q1, p2, q2, side=0):
     return _replace(lines, changed, {m1, m2}, new)
 
 
+def _unfold(ring, g, centre, reach):
+    """The closed polyline ``ring`` (slopes ``g``) without its folds within ``reach`` of ``centre``: a vertex
+    where the polyline turns back on itself (by more than ``FOLD_COS``) dropped, the sharpest first, until
+    none is left (a run along an edge past a point and back to it goes vertex by vertex)."""
+    p, g = ring[:-1], g[:-1]
+    while len(p) > 3:
+        d1, d2 = p - np.roll(p, 1, axis=0), np.roll(p, -1, axis=0) - p
+        n = np.hypot(*d1.T) * np.hypot(*d2.T)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            cos = np.einsum("ij,ij->i", d1, d2) / n
+        cos[~(n > 0) | (np.hypot(*(p - centre).T) > reach)] = np.inf
+        j = int(np.argmin(cos))
+        if not cos[j] < FOLD_COS:
+            break
+        p, g = np.delete(p, j, axis=0), np.delete(g, j)
+    return np.vstack([p, p[:1]]), np.append(g, g[0])
+
+
 def _outside(a, side, p1, q1, p2, q2):
     """Indices of the inner vertices of the open path ``a`` (a loop from a chord's end round to its start)
     outside the part between the chords ``p1 -> q1`` and ``p2 -> q2`` (on the ``side`` of both): from
     each end up to the vertex farthest from the chords, the stretch of vertices near them is dropped up
     to its last vertex between them (a fold of the path beside a cut, past the other chord and back,
-    goes with it). None where nothing is left or the farthest vertex lies between them."""
+    goes with it). None where nothing is left or the farthest vertex lies between them, near them."""
     between = np.ones(len(a), dtype=bool)
     for p, q in ((p1, q1), (p2, q2)):
         d = q - p
@@ -267,7 +315,7 @@ def _outside(a, side, p1, q1, p2, q2):
     dist = np.hypot(*(a - 0.5 * (m1 + m2)).T)
     dist[[0, -1]] = -np.inf
     top = int(np.argmax(dist))
-    if len(a) < 3 or between[top]:
+    if len(a) < 3 or (between[top] and dist[top] <= reach):  # (far off, the two sides' wedge is no strip)
         return None
     go = np.flatnonzero(dist[1:top] > reach)  # the stretches near the chords: to the first far vertex
     lead = np.flatnonzero(between[1:1 + go[0] if go.size else top]) + 1
