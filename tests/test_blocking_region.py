@@ -314,6 +314,30 @@ def test_a_flat_strip_whose_cuts_cross_is_taken_along_its_edges_to_its_end():
             _rows_cross_the_strip(spec, field, c, np.linspace(y + lo, y + lo + span, 37), [y], 1e-3)
 
 
+@pytest.mark.parametrize("key, rows, xr", [((23, 89, 19), (-0.648, -0.652, -0.656), (0.54, 0.60)),
+                                           ((34, 76, 33), (-0.478, -0.481, -0.485), (0.33, 0.39))])
+def test_a_flat_strip_joined_across_its_cuts_has_no_loop_left_inside(key, rows, xr):
+    """23/89 (shaper z0 19) and 34/76 (z0 33) internal at tol 1e-3: the same kind of flat strip, its grid loops
+    joined across their cuts. Swapping two cuts that cross left a loop of three or four vertices inside the strip
+    (8.1 and 4.2 tol off). On rows through the strip every crossing of the polygons lies within 2 tol of a zero of
+    the check's smallest hard margin (brentq) and every zero has a crossing within 2 tol; the strip's middle
+    passes check_pair and is in the region."""
+    import dataclasses
+
+    spec, field, c = _internal(*key)
+    xs = np.linspace(*xr, 61)
+    for y in rows:
+        exact = _zeros(lambda x: _smallest(field, x, y), xs)
+        assert len(exact) == 2, (y, exact)
+        got = xs[0] + _crossings(c.region, np.array([xs[0], y]), np.array([xs[-1], y])) * (xs[-1] - xs[0])
+        near = np.abs(got[:, None] - exact[None, :])
+        assert got.size and near.min(axis=1).max() <= CONTRACT * 1e-3, (y, exact, got)
+        assert near.min(axis=0).max() <= CONTRACT * 1e-3, (y, exact, got)
+        mid = 0.5 * (exact[0] + exact[1])
+        assert check_pair(dataclasses.replace(spec, shift1=float(mid), shift2=float(y))).ok, (y, mid)
+        assert c.in_region(mid, y), (y, mid)
+
+
 @pytest.mark.parametrize("key", sorted(FLAT_STRIPS))
 def test_the_wedges_of_one_margin_meeting_at_its_saddle_are_traced_to_it(key):
     """The same pairs: interference.1's two negative wedges meet at its saddle at (1, 1), each bounded by two

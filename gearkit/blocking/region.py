@@ -24,7 +24,6 @@ SPLIT_DEPTH = 20  #: most self-crossings split out of one loop
 FINE = 41  #: nodes per side of the local grid that looks for the best point of an empty region
 SLIVER = 0.5  #: a loop split off narrower than this fraction of tol on average is a fold (_simple_loops)
 RECONNECT_ROUNDS = 3  #: rounds of re-joining loops cut across a thin part (:func:`reconnect`)
-FOLD_COS = -0.95  #: a joined loop turning back by more than this beside two crossing cuts has a fold there
 PAIR_REACH = 4.0  #: two cuts pair when their middles lie within this many times the longer one apart
 
 
@@ -141,11 +140,10 @@ def reconnect(F, lines, kept, tol: float, refine) -> list:
     rule, 10 tol off): the two loops become one along their lines, their vertices between the chords
     dropped. The lines changed are refined again by ``refine(lines, kept)``
     (:func:`~gearkit.blocking.level.densify`, which adds the chords it finds no zero across to the new
-    ``kept``), round after round (``RECONNECT_ROUNDS``); ``kept`` is extended by their chords kept. Two cuts
-    that cross (two loops overlapping along a strip, 25/59 internal at tol 1e-3) are swapped whatever ``F``
-    between them, the folds of the joined loop beside them taken out. The joined lines still holding a cut
-    that paired with none are refined once more by ``refine(lines, None)``: no cut is then left alone as across a
-    flat strip (:func:`~gearkit.blocking.corners.corner_splits`; a strip's last cut short of its end)."""
+    ``kept``), round after round (``RECONNECT_ROUNDS``); ``kept`` is extended by their chords kept. The
+    joined lines still holding a cut that paired with none are refined once more by ``refine(lines, None)``:
+    no cut is then left alone as across a flat strip (:func:`~gearkit.blocking.corners.corner_splits`; a
+    strip's last cut short of its end: 25/59 internal at tol 1e-3, 5.6 tol off)."""
     todo, joined = list(kept), set()
     for _ in range(RECONNECT_ROUNDS):
         lines, changed = _rejoin(F, lines, todo, tol)
@@ -184,13 +182,11 @@ def _rejoin(F, lines, kept, tol: float):
         side_u = np.sign(D[u, 0] * (gap - P[u])[:, 1] - D[u, 1] * (gap - P[u])[:, 0])
         side_v = np.sign(D[v, 0] * (gap - P[v])[:, 1] - D[v, 1] * (gap - P[v])[:, 0])
         near = np.hypot(*(M[u] - M[v]).T)
-        cross = _crossing(P[u], Q[u], P[v], Q[v])
-        ok = (K[u] == K[v]) & (np.einsum("ij,ij->i", D[u], D[v]) < 0) \
-            & (((side_u == side_v) & (side_u != 0)) | cross) & (near <= PAIR_REACH * np.fmax(L[u], L[v]))
-        u, v, gap, side, near, cross = u[ok], v[ok], gap[ok], side_u[ok], near[ok], cross[ok]
+        ok = (K[u] == K[v]) & (np.einsum("ij,ij->i", D[u], D[v]) < 0) & (side_u == side_v) & (side_u != 0) \
+            & (near <= PAIR_REACH * np.fmax(L[u], L[v]))
+        u, v, gap, side, near = u[ok], v[ok], gap[ok], side_u[ok], near[ok]
         fg = F(gap, K[u]) if u.size else np.zeros(0)
         wrong = np.isfinite(fg) & (np.sign(fg) == -side)  # F there has the sign of the chords' other side
-        wrong |= cross
         held = np.isfinite(fg) & (np.sign(fg) == side)  # ... or of their side: taken twice when in two loops
         for t in np.argsort(near):
             if u[t] in used or v[t] in used:
@@ -198,21 +194,11 @@ def _rejoin(F, lines, kept, tol: float):
             chords = K[u[t]], P[u[t]], Q[u[t]], P[v[t]], Q[v[t]]
             if wrong[t]:
                 used |= {int(u[t]), int(v[t])}
-                lines, changed = _swap(lines, changed, *chords, cross=bool(cross[t]))
+                lines, changed = _swap(lines, changed, *chords)
             elif held[t] and _overlap(lines, *chords):
                 used |= {int(u[t]), int(v[t])}
                 lines, changed = _swap(lines, changed, *chords, side=side[t])
     return lines, sorted(changed)
-
-
-def _crossing(p1, q1, p2, q2) -> np.ndarray:
-    """True where the chords ``p1 -> q1`` and ``p2 -> q2`` (rows) cross inside both."""
-    d1, d2, w = q1 - p1, q2 - p2, p2 - p1
-    den = d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        s = (w[:, 0] * d2[:, 1] - w[:, 1] * d2[:, 0]) / den
-        t = (w[:, 0] * d1[:, 1] - w[:, 1] * d1[:, 0]) / den
-    return (den != 0) & (s > 0) & (s < 1) & (t > 0) & (t < 1)
 
 
 def _overlap(lines, k, p1, q1, p2, q2) -> bool:
@@ -245,16 +231,14 @@ def _replace(lines, changed, drop, new):
     return [lines[m] for m in keep] + new, changed
 
 
-def _swap(lines, changed, k, p1, q1, p2, q2, side=0, cross=False):
+def _swap(lines, changed, k, p1, q1, p2, q2, side=0):
     """The chords ``p1 -> q1`` and ``p2 -> q2`` of closed polylines replaced by ``p1 -> q2`` and
     ``p2 -> q1`` (see :func:`reconnect`). ``side`` (+-1: the part between the chords on their left or
     right, taken by both loops): the loops joined along their lines instead, each loop's vertices
     between the chords dropped, ``q1 ... p1`` becoming ``p2 ... q2`` and ``q2 ... p2`` becoming
-    ``p1 ... q1``. ``cross``: the chords cross (two loops overlapping along a strip, see
-    :func:`reconnect`): the loops joined, and the folds of the joined loop beside the chords, where it ran
-    along the strip's edge past the other chord and back, taken out (:func:`_unfold`)."""
+    ``p1 ... q1``."""
     w1, w2 = locate_chord(lines, k, p1, q1), locate_chord(lines, k, p2, q2)
-    if w1 is None or w2 is None or (cross and w1[0] == w2[0]):
+    if w1 is None or w2 is None:
         return lines, changed
     (m1, j1), (m2, j2) = w1, w2
     if m1 != m2 and side:  # p2, (q1 ... p1 outside the part between), q2, then p1, (q2 ... p2 outside), q1
@@ -268,36 +252,13 @@ def _swap(lines, changed, k, p1, q1, p2, q2, side=0, cross=False):
     elif m1 != m2:  # q1 ... p1 then q2 ... p2, closed at q1
         a, ga = _from(lines[m1], j1)
         b, gb = _from(lines[m2], j2)
-        ring, g = np.vstack([a, b, a[:1]]), np.concatenate([ga, gb, ga[:1]])
-        if cross:
-            c1, c2 = 0.5 * (p1 + q1), 0.5 * (p2 + q2)
-            reach = np.hypot(*(c2 - c1)) + max(np.hypot(*(q1 - p1)), np.hypot(*(q2 - p2)))
-            ring, g = _unfold(ring, g, 0.5 * (c1 + c2), reach)
-        new = [(k, ring, g)]
+        new = [(k, np.vstack([a, b, a[:1]]), np.concatenate([ga, gb, ga[:1]]))]
     else:  # one loop in two: q1 ... p2 closed at q1, q2 ... p1 closed at q2
         a, ga = _from(lines[m1], j1)
         s = (j2 - j1) % (len(lines[m1][1]) - 1)  # q2's place from q1
         new = [(k, np.vstack([a[:s], a[:1]]), np.concatenate([ga[:s], ga[:1]])),
                (k, np.vstack([a[s:], a[s:s + 1]]), np.concatenate([ga[s:], ga[s:s + 1]]))]
     return _replace(lines, changed, {m1, m2}, new)
-
-
-def _unfold(ring, g, centre, reach):
-    """The closed polyline ``ring`` (slopes ``g``) without its folds within ``reach`` of ``centre``: a vertex
-    where the polyline turns back on itself (by more than ``FOLD_COS``) dropped, the sharpest first, until
-    none is left (a run along an edge past a point and back to it goes vertex by vertex)."""
-    p, g = ring[:-1], g[:-1]
-    while len(p) > 3:
-        d1, d2 = p - np.roll(p, 1, axis=0), np.roll(p, -1, axis=0) - p
-        n = np.hypot(*d1.T) * np.hypot(*d2.T)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            cos = np.einsum("ij,ij->i", d1, d2) / n
-        cos[~(n > 0) | (np.hypot(*(p - centre).T) > reach)] = np.inf
-        j = int(np.argmin(cos))
-        if not cos[j] < FOLD_COS:
-            break
-        p, g = np.delete(p, j, axis=0), np.delete(g, j)
-    return np.vstack([p, p[:1]]), np.append(g, g[0])
 
 
 def _outside(a, side, p1, q1, p2, q2):
