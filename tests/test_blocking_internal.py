@@ -166,7 +166,7 @@ def test_gear_1s_no_tooth_shift_is_the_checks_to_round_off(key):
     it, and the interpolant, reaching down to there, gives the generated gear's form circle within its
     own accuracy. (Each point the trace put inside the 3.6e-4 wide bracket on 46/49 generated a gear.)"""
     from gearkit.blocking.arrays import margins
-    from gearkit.blocking.field import FLOOR_HITS
+    from gearkit.blocking.forms import FLOOR_HITS
 
     spec = _ring(key)
     field = PairField(spec, x_ranges=default_window(PairField(spec)))

@@ -91,7 +91,7 @@ def target_rows(ladder):
     from gearkit.blocking.contour import DEFAULT_TOL, blocking_contour
     from gearkit.pair import PairSpec
 
-    from gearkit.blocking.field import forget_generated
+    from gearkit.blocking.forms import forget_generated
 
     rows = []
     for z1, z2 in ((13, 16), (20, 40)):

@@ -11,15 +11,16 @@ arrays (:mod:`gearkit.blocking.arrays`); the region is the map of the check.
 Modules, in the order a contour is made:
 
 * margins: :mod:`~gearkit.blocking.field` (the check as functions of the shifts; lazily per point in
-  :mod:`~gearkit.blocking.point`) and the same on arrays, :mod:`~gearkit.blocking.arrays` with the
-  per-gear :mod:`~gearkit.blocking.gear_arrays` and the internal pair's :mod:`~gearkit.blocking.ring_arrays`;
+  :mod:`~gearkit.blocking.point`; the generated gears' form circles in :mod:`~gearkit.blocking.forms`)
+  and the same on arrays, :mod:`~gearkit.blocking.arrays` with the per-gear
+  :mod:`~gearkit.blocking.gear_arrays` and the internal pair's :mod:`~gearkit.blocking.ring_arrays`;
 * lines: :mod:`~gearkit.blocking.tracing` drives :mod:`~gearkit.blocking.level` (marching squares on
-  the grids of :mod:`~gearkit.blocking.grid`, chords refined until they keep the tolerance, roots and
-  strips in :mod:`~gearkit.blocking.brackets`, kinked corners in :mod:`~gearkit.blocking.corners`);
-  beside the no-pair area, :mod:`~gearkit.blocking.band` on the lattice of
-  :mod:`~gearkit.blocking.lattice`, its edge in :mod:`~gearkit.blocking.edges`; lines the grid cut short
-  carried on by :mod:`~gearkit.blocking.ends`, undercut onsets made exact by
-  :mod:`~gearkit.blocking.onsets`;
+  the grids of :mod:`~gearkit.blocking.grid`, chords refined until they keep the tolerance in
+  :mod:`~gearkit.blocking.refinement`, roots and strips in :mod:`~gearkit.blocking.brackets`, kinked
+  corners in :mod:`~gearkit.blocking.corners`); beside the no-pair area, :mod:`~gearkit.blocking.band`
+  on the lattice of :mod:`~gearkit.blocking.lattice`, its edge in :mod:`~gearkit.blocking.edges`; lines
+  the grid cut short carried on by :mod:`~gearkit.blocking.ends` (continued as the fronts of
+  :mod:`~gearkit.blocking.fronts`), undercut onsets made exact by :mod:`~gearkit.blocking.onsets`;
 * region: :mod:`~gearkit.blocking.region` (polygons where the check passes), its thin wedges traced to
   their tips by :mod:`~gearkit.blocking.tips`;
 * use: :mod:`~gearkit.blocking.contour` (the result and point queries), :mod:`~gearkit.blocking.recommend`,

@@ -1,4 +1,4 @@
-"""Corners of kinked zero sets beside a chord's end: where :func:`~gearkit.blocking.level.densify`'s
+"""Corners of kinked zero sets beside a chord's end: where :func:`~gearkit.blocking.refinement.densify`'s
 measure at a chord's middle does not look.
 
 A zero set with a corner (the smallest of two margins, a tip cut down to what its tool leaves) is

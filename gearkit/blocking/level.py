@@ -11,16 +11,10 @@ where undefined); every step below evaluates all the points it needs, of all the
    it is moved to the root of ``F`` on that edge
    (:func:`~gearkit.blocking.brackets.segment_roots`: regula falsi with the Illinois modification,
    a guard beside a settling estimate and bisection safeguards) to ``tol / 4`` in x.
-3. **Chords on the curve** (:func:`densify`): a chord's deviation from its curve is estimated at
-   its middle ``m`` from ``|F(m)| / |grad F|`` (the slope known from the roots that made its ends);
-   a chord estimated within ``tol / 2`` is kept, any other is measured by a root of ``F`` along its normal
-   through ``m`` and, if that root is more than ``tol`` away, split into as many pieces as its curvature needs
-   (``sqrt(deviation / (tol / 2))``, new vertices solved near the parabola through the three known points),
-   round after round. A chord with no zero at those samples is searched again at distances from its middle
-   falling geometrically to ``tol / 4`` (a strip, a saddle's thin wedge, or beside a region's edge a strip of
-   it, narrower than their spacing); one from one side of a strip to the other (brackets.two_lines) is cut,
-   not split (a zigzag across the strip lost an arm: 46/49's interference.1 beside (1, 1)), its ends carried
-   on (ends). So every point of a polyline lies within about ``1.25 tol`` of its curve; coarser tols cost less.
+3. **Chords on the curve** (:func:`~gearkit.blocking.refinement.densify`): chords split, round after
+   round, until each lies within ``tol`` of its curve (so every point of a polyline lies within about
+   ``1.25 tol`` of it; coarser tols cost less); one from one side of a strip to the other is cut, its
+   ends carried on (:mod:`~gearkit.blocking.ends`).
 
 4. **Saddles the grid got wrong**: loops cut across a thin part re-joined (:func:`~gearkit.blocking.region.reconnect`),
    wedges cut short of their tips carried to them (:func:`~gearkit.blocking.tips.carry_to_tips`).
@@ -29,49 +23,24 @@ The band beside the area where ``F`` is undefined, whose cells the grid masks, i
 lattice of its own and joined to the grid's lines (:mod:`~gearkit.blocking.band`); at the end, an
 open component lying wholly within ``2 tol`` of another of the same curve is dropped (one line at
 that tol).
-
-``F`` may have kinks (e.g. the smallest of several margins); a corner of a zero set is approached
-by splitting the chords beside it until they pass within ``tol``.
 """
 from __future__ import annotations
 
 import numpy as np
 
 from gearkit.blocking.band import band_lines, once
-from gearkit.blocking.brackets import NearestBracket, segment_roots, two_lines
-from gearkit.blocking.corners import corner_splits
-from gearkit.blocking.edges import touchdowns, toward_edge
+from gearkit.blocking.brackets import segment_roots
 from gearkit.blocking.ends import extend_ends
-from gearkit.blocking.grid import bridge_pieces, cut_positions, edge_nodes, on_frame, true_runs
+from gearkit.blocking.grid import bridge_pieces, edge_nodes, on_frame, true_runs
 from gearkit.blocking.onsets import onset_vertices
+from gearkit.blocking.refinement import JUMP_FACTOR, JUMP_FALL, VERTEX_FRACTION, densify
 from gearkit.blocking.region import reconnect
 from gearkit.blocking.tips import carry_to_tips
 
 __all__ = ["zero_lines", "densify"]
 
-VERTEX_FRACTION = 0.25  #: vertices are solved to this fraction of tol
-ESTIMATE_FRACTION = 0.5  #: a chord whose estimated deviation is below this fraction of tol is kept
-SPLIT_FRACTION = 0.75  #: a chord measured farther than this fraction of tol from its curve is split (a
-#: kink of the curve beside the chord's middle lies at most twice as far as the middle: 1.5 tol)
-SLOPE_RATIO = 2.0  #: a chord is estimated only where the slopes at its ends agree within this factor
-STEEP = 1e5  #: ... and below this (beside the no-pair edge F goes as a cube root: an extrapolated zero may be none)
-SPLIT_MEASURED = 0.5  #: the same for measured curves (a region's corners: its zero may be found on a diagonal)
-MAX_ROUNDS = 60  #: rounds of chord splitting
-MAX_PIECES = 64  #: most pieces one chord is split into in one round
-WIDE_REACH = 1.0  #: a chord's second search for its curve reaches this many chord lengths to each side
-RAY_FRACTIONS = (0.125, 0.25, 0.375, 0.5, 0.75, 1.0, 2.0)  #: where the second search samples (x reach)
 BRIDGE_CELLS = 3.0  #: open pieces of one curve whose ends face each other this many cell diagonals apart join
 BRIDGE_COS = 0.5  #: ... when the gap runs within 60 degrees of both ends' directions
-NRAYS = 1  #: directions searched: the normal only (a diagonal ray's zero may lie on the other branch of a
-#: saddle: a chord joining two branches was kept 3.8e-5 off its line at every tol below 1e-4)
-PLAIN = (5, 6)  #: the samples a measured curve's search reads: the reach, then twice it (an acute corner)
-WIDE_REGION = True  #: the wider search for measured curves too
-SHORT_KEEP = 2.5  #: a line's chord this short (tol) with no zero beside it (a saddle's neck) stays: within 1.25 tol
-MEASURED_LADDER = 0.125  #: a measured curve's chord's ladder starts this many chord lengths from its middle
-STRIP_PROBE = 0.5  #: a chord whose middle lies between two zeros is read this many tol beside its ends (two_lines)
-JUMP_FACTOR = 100.0  #: a solved vertex with |F| above this times slope x tol sits on a jump, not a zero
-JUMP_FALL = 0.5  #: ... and |F| there above this fraction of the smaller |F| at the bracket's ends (the
-#: solver keeps the better end: a real zero is far below it at any tol, a pole or a jump is not)
 
 
 def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), kinked=(), onsets=((), ()),
@@ -156,245 +125,3 @@ def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), 
     for k, q in once([(k, q) for k, q, _ in lines], tol, measure):
         out[k].append(q)
     return out
-
-
-def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kinked=(), slopes=False,
-            kept=None, dips=True, loose=None) -> list:
-    """``lines`` (a list of ``(k, points (n, 2), slope (n,))``: curve index, vertices on the curve, and
-    estimates of ``|grad F_k|`` there, NaN if unknown) with vertices added until every chord lies
-    within ``tol`` of its curve and is at most ``max_step`` long (a fourth entry, a mask of the
-    chords still to refine, leaves the others as they are); returns ``[(k, points)]`` (with
-    ``slopes=True``: ``[(k, points, slopes)]``). Curves whose
-    index is in ``measure`` (e.g. the smallest of several functions, whose slope jumps at the kinks)
-    have every chord measured, never estimated; so do the curves in ``kinked`` (a kink between two
-    branches of one margin, e.g. the contact ratio where its limiting end changes: an acute wedge's
-    middle value says nothing of its tip), which are otherwise traced as the rest. ``kept``: a list to
-    which a measured curve's chords with no zero found across them are added as ``(k, start, end)``. ``dips``:
-    lines dipping to the no-pair edge carried to it (:func:`~gearkit.blocking.edges.touchdowns`). ``loose``: a
-    list to which the ends of a line's chords cut are added as ``(k, end, chord length)``, to carry on (ends)."""
-    vtol = VERTEX_FRACTION * tol
-    step = np.inf if not max_step else float(max_step)
-    state = [(ln[0], np.asarray(ln[1], float), np.asarray(ln[2], float),
-              np.asarray(ln[3], bool) if len(ln) > 3 else np.ones(len(ln[1]) - 1, bool)) for ln in lines]
-    n_curves = 1 + max((ln[0] for ln in lines), default=0)
-    trust = np.ones(n_curves, dtype=bool)
-    trust[[k for k in measure if k < n_curves]] = False
-    estimate = trust.copy()
-    estimate[[k for k in kinked if k < n_curves]] = False
-    for _ in range(MAX_ROUNDS):
-        parts = [(n, np.flatnonzero(st[3])) for n, st in enumerate(state) if np.count_nonzero(st[3])]
-        if not parts:
-            break
-        A = np.concatenate([state[n][1][i] for n, i in parts])
-        B = np.concatenate([state[n][1][i + 1] for n, i in parts])
-        gA = np.concatenate([state[n][2][i] for n, i in parts])
-        gB = np.concatenate([state[n][2][i + 1] for n, i in parts])
-        which = np.concatenate([np.full(i.size, state[n][0]) for n, i in parts])
-        d = B - A
-        L = np.hypot(d[:, 0], d[:, 1])
-        nrm = np.column_stack([-d[:, 1], d[:, 0]]) / np.maximum(L, 1e-300)[:, None]
-        m = 0.5 * (A + B)
-        fm = F(m, which)
-        with np.errstate(invalid="ignore"):
-            slope = np.fmin(gA, gB)
-            est = np.abs(fm) / slope
-        live = L > vtol
-        long = L > step
-        with np.errstate(invalid="ignore", divide="ignore"):
-            even = np.fmax(gA, gB) <= SLOPE_RATIO * slope  # a slope that jumps along the chord: a kink
-        keep = ~live | (~long & estimate[which] & even & (slope <= STEEP) & (est <= ESTIMATE_FRACTION * tol)) \
-            | (fm == 0) & ~long
-        # measure the others: the root of F along the normal through the middle
-        meas = np.flatnonzero(~keep & np.isfinite(fm))
-        f0 = fm[meas]
-        mm, nm_, Lm, km = m[meas], nrm[meas], L[meas], which[meas]
-        # the nearest zero from the middle: first along the normal (half a chord to each side), then,
-        # for the chords with none there, sampled rays of a chord's length along the normal and the
-        # diagonals (a ray past a saddle or across a strip narrower than itself crosses two zeros
-        # between its ends; at a saddle's corner the normal only touches zero)
-        best = NearestBracket(mm, f0)
-        out_dir = np.full(mm.shape, np.nan)  # towards the no-pair area, where the normal runs into it
-        strip = estimate[km]  # the middle between two zeros along the normal: in a strip (not a kink's acute wedge)?
-        for sgn in (1.0, -1.0):
-            end = mm + sgn * 0.5 * Lm[:, None] * nm_
-            fe = F(end, km)
-            best.consider(np.arange(meas.size), mm, f0, end, fe)
-            with np.errstate(invalid="ignore"):
-                strip &= np.isfinite(fe) & ((fe > 0) != (f0 > 0))
-            edge = np.flatnonzero(np.isnan(fe) & trust[km])
-            if edge.size:  # into the no-pair area: the zero nearest the middle among samples from its edge up
-                out_dir[edge] = sgn * nm_[edge]
-                lo_e, flo_e, hi_e, fhi_e = toward_edge(F, mm[edge], f0[edge], end[edge], km[edge])
-                best.consider(edge, lo_e, flo_e, hi_e, fhi_e)
-        wide = np.flatnonzero(~best.have & (trust[km] | WIDE_REGION))
-        if wide.size:
-            tg = np.column_stack([nm_[wide, 1], -nm_[wide, 0]])
-            dirs = [sg * dv for dv in (nm_[wide], (nm_[wide] + tg) / np.sqrt(2), (nm_[wide] - tg) / np.sqrt(2))[:NRAYS]
-                    for sg in (1.0, -1.0)]
-            fr = WIDE_REACH * np.asarray(RAY_FRACTIONS)
-            P = np.stack([mm[wide][:, None, :] + (fr[None, :, None] * Lm[wide][:, None, None]) * dv[:, None, :]
-                          for dv in dirs], axis=1)  # (w, rays, samples, 2)
-            V = F(P.reshape(-1, 2), np.repeat(km[wide], len(dirs) * fr.size)).reshape(P.shape[:3])
-            tw = trust[km[wide]]
-            # a measured curve (the region) keeps the plain search: the normal at full reach (twice it
-            # where there is none), and no zero when both sides change sign (a thin part of the region,
-            # not this chord's edge)
-            sides = np.isfinite(V[:, :2]) & ((V[:, :2] > 0) != (f0[wide] > 0)[:, None, None])  # (w, 2, samples)
-            far = ~np.any(sides[:, :, PLAIN[0]], axis=1)  # no zero at the reach: read twice the reach
-            jp = np.where(far, PLAIN[1], PLAIN[0])
-            rw = np.arange(wide.size)
-            both = sides[rw, 0, jp] & sides[rw, 1, jp]
-            for r in range(len(dirs)):  # rays 0, 1: the normal; the others diagonal
-                vs, ps = V[:, r], P[:, r]
-                change = np.isfinite(vs) & ((vs > 0) != (f0[wide] > 0)[:, None])
-                j = np.argmax(change, axis=1)
-                ok = change[rw, j] & np.all(np.isfinite(vs) | (np.arange(fr.size)[None] >= j[:, None]), axis=1)
-                plain = ~tw & (r < 2)
-                j = np.where(plain, jp, j)
-                ok = np.where(plain, change[rw, j] & ~both, ok & tw)
-                prev = np.maximum(j - 1, 0)
-                start = (j > 0) & ~plain
-                lo = np.where(start[:, None], ps[rw, prev], mm[wide])
-                flo = np.where(start, vs[rw, prev], f0[wide])
-                best.consider(wide[ok], lo[ok], flo[ok], ps[rw, j][ok], vs[rw, j][ok], diagonal=r >= 2)
-        thin = np.flatnonzero(~best.have & (Lm > vtol))
-        if thin.size:  # no zero at the samples: a strip narrower than their spacing, searched on a ladder (a
-            meas_t = ~trust[km[thin]]  # measured curve's near its middle, to one side only: a cut meets none or two)
-            best.ladder(F, thin, nm_[thin], np.where(meas_t, MEASURED_LADDER, 0.5) * Lm[thin], km[thin], vtol, meas_t)
-        # a chord from one side of a strip to the other is cut (not split into a zigzag across it), its ends
-        # carried on along their lines (loose: ends)
-        found = best.have & ~two_lines(F, A[meas], B[meas], nm_, km, strip, STRIP_PROBE * tol)
-        root = mm.copy()
-        g_root = np.full(len(mm), np.nan)  # |grad F| at the root, off its last bracket (see zero_lines)
-        if found.any():
-            root[found], g_root[found] = segment_roots(F, best.lo[found], best.end[found], best.flo[found],
-                                                       best.fe[found], vtol, km[found], True)
-            # a "root" through a pole or a jump of F is none: |F| stays large there
-            solved = np.flatnonzero(found)
-            slope_end = np.abs(best.fe[solved] - best.flo[solved]) / np.hypot(*(best.end[solved] - best.lo[solved]).T)
-            fr = np.abs(F(root[solved], km[solved]))
-            bad = (fr > JUMP_FACTOR * slope_end * tol) & (fr > JUMP_FALL * np.fmin(np.abs(best.flo[solved]),
-                                                                               np.abs(best.fe[solved])))
-            found[solved[bad & trust[km[solved]]]] = False
-        off = np.einsum("ij,ij->i", root - m[meas], nrm[meas])
-        # a zero found on a diagonal ray is as far as it lies from the middle (an acute corner beyond it)
-        dev = np.where(best.diagonal, np.hypot(*(root - mm).T), np.abs(off))
-        limit = np.where(trust[km] & even[meas], SPLIT_FRACTION, SPLIT_MEASURED) * tol
-        split_m = found & ((dev > limit) | long[meas])
-        # no zero across a line's chord: two components (a region's loop stays closed), each carried to where
-        # it meets the no-pair area's edge when the chord runs beside it (a line dipping to the edge)
-        lost = np.flatnonzero(~found & live[meas] & trust[which[meas]] & (best.have | (Lm > SHORT_KEEP * tol)))
-        if kept is not None:  # a measured curve's chord with no zero across it: kept as it is, and noted
-            kept += [(int(which[r]), A[r].copy(), B[r].copy()) for r in meas[~found & live[meas] & ~trust[km]]]
-        cut = set(meas[lost].tolist())
-        if loose is not None:  # (k, end, the chord's length: the first step of its continuation)
-            loose += [(int(which[r]), P.copy(), float(L[r])) for r in meas[lost] for P in (A[r], B[r])]
-        touch = {}  # chord row -> (new vertices, the first of the chord to cut)
-        lost = lost[np.isfinite(out_dir[lost, 0])]
-        if lost.size and dips:
-            rr = meas[lost]
-            TA, TB = touchdowns(F, A[rr], B[rr], out_dir[lost], which[rr], vtol)
-            for r, ta, tb in zip(rr.tolist(), TA, TB):
-                new = np.array([t for t in (ta, tb) if np.isfinite(t[0])]).reshape(-1, 2)
-                if len(new):
-                    touch[r] = (new, ta if np.isfinite(ta[0]) else A[r])
-        # chords measured and within tol are kept; chords with no root found are kept as they are
-        inserts = {}  # chord row -> (points (j, 2) ordered along the chord, slopes)
-        rows = meas[split_m]
-        if rows.size:
-            offs, devs = off[split_m], dev[split_m]
-            pieces = np.clip(np.ceil(np.sqrt(devs / (ESTIMATE_FRACTION * tol))), 2, MAX_PIECES).astype(int)
-            pieces = np.maximum(pieces, np.ceil(L[rows] / step).astype(int) if np.isfinite(step) else 2)
-            pieces = np.minimum(pieces, MAX_PIECES)
-            # a measured curve (kinks of a smallest-of) is split at its middle only: the parabola
-            # does not predict the points beside a corner
-            pieces = np.where(trust[which[rows]] & ~best.diagonal[split_m], pieces, 2)
-            # interior points at t = j / pieces, solved along the normal near the parabola's offset
-            r_idx = np.repeat(np.arange(rows.size), pieces - 1)
-            j = np.concatenate([np.arange(1, p) for p in pieces])
-            tt = j / pieces[r_idx]
-            keep_mid = np.abs(tt - 0.5) > 1e-12
-            r_idx, tt = r_idx[keep_mid], tt[keep_mid]
-            row = rows[r_idx]
-            base = A[row] + tt[:, None] * d[row]
-            pred = 4.0 * offs[r_idx] * tt * (1 - tt)
-            nn = nrm[row]
-            lo_p, hi_p = base - 0.5 * pred[:, None] * nn, base + 2.0 * pred[:, None] * nn
-            if len(row):
-                flo = F(lo_p, which[row])
-                fhi = F(hi_p, which[row])
-                okb = np.isfinite(flo) & np.isfinite(fhi) & ((flo > 0) != (fhi > 0))
-                pts, gs = np.full(lo_p.shape, np.nan), np.full(len(row), np.nan)
-                if okb.any():
-                    pts[okb], gs[okb] = segment_roots(F, lo_p[okb], hi_p[okb], flo[okb], fhi[okb], vtol,
-                                                      which[row][okb], True)
-            else:
-                okb = np.zeros(0, bool)
-                pts, gs = np.zeros((0, 2)), np.zeros(0)
-            mid_rows = np.flatnonzero(split_m)
-            # each chord's new vertices (the solved ones and its middle's root) ordered along it, all at once
-            own = np.concatenate([r_idx[okb], np.arange(rows.size)])
-            order = np.lexsort((np.concatenate([tt[okb], np.full(rows.size, 0.5)]), own))
-            ps_all = np.concatenate([pts[okb], root[mid_rows]])[order]
-            gg_all = np.concatenate([gs[okb], g_root[mid_rows]])[order]
-            ends = np.searchsorted(own[order], np.arange(rows.size + 1))
-            for q, rr in enumerate(rows):
-                inserts[rr] = (ps_all[ends[q]:ends[q + 1]], gg_all[ends[q]:ends[q + 1]])
-        # write back: per polyline, insert new vertices after their chord's start
-        base_row = 0
-        cuts = {}
-        for n, idx in parts:
-            k, p, g, todo = state[n]
-            todo = todo.copy()
-            chord_rows = np.arange(base_row, base_row + idx.size)
-            base_row += idx.size
-            new_p, new_g, new_t = [], [], []
-            last = 0
-            for c, r in zip(idx, chord_rows):
-                if r in touch:  # its new vertices, then cut after the first end's
-                    ps, at = touch[r]
-                    inserts[r] = (ps, np.full(len(ps), np.nan))
-                    cuts.setdefault(n, []).append(at)
-                elif r in cut:
-                    todo[c] = False
-                    cuts.setdefault(n, []).append(p[c])
-                    continue
-                if r in inserts:
-                    ps, gg = inserts[r]
-                    new_p.append(p[last:c + 1])
-                    new_g.append(g[last:c + 1])
-                    new_t.append(todo[last:c])
-                    new_t.append(np.ones(len(ps) + 1, bool))
-                    new_p.append(ps)
-                    new_g.append(gg)
-                    last = c + 1
-                else:
-                    todo[c] = False
-            if last:
-                new_p.append(p[last:])
-                new_g.append(g[last:])
-                new_t.append(todo[last:])
-                p, g, todo = np.concatenate(new_p), np.concatenate(new_g), np.concatenate(new_t)
-            state[n] = (k, p, g, todo)
-        for n, chords in cuts.items():  # positions of cut chords after this round's insertions
-            k, p, g, todo = state[n]
-            at = cut_positions(p, chords)
-            pieces = np.split(np.arange(len(p)), [i + 1 for i in at])
-            first = True
-            for piece in pieces:
-                if len(piece) < 2:
-                    continue
-                entry = (k, p[piece], g[piece], todo[piece[:-1]])
-                if first:
-                    state[n], first = entry, False
-                else:
-                    state.append(entry)
-            if first:
-                state[n] = (k, p[:1], g[:1], np.zeros(0, bool))
-    out = [(st[0], st[1], st[2]) for st in state if len(st[1]) >= 2]
-    corners = set(kinked) | set(measure)
-    again = corner_splits(F, out, tol, corners, SPLIT_FRACTION * tol, VERTEX_FRACTION * tol, kept or ())
-    if again:  # the polylines that got a vertex beside a corner: densified again
-        done = [out[n] if slopes else out[n][:2] for n in range(len(out)) if n not in again]
-        return done + densify(F, [out[n] for n in sorted(again)], tol, max_step, measure, kinked, slopes, kept)
-    return out if slopes else [(k, p) for k, p, _ in out]

@@ -16,7 +16,7 @@ import numpy as np
 
 from gearkit.blocking.brackets import NearestBracket, segment_roots
 from gearkit.blocking.edges import toward_edge
-from gearkit.blocking.field import FORM_GAP
+from gearkit.blocking.forms import FORM_GAP
 
 __all__ = ["onset_vertices", "undercut_onsets"]
 

@@ -130,7 +130,7 @@ def reconnect(F, lines, kept, tol: float, refine) -> list:
     narrower than a grid cell, a strip or a neck between two corners, that marching squares cut across
     (33/78 at tol 1e-5: a strip of interference.2 0.02 wide cut 0.01 off its edges; 21/52: the neck of
     the interference.1 saddle at (1, -1), where the check forgives 1e-9, cut 5e-5 off). Each cut is a
-    chord of ``kept`` (no zero across it, see :func:`~gearkit.blocking.level.densify`) longer than
+    chord of ``kept`` (no zero across it, see :func:`~gearkit.blocking.refinement.densify`) longer than
     ``tol``. Two of them, ``P1 -> Q1`` and ``P2 -> Q2``, running opposite ways with each on the same
     side of the other, where ``F`` halfway between their middles has the sign of the other side (the
     polylines leave out, or take in, the part between them), become ``P1 -> Q2`` and ``P2 -> Q1`` (two
@@ -139,7 +139,7 @@ def reconnect(F, lines, kept, tol: float, refine) -> list:
     1e-3: a strip of the region cut across twice, the part between the cuts left out by the even-odd
     rule, 10 tol off): the two loops become one along their lines, their vertices between the chords
     dropped. The lines changed are refined again by ``refine(lines, kept)``
-    (:func:`~gearkit.blocking.level.densify`, which adds the chords it finds no zero across to the new
+    (:func:`~gearkit.blocking.refinement.densify`, which adds the chords it finds no zero across to the new
     ``kept``), round after round (``RECONNECT_ROUNDS``); ``kept`` is extended by their chords kept. The
     joined lines still holding a cut that paired with none are refined once more by ``refine(lines, None)``:
     no cut is then left alone as across a flat strip (:func:`~gearkit.blocking.corners.corner_splits`; a

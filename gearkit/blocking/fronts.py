@@ -1,0 +1,262 @@
+"""Fronts: line ends carried along their lines by predictor-corrector continuation (for
+:func:`~gearkit.blocking.ends.extend_ends`, which picks the ends and assembles the lines).
+
+A front goes on until
+
+* it meets another end of the same function heading back along it: the two join. The arms of a
+  saddle join in the pairs ``F`` connects (a step never flips the side on which ``F`` is positive,
+  as going straight through a crossing would): where ``F`` at the saddle is not exactly zero (the
+  check forgives 1e-9 m_n there), the two branches of the zero set turn off before the saddle,
+  and the joined arms follow them;
+* it runs onto a piece of the same line traced already (it joins that piece's end there, or stops; a
+  long step onto a line running across it has passed a saddle onto another branch: it is halved);
+* its step shrinks below ``tol / 4`` (a line that ends: the edge where ``F`` is undefined), or
+* it reaches the window's frame.
+
+Each step predicts along the tangent and looks for the zero along the normal through the
+prediction (:func:`~gearkit.blocking.edges.across`: samples shrinking geometrically, the nearest
+sign change with ``F`` positive on the same side as before, solved to ``tol / 4``); a step that
+turns by more than ``TURN_DEG`` or finds no zero is halved. The new chords are then refined to
+``tol`` like the others (:func:`~gearkit.blocking.refinement.densify`).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from gearkit.blocking.brackets import segment_roots
+from gearkit.blocking.edges import across, step_ends
+
+__all__ = ["run_fronts", "start_fronts"]
+
+TURN_DEG = 30.0  #: a step turning more than this is halved
+ACROSS = "across"  #: a step that ran onto another line of the same function across its path
+ONTO = "onto"  #: a step that ran onto a piece of its line traced already, with no end of it to join there
+MAX_STEPS = 400  #: steps of one front
+
+
+def start_fronts(F, starts, recs, eps, hmax) -> list:
+    """Fronts ``[rec, end, point, tangent, sigma, step, budget]`` for ``starts`` (rec, end, point,
+    tangent[, budget]): sigma is the sign of ``F`` to the left of the direction of travel (0:
+    unknown); a front that runs farther than its budget (inf: none) is given up."""
+    if not starts:
+        return []
+    P0 = np.array([s[2] for s in starts])
+    T0 = np.array([s[3] for s in starts])
+    K0 = np.array([recs[s[0]][0] for s in starts])
+    N0 = np.column_stack([-T0[:, 1], T0[:, 0]])
+    V = F(np.concatenate([P0 + eps * N0, P0 - eps * N0]), np.tile(K0, 2)).reshape(2, -1)
+    sig = np.where(np.isfinite(V[0]) & np.isfinite(V[1]), np.sign(V[0] - V[1]),
+                   np.where(np.isfinite(V[0]), np.sign(V[0]), -np.sign(V[1])))
+    return [[r, end, st[2].copy(), st[3].copy(), float(s) if np.isfinite(s) else 0.0, hmax,
+             st[4] if len(st) > 4 else math.inf] for st, s in zip(starts, sig) for r, end in [st[:2]]]
+
+
+def run_fronts(F, front, new, recs, joins, geo):
+    """Carry the fronts ``new`` (appended to ``front``; the earlier ones stay there to be met) until
+    each has joined another, stopped or reached the window's frame. ``recs``: the lines, each
+    ``[k, points, slopes, head, tail]`` (the points a front adds at its start / end are appended to
+    ``head`` / ``tail``); ``joins``: the pairs of ends ``((rec, end), (rec, end))`` joined are appended
+    to it; ``geo``: ``(span, vtol, longest step, window lo, window hi, tol)``."""
+    span, vtol, hmax, lo, hi, tol = geo
+    first = len(front)
+    front += new
+    active = [False] * first + [f[4] != 0 for f in new]
+    turn = math.cos(math.radians(TURN_DEG))
+    for _ in range(MAX_STEPS):
+        act = [i for i, a in enumerate(active) if a]
+        if not act:
+            break
+        _join(F, front, active, act, recs, joins, span, vtol)
+        act = [i for i in act if active[i]]
+        if act:  # the frame: no step past it (every front's distance to it along its tangent at once)
+            T = np.array([front[i][3] for i in act])
+            P = np.array([front[i][2] for i in act])
+            with np.errstate(divide="ignore", invalid="ignore"):
+                lim = np.where(T > 0, (hi - P) / T, np.where(T < 0, (lo - P) / T, np.inf)).min(axis=1)
+            for i, m in zip(act, lim.tolist()):
+                f = front[i]
+                f[5] = min(f[5], m)
+                if f[5] <= vtol:
+                    active[i] = False
+        act = [i for i in act if active[i]]
+        if act:
+            _step(F, front, act, active, recs, joins, vtol, span, hmax, turn, lo, hi)
+
+
+def _join(F, front, active, act, recs, joins, span, close):
+    """Join fronts that meet: another end of the same function within both steps, each ahead of
+    the other, with ``F`` changing sign within a quarter of their distance from the middle of the
+    chord between them, on the side the fronts expect (or within ``close`` of each other). Two
+    such fronts not joinable yet halve their steps towards each other, so as not to pass."""
+    cand = []
+    for i in act:
+        fi = front[i]
+        for j, fj in enumerate(front):
+            if j == i or recs[fj[0]][0] != recs[fi[0]][0] or fj[4] != -fi[4]:
+                continue
+            if fj[0] == fi[0] and not (recs[fi[0]][3] or recs[fi[0]][4]):
+                continue  # the two fronts of one point that has not moved
+            d = fj[2] - fi[2]
+            L = float(np.hypot(*d))
+            if L > fi[5] + fj[5] or np.dot(fi[3], fj[3]) > 0:
+                continue
+            if L <= close:
+                cand.append((-1.0, i, j))  # met: joined as they are
+            elif np.dot(d, fi[3]) > 0 and np.dot(d, fj[3]) < 0:
+                cand.append((L, i, j))
+    if not cand:
+        return
+    cand.sort()
+    met = [c for c in cand if c[0] < 0]
+    cand = [c for c in cand if c[0] >= 0]
+    used = set()
+    for _, i, j in met:
+        if i not in used and j not in used:
+            joins.append(((front[i][0], front[i][1]), (front[j][0], front[j][1])))
+            active[i] = active[j] = False
+            front[i][4] = front[j][4] = 0.0
+            used |= {i, j}
+    cand = [c for c in cand if c[1] not in used and c[2] not in used]
+    if not cand:
+        return
+    Q = np.array([0.5 * (front[i][2] + front[j][2]) for _, i, j in cand])
+    D = np.array([front[j][2] - front[i][2] for _, i, j in cand])
+    N = np.column_stack([-D[:, 1], D[:, 0]]) / np.hypot(*D.T)[:, None]
+    reach = 0.25 * np.array([L for L, _, _ in cand])
+    sig = np.array([front[i][4] for _, i, _ in cand])
+    which = np.array([recs[front[i][0]][0] for _, i, _ in cand])
+    found = [c >= 0 for _, _, c in across(F, Q, N, reach, sig, which, span)]
+    for (L, i, j), ok in zip(cand, found):
+        if i in used or j in used or not (active[i] or active[j]):
+            continue
+        if ok:
+            joins.append(((front[i][0], front[i][1]), (front[j][0], front[j][1])))
+            active[i] = active[j] = False
+            front[i][4] = front[j][4] = 0.0  # joined: no longer a candidate
+            used |= {i, j}
+        else:
+            front[i][5] = min(front[i][5], 0.5 * L)
+
+
+def _step(F, front, act, active, recs, joins, vtol, span, hmax, turn, lo, hi):
+    """One predictor-corrector step of the fronts ``act``."""
+    T = np.array([front[i][3] for i in act])
+    P = np.array([front[i][2] for i in act])
+    h = np.array([front[i][5] for i in act])
+    Q, out, E, ahead = step_ends(F, P, T, h, np.array([recs[front[i][0]][0] for i in act]), span, vtol / 4)
+    if out.size:  # the prediction left the defined area: the step ends just before its edge
+        h = h[out]
+        for r, q in zip(out, E):
+            f = front[act[r]]
+            f[5] = float(np.dot(q - P[r], T[r]))
+            Q[r] = P[r] + f[5] * T[r]
+        # a line running along the edge, closer to it than vtol where its tangent meets it: predicted on
+        # the edge a whole step ahead instead (moved back to it along the normal), and corrected from there
+        along = np.flatnonzero(np.array([front[act[r]][5] < vtol for r in out]))
+        for r, q, hh in zip(out[along], ahead[along], h[along]):
+            if np.isfinite(q[0]):
+                Q[r], front[act[r]][5] = q, float(hh)
+        stop = [act[r] for r in out if front[act[r]][5] < vtol]
+        for i in stop:
+            active[i] = False
+        keep = [r for r in range(len(act)) if act[r] not in stop]
+        act, T, P, Q = [act[r] for r in keep], T[keep], P[keep], Q[keep]
+        if not act:
+            return
+    N = np.column_stack([-T[:, 1], T[:, 0]])
+    sig = np.array([front[i][4] for i in act])
+    which = np.array([recs[front[i][0]][0] for i in act])
+    reach = np.array([front[i][5] for i in act])
+    lo_p, hi_p, flo, fhi, ks, who = [], [], [], [], [], []
+    for r, (i, (s, v, c)) in enumerate(zip(act, across(F, Q, N, reach, sig, which, span, vtol / 4))):
+        f = front[i]
+        if c < 0:
+            f[5] *= 0.5
+            if f[5] < vtol:
+                active[i] = False
+            continue
+        lo_p.append(Q[r] + s[c] * N[r]), hi_p.append(Q[r] + s[c + 1] * N[r])
+        flo.append(v[c]), fhi.append(v[c + 1]), ks.append(which[r]), who.append(i)
+    if not who:
+        return
+    R = segment_roots(F, np.array(lo_p), np.array(hi_p), np.array(flo), np.array(fhi), vtol, np.array(ks))
+    for i, r in zip(who, R):
+        f = front[i]
+        d = r - f[2]
+        L = float(np.hypot(*d))
+        if L <= 0 or np.dot(d, f[3]) < turn * L or np.any(r < lo - vtol) or np.any(r > hi + vtol):
+            f[5] *= 0.5
+            if f[5] < vtol:
+                active[i] = False
+            continue
+        close = 8 * vtol
+        hit = _collides(i, r, d / L, L, front, active, recs, joins, close, turn)
+        # a long step onto another branch, across the line's path (past a saddle), or onto a piece with no end
+        # to join there (it may have passed a saddle onto a branch at a small angle to its own): shorter
+        if hit == ACROSS or hit == ONTO and L > close:
+            f[5] *= 0.5
+            continue
+        if hit is True:
+            continue
+        f[6] -= L
+        if f[6] < 0:  # carried towards the edge farther than it lay: not a line that meets it there
+            recs[f[0]][3 + f[1]].clear()
+            active[i], f[4] = False, 0.0
+            continue
+        recs[f[0]][3 + f[1]].append(r)
+        if hit == ONTO:  # a short step onto a piece traced already with no end to join: it stops there
+            active[i] = False
+            continue
+        f[2], f[3] = r, d / L
+        f[5] = min(2 * f[5], hmax)
+
+
+def _collides(i, r, u, L, front, active, recs, joins, close, turn):
+    """True when front ``i``'s next point ``r`` (a step of length ``L`` along ``u``) lies within
+    ``close`` of a line of the same function traced already (another record): the front has run
+    onto it. It joins that line's nearest open end within ``2 L`` (heading back); with none to join,
+    ``ONTO``: a step no longer than ``close`` is taken and the front stops there, a longer one is halved (a
+    line cut on both sides of a loop's or a wedge's turn, whose front ran onto the piece the grid traced
+    round the turn as a loop of its own or with its end beside the no-pair edge, not carried: 14/55's
+    sliding, 56/59's interference.1, stopped where they stood 0.05 to 0.09 short of it; taken whole, a
+    step of two cells passed 58/63's saddle at (1, 1) onto the other branch). ``ACROSS``
+    when the step is longer than ``close`` and that line runs across it (at more than the angle
+    whose cosine is ``turn``): a step past a saddle onto another branch, whose side of ``F`` the
+    front's orientation cannot tell from its own there (25/58's interference.2 beside (-1, 1),
+    where F is 1e-9: the arms of the upper branch stopped on the lower one, 0.02 apart at tol 1e-5);
+    the front is not stopped."""
+    from gearkit.chords import chord_distance
+
+    f = front[i]
+    k = recs[f[0]][0]
+    for rr, (kk, p, _, hd, tl) in enumerate(recs):
+        if kk != k or rr == f[0]:
+            continue
+        q = np.vstack([np.reshape(hd[::-1], (-1, 2)), p, np.reshape(tl, (-1, 2))])
+        if len(q) < 2:
+            continue
+        dist = float(np.min(chord_distance(q[:-1], q[1:], r)))  # (one point: every chord at once, exact)
+        if dist > close:
+            continue
+        if L > close:
+            t = np.diff(q, axis=0)  # the line's chord nearest to r: its direction there
+            n2 = np.einsum("ij,ij->i", t, t)
+            with np.errstate(invalid="ignore", divide="ignore"):
+                w = np.clip(np.einsum("ij,ij->i", r - q[:-1], t) / n2, 0.0, 1.0)
+            j = int(np.nanargmin(np.hypot(*(q[:-1] + np.nan_to_num(w)[:, None] * t - r).T)))
+            if n2[j] > 0 and abs(float(np.dot(t[j], u))) < turn * math.sqrt(n2[j]):
+                return ACROSS
+        ends = [j for j, g in enumerate(front) if g[0] == rr and g[4] == -f[4] and g[4] != 0
+                and float(np.hypot(*(g[2] - f[2]))) <= 2 * L]
+        if not ends:
+            return ONTO
+        j = min(ends, key=lambda j: float(np.hypot(*(front[j][2] - f[2]))))
+        joins.append(((f[0], f[1]), (front[j][0], front[j][1])))
+        active[j] = False
+        front[j][4] = 0.0
+        f[4] = 0.0
+        active[i] = False
+        return True
+    return False
