@@ -409,3 +409,30 @@ def test_a_corner_beyond_the_windows_edge_is_not_the_regions():
         assert len(got) == 1 and abs(got[0] - exact[0]) <= CONTRACT * tol, (y, exact, got)
         x = float(exact[0] - 3 * tol)
         assert check_pair(dataclasses.replace(spec, shift1=x, shift2=y)).ok and c.in_region(x, y), (x, y)
+
+
+@pytest.mark.parametrize("key, tip, slope, rows", [((52, 75, 15), (0.3276, -0.1119), 0.904, (-0.083, -0.03, 0.01, 0.02, 0.03)),
+                                                   ((41, 80, 19), (0.2143, -0.5706), 0.919, (-0.5, -0.435, -0.42, -0.405))])
+def test_a_link_of_a_strips_chain_another_loop_holds_is_not_taken_twice(key, tip, slope, rows):
+    """52/75 (shaper z0 15) and 41/80 (z0 19) internal at tol 1e-3: a wedge of the region between interference.1
+    and exit jamming, narrower than a grid cell, where the tip sweep's margin is flat; the grid saw a chain of
+    diamonds along it. The loop beyond the chain was refined down the wedge over one diamond, which paired with
+    no cut, was carried to the wedge's tip and overlapped the other loop there: the part taken twice was left
+    out (12.5 and 11.4 tol off). On rows through the wedge every crossing of the polygons lies within 2 tol of a
+    zero of the check's smallest hard margin (brentq) and every zero has a crossing within 2 tol; the wedge's
+    middle passes check_pair and is in the region."""
+    import dataclasses
+
+    spec, field, c = _internal(*key)
+    for y in rows:
+        xc = tip[0] + slope * (y - tip[1])
+        xs = np.linspace(xc - 0.02, xc + 0.02, 41)
+        exact = _zeros(lambda x: _smallest(field, x, y), xs)
+        assert len(exact) == 2, (y, exact)
+        got = xs[0] + _crossings(c.region, np.array([xs[0], y]), np.array([xs[-1], y])) * (xs[-1] - xs[0])
+        near = np.abs(got[:, None] - exact[None, :])
+        assert got.size and near.min(axis=1).max() <= CONTRACT * 1e-3, (y, exact, got)
+        assert near.min(axis=0).max() <= CONTRACT * 1e-3, (y, exact, got)
+        mid = 0.5 * (exact[0] + exact[1])
+        assert check_pair(dataclasses.replace(spec, shift1=float(mid), shift2=float(y))).ok, (y, mid)
+        assert c.in_region(mid, y), (y, mid)
