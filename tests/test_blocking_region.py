@@ -322,6 +322,22 @@ def test_a_flat_strip_joined_across_its_cuts_has_no_loop_left_inside(key, rows, 
     (8.1 and 4.2 tol off). On rows through the strip every crossing of the polygons lies within 2 tol of a zero of
     the check's smallest hard margin (brentq) and every zero has a crossing within 2 tol; the strip's middle
     passes check_pair and is in the region."""
+    _rows_meet_the_strips_edges(key, rows, xr)
+
+
+@pytest.mark.parametrize("key, rows, xr", [((38, 61, 16), (0.09, 0.097, 0.1, 0.104), (0.50, 0.575)),
+                                           ((30, 82, 27), (-0.705, -0.712, -0.716, -0.719), (0.30, 0.37))])
+def test_a_piece_of_a_flat_strip_taken_twice_is_no_hole(key, rows, xr):
+    """38/61 (shaper z0 16) and 30/82 (z0 27) internal at tol 1e-3: the same kind of flat strip, a chain of grid
+    diamonds, one of them taken along the strip's edges past the next one's cut, so that the next one's piece of
+    the strip (a loop of six or seven vertices across it near (0.535, 0.095) and (0.33, -0.715)) lay inside it and
+    the even-odd rule cut it out as a hole (7.9 and 5.5 tol off). On rows through that piece every crossing of the
+    polygons lies within 2 tol of a zero of the check's smallest hard margin (brentq) and every zero has a crossing
+    within 2 tol; the strip's middle passes check_pair and is in the region."""
+    _rows_meet_the_strips_edges(key, rows, xr)
+
+
+def _rows_meet_the_strips_edges(key, rows, xr):
     import dataclasses
 
     spec, field, c = _internal(*key)
