@@ -1,7 +1,8 @@
-"""The admissible region beside a wedge of its outside, internal pairs at tol 1e-3, against the check's own
-scalar margins (``PairField.margin``: the zeros of the smallest hard margin solved by brentq) and
-``check_pair``: every crossing of the region's polygons on a row lies within 2 tol of a zero, every zero
-has a crossing within 2 tol, and points on either side are in the region exactly where the check passes.
+"""The admissible region beside a wedge of its outside and where two margins vanish on one line, internal
+pairs at tol 1e-3, against the check's own scalar margins (``PairField.margin``: the zeros of the smallest
+hard margin solved by brentq) and ``check_pair``: every crossing of the region's polygons on a row lies
+within 2 tol of a zero, every zero has a crossing within 2 tol, and points on either side are in the
+region exactly where the check passes.
 """
 import dataclasses
 import functools
@@ -62,3 +63,27 @@ def test_a_strip_beside_a_wedge_of_the_outside_keeps_its_edge(y):
         assert _passes(spec, x, y) == inside, (x, y)
         assert c.in_region(x, y) == inside, (x, y)
 
+
+def test_two_margins_vanishing_on_one_line_have_no_corner_along_it():
+    """21/65 (shaper z0 21): tip_clearance.1 and interference.2 both vanish on the line x1 = 0 above
+    x2 = 1.566 (the region's edge there, its side x1 < 0), where tip_clearance.1's zero turns along
+    x2 = 1.566; the outline's vertices along the line bind one or the other by which side of it they lie on.
+    A corner between them was solved from a chord 0.68 up the line (Newton's steps along two parallel lines
+    ran down it to the region's corner), the outline carried down there and back, and what was left cut the
+    corner from (0.0059, 1.566) to (0, 2.347) (2.9 tol off, points beside the line on its wrong side in the
+    region). On rows across the line and columns across x2 = 1.566 beside the corner the polygons cross
+    only at the zeros; beside the line the region agrees with check_pair."""
+    spec, field, c = _internal(21, 65, 21)
+    xs = np.linspace(-0.02, 0.02, 41)
+    for y in (1.58, 1.7, 1.9, 2.1, 2.3):
+        exact = _zeros(lambda x: _smallest(field, x, y), xs)
+        assert len(exact) == 1, (y, exact)
+        _matched(c.region, np.array([xs[0], y]), np.array([xs[-1], y]), exact - xs[0])
+        for x, inside in ((exact[0] - 2 * TOL, True), (exact[0] + 2 * TOL, False)):
+            assert _passes(spec, x, y) == inside, (x, y)
+            assert c.in_region(x, y) == inside, (x, y)
+    ys = np.linspace(1.5, 1.65, 31)
+    for x in (0.001, 0.003, 0.005, 0.01):
+        exact = _zeros(lambda y: _smallest(field, x, y), ys)
+        assert len(exact) == 1, (x, exact)
+        _matched(c.region, np.array([x, ys[0]]), np.array([x, ys[-1]]), exact - ys[0])

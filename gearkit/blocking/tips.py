@@ -38,6 +38,8 @@ __all__ = ["part_evaluator", "crossings", "meetings", "carry_to_tips"]
 NEWTON_ITERATIONS = 40  #: most Newton steps to a tip
 STEP_H = 1e-7  #: forward difference of the parts' gradients (shift units; their round-off is ~1e-15)
 REACH = 0.25  #: a tip lies within this fraction of the window's diagonal of the chord's end
+CROSSING_SIN = 1e-5  #: two zero lines at a smaller angle (its sine) are parallel to the gradients' accuracy
+#: (forward differences, STEP_H: about 1e-7 on lines that coincide)
 
 
 def part_evaluator(field, window, count=None):
@@ -106,7 +108,12 @@ def crossings(G, x0, ia, ib, vtol: float, reach: float):
     """The crossings of ``G_ia = 0`` and ``G_ib = 0`` nearest ``x0`` (``(n, 2)``; ``ia``, ``ib`` ``(n,)``
     part indices) by Newton's method in the plane (gradients by forward differences), each step at most
     ``reach`` long: ``(points (n, 2), converged (n,) bool)``; converged where the last step was below
-    ``vtol / 4`` and both parts lie within ``vtol`` (their value over their slope) of zero."""
+    ``vtol / 4`` and both parts lie within ``vtol`` (their value over their slope) of zero; failed where a step
+    starts from two lines parallel to the gradients' accuracy (the sine of their angle below ``CROSSING_SIN``):
+    there no crossing is near, and the step runs along them to wherever (21/65 z0 21 internal: tip_clearance.1
+    and interference.2 both vanish on x1 = 0 above x2 = 1.566; from a chord 0.68 up the line, whose ends bound
+    one and the other, the steps ran down it to the region's corner, and the outline was carried there and
+    back, then cut the corner 5.9 tol off)."""
     x = np.array(x0, dtype=float).reshape(-1, 2)
     n = len(x)
     ok = np.ones(n, bool)
@@ -120,20 +127,22 @@ def crossings(G, x0, ia, ib, vtol: float, reach: float):
         W = np.concatenate([np.tile(ia[act], 3), np.tile(ib[act], 3)])
         fa0, fax, fay, fb0, fbx, fby = G(P, W).reshape(6, act.size)
         j00, j01, j10, j11 = (fax - fa0) / STEP_H, (fay - fa0) / STEP_H, (fbx - fb0) / STEP_H, (fby - fb0) / STEP_H
+        ga, gb = np.hypot(j00, j01), np.hypot(j10, j11)
         with np.errstate(invalid="ignore", divide="ignore"):
             det = j00 * j11 - j01 * j10
             dx = -(j11 * fa0 - j01 * fb0) / det
             dy = -(j00 * fb0 - j10 * fa0) / det
             s = np.hypot(dx, dy)
             scale = np.minimum(1.0, reach / s)
-        bad = ~(np.isfinite(s) & np.isfinite(fa0) & np.isfinite(fb0))
+            parallel = ~(np.abs(det) >= CROSSING_SIN * ga * gb)  # a step along two parallel lines goes nowhere
+        bad = ~(np.isfinite(s) & np.isfinite(fa0) & np.isfinite(fb0)) | parallel
         ok[act[bad]] = False
         good = ~bad
         step = np.column_stack([dx, dy])[good] * scale[good, None]
         x[act[good]] = xa[good] + step
         with np.errstate(invalid="ignore", divide="ignore"):
-            near = (s[good] <= 0.25 * vtol) & (np.abs(fa0[good]) <= vtol * np.hypot(j00, j01)[good]) \
-                & (np.abs(fb0[good]) <= vtol * np.hypot(j10, j11)[good])
+            near = (s[good] <= 0.25 * vtol) & (np.abs(fa0[good]) <= vtol * ga[good]) \
+                & (np.abs(fb0[good]) <= vtol * gb[good])
         done[act[good][near]] = True
     return x, ok & done
 
