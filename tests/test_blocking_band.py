@@ -235,3 +235,38 @@ def test_a_line_beside_a_steep_edge_is_traced_to_the_frame_past_the_lattice(z1, 
                       for t in _zeros_from_edge(lambda t: c.field.margin(name, -t, x2), -0.7, -0.5, -0.5)])
     assert len(zeros) >= len(x2s)  # the oracle sees the line on every row
     assert _farthest(zeros, c.line(name).components) <= CONTRACT * tol
+
+
+def test_a_band_run_beside_an_unrefined_grid_chord_is_that_line():
+    """40/105 internal (shaper z0 33) at tol 1e-5: contact ratio 1 runs beside the no-pair edge, in and out
+    of grid cells with an undefined corner. For a stretch the band's run lay 6 tol beside a grid chord (not
+    refined yet) of the same line, was taken for another line, and took the grid line's end: the band's run
+    beyond was left unjoined, and the line had a gap of 0.11 from (0.696, -0.611) to (0.773, -0.527). On rows
+    across the gap, from x1 = 0.62 to the no-pair edge, the traced line crosses each row once, within 2 tol of
+    the zero of the check's contact ratio margin (brentq), and check_pair passes 3 tol before it and fails 3 tol
+    beyond."""
+    import dataclasses
+
+    from scipy.optimize import brentq
+
+    from gearkit.checks import check_pair
+
+    tol = 1e-5
+    spec = PairSpec(40, 105, 1.0, kind="internal", tool2=ShaperCutter(33))
+    c = blocking_contour(spec, tol=tol, lines=["contact_ratio=1"])
+    for y in np.linspace(-0.61, -0.53, 9):
+        xs = np.linspace(0.62, 0.84, 45)
+        v = np.array([c.field.margin("contact_ratio=1", float(x), float(y)) for x in xs])
+        xs, v = xs[np.isfinite(v)], v[np.isfinite(v)]  # up to the no-pair edge
+        i = np.flatnonzero((v[:-1] >= 0) != (v[1:] >= 0))
+        assert len(i) == 1, (y, v)
+        exact = brentq(lambda x: c.field.margin("contact_ratio=1", x, float(y)), xs[i[0]], xs[i[0] + 1], xtol=1e-13)
+        got = []
+        for q in c.line("contact_ratio=1").components:
+            a, b = q[:-1], q[1:]
+            s = (y - a[:, 1]) / np.where(b[:, 1] != a[:, 1], b[:, 1] - a[:, 1], np.nan)
+            x = a[:, 0] + s * (b[:, 0] - a[:, 0])
+            got += x[(s >= 0) & (s < 1) & (x >= xs[0]) & (x <= xs[-1])].tolist()
+        assert len(got) == 1 and abs(got[0] - exact) <= CONTRACT * tol, (y, exact, got)
+        for x, ok in ((exact - 3 * tol, True), (exact + 3 * tol, False)):
+            assert check_pair(dataclasses.replace(spec, shift1=float(x), shift2=float(y))).ok == ok, (x, y)

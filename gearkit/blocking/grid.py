@@ -12,7 +12,10 @@ from __future__ import annotations
 import numpy as np
 
 __all__ = ["grid_values", "sign_cells", "refine_grid", "edge_nodes", "bridge_pieces", "true_runs", "on_frame",
-           "cut_positions"]
+           "cut_positions", "beside_chords"]
+
+BESIDE = 0.25  #: a point farther than this many chord lengths from a chord is not on the curve it stands for
+BESIDE_SAMPLES = 16  #: samples on the way from the chord to the point (and as far beyond it)
 
 
 def grid_values(F, xs, ys, which: int = 0) -> np.ndarray:
@@ -142,3 +145,35 @@ def cut_positions(p, starts):
         if hits.size:
             out.append(int(hits[0]))
     return sorted(set(out))
+
+
+def beside_chords(F, k, q, line, close: float) -> np.ndarray:
+    """True for each point of ``q`` (zeros of ``F_k``) that lies on the curve a chord of the polyline ``line``
+    (vertices on that curve, chords not yet refined) stands for: within ``close`` of it, or, where the
+    chord nearest the point is up to ``BESIDE`` of its length from it, no zero of ``F_k`` on the way from
+    the chord to the point (short of ``close`` before it) nor as far on the chord's other side: the
+    zero nearest the chord there is the point's.
+
+    >>> F = lambda p, k: (p[:, 1] - 0.2 * p[:, 0] ** 2) * (p[:, 1] + 0.1)  # zeros y = 0.2 x^2 and y = -0.1
+    >>> line = np.array([[-1.0, 0.2], [1.0, 0.2]])  # a chord of the parabola
+    >>> beside_chords(F, 0, np.array([[0.0, 0.0], [0.5, 0.05], [0.0, -0.1]]), line, 1e-3).tolist()
+    [True, True, False]
+    """
+    a, b = line[:-1], line[1:]
+    d = b - a
+    L2 = np.maximum(np.einsum("ij,ij->i", d, d), 1e-300)
+    t = np.clip(np.einsum("mij,ij->mi", q[:, None, :] - a[None], d) / L2, 0.0, 1.0)
+    foot = a[None] + t[:, :, None] * d[None]
+    dist = np.hypot(*(q[:, None, :] - foot).transpose(2, 0, 1))
+    j = np.argmin(dist, axis=1)
+    m = np.arange(len(q))
+    c, gap = foot[m, j], dist[m, j]
+    out = gap <= close
+    ask = np.flatnonzero(~out & (gap <= BESIDE * np.sqrt(L2[j])))
+    if ask.size:
+        u = np.linspace(0.0, 1.0, BESIDE_SAMPLES + 1)[None, :]
+        s = np.hstack([np.repeat(-u[:, :0:-1], ask.size, axis=0), u * (1.0 - close / gap[ask])[:, None]])
+        P = c[ask][:, None, :] + s[:, :, None] * (q[ask] - c[ask])[:, None, :]
+        V = F(P.reshape(-1, 2), np.full(P.shape[0] * P.shape[1], k)).reshape(P.shape[:2])
+        out[ask] = np.all(np.isfinite(V), axis=1) & (np.all(V > 0, axis=1) | np.all(V < 0, axis=1))
+    return out
