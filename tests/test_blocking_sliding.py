@@ -145,3 +145,30 @@ def test_a_chord_through_the_legs_crossing_at_a_small_angle_is_measured_on_its_l
             probed += 1
     assert probed >= 6
     assert deviation(c) <= CONTRACT * tol
+
+
+def test_a_chord_its_line_crosses_at_the_middle_is_refined():
+    """25/54 internal (shaper z0 20) at tol 1e-5: between the grid rows x2 = -0.583 and -0.667 the sliding line
+    bends one way and then the other, crossing the grid's chord there (0.098 long) at its middle, so the chord
+    was estimated on its line at its middle and kept, 4 tol off its line at a quarter and 7.3 tol at three
+    quarters. On rows across it, the traced line crosses each row once, within 2 tol of the zero of the check's
+    sliding margin (brentq)."""
+    from gearkit.families.involute import ShaperCutter
+
+    tol = 1e-5
+    spec = PairSpec(25, 54, 1.0, kind="internal", tool2=ShaperCutter(20))
+    field = PairField(spec)
+    c = blocking_contour(spec, tol=tol, lines=["sliding"])
+    xs = np.linspace(-0.2, -0.03, 18)
+    for y in np.linspace(-0.665, -0.59, 16):
+        v = np.array([field.margin("sliding", float(x), float(y)) for x in xs])
+        i = np.flatnonzero((v[:-1] >= 0) != (v[1:] >= 0))
+        assert len(i) == 1, (y, v)
+        exact = brentq(lambda x: field.margin("sliding", x, float(y)), xs[i[0]], xs[i[0] + 1], xtol=1e-13)
+        got = []
+        for q in c.line("sliding").components:
+            a, b = q[:-1], q[1:]
+            s = (y - a[:, 1]) / np.where(b[:, 1] != a[:, 1], b[:, 1] - a[:, 1], np.nan)
+            x = a[:, 0] + s * (b[:, 0] - a[:, 0])
+            got += x[(s >= 0) & (s < 1) & (x >= xs[0]) & (x <= xs[-1])].tolist()
+        assert len(got) == 1 and abs(got[0] - exact) <= 2.0 * tol, (y, exact, got)
