@@ -452,3 +452,31 @@ def test_a_link_of_a_strips_chain_another_loop_holds_is_not_taken_twice(key, tip
         mid = 0.5 * (exact[0] + exact[1])
         assert check_pair(dataclasses.replace(spec, shift1=float(mid), shift2=float(y))).ok, (y, mid)
         assert c.in_region(mid, y), (y, mid)
+
+
+def test_a_link_of_a_strips_chain_carried_to_the_tip_beside_another_is_not_taken_twice():
+    """52/75 internal (shaper z0 15) at tol 1e-5: the same wedge; its chain's last link near (0.354, -0.083), too far
+    from the next one's cut to pair with it, was carried to the wedge's tip, where the other loop was carried too,
+    and the part the two took twice was left out (215 tol off). On rows through that link and below it every
+    crossing of the polygons lies within 2 tol of a zero of the check's smallest hard margin (brentq) and every
+    zero has a crossing within 2 tol; the wedge's middle passes check_pair and is in the region."""
+    import dataclasses
+
+    from gearkit.families.involute import ShaperCutter
+
+    tol = 1e-5
+    spec = PairSpec(52, 75, 1.0, kind="internal", tool2=ShaperCutter(15))
+    field = PairField(spec)
+    c = blocking_contour(spec, tol=tol, lines=[])
+    for y in (-0.1, -0.09, -0.085, -0.083, -0.08):
+        xc = 0.3276 + 0.904 * (y + 0.1119)
+        xs = np.linspace(xc - 0.01, xc + 0.01, 41)
+        exact = _zeros(lambda x: _smallest(field, x, y), xs)
+        assert len(exact) == 2, (y, exact)
+        got = xs[0] + _crossings(c.region, np.array([xs[0], y]), np.array([xs[-1], y])) * (xs[-1] - xs[0])
+        near = np.abs(got[:, None] - exact[None, :])
+        assert got.size and near.min(axis=1).max() <= CONTRACT * tol, (y, exact, got)
+        assert near.min(axis=0).max() <= CONTRACT * tol, (y, exact, got)
+        mid = 0.5 * (exact[0] + exact[1])
+        assert check_pair(dataclasses.replace(spec, shift1=float(mid), shift2=float(y))).ok, (y, mid)
+        assert c.in_region(mid, y), (y, mid)

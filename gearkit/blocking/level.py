@@ -34,7 +34,7 @@ from gearkit.blocking.ends import extend_ends
 from gearkit.blocking.grid import bridge_pieces, edge_nodes, on_frame, true_runs
 from gearkit.blocking.onsets import onset_vertices
 from gearkit.blocking.refinement import JUMP_FACTOR, JUMP_FALL, VERTEX_FRACTION, densify
-from gearkit.blocking.region import reconnect
+from gearkit.blocking.region import drop_covered, reconnect
 from gearkit.blocking.tips import carry_to_tips
 
 __all__ = ["zero_lines", "densify"]
@@ -122,6 +122,7 @@ def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), 
     if parts is not None and measure:  # the region's chords still across a wedge or a strip: its edge (tips)
         lines = carry_to_tips(F, parts, lines, kept, measure[0], tol,  # (a side is taken whole or not at all)
                               lambda g, ls: densify(g, ls, tol, max_step, (), range(g.size), dips=False))
+        lines = drop_covered(lines, kept, tol)  # a link carried to the tip another loop was carried to
     for k, q in once([(k, q) for k, q, _ in lines], tol, measure):
         out[k].append(q)
     return out

@@ -19,7 +19,7 @@ from gearkit.blocking.grid import grid_values
 from gearkit.distances import edge_distances
 
 __all__ = ["padded_grid", "pad", "orient_loops", "inside_polygons", "polygon_area", "best_point", "reconnect",
-           "locate_chord"]
+           "locate_chord", "drop_covered"]
 
 SPLIT_DEPTH = 20  #: most self-crossings split out of one loop
 FINE = 41  #: nodes per side of the local grid that looks for the best point of an empty region
@@ -145,7 +145,7 @@ def reconnect(F, lines, kept, tol: float, refine) -> list:
     joined lines still holding a cut that paired with none are refined once more by ``refine(lines, None)``:
     no cut is then left alone as across a flat strip (:func:`~gearkit.blocking.corners.corner_splits`; a
     strip's last cut short of its end: 25/59 internal at tol 1e-3, 5.6 tol off). A loop holding a cut that lies
-    inside another loop of the same sense is dropped (:func:`_uncovered`): its part is held already."""
+    inside another loop of the same sense is dropped (:func:`drop_covered`): its part is held already."""
     todo, joined = list(kept), set()
     for _ in range(RECONNECT_ROUNDS):
         lines, changed = _rejoin(F, lines, todo, tol)
@@ -160,18 +160,20 @@ def reconnect(F, lines, kept, tol: float, refine) -> list:
         & {n for n, (_, q, _) in enumerate(lines) if id(q) in joined}
     if left:  # a joined loop's cuts not re-joined: refined with none left alone (no flat strip across them)
         lines = [lines[n] for n in range(len(lines)) if n not in left] + refine([lines[n] for n in sorted(left)], None)
-    return _uncovered(lines, kept, tol)
+    return drop_covered(lines, kept, tol)
 
 
-def _uncovered(lines, kept, tol: float) -> list:
+def drop_covered(lines, kept, tol: float) -> list:
     """``lines`` without the loops holding a cut (a chord of ``kept``) that lie inside another closed
     polyline of their curve of the same sense (``F`` positive inside both, or negative inside both) with
     none of the other sense between: a link of the grid's chain of diamonds along a strip narrower than a
     grid cell whose part another loop's line, refined down the strip (or re-joined along it), already
     holds. Taken twice, the part would be left out by the even-odd rule (52/75 and 41/80 internal at tol
-    1e-3: the link was then carried to the wedge's tip beside the other, 12.5 and 11.4 tol off). Inside:
-    every vertex and chord middle inside the other or within ``tol`` of its outline, the vertices' mean
-    inside it."""
+    1e-3: the link was then carried to the wedge's tip beside the other, 12.5 and 11.4 tol off). Again once
+    the wedges are carried to their tips (:func:`~gearkit.blocking.tips.carry_to_tips`): a link too far from
+    the next one's cut to pair with it, carried to the tip the other loop was carried to (52/75 at tol 1e-5,
+    215 tol off). Inside: every vertex and chord middle inside the other or within ``tol`` of its outline,
+    the vertices' mean inside it."""
     closed = [n for n, (_, q, _) in enumerate(lines) if len(q) > 3 and np.array_equal(q[0], q[-1])]
     links = {w[0] for w in (locate_chord(lines, k, a, b) for k, a, b in kept) if w is not None}
     area = {n: polygon_area(lines[n][1]) for n in closed}
