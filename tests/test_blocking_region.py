@@ -120,6 +120,37 @@ def test_the_neck_of_a_saddle_is_not_cut_through():
     assert check_pair(PairSpec(21, 52, 1.0, 1.0, -1.0)).ok and c.in_region(1.0, -1.0)
 
 
+def test_a_neck_the_point_halfway_between_its_cuts_misses_is_not_cut_through():
+    """55/102 internal (shaper z0 34) at tol 1e-5: interference.1's saddle at (1, 1), +1e-9 there, leaves a neck
+    1.4e-4 wide between the tips of its two negative wedges, each 1e-4 from it. The cuts across the neck and
+    those across the wedges were told apart by the margin halfway between their middles, which lay 2.3e-4 off
+    the saddle, in a wedge: the region was left in two loops closed across the neck (810 tol off). On rows
+    through both wedges every crossing of the polygons lies within 2 tol of a zero of the check's smallest hard
+    margin (brentq) and every zero has one; each wedge's middle fails check_pair and is outside the region, and
+    the saddle passes it and is inside."""
+    import dataclasses
+
+    from gearkit.families.involute import ShaperCutter
+
+    tol = 1e-5
+    spec = PairSpec(55, 102, 1.0, kind="internal", tool2=ShaperCutter(34))
+    field = PairField(spec)
+    c = blocking_contour(spec, tol=tol, lines=[])
+    xs = np.linspace(0.99, 1.01, 201)
+    for y in 1.0 + np.array([-2e-3, -5e-4, -2e-4, 0.0, 2e-4, 5e-4, 2e-3]):
+        exact = _zeros(lambda x: _smallest(field, x, y), xs)
+        assert len(exact) == (0 if y == 1.0 else 2), (y, exact)
+        got = xs[0] + _crossings(c.region, np.array([xs[0], y]), np.array([xs[-1], y])) * (xs[-1] - xs[0])
+        assert len(got) == len(exact), (y, exact, got)
+        if len(exact):
+            near = np.abs(got[:, None] - exact[None, :])
+            assert near.min(axis=1).max() <= CONTRACT * tol and near.min(axis=0).max() <= CONTRACT * tol, (y, exact, got)
+            mid = 0.5 * (exact[0] + exact[1])
+            assert not check_pair(dataclasses.replace(spec, shift1=float(mid), shift2=float(y))).ok, (mid, y)
+            assert not c.in_region(mid, y), (mid, y)
+    assert check_pair(dataclasses.replace(spec, shift1=1.0, shift2=1.0)).ok and c.in_region(1.0, 1.0)
+
+
 def _edge(field, name, y, lo, hi) -> float:
     """The zero of the check's margin ``name`` on the row x2 = ``y`` between x1 = ``lo`` and ``hi`` (brentq)."""
     return brentq(lambda x: field.margin(name, x, y), lo, hi, xtol=1e-14)
