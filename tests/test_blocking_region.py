@@ -368,21 +368,28 @@ def test_a_piece_of_a_flat_strip_taken_twice_is_no_hole(key, rows, xr):
     _rows_meet_the_strips_edges(key, rows, xr)
 
 
-def _rows_meet_the_strips_edges(key, rows, xr):
+def _row_crosses_the_strip(spec, field, c, y, xs, tol):
+    """On the row ``y`` over ``xs``: the check's smallest hard margin has two zeros (brentq), every crossing of
+    the region's polygons lies within 2 tol of one and each has a crossing within 2 tol; the middle between them
+    passes check_pair and is in the region."""
     import dataclasses
 
+    exact = _zeros(lambda x: _smallest(field, x, y), xs)
+    assert len(exact) == 2, (y, exact)
+    got = xs[0] + _crossings(c.region, np.array([xs[0], y]), np.array([xs[-1], y])) * (xs[-1] - xs[0])
+    near = np.abs(got[:, None] - exact[None, :])
+    assert got.size and near.min(axis=1).max() <= CONTRACT * tol, (y, exact, got)
+    assert near.min(axis=0).max() <= CONTRACT * tol, (y, exact, got)
+    mid = 0.5 * (exact[0] + exact[1])
+    assert check_pair(dataclasses.replace(spec, shift1=float(mid), shift2=float(y))).ok, (y, mid)
+    assert c.in_region(mid, y), (y, mid)
+
+
+def _rows_meet_the_strips_edges(key, rows, xr):
     spec, field, c = _internal(*key)
     xs = np.linspace(*xr, 61)
     for y in rows:
-        exact = _zeros(lambda x: _smallest(field, x, y), xs)
-        assert len(exact) == 2, (y, exact)
-        got = xs[0] + _crossings(c.region, np.array([xs[0], y]), np.array([xs[-1], y])) * (xs[-1] - xs[0])
-        near = np.abs(got[:, None] - exact[None, :])
-        assert got.size and near.min(axis=1).max() <= CONTRACT * 1e-3, (y, exact, got)
-        assert near.min(axis=0).max() <= CONTRACT * 1e-3, (y, exact, got)
-        mid = 0.5 * (exact[0] + exact[1])
-        assert check_pair(dataclasses.replace(spec, shift1=float(mid), shift2=float(y))).ok, (y, mid)
-        assert c.in_region(mid, y), (y, mid)
+        _row_crosses_the_strip(spec, field, c, y, xs, 1e-3)
 
 
 @pytest.mark.parametrize("key", sorted(FLAT_STRIPS))
@@ -468,21 +475,10 @@ def test_a_link_of_a_strips_chain_another_loop_holds_is_not_taken_twice(key, tip
     out (12.5 and 11.4 tol off). On rows through the wedge every crossing of the polygons lies within 2 tol of a
     zero of the check's smallest hard margin (brentq) and every zero has a crossing within 2 tol; the wedge's
     middle passes check_pair and is in the region."""
-    import dataclasses
-
     spec, field, c = _internal(*key)
     for y in rows:
         xc = tip[0] + slope * (y - tip[1])
-        xs = np.linspace(xc - 0.02, xc + 0.02, 41)
-        exact = _zeros(lambda x: _smallest(field, x, y), xs)
-        assert len(exact) == 2, (y, exact)
-        got = xs[0] + _crossings(c.region, np.array([xs[0], y]), np.array([xs[-1], y])) * (xs[-1] - xs[0])
-        near = np.abs(got[:, None] - exact[None, :])
-        assert got.size and near.min(axis=1).max() <= CONTRACT * 1e-3, (y, exact, got)
-        assert near.min(axis=0).max() <= CONTRACT * 1e-3, (y, exact, got)
-        mid = 0.5 * (exact[0] + exact[1])
-        assert check_pair(dataclasses.replace(spec, shift1=float(mid), shift2=float(y))).ok, (y, mid)
-        assert c.in_region(mid, y), (y, mid)
+        _row_crosses_the_strip(spec, field, c, y, np.linspace(xc - 0.02, xc + 0.02, 41), 1e-3)
 
 
 def test_a_link_of_a_strips_chain_carried_to_the_tip_beside_another_is_not_taken_twice():
@@ -491,8 +487,6 @@ def test_a_link_of_a_strips_chain_carried_to_the_tip_beside_another_is_not_taken
     and the part the two took twice was left out (215 tol off). On rows through that link and below it every
     crossing of the polygons lies within 2 tol of a zero of the check's smallest hard margin (brentq) and every
     zero has a crossing within 2 tol; the wedge's middle passes check_pair and is in the region."""
-    import dataclasses
-
     from gearkit.families.involute import ShaperCutter
 
     tol = 1e-5
@@ -501,13 +495,4 @@ def test_a_link_of_a_strips_chain_carried_to_the_tip_beside_another_is_not_taken
     c = blocking_contour(spec, tol=tol, lines=[])
     for y in (-0.1, -0.09, -0.085, -0.083, -0.08):
         xc = 0.3276 + 0.904 * (y + 0.1119)
-        xs = np.linspace(xc - 0.01, xc + 0.01, 41)
-        exact = _zeros(lambda x: _smallest(field, x, y), xs)
-        assert len(exact) == 2, (y, exact)
-        got = xs[0] + _crossings(c.region, np.array([xs[0], y]), np.array([xs[-1], y])) * (xs[-1] - xs[0])
-        near = np.abs(got[:, None] - exact[None, :])
-        assert got.size and near.min(axis=1).max() <= CONTRACT * tol, (y, exact, got)
-        assert near.min(axis=0).max() <= CONTRACT * tol, (y, exact, got)
-        mid = 0.5 * (exact[0] + exact[1])
-        assert check_pair(dataclasses.replace(spec, shift1=float(mid), shift2=float(y))).ok, (y, mid)
-        assert c.in_region(mid, y), (y, mid)
+        _row_crosses_the_strip(spec, field, c, y, np.linspace(xc - 0.01, xc + 0.01, 41), tol)
