@@ -30,6 +30,17 @@ def zeros_from_edge(f, lo, hi, top, distances):
     return out
 
 
+def row_crossings(components, y, lo, hi):
+    """Where the polylines ``components`` cross the row ``y`` between ``lo`` and ``hi`` (x, in order met)."""
+    got = []
+    for q in components:
+        a, b = q[:-1], q[1:]
+        s = (y - a[:, 1]) / np.where(b[:, 1] != a[:, 1], b[:, 1] - a[:, 1], np.nan)
+        x = a[:, 0] + s * (b[:, 0] - a[:, 0])
+        got += x[(s >= 0) & (s < 1) & (x >= lo) & (x <= hi)].tolist()
+    return got
+
+
 def move_solved_edges(monkeypatch, ulps):
     """Every edge point the edge search solves (``edges.by_slack``) moved ``ulps`` ulps towards the
     defined end of its segment (positive) or the undefined one (negative), for this test."""

@@ -24,7 +24,7 @@ from gearkit.distances import distances_to_polyline
 from gearkit.families.involute import ShaperCutter
 from gearkit.pair import PairSpec
 
-from edgezeros import zeros_from_edge
+from edgezeros import row_crossings, zeros_from_edge
 
 CONTRACT = 2.0  #: achieved / tol (issue 19)
 COLUMNS = 80  #: columns x1 = const across the window
@@ -261,12 +261,7 @@ def test_a_band_run_beside_an_unrefined_grid_chord_is_that_line():
         i = np.flatnonzero((v[:-1] >= 0) != (v[1:] >= 0))
         assert len(i) == 1, (y, v)
         exact = brentq(lambda x: c.field.margin("contact_ratio=1", x, float(y)), xs[i[0]], xs[i[0] + 1], xtol=1e-13)
-        got = []
-        for q in c.line("contact_ratio=1").components:
-            a, b = q[:-1], q[1:]
-            s = (y - a[:, 1]) / np.where(b[:, 1] != a[:, 1], b[:, 1] - a[:, 1], np.nan)
-            x = a[:, 0] + s * (b[:, 0] - a[:, 0])
-            got += x[(s >= 0) & (s < 1) & (x >= xs[0]) & (x <= xs[-1])].tolist()
+        got = row_crossings(c.line("contact_ratio=1").components, float(y), xs[0], xs[-1])
         assert len(got) == 1 and abs(got[0] - exact) <= CONTRACT * tol, (y, exact, got)
         for x, ok in ((exact - 3 * tol, True), (exact + 3 * tol, False)):
             assert check_pair(dataclasses.replace(spec, shift1=float(x), shift2=float(y))).ok == ok, (x, y)

@@ -20,6 +20,8 @@ from gearkit.distances import distances_to_polyline
 from gearkit.errors import SpecError
 from gearkit.pair import PairSpec
 
+from edgezeros import row_crossings
+
 CONTRACT = 2.0  #: achieved / tol (issue 19)
 CROSSING_12_30 = (0.38812051, -1.2461073)  #: where the legs cross, 1.95e-3 (in x1 + x2) above the no-pair edge
 ANGLES = 1440  #: samples on a circle around it
@@ -165,10 +167,5 @@ def test_a_chord_its_line_crosses_at_the_middle_is_refined():
         i = np.flatnonzero((v[:-1] >= 0) != (v[1:] >= 0))
         assert len(i) == 1, (y, v)
         exact = brentq(lambda x: field.margin("sliding", x, float(y)), xs[i[0]], xs[i[0] + 1], xtol=1e-13)
-        got = []
-        for q in c.line("sliding").components:
-            a, b = q[:-1], q[1:]
-            s = (y - a[:, 1]) / np.where(b[:, 1] != a[:, 1], b[:, 1] - a[:, 1], np.nan)
-            x = a[:, 0] + s * (b[:, 0] - a[:, 0])
-            got += x[(s >= 0) & (s < 1) & (x >= xs[0]) & (x <= xs[-1])].tolist()
+        got = row_crossings(c.line("sliding").components, float(y), xs[0], xs[-1])
         assert len(got) == 1 and abs(got[0] - exact) <= 2.0 * tol, (y, exact, got)
