@@ -18,7 +18,8 @@ Modules, in the order a contour is made:
   the grids of :mod:`~gearkit.blocking.grid`, chords refined until they keep the tolerance in
   :mod:`~gearkit.blocking.refinement`, roots and strips in :mod:`~gearkit.blocking.brackets`, kinked
   corners in :mod:`~gearkit.blocking.corners`); beside the no-pair area, :mod:`~gearkit.blocking.band`
-  on the lattice of :mod:`~gearkit.blocking.lattice`, its edge in :mod:`~gearkit.blocking.edges`; lines
+  on the lattice of :mod:`~gearkit.blocking.lattice`, its edge in :mod:`~gearkit.blocking.edges`, its
+  pieces joined to the grid's lines by :mod:`~gearkit.blocking.joins`; lines
   the grid cut short carried on by :mod:`~gearkit.blocking.ends` (continued as the fronts of
   :mod:`~gearkit.blocking.fronts`), undercut onsets made exact by :mod:`~gearkit.blocking.onsets`;
 * region: :mod:`~gearkit.blocking.region` (polygons where the check passes), its thin wedges traced to
