@@ -1,0 +1,129 @@
+"""The tip of a wedge of the admissible region, solved in the plane (for :mod:`~gearkit.blocking.tips`).
+
+Where the region ends in a wedge, its tip is where two zero lines meet: the crossing of two parts'
+zero lines (:func:`crossings`: Newton's method in the plane, gradients by forward differences), or,
+where the wedge's sides are two branches of one part's zero set meeting at its saddle, where those
+branches meet (:func:`meetings`: their tangents crossed, the ends moved halfway to that estimate and
+back onto their lines, round after round). Each function ``G(points (n, 2), which (n,) int) -> (n,)``
+is a part of the region's function (:func:`~gearkit.blocking.tips.part_evaluator`); every step is
+bounded by ``reach``, and a solve that does not converge says so.
+
+>>> import numpy as np
+>>> P = lambda p, k: np.where(k == 0, p[:, 1] - 0.1 * p[:, 0], 0.2 * p[:, 0] - p[:, 1])  # a wedge, tip (0, 0)
+>>> T, ok = crossings(P, np.array([[1.0, 0.1]]), np.array([0]), np.array([1]), 1e-9, 10.0)
+>>> bool(ok[0]), bool(np.hypot(*T[0]) < 1e-9)
+(True, True)
+"""
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["crossings", "meetings", "NEWTON_ITERATIONS", "STEP_H", "CROSSING_SIN"]
+
+NEWTON_ITERATIONS = 40  #: most Newton steps to a tip
+STEP_H = 1e-7  #: forward difference of the parts' gradients (shift units; their round-off is ~1e-15)
+CROSSING_SIN = 1e-5  #: two zero lines at a smaller angle (its sine) are parallel to the gradients' accuracy
+#: (forward differences, STEP_H: about 1e-7 on lines that coincide)
+
+
+def crossings(G, x0, ia, ib, vtol: float, reach: float):
+    """The crossings of ``G_ia = 0`` and ``G_ib = 0`` nearest ``x0`` (``(n, 2)``; ``ia``, ``ib`` ``(n,)``
+    part indices) by Newton's method in the plane (gradients by forward differences), each step at most
+    ``reach`` long: ``(points (n, 2), converged (n,) bool)``; converged where the last step was below
+    ``vtol / 4`` and both parts lie within ``vtol`` (their value over their slope) of zero; failed where a step
+    starts from two lines parallel to the gradients' accuracy (the sine of their angle below ``CROSSING_SIN``):
+    there no crossing is near, and the step runs along them to wherever (21/65 z0 21 internal: tip_clearance.1
+    and interference.2 both vanish on x1 = 0 above x2 = 1.566; from a chord 0.68 up the line, whose ends bound
+    one and the other, the steps ran down it to the region's corner, and the outline was carried there and
+    back, then cut the corner 5.9 tol off)."""
+    x = np.array(x0, dtype=float).reshape(-1, 2)
+    n = len(x)
+    ok = np.ones(n, bool)
+    done = np.zeros(n, bool)
+    for _ in range(NEWTON_ITERATIONS):
+        act = np.flatnonzero(ok & ~done)
+        if not act.size:
+            break
+        xa = x[act]
+        P = np.concatenate([xa, xa + [STEP_H, 0.0], xa + [0.0, STEP_H]] * 2)
+        W = np.concatenate([np.tile(ia[act], 3), np.tile(ib[act], 3)])
+        fa0, fax, fay, fb0, fbx, fby = G(P, W).reshape(6, act.size)
+        j00, j01, j10, j11 = (fax - fa0) / STEP_H, (fay - fa0) / STEP_H, (fbx - fb0) / STEP_H, (fby - fb0) / STEP_H
+        ga, gb = np.hypot(j00, j01), np.hypot(j10, j11)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            det = j00 * j11 - j01 * j10
+            dx = -(j11 * fa0 - j01 * fb0) / det
+            dy = -(j00 * fb0 - j10 * fa0) / det
+            s = np.hypot(dx, dy)
+            scale = np.minimum(1.0, reach / s)
+            parallel = ~(np.abs(det) >= CROSSING_SIN * ga * gb)  # a step along two parallel lines goes nowhere
+        bad = ~(np.isfinite(s) & np.isfinite(fa0) & np.isfinite(fb0)) | parallel
+        ok[act[bad]] = False
+        good = ~bad
+        step = np.column_stack([dx, dy])[good] * scale[good, None]
+        x[act[good]] = xa[good] + step
+        with np.errstate(invalid="ignore", divide="ignore"):
+            near = (s[good] <= 0.25 * vtol) & (np.abs(fa0[good]) <= vtol * ga[good]) \
+                & (np.abs(fb0[good]) <= vtol * gb[good])
+        done[act[good][near]] = True
+    return x, ok & done
+
+
+def meetings(G, A, B, which, vtol: float, reach: float):
+    """Where the zero lines of part ``which[i]`` through ``A[i]`` and through ``B[i]`` meet (``(n, 2)``
+    each): the tip of a wedge whose two sides are branches of one part's zero set, crossing at its saddle
+    (interference.1's wedges meeting at (1, 1)), where :func:`crossings` has no second part to solve
+    against. Each round the two lines' tangents (``G`` linearised at ``A`` and ``B``) cross at the tip's
+    estimate ``T``; ``A`` and ``B`` move halfway to it and back onto their lines (Newton steps along the
+    gradient), so the estimate is made ever nearer the tip. ``(points (n, 2), converged (n,) bool)``:
+    converged where both ends came within ``vtol`` of ``T``, every step at most ``reach`` from the start.
+
+    >>> P = lambda p, k: (p[:, 1] - 0.1 * p[:, 0]) * (p[:, 1] - 0.3 * p[:, 0])  # a wedge, its sides meeting at (0, 0)
+    >>> T, ok = meetings(P, np.array([[1.0, 0.1]]), np.array([[1.0, 0.3]]), np.array([0]), 1e-9, 10.0)
+    >>> bool(ok[0]), bool(np.hypot(*T[0]) < 1e-9)
+    (True, True)
+    """
+    a = np.array(A, dtype=float).reshape(-1, 2)
+    b = np.array(B, dtype=float).reshape(-1, 2)
+    start = 0.5 * (a + b)
+    n = len(a)
+    T = np.full((n, 2), np.nan)
+    ok = np.ones(n, bool)
+    done = np.zeros(n, bool)
+
+    def value_grad(p, k):  # central differences: exact for a quadratic, as a part is beside its saddle
+        f0, fx, fy, bx, by = G(np.concatenate([p, p + [STEP_H, 0.0], p + [0.0, STEP_H], p - [STEP_H, 0.0],
+                                               p - [0.0, STEP_H]]), np.tile(k, 5)).reshape(5, -1)
+        return f0, np.column_stack([fx - bx, fy - by]) / (2 * STEP_H)
+
+    def onto(p, k):  # Newton steps along the gradient back onto the zero line
+        for _ in range(4):
+            f, g = value_grad(p, k)
+            with np.errstate(invalid="ignore", divide="ignore"):
+                p = p - (f / np.einsum("ij,ij->i", g, g))[:, None] * g
+        return p
+
+    for _ in range(NEWTON_ITERATIONS):
+        act = np.flatnonzero(ok & ~done)
+        if not act.size:
+            break
+        k = which[act]
+        fa, ga = value_grad(a[act], k)
+        fb, gb = value_grad(b[act], k)
+        ra = np.einsum("ij,ij->i", ga, a[act]) - fa
+        rb = np.einsum("ij,ij->i", gb, b[act]) - fb
+        with np.errstate(invalid="ignore", divide="ignore"):
+            det = ga[:, 0] * gb[:, 1] - ga[:, 1] * gb[:, 0]
+            t = np.column_stack([(ra * gb[:, 1] - rb * ga[:, 1]) / det, (ga[:, 0] * rb - gb[:, 0] * ra) / det])
+        good = np.all(np.isfinite(t), axis=1) & (np.hypot(*(t - start[act]).T) <= reach)
+        ok[act[~good]] = False
+        act, t = act[good], t[good]
+        T[act] = t
+        near = (np.hypot(*(a[act] - t).T) <= vtol) & (np.hypot(*(b[act] - t).T) <= vtol)
+        done[act[near]] = True
+        act, t = act[~near], t[~near]
+        if act.size:
+            a[act] = onto(0.5 * (a[act] + t), which[act])
+            b[act] = onto(0.5 * (b[act] + t), which[act])
+            ok[act[~(np.all(np.isfinite(a[act]), axis=1) & np.all(np.isfinite(b[act]), axis=1))]] = False
+    return T, ok & done
