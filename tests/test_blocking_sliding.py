@@ -3,7 +3,7 @@
 Its margin |zeta1| - |zeta2| is zero where either factor zeta1 - zeta2 or zeta1 + zeta2 is: two legs,
 which cross where both slidings vanish (a saddle of the absolute form, no sign change along either
 leg there) and which both run along the no-pair edge. It is traced as the zeros of the two factors,
-each a smooth function (gearkit.blocking.arrays: ``_Pair.sliding_factors``). Oracles: the specific
+each a smooth function (gearkit.blocking.pair_arrays: ``PairArrays.sliding_factors``). Oracles: the specific
 slidings of the scalar pair geometry (``PairField.point``, the check's own, with the generated form
 circles), the sign of
 |zeta1| - |zeta2| against the product of the factors, and the exact zeros of the scalar margin on

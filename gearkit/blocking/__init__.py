@@ -12,8 +12,9 @@ Modules, in the order a contour is made:
 
 * margins: :mod:`~gearkit.blocking.field` (the check as functions of the shifts; lazily per point in
   :mod:`~gearkit.blocking.point`; the generated gears' form circles in :mod:`~gearkit.blocking.forms`)
-  and the same on arrays, :mod:`~gearkit.blocking.arrays` with the per-gear
-  :mod:`~gearkit.blocking.gear_arrays` and the internal pair's :mod:`~gearkit.blocking.ring_arrays`;
+  and the same on arrays, :mod:`~gearkit.blocking.arrays` over the pair geometry of
+  :mod:`~gearkit.blocking.pair_arrays`, with the per-gear :mod:`~gearkit.blocking.gear_arrays` and the
+  internal pair's :mod:`~gearkit.blocking.ring_arrays`;
 * lines: :mod:`~gearkit.blocking.tracing` drives :mod:`~gearkit.blocking.level` (marching squares on
   the grids of :mod:`~gearkit.blocking.grid`, chords refined until they keep the tolerance in
   :mod:`~gearkit.blocking.refinement`, roots and strips in :mod:`~gearkit.blocking.brackets`, kinked

@@ -88,7 +88,7 @@ def _straight_height(tool) -> float:
 
 
 class PairScalars:
-    """The scalars of a field's pair formulas (:class:`~gearkit.blocking.arrays._Pair`), worked out once:
+    """The scalars of a field's pair formulas (:class:`~gearkit.blocking.pair_arrays.PairArrays`), worked out once:
     those the formulas combine with arrays are kept as 0-d arrays (``np.asarray(v)``): numpy combines an
     array with a 0-d float64 array in about half the time it takes with a Python float, which it converts
     on every call; each operation is the same IEEE one either way, to the bit. ``rack1``, ``rack2``: a rack
