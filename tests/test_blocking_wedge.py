@@ -87,3 +87,23 @@ def test_two_margins_vanishing_on_one_line_have_no_corner_along_it():
         exact = _zeros(lambda y: _smallest(field, x, y), ys)
         assert len(exact) == 1, (x, exact)
         _matched(c.region, np.array([x, ys[0]]), np.array([x, ys[-1]]), exact - ys[0])
+
+
+def test_a_cut_whose_tip_lies_behind_it_is_not_carried_there():
+    """23/89 internal (shaper z0 19) at tol 1e-5: the flat strip between interference.1 and exit jamming ends in a
+    wedge with its tip at (0.4724, -0.7947), narrower than a grid cell; one grid node inside it, at x2 = -0.7917,
+    gave a diamond alone in the wedge with a cut across it on each side. Both cuts bind the wedge's two sides,
+    and Newton's steps from either run down to the tip: the lower cut rightly, the upper one back through its
+    own diamond, so the diamond's loop passed the tip twice and, with the outline beyond the diamond carried
+    there too, the even-odd rule left the wedge's end out (18.6 tol off). On rows through the diamond and below
+    it every crossing of the polygons lies within 2 tol of a zero of the check's smallest hard margin (brentq)
+    and every zero has a crossing within 2 tol; the wedge's middle passes check_pair and is in the region."""
+    from test_blocking_region import _row_crosses_the_strip
+
+    tol = 1e-5
+    spec = PairSpec(23, 89, 1.0, kind="internal", tool2=ShaperCutter(19))
+    field = PairField(spec)
+    c = blocking_contour(spec, tol=tol, lines=[])
+    for y in (-0.7944, -0.794, -0.793, -0.792, -0.7915, -0.791):
+        xc = 0.4724 + 0.72 * (y + 0.7947)
+        _row_crosses_the_strip(spec, field, c, y, np.linspace(xc - 0.002, xc + 0.002, 401), tol)

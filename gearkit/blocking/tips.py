@@ -186,6 +186,8 @@ def carry_to_tips(F, G, lines, kept, region: int, tol: float, trace) -> list:
         c = np.flatnonzero(conv)  # a corner farther than tol from the chord and the chords beside it
         conv[c] = np.minimum.reduce([_segment_distance(u[c], v[c], T[c]) for u, v in
                                      ((before, A), (A, B), (B, after))]) > tol
+        c = np.flatnonzero(conv)  # ... on the side of it the region's part beyond it lies (_outward)
+        conv[c] = _outward(F, region, A[c], B[c], T[c])
         tips[conv] = T[conv]
     corner = np.isfinite(tips[:, 0])
     sides = {}  # chord (start, end) -> its sides (part, start, end)
@@ -251,6 +253,18 @@ def carry_to_tips(F, G, lines, kept, region: int, tol: float, trace) -> list:
         lines[m] = (k, np.vstack([q[:lo], path, q[hi + 1:]]),
                     np.concatenate([g[:lo], g[j:j + 1], inner, g[j + 1:j + 2], g[hi + 1:]]))
     return lines
+
+
+def _outward(F, region: int, A, B, T) -> np.ndarray:
+    """True where carrying the chord ``A -> B`` (the region on its left) to the corner ``T`` changes the
+    region by a part of the right kind: ``F`` positive halfway from the chord's middle to ``T`` where ``T``
+    lies right of the chord (a wedge of the region taken in), negative where it lies left (a notch of its
+    outside taken out). A cut across a wedge whose tip lies behind it, inside its loop (the upper cut of
+    a grid node's diamond alone in the wedge, which Newton's steps carry down to the tip its lower cut
+    is carried to), is no corner: carried there, the loop passed the tip twice."""
+    left = (B[:, 0] - A[:, 0]) * (T[:, 1] - A[:, 1]) - (B[:, 1] - A[:, 1]) * (T[:, 0] - A[:, 0]) > 0
+    f = F(0.25 * (A + B) + 0.5 * T, np.full(len(A), region))
+    return np.where(left, f < 0, f > 0)
 
 
 def _on_edge(F, G, path, part, region: int, tol: float) -> bool:
