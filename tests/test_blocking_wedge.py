@@ -107,3 +107,33 @@ def test_a_cut_whose_tip_lies_behind_it_is_not_carried_there():
     for y in (-0.7944, -0.794, -0.793, -0.792, -0.7915, -0.791):
         xc = 0.4724 + 0.72 * (y + 0.7947)
         _row_crosses_the_strip(spec, field, c, y, np.linspace(xc - 0.002, xc + 0.002, 401), tol)
+
+
+def test_a_link_refined_to_the_wedge_tip_the_loop_reached_leaves_no_sliver():
+    """59/68 (shaper z0 25): the region narrows between interference.2 (above) and the steep side of
+    interference.1's wedge from (1, 1) to a tip at about (1.291, 1.511); the grid closed the big loop across
+    the wedge a cell short of the tip and left the tip as a diamond of its own. The loop's cut was refined up
+    the wedge to the tip, and so was the diamond's: its chord from the upper side down to the steep side,
+    with no zero within its normal's ends, was split at a zero the wide search found at the tip, past the
+    loop's line. The diamond, a fold inside the loop, was carried to the tip again and a chord from
+    (1.28125, 1.4925) on the steep side to (1.2852, 1.5092) on the upper one was left across the region, the
+    sliver between it and the steep side taken twice and left out by the even-odd rule (2.1 tol off; rows
+    3.7 tol, columns 4.8 tol). On rows and columns through the tip's neighbourhood the polygons cross only at
+    the zeros (the two sides); between and beside them the region agrees with check_pair."""
+    spec, field, c = _internal(59, 68, 25)
+    xs = np.linspace(1.23, 1.30, 281)
+    for y in (1.494, 1.497, 1.5, 1.503, 1.506, 1.508):
+        exact = _zeros(lambda x: _smallest(field, x, y), xs)
+        assert len(exact) == 2, (y, exact)
+        _matched(c.region, np.array([xs[0], y]), np.array([xs[-1], y]), exact - xs[0])
+        for x, inside in ((exact[0] - 0.005, False), (0.5 * (exact[0] + exact[1]), True), (exact[1] + 0.005, False)):
+            assert _passes(spec, x, y) == inside, (x, y)
+            assert c.in_region(x, y) == inside, (x, y)
+    ys = np.linspace(1.48, 1.53, 201)
+    for x in (1.2825, 1.284, 1.2855, 1.287):
+        exact = _zeros(lambda y: _smallest(field, x, y), ys)
+        assert len(exact) == 2, (x, exact)
+        _matched(c.region, np.array([x, ys[0]]), np.array([x, ys[-1]]), exact - ys[0])
+        for y, inside in ((exact[0] - 0.005, False), (0.5 * (exact[0] + exact[1]), True), (exact[1] + 0.005, False)):
+            assert _passes(spec, x, y) == inside, (x, y)
+            assert c.in_region(x, y) == inside, (x, y)
