@@ -5,15 +5,23 @@ one side of a wedge to the other was cut there, and the arms stopped 0.02 to 0.0
 Oracle: the exact zeros of the scalar margin (``PairField.margin``) along rows x2 = const through
 them, sampled densely and solved by brentq. So too where a chord cut from one side of a thin loop or
 wedge to the other had its ends carried on round the turn onto a piece traced there already (14/55's
-sliding loop, 56/59's interference.1 wedge)."""
+sliding loop, 56/59's interference.1 wedge); and where a chord along one side of a thin wedge of one
+sign (the smallest of two margins, its slope jumping at the wedge's ridge) was split at the other side
+(11/22's tip sweep): on rows and columns across it every crossing of the traced line within 2 tol of a
+zero along the scan, and every zero with a crossing."""
+import functools
+
 import numpy as np
 import pytest
 from scipy.optimize import brentq
 
 from gearkit.blocking import blocking_contour
+from gearkit.blocking.field import PairField
 from gearkit.distances import distances_to_polyline
 from gearkit.families.involute import ShaperCutter
 from gearkit.pair import PairSpec
+
+from edgezeros import row_crossings
 
 CONTRACT = 2.0  #: every exact zero within this many tol of its traced line
 SAMPLES = 4001  #: samples of a row between brentq brackets
@@ -126,3 +134,42 @@ def test_a_wedge_arm_cut_across_is_carried_to_the_piece_traced_there(z1, z2, z0,
     worst, seen = _farthest(c, "interference.1", rows, 0.95, right)
     assert seen >= 2 * len(rows)
     assert worst <= CONTRACT
+
+
+WEDGE_SAMPLES = 161  #: samples of a scan across the tip sweep's wedge (its zeros 8e-5 apart or more there)
+
+
+@functools.lru_cache(maxsize=None)
+def _tip_sweep_wedge():
+    spec = PairSpec(11, 22, 1.0, kind="internal", tool2=ShaperCutter(15))
+    return PairField(spec), blocking_contour(spec, tol=1e-5, lines=["tip_interference"])
+
+
+@pytest.mark.parametrize("axis, at, lo, hi", [(1, -0.03835, 0.1328, 0.134), (1, -0.0382, 0.1328, 0.134),
+                                              (1, -0.0381, 0.1328, 0.134), (0, 0.1336, -0.0386, -0.0378),
+                                              (0, 0.1337, -0.0386, -0.0378), (0, 0.1338, -0.0386, -0.0378)])
+def test_a_chord_along_a_thin_wedge_keeps_to_its_side(axis, at, lo, hi):
+    """11/22 internal with a 15-tooth shaper at tol 1e-5: the tip sweep's margin is positive in a thin wedge
+    whose sides meet at (0.13392, -0.03795), the smallest of a gentle part (slope 0.012, the upper side) and a
+    steep one (0.87, the lower side). A chord along the upper side (its middle 9e-8 from it) read the lower
+    side as the nearer zero along its normal (the secant from its middle to the normal's steep end), was split
+    there, and the line zigzagged across the wedge: a chord from (0.13355, -0.03836) to (0.13373, -0.03804)
+    4.4 tol off. On rows (axis 1: x2 = at) and columns (axis 0: x1 = at) across the wedge beside its tip,
+    the traced line crosses within 2 tol of the zeros of the check's scalar margin (brentq) and at each."""
+    field, c = _tip_sweep_wedge()
+    tol = c.tol
+
+    def f(t):
+        p = (t, at) if axis == 1 else (at, t)
+        return field.margin("tip_interference", *p)
+    ts = np.linspace(lo, hi, WEDGE_SAMPLES)
+    v = np.array([f(t) for t in ts])
+    exact = np.array([brentq(f, ts[i], ts[i + 1], xtol=1e-15, rtol=1e-15)
+                      for i in np.flatnonzero((v[:-1] > 0) != (v[1:] > 0))])
+    assert len(exact) == 2, exact  # both sides of the wedge
+    comps = [q if axis == 1 else q[:, ::-1] for q in c.line("tip_interference").components]
+    got = np.array(row_crossings(comps, at, lo, hi))
+    assert got.size, exact
+    near = np.abs(got[:, None] - exact[None, :])
+    assert near.min(axis=1).max() <= CONTRACT * tol, (got, exact)
+    assert near.min(axis=0).max() <= CONTRACT * tol, (got, exact)

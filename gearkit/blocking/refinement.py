@@ -8,7 +8,9 @@ once, with ``F(points (n, 2), which (n,) int) -> (n,)`` (NaN where undefined) as
 at its quarters too (a curve bent one way then the other crosses its chord at the middle: 25/54 z0 20's sliding
 line at tol 1e-5, a grid chord 7.3 tol off at three quarters, is split at its middle's root); a chord
 estimated within ``tol / 2`` is kept, any other is measured by a root of ``F`` along its normal through ``m`` and, if that
-root is more than ``tol`` away, split into as many pieces as its curvature needs
+root (where the normal meets a zero to each side, the nearer by its root: across a kink of ``F`` the secant
+misjudges which, :meth:`~gearkit.blocking.brackets.NearestBracket.nearer`) is more than ``tol`` away, split into
+as many pieces as its curvature needs
 (``sqrt(deviation / (tol / 2))``, new vertices solved near the parabola through the three known points),
 round after round. A chord with no zero at those samples is searched again at distances from its middle
 falling geometrically to ``tol / 4`` (a strip, a saddle's thin wedge, or beside a region's edge a strip of
@@ -120,10 +122,12 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
         best = NearestBracket(mm, f0)
         out_dir = np.full(mm.shape, np.nan)  # towards the no-pair area, where the normal runs into it
         strip = estimate[km]  # the middle between two zeros along the normal: in a strip (not a kink's acute wedge)?
+        sides = []  # each side's end and value: a zero to both sides is told by its root (NearestBracket.nearer)
         for sgn in (1.0, -1.0):
             end = mm + sgn * 0.5 * Lm[:, None] * nm_
             fe = F(end, km)
             best.consider(np.arange(meas.size), mm, f0, end, fe)
+            sides.append((end, fe))
             with np.errstate(invalid="ignore"):
                 strip &= np.isfinite(fe) & ((fe > 0) != (f0 > 0))
             edge = np.flatnonzero(np.isnan(fe) & trust[km])
@@ -131,6 +135,13 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
                 out_dir[edge] = sgn * nm_[edge]
                 lo_e, flo_e, hi_e, fhi_e = toward_edge(F, mm[edge], f0[edge], end[edge], km[edge])
                 best.consider(edge, lo_e, flo_e, hi_e, fhi_e)
+        # a line's chord with a zero to each side: the nearer root (a region's chord inside a thin part keeps the
+        # secant's choice, which its strips' search relies on: 31/66 at tol 1e-3 lost its strip)
+        with np.errstate(invalid="ignore"):
+            across = np.all([np.isfinite(fe) & ((fe > 0) != (f0 > 0)) for _, fe in sides], axis=0)
+        two = np.flatnonzero(across & trust[km])
+        if two.size:
+            best.nearer(F, two, [(e[two], fe[two]) for e, fe in sides], km[two], vtol)
         wide = np.flatnonzero(~best.have & (trust[km] | WIDE_REGION))
         if wide.size:
             tg = np.column_stack([nm_[wide, 1], -nm_[wide, 0]])
