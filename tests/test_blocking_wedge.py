@@ -137,3 +137,37 @@ def test_a_link_refined_to_the_wedge_tip_the_loop_reached_leaves_no_sliver():
         for y, inside in ((exact[0] - 0.005, False), (0.5 * (exact[0] + exact[1]), True), (exact[1] + 0.005, False)):
             assert _passes(spec, x, y) == inside, (x, y)
             assert c.in_region(x, y) == inside, (x, y)
+
+
+def test_a_wedge_whose_tip_the_windows_edge_cuts_is_traced_to_the_edge():
+    """14/62 at tol 1e-3 in a window whose top edge lies 0.5 tol below the tip of the region's wedge between
+    pointing.1 and interference.1 (at (0.961344, -1.327878)): the path carried from the chord across the wedge
+    up to the edge was judged at its vertex on the window's edge by the vertex's own part's slope (the window's
+    edge: 1) against interference.1 just below zero there (its slope 1.4e-3 of the edge's, so 0.5 tol of
+    distance read as 700), rejected, and the chord left cutting the wedge 42 tol below the edge (6.1 tol off
+    the region's edge). On rows across the wedge below the edge the polygons cross only at the check's zeros
+    (the smallest hard margin's, brentq), on columns through it only at those and at the window's edge, each
+    within 2 tol of one and each zero with a crossing; inside the wedge next to the edge the check passes and
+    the point is in the region."""
+    tol = 1e-3
+    spec = PairSpec(14, 62, 1.0)
+    field = PairField(spec)
+    base = blocking_contour(spec, tol=tol, lines=[]).window
+    top = -1.327878 - 0.5 * tol
+    c = blocking_contour(spec, tol=tol, window=(base[0], base[1], base[2], top))
+    xs = np.linspace(0.95, 0.975, 251)
+    for d in (3, 6, 10, 20, 30):
+        y = top - d * tol
+        exact = _zeros(lambda x: _smallest(field, x, y), xs)
+        assert len(exact) == 2, (y, exact)
+        got = xs[0] + _crossings(c.region, np.array([xs[0], y]), np.array([xs[-1], y])) * (xs[-1] - xs[0])
+        assert len(got) == 2 and np.abs(got - exact).max() <= CONTRACT * tol, (y, exact, got)
+    ys = np.linspace(top - 0.03, top + 0.005, 71)
+    for x in (0.9605, 0.961, 0.9615, 0.962):
+        zeros = _zeros(lambda y: np.nan_to_num(_smallest(field, x, y), nan=-1.0), ys)
+        exact = zeros[zeros < top]  # the check's zeros in the window, and its edge where the check passes there
+        if _smallest(field, x, top) > 0:
+            exact = np.append(exact, top)
+        _matched(c.region, np.array([x, ys[0]]), np.array([x, ys[-1]]), exact - ys[0])
+    for x, y in ((0.96134, top - 0.25 * tol), (0.96137, top - 2 * tol)):
+        assert _passes(spec, x, y) and c.in_region(x, y), (x, y)
