@@ -17,7 +17,9 @@ falling geometrically to ``tol / 4`` (a strip, a saddle's thin wedge, or beside 
 it, narrower than their spacing), and so is a region's chord whose zero is found only beyond the normal's ends
 (a strip narrower than the normal's half chord beside it hid the nearer one: 59/68 z0 25 internal at tol 1e-3,
 a chord along the region's strip, split at the far side of a wedge of its outside 1.7 chords off, zigzagged
-across the wedge, 35 tol off); one from one side of a strip to the other (brackets.two_lines) is cut,
+across the wedge, 35 tol off); a zero so found past another of the region's chords is none (:func:`_past_lines`:
+a link of the grid's chain of diamonds along a flat strip, refined down the strip past the next link's cut, took
+its part twice). One from one side of a strip to the other (brackets.two_lines) is cut,
 not split (a zigzag across the strip lost an arm: 46/49's interference.1 beside (1, 1)), its ends carried
 on (ends). So every point of a polyline lies within about ``1.25 tol`` of its curve; coarser tols cost less.
 
@@ -49,6 +51,8 @@ RAY_FRACTIONS = (0.125, 0.25, 0.375, 0.5, 0.75, 1.0, 2.0)  #: where the second s
 NRAYS = 1  #: directions searched: the normal only (a diagonal ray's zero may lie on the other branch of a
 #: saddle: a chord joining two branches was kept 3.8e-5 off its line at every tol below 1e-4)
 PLAIN = (5, 6)  #: the samples a measured curve's search reads: the reach, then twice it (an acute corner)
+PAST = 2.0  #: a measured curve's zero farther than this many tol (and half that chord) past another of its chords
+#: is not the searching chord's (:func:`_past_lines`)
 WIDE_REGION = True  #: the wider search for measured curves too
 SHORT_KEEP = 2.5  #: a line's chord this short (tol) with no zero beside it (a saddle's neck) stays: within 1.25 tol
 MEASURED_LADDER = 0.125  #: a measured curve's chord's ladder starts this many chord lengths from its middle
@@ -58,8 +62,52 @@ JUMP_FALL = 0.5  #: ... and |F| there above this fraction of the smaller |F| at 
 #: solver keeps the better end: a real zero is far below it at any tol, a pole or a jump is not)
 
 
+def _past_lines(lines, which, A, B, m, F0, root, tol: float) -> np.ndarray:
+    """True where the way from a chord's middle ``m`` to a zero found along its normal, ``root`` (``(c, 2)``,
+    chords ``A -> B`` of curves ``which``), crosses a chord of the lines of its curve in ``lines``
+    (``[(k, points)]``; none of its own or beside it) farther from the zero than ``PAST`` tol and half that
+    chord: the zero lies past another line of the curve, across the part that line bounds, so it is not this
+    chord's (the arc a chord stands for bounds, with it, a part no other line enters). A chord across a strip
+    of a region narrower than a grid cell, where its margin is flat (a link of the grid's chain of diamonds),
+    reads along the strip its edge beyond the next link's cut: that zero taken, the loop is refined down the
+    strip past the cut,
+    which then pairs with none (:func:`~gearkit.blocking.region.reconnect`), and the part taken twice is
+    left out by the even-odd rule (55/102 z0 34 and 25/59 z0 35 internal at tol 1e-5, 810 and 565 tol off).
+    Kept as it is, the chord is a cut (re-joined with the next link's). So too where the zero lies on the side
+    of the chord its curve does not (``F0 = F(m)``; ``F > 0`` on a loop's left), through its own loop's part, within
+    ``PAST`` tol of a chord of its own line not beside it: taken, the line would fold back along itself (25/59
+    z0 35 at tol 1e-3: a chord across the strip, its normal down the strip, read its own loop's edge there)."""
+    out = np.zeros(len(m), bool)
+    for k in np.unique(which):
+        own = [q for kk, q in lines if kk == k and len(q) >= 2]
+        segs = [(q[:-1], q[1:]) for q in own]
+        C, D = np.concatenate([s[0] for s in segs]), np.concatenate([s[1] for s in segs])
+        line = np.repeat(np.arange(len(own)), [len(q) - 1 for q in own])
+        E = D - C
+        ell = np.hypot(E[:, 0], E[:, 1])
+        for i in np.flatnonzero(which == k):
+            other = ~(np.all(C == A[i], axis=1) | np.all(C == B[i], axis=1) | np.all(D == A[i], axis=1)
+                      | np.all(D == B[i], axis=1))
+            mine = np.isin(line, line[np.all(C == A[i], axis=1) & np.all(D == B[i], axis=1)])
+            t = np.clip(np.einsum("ij,ij->i", root[i] - C, E) / np.maximum(ell ** 2, 1e-300), 0.0, 1.0)
+            r = root[i] - m[i]
+            inward = (float(r[0] * (A[i][1] - B[i][1]) + r[1] * (B[i][0] - A[i][0])) > 0) == (F0[i] > 0)
+            if inward and np.any(other & mine & (np.hypot(*(C + t[:, None] * E - root[i]).T) <= PAST * tol)):
+                out[i] = True  # on its own line elsewhere, through its own part: the line would fold back
+                continue
+            den = r[0] * E[:, 1] - r[1] * E[:, 0]
+            w = C - m[i]
+            with np.errstate(divide="ignore", invalid="ignore"):
+                s = (w[:, 0] * E[:, 1] - w[:, 1] * E[:, 0]) / den  # along the way, 0 at m, 1 at the root
+                u = (w[:, 0] * r[1] - w[:, 1] * r[0]) / den  # along the chord crossed
+            hit = other & (den != 0) & (s > 0) & (s < 1) & (u >= 0) & (u <= 1)
+            gap = (1.0 - s) * np.hypot(*r)
+            out[i] = bool(np.any(hit & (gap > np.fmax(PAST * tol, 0.5 * ell))))
+    return out
+
+
 def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kinked=(), slopes=False,
-            kept=None, dips=True, loose=None) -> list:
+            kept=None, dips=True, loose=None, others=()) -> list:
     """``lines`` (a list of ``(k, points (n, 2), slope (n,))``: curve index, vertices on the curve, and
     estimates of ``|grad F_k|`` there, NaN if unknown) with vertices added until every chord lies
     within ``tol`` of its curve and is at most ``max_step`` long (a fourth entry, a mask of the
@@ -71,7 +119,9 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
     middle value says nothing of its tip), which are otherwise traced as the rest. ``kept``: a list to
     which a measured curve's chords with no zero found across them are added as ``(k, start, end)``. ``dips``:
     lines dipping to the no-pair edge carried to it (:func:`~gearkit.blocking.edges.touchdowns`). ``loose``: a
-    list to which the ends of a line's chords cut are added as ``(k, end, chord length)``, to carry on (ends)."""
+    list to which the ends of a line's chords cut are added as ``(k, end, chord length)``, to carry on (ends).
+    ``others``: ``[(k, points)]``, lines not refined here that a measured curve's zeros are read against
+    (:func:`_past_lines`)."""
     vtol = VERTEX_FRACTION * tol
     step = np.inf if not max_step else float(max_step)
     state = [(ln[0], np.asarray(ln[1], float), np.asarray(ln[2], float),
@@ -198,6 +248,12 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
             bad = (fr > JUMP_FACTOR * slope_end * tol) & (fr > JUMP_FALL * np.fmin(np.abs(best.flo[solved]),
                                                                                np.abs(best.fe[solved])))
             found[solved[bad & trust[km[solved]]]] = False
+            # a measured curve's zero beyond the normal's ends past another of its chords: none (a cut)
+            far = solved[~trust[km[solved]] & (np.hypot(*(root[solved] - mm[solved]).T) > 0.5 * Lm[solved])]
+            if far.size:
+                seen = [st[:2] for st in state] + list(others)
+                found[far[_past_lines(seen, km[far], A[meas[far]], B[meas[far]], mm[far], f0[far], root[far],
+                                      tol)]] = False
         off = np.einsum("ij,ij->i", root - m[meas], nrm[meas])
         # a zero found on a diagonal ray is as far as it lies from the middle (an acute corner beyond it)
         dev = np.where(best.diagonal, np.hypot(*(root - mm).T), np.abs(off))
@@ -318,5 +374,6 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
     again = corner_splits(F, out, tol, corners, SPLIT_FRACTION * tol, VERTEX_FRACTION * tol, kept or ())
     if again:  # the polylines that got a vertex beside a corner: densified again
         done = [out[n] if slopes else out[n][:2] for n in range(len(out)) if n not in again]
-        return done + densify(F, [out[n] for n in sorted(again)], tol, max_step, measure, kinked, slopes, kept)
+        return done + densify(F, [out[n] for n in sorted(again)], tol, max_step, measure, kinked, slopes, kept,
+                              others=list(others) + [out[n][:2] for n in range(len(out)) if n not in again])
     return out if slopes else [(k, p) for k, p, _ in out]
