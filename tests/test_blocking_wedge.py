@@ -121,22 +121,16 @@ def test_a_link_refined_to_the_wedge_tip_the_loop_reached_leaves_no_sliver():
     3.7 tol, columns 4.8 tol). On rows and columns through the tip's neighbourhood the polygons cross only at
     the zeros (the two sides); between and beside them the region agrees with check_pair."""
     spec, field, c = _internal(59, 68, 25)
-    xs = np.linspace(1.23, 1.30, 281)
-    for y in (1.494, 1.497, 1.5, 1.503, 1.506, 1.508):
-        exact = _zeros(lambda x: _smallest(field, x, y), xs)
-        assert len(exact) == 2, (y, exact)
-        _matched(c.region, np.array([xs[0], y]), np.array([xs[-1], y]), exact - xs[0])
-        for x, inside in ((exact[0] - 0.005, False), (0.5 * (exact[0] + exact[1]), True), (exact[1] + 0.005, False)):
-            assert _passes(spec, x, y) == inside, (x, y)
-            assert c.in_region(x, y) == inside, (x, y)
-    ys = np.linspace(1.48, 1.53, 201)
-    for x in (1.2825, 1.284, 1.2855, 1.287):
-        exact = _zeros(lambda y: _smallest(field, x, y), ys)
-        assert len(exact) == 2, (x, exact)
-        _matched(c.region, np.array([x, ys[0]]), np.array([x, ys[-1]]), exact - ys[0])
-        for y, inside in ((exact[0] - 0.005, False), (0.5 * (exact[0] + exact[1]), True), (exact[1] + 0.005, False)):
-            assert _passes(spec, x, y) == inside, (x, y)
-            assert c.in_region(x, y) == inside, (x, y)
+    rows = [(y, lambda t, y=y: (t, y)) for y in (1.494, 1.497, 1.5, 1.503, 1.506, 1.508)]
+    columns = [(x, lambda t, x=x: (x, t)) for x in (1.2825, 1.284, 1.2855, 1.287)]
+    for scans, ts in ((rows, np.linspace(1.23, 1.30, 281)), (columns, np.linspace(1.48, 1.53, 201))):
+        for at, point in scans:
+            exact = _zeros(lambda t: _smallest(field, *point(t)), ts)
+            assert len(exact) == 2, (at, exact)
+            _matched(c.region, np.array(point(ts[0])), np.array(point(ts[-1])), exact - ts[0])
+            for t, inside in ((exact[0] - 0.005, False), (0.5 * (exact[0] + exact[1]), True), (exact[1] + 0.005, False)):
+                assert _passes(spec, *point(t)) == inside, point(t)
+                assert c.in_region(*point(t)) == inside, point(t)
 
 
 def test_a_wedge_whose_tip_the_windows_edge_cuts_is_traced_to_the_edge():
