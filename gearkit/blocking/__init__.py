@@ -26,7 +26,8 @@ Modules, in the order a contour is made:
 * region: :mod:`~gearkit.blocking.region` (polygons where the check passes), its thin wedges traced to
   their tips by :mod:`~gearkit.blocking.tips` (each tip solved in the plane by :mod:`~gearkit.blocking.apex`);
 * use: :mod:`~gearkit.blocking.contour` (the result and point queries), :mod:`~gearkit.blocking.recommend`,
-  :mod:`~gearkit.blocking.plot` (pictures, JSON), :mod:`~gearkit.blocking.atlas` (many pairs in parallel).
+  :mod:`~gearkit.blocking.plot` (pictures, JSON; the zoom about a star the region is thinner than in
+  :mod:`~gearkit.blocking.inset`), :mod:`~gearkit.blocking.atlas` (many pairs in parallel).
 
 >>> from gearkit.pair import PairSpec
 >>> c = blocking_contour(PairSpec(13, 16, 1.0), tol=1e-6, lines=["undercut.1"])

@@ -71,12 +71,8 @@ def _place_labels(fig, ax, labelled, markers) -> None:
     """Put each label of ``labelled`` (``[(text, points (n, 2), colour)]``) on its line where its box,
     as drawn, overlaps no label placed before it, no marker (``markers``: artists) and stays inside the
     axes: the first spot of ``LABEL_SPOTS`` along the line's points inside the window that does, else
-    the spot overlapping least. Measured on the laid-out figure (its renderer), not guessed from the
-    text's length."""
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-
-    FigureCanvasAgg(fig)
-    fig.draw_without_rendering()  # the constrained layout and the equal aspect fix the axes' box
+    the spot overlapping least. Measured on the laid-out figure (its renderer: ``fig`` drawn without
+    rendering first), not guessed from the text's length."""
     renderer = fig.canvas.get_renderer()
     frame = ax.get_window_extent(renderer)
     taken = [m.get_window_extent(renderer).expanded(1.0, 1.0) for m in markers]
@@ -153,21 +149,12 @@ def _no_pair(contour):
     return verts, codes
 
 
-def figure(contour, recommendation=None, marked=None):
-    """A matplotlib Figure of ``contour`` (Agg backend; nothing is shown): the window fitted, the
-    legend beside the axes, one label per line placed apart, the markers on top."""
-    import matplotlib
-    matplotlib.use("Agg")
-    from matplotlib.figure import Figure
+def _draw(ax, contour, nopair):
+    """Draw ``contour``'s region, its no-pair area ``nopair`` (from :func:`_no_pair`) and its lines onto
+    ``ax``; return the legend's handles and the lines to label (``[(text, points, colour)]``)."""
     from matplotlib.patches import Patch, PathPatch
     from matplotlib.path import Path
 
-    x0, x1, y0, y1 = contour.window
-    aspect = (y1 - y0) / (x1 - x0)
-    width = 6.2
-    height = min(max(width * aspect, 3.5), 9.0)
-    fig = Figure(figsize=(width + 2.6, height + 0.9), dpi=120, layout="constrained")
-    ax = fig.add_subplot(1, 1, 1)
     handles = []
     if contour.region:
         verts = np.concatenate(contour.region)
@@ -175,11 +162,10 @@ def figure(contour, recommendation=None, marked=None):
                                 for p in contour.region])
         ax.add_patch(PathPatch(Path(verts, codes), facecolor="#fde0b2", edgecolor="none", alpha=0.8, zorder=0))
         handles.append(Patch(facecolor="#fde0b2", edgecolor="none", label="admissible (check passes)"))
-    nopair = _no_pair(contour)
     if nopair is not None:  # where no pair exists the lines end: say why
         ax.add_patch(PathPatch(Path(*nopair), facecolor="#d9d9d9", edgecolor="none", zorder=0))
         handles.append(Patch(facecolor="#d9d9d9", edgecolor="none", label="no pair (no tight mesh or no tooth)"))
-    labelled, markers = [], []
+    labelled = []
     sharing = {}  # hard lines drawn so far per B-code
     for ln in contour.lines:
         if not ln.components:
@@ -195,6 +181,25 @@ def figure(contour, recommendation=None, marked=None):
                 handles.append(h)
         if ln.hard or ln.code in ("Q", "C"):
             labelled.append((_short(ln), max(ln.components, key=len), st["color"]))
+    return handles, labelled
+
+
+def figure(contour, recommendation=None, marked=None):
+    """A matplotlib Figure of ``contour`` (Agg backend; nothing is shown): the window fitted, the
+    legend beside the axes, one label per line placed apart, the markers on top."""
+    import matplotlib
+    matplotlib.use("Agg")
+    from matplotlib.figure import Figure
+
+    x0, x1, y0, y1 = contour.window
+    aspect = (y1 - y0) / (x1 - x0)
+    width = 6.2
+    height = min(max(width * aspect, 3.5), 9.0)
+    fig = Figure(figsize=(width + 2.6, height + 0.9), dpi=120, layout="constrained")
+    ax = fig.add_subplot(1, 1, 1)
+    nopair = _no_pair(contour)
+    handles, labelled = _draw(ax, contour, nopair)
+    markers, star = [], None
     if recommendation is not None and recommendation.x1 is not None:
         # the star is only ever a point check_pair passes; a failing best point is a cross, said so
         ok = recommendation.passes
@@ -204,6 +209,7 @@ def figure(contour, recommendation=None, marked=None):
                             f"no recommendation ({recommendation.criterion}): the best point found fails the check"))
         handles.append(h)
         markers.append(h)
+        star = h if ok else None
     if marked is not None:
         h, = ax.plot([marked["x1"]], [marked["x2"]], marker="o", ms=9, mfc="none", mec="k", mew=1.8, ls="none",
                      zorder=11, label="design point (%s)" % ("inside" if marked["inside"] else "outside"))
@@ -222,6 +228,21 @@ def figure(contour, recommendation=None, marked=None):
     ax.grid(True, lw=0.3, color="#cccccc")
     ax.set_aspect("equal", adjustable="box")
     fig.legend(handles=handles, loc="outside right upper", fontsize=7, frameon=False)
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    FigureCanvasAgg(fig)
+    fig.draw_without_rendering()  # the constrained layout and the equal aspect fix the axes' box
+    if star is not None and contour.region:  # where the region about the star is thinner than the star: a zoom
+        from gearkit.blocking.inset import add_inset
+
+        def draw(a):  # the inset: the same picture without labels, the design point where it is
+            _draw(a, contour, nopair)
+            if marked is not None:
+                a.plot([marked["x1"]], [marked["x2"]], marker="o", ms=7, mfc="none", mec="k", mew=1.4, ls="none",
+                       zorder=11)
+        card = add_inset(fig, ax, contour.region, star, draw)
+        if card is not None:
+            markers.append(card)
     _place_labels(fig, ax, labelled, markers)
     return fig
 
