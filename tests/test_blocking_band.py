@@ -265,3 +265,32 @@ def test_a_band_run_beside_an_unrefined_grid_chord_is_that_line():
         assert len(got) == 1 and abs(got[0] - exact) <= CONTRACT * tol, (y, exact, got)
         for x, ok in ((exact - 3 * tol, True), (exact + 3 * tol, False)):
             assert check_pair(dataclasses.replace(spec, shift1=float(x), shift2=float(y))).ok == ok, (x, y)
+
+
+BENT = (58, 63, 16, 1e-7)  #: internal pair, shaper, tol: the sliding line bends beside the edge
+BENT_ROWS = np.linspace(-0.96088, -0.96096, 5)  #: rows x2 = const across its band chord (the edge at -0.96231)
+BENT_SPAN = (-0.8732, -0.8725)  #: where they cross the line (steep there), and no other line
+BENT_SAMPLES = 15
+
+
+def test_a_band_vertex_carries_the_slope_at_its_root():
+    """58/63 (shaper z0 = 16) at tol 1e-7: a band vertex's |grad F| was the secant across its lattice edge,
+    which reached towards the edge where F steepens (8029 and 10484 for 620 at two vertices of the sliding
+    line 1.4e-3 above it); the chord between them, 4.57 tol off, was kept on its middle's estimate (0.35 tol).
+    On rows across that chord every crossing of the traced line lies within 2 tol of a brentq zero of
+    the scalar sliding margin and every zero has one."""
+    from scipy.optimize import brentq
+
+    z1, z2, z0, tol = BENT
+    c = blocking_contour(PairSpec(z1, z2, 1.0, kind="internal", tool2=ShaperCutter(z0)), tol=tol, lines=["sliding"])
+    comps = c.line("sliding").components
+    lo, hi = BENT_SPAN
+    xs = np.linspace(lo, hi, BENT_SAMPLES)
+    for y in BENT_ROWS:
+        def f(x):
+            return c.field.margin("sliding", x, y)
+        v = np.array([f(x) for x in xs])
+        zeros = [brentq(f, xs[i], xs[i + 1], xtol=1e-15, rtol=1e-15) for i in np.flatnonzero((v[:-1] > 0) != (v[1:] > 0))]
+        got = row_crossings(comps, y, lo, hi)
+        assert len(zeros) == 1, (y, zeros)
+        assert len(got) >= 1 and max(abs(x - zeros[0]) for x in got) <= CONTRACT * tol, (y, got, zeros)

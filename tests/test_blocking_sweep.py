@@ -7,11 +7,16 @@ pair), its sign is the check's ``tip_interference`` verdict (where no tooth is p
 holds exactly the points
 ``check_pair`` passes (points within ``CONTRACT tol`` of the region's boundary excepted: the polygons
 are exact to that distance). ``contains`` (``--mark``) is ``check_pair``'s verdict itself.
+
+At the fine tolerance the sweep must be exact near its zero: its maximum (a kink of a corner's depth)
+against a brute-force sweep refined to round-off (``sweeporacle``), and the traced line against
+brentq's zeros of the margin on columns.
 """
 from dataclasses import replace
 
 import numpy as np
 import pytest
+from scipy.optimize import brentq
 
 from gearkit.blocking import blocking_contour
 from gearkit.blocking.arrays import margins
@@ -21,6 +26,10 @@ from gearkit.distances import distances_to_polyline
 from gearkit.errors import SpecError
 from gearkit.families.involute import ShaperCutter
 from gearkit.pair import PairSpec
+from gearkit.pair.internal import SWEEP_RESOLUTION
+
+from edgezeros import row_crossings
+from sweeporacle import brute_maximum
 
 TOL = 1e-3
 CONTRACT = 2.0
@@ -81,3 +90,48 @@ def test_the_region_holds_the_tip_sweep(spec):
             d = min(distances_to_polyline(p[None], q)[0] for q in c.region)
             assert d <= CONTRACT * TOL, (p, rep.ok)
     assert swept >= 6
+
+
+FINE = 1e-7  #: the fine tolerance
+ROUNDOFF = 1e-12  #: (mm) two computations of one corner's depth: a few hundred ulps of the radii (~50 mm)
+KINKED = PairSpec(25, 94, 1.0, kind="internal", tool2=ShaperCutter(24))
+KINKED_ROW = (np.linspace(-1.2969823, -1.2969819, 5), 0.00641)  #: 1e-7 apart, ~1 FINE below the line
+KINKED_WINDOW = (-1.2971, -1.2968, 0.0062, 0.0066)  #: the line (slope ~0.3) crosses it left to right
+ROW_SAMPLES = 41
+
+
+def test_the_sweep_climbs_to_a_kinked_maximum_beyond_its_bracket():
+    """25/94 z0 24 near (-1.29698, 0.00641): the deepest corner's depth over the pinion angle is a kink
+    (slopes +5.4 and -1.3 mm/rad), the branch and bound's deepest sample 3.3 of its half widths from it;
+    the zoom, kept to the bracket around that sample, stopped at the bracket's end and read the margin
+    up to 2.6e-7 (2.6 FINE) above its value, on thin spikes 3e-7 wide in x1 which the contour's line
+    ran through (58 FINE off). The margin of the map equals the brute-force sweep's to round-off."""
+    field = PairField(KINKED)
+    x1, x2 = KINKED_ROW
+    got = margins(field, x1, np.full(x1.shape, x2), ["tip_interference"])["tip_interference"]
+    for x, m in zip(x1, got):
+        depth, below = brute_maximum(field.point(x, x2).geometry((True, False)))
+        assert abs(m - (SWEEP_RESOLUTION - depth / KINKED.module)) <= below + ROUNDOFF, x
+
+
+def test_the_fine_tip_line_follows_the_kinked_sweep():
+    """The same place at tol 1e-7 in a window: on rows across the line (sampled evenly and 1e-7 apart
+    across the spike) every crossing of the traced line within 2 FINE of a brentq zero of the field's
+    scalar margin and every zero with one (on the old sweep the spike's zeros were not traced)."""
+    field = PairField(KINKED)
+    c = blocking_contour(KINKED, tol=FINE, window=KINKED_WINDOW, lines=["tip_interference"])
+    comps = c.line("tip_interference").components
+    lo, hi = KINKED_WINDOW[:2]
+    xs = np.union1d(np.linspace(lo, hi, ROW_SAMPLES), KINKED_ROW[0])
+    for y in np.union1d(np.linspace(0.0064, 0.00647, 5), KINKED_ROW[1]):
+        def f(x):
+            return field.margin("tip_interference", x, y)
+        v = np.array([f(x) for x in xs])
+        zeros = [brentq(f, xs[i], xs[i + 1], xtol=1e-15, rtol=1e-15)
+                 for i in np.flatnonzero((v[:-1] > 0) != (v[1:] > 0))]
+        got = row_crossings(comps, y, lo, hi)
+        assert len(zeros) >= 1, y
+        for x in got:
+            assert min(abs(x - z) for z in zeros) <= CONTRACT * FINE, (y, x, zeros)
+        for z in zeros:
+            assert got and min(abs(x - z) for x in got) <= CONTRACT * FINE, (y, z, got)

@@ -15,6 +15,8 @@ from gearkit.pair.internal import exit_jamming_margin, nu_radius, plunge_trimmin
 from gearkit.pair import PairSpec, pair_geometry
 from gearkit.families.involute import ShaperCutter
 
+from sweeporacle import brute_sweep
+
 SIDE = 1e-3
 SHAPER = ShaperCutter(20, addendum=1.3)  # medium-worn shaper, x_c = 0.3
 
@@ -163,56 +165,6 @@ def test_textbook_example_report():
     assert res.report["min_teeth.difference"].value == 3.0
 
 
-CHUNK = 250_000  #: angles per chunk of the brute-force sweep
-
-
-def _brute_sweep(g, samples: int, offset: float = 0.0):
-    """The tip sweep by brute force (an oracle written apart from pair.internal): every tip corner of both
-    gears (both sides of the tooth) on ``samples`` pinion angles over a turn (shifted by ``offset``), rotated
-    as points, its depth in the mate's teeth as defined by tip_sweep (radial bounds, flank distance along
-    the base tangent)."""
-    from gearkit.curves import inv
-
-    p, ring = g.gears
-    sec_t = g.transverse_pressure_angle
-    z1, z2, a = p.teeth, ring.teeth, g.center_distance
-    ra1, ra2 = p.tip_diameter / 2, max(ring.tip_diameter, ring.base_diameter) / 2
-    rb1, rb2 = p.base_diameter / 2, ring.base_diameter / 2
-    rl1, rf2 = max(rb1, p.form_diameter / 2), ring.root_diameter / 2
-
-    def half(z, t, r, internal):
-        ay = np.arccos(np.clip((rb2 if internal else rb1) / r, -1, 1))
-        return (math.pi / 2 + t) / z + (-1 if internal else 1) * (inv(sec_t) - inv(ay))
-
-    def depth(q, z, centre, t, internal, r_in, r_out, rb):
-        rho = np.hypot(q[..., 0], q[..., 1])
-        theta = np.arctan2(-q[..., 0], q[..., 1])
-        d = np.abs((theta - centre + math.pi / z) % (2 * math.pi / z) - math.pi / z)
-        flank = (half(z, t, np.maximum(rho, rb), internal) - d) * rb
-        return np.minimum(np.minimum(rho - r_in, r_out - rho), flank)
-
-    def rot(v, ang):
-        return np.stack([np.cos(ang) * v[0] - np.sin(ang) * v[1], np.sin(ang) * v[0] + np.cos(ang) * v[1]], -1)
-
-    k = z1 / z2
-    best = -np.inf
-    if samples > CHUNK:  # in chunks of angles (memory)
-        return max(_brute_sweep(g, CHUNK, offset) for offset in
-                   np.arange(samples // CHUNK) * (2 * math.pi / samples))
-    phi = np.linspace(-math.pi, math.pi, samples, endpoint=False) + offset
-    h1 = max(float(half(z1, p.thickness_coeff, ra1, False)), 0.0)
-    h2 = max(float(half(z2, ring.thickness_coeff, ra2, True)), 0.0)
-    for s in (h1, -h1):
-        c = ra1 * np.array([-math.sin(s), math.cos(s)])
-        q = rot((np.array([0.0, a])[:, None] + rot(c, phi).T), -k * phi)
-        best = max(best, depth(q, z2, math.pi / z2, ring.thickness_coeff, True, ra2, rf2, rb2).max())
-    for s in (h2, -h2):
-        c = ra2 * np.array([-math.sin(math.pi / z2 + s), math.cos(math.pi / z2 + s)])
-        q = rot((rot(c, k * phi) - np.array([0.0, a])).T, -phi)
-        best = max(best, depth(q, z1, 0.0, p.thickness_coeff, False, rl1, ra1, rb1).max())
-    return best
-
-
 @pytest.mark.parametrize("spec", [example(0.30), example(0.4140), example(0.60),
                                   PairSpec(30, 38, 1.0, 0.2, 0.1, kind="internal", tool2=ShaperCutter(20)),
                                   PairSpec(44, 52, 2.0, 0.3, 0.6, kind="internal", tool2=ShaperCutter(20),
@@ -228,7 +180,7 @@ def test_tip_sweep_against_brute_force(spec):
 
     g = pair_geometry(spec)
     samples = 1_000_000
-    brute = _brute_sweep(g, samples)
+    brute = brute_sweep(g, samples)
     depth, _ = tip_sweep_depth(g)
     p, ring = g.gears
     k = p.teeth / ring.teeth

@@ -35,6 +35,7 @@ SWEEP_SPLIT = 4  #: an interval of the branch and bound that may hold the maximu
 SWEEP_ZOOM = 17  #: samples across the bracket of the deepest sample, per refining step (it shrinks 8 times)
 SWEEP_REFINE = 10  #: refining steps (the bracket, 4 final half widths of the branch and bound, ~1e-5 rad,
 #: shrinks below 1e-14 rad)
+SWEEP_SLIDES = 16  #: moves of the zoom's bracket, as wide, where its deepest sample is one of its ends
 SWEEP_ENOUGH = 0.01  #: (m_n) the blocking map's sweep stops beyond this depth past the resolution
 SWEEP_BLOCK = 4096  #: samples of phi evaluated at once (each of the corners' ~100 array operations then
 #: works in the processor's cache: 1.5x faster than all of a round's samples at once, the same values)
@@ -126,9 +127,11 @@ def sweep_depth(sec, z1: int, z2: int, a, ra1, ra2, rl1, rf2, t1, t2, rw2, resol
     interval whose mid-point depth plus its slack (see :func:`_corner`) stays below
     ``max(best, SWEEP_BAND resolution)`` cannot hold the maximum (nor an interference) and is
     dropped; the rest are cut in ``SWEEP_SPLIT`` until the slack is below ``resolution / 100``; then
-    zooming samples refine the deepest sample above ``SWEEP_BAND resolution`` to round-off. A maximum above ``SWEEP_BAND resolution`` is found
-    to ``resolution / 100`` or better (to round-off where it is the only one that close); below it,
-    a lower bound is returned (contact along the path of contact, depth 0, is not refined).
+    zooming samples refine the deepest sample above ``SWEEP_BAND resolution`` to round-off (climbing
+    beyond the branch and bound's bracket where the depth keeps rising there). A maximum above
+    ``SWEEP_BAND resolution`` is found to ``resolution / 100`` or better (to round-off where it is the
+    only one that close); below it, a lower bound is returned (contact along the path of contact,
+    depth 0, is not refined).
     """
     a, ra1, ra2, rl1, rf2, t1, t2, rw2 = (np.atleast_1d(np.asarray(v, dtype=float))
                                           for v in (a, ra1, ra2, rl1, rf2, t1, t2, rw2))
@@ -195,20 +198,28 @@ def sweep_depth(sec, z1: int, z2: int, a, ra1, ra2, rl1, rf2, t1, t2, rw2, resol
             w /= SWEEP_SPLIT
             mid = (m[:, None] + w * (2 * np.arange(SWEEP_SPLIT) + 1 - SWEEP_SPLIT)).ravel()
         # zoom on the deepest sample's neighbourhood, where it matters (above the floor): SWEEP_ZOOM samples
-        # across the bracket, then the bracket around the best of them (the maximum is the only one there)
+        # across the bracket, then the bracket around the best of them (the maximum is the only one there).
+        # A bracket whose deepest sample is one of its ends does not hold the maximum (an interval the
+        # branch and bound left for its small slack may hold it, beyond the bracket): the bracket moves
+        # to be centred there, as wide, up to SWEEP_SLIDES times
         live = np.flatnonzero(np.isfinite(best) & (best > floor) & (best < enough))
         if not live.size:
             return best, at
         h = 2 * width[live] / (SWEEP_ZOOM - 1)  # the bracket [at - 2 width, at + 2 width]: its sample step
         x0 = at[live] - 2 * width[live]
         grid = np.arange(SWEEP_ZOOM)
-        for _ in range(SWEEP_REFINE):
+        shrunk, slid = np.zeros(live.size, int), np.zeros(live.size, int)
+        while live.size:
             xs = x0[:, None] + h[:, None] * 2 * grid
             f = depth(np.repeat(live, SWEEP_ZOOM), xs.ravel()).reshape(xs.shape)
             j = np.argmax(np.where(np.isnan(f), -np.inf, f), axis=1)
             rows = np.arange(live.size)
             up = f[rows, j] > best[live]
             best[live[up]], at[live[up]] = f[rows, j][up], xs[rows, j][up]
-            x0 = xs[rows, j] - 2 * h
-            h = 4 * h / (2 * (SWEEP_ZOOM - 1))
+            slide = ((j == 0) | (j == SWEEP_ZOOM - 1)) & (slid < SWEEP_SLIDES)
+            x0 = np.where(slide, xs[rows, j] - (SWEEP_ZOOM - 1) * h, xs[rows, j] - 2 * h)
+            h = np.where(slide, h, 4 * h / (2 * (SWEEP_ZOOM - 1)))
+            slid, shrunk = slid + slide, shrunk + ~slide
+            more = shrunk < SWEEP_REFINE
+            live, x0, h, shrunk, slid = live[more], x0[more], h[more], shrunk[more], slid[more]
     return best, at
