@@ -165,3 +165,34 @@ def test_a_wedge_whose_tip_the_windows_edge_cuts_is_traced_to_the_edge():
         _matched(c.region, np.array([x, ys[0]]), np.array([x, ys[-1]]), exact - ys[0])
     for x, y in ((0.96134, top - 0.25 * tol), (0.96137, top - 2 * tol)):
         assert _passes(spec, x, y) and c.in_region(x, y), (x, y)
+
+
+def test_a_strip_under_a_wedge_beside_its_saddle_is_traced_to_both_its_ends():
+    """56/63 internal (shaper z0 25) at tol 1e-5: below interference.1's wedge opening up to the right from its saddle
+    at (1, 1), and below the wedge opening down to the left, a strip of the region runs between the wedges' lower
+    sides and exit jamming, from (0.99936, 0.99904) to (1.00164, 1.00123) where the two cross, joined to the rest
+    of the region through the saddle's neck; interference.1 is below 4e-7 all across it. A chord from exit jamming
+    to the upper wedge's far side, its middle in the strip, found no zero at its normal's ends; the wide search's
+    zero on exit jamming 0.8 chords off read nearer by the secant (5e-8) than the ladder's on the wedge's side 0.1
+    chords off, the chord was split there and the outline folded back along exit jamming, and the cuts across the
+    strip, both ends read as binding interference.1, were carried to neither end: the strip's ends left out
+    (10.5 tol off). On rows through the strip the polygons cross only at the three zeros of the check's smallest
+    hard margin (brentq: the wedge's two sides, exit jamming), each within 2 tol of one and each zero with a
+    crossing; beside the wedge, in its middle, in the strip's middle and past exit jamming the region agrees with
+    check_pair."""
+    tol = 1e-5
+    spec = PairSpec(56, 63, 1.0, kind="internal", tool2=ShaperCutter(25))
+    field = PairField(spec)
+    c = blocking_contour(spec, tol=tol, lines=[])
+    for y in (0.9992, 0.9995, 1.0002, 1.0004, 1.0008, 1.0011):
+        xs = np.linspace(y - 0.0006, y + 0.0008, 211)
+        exact = _zeros(lambda x: _smallest(field, x, y), xs)
+        assert len(exact) == 3, (y, exact)
+        got = xs[0] + _crossings(c.region, np.array([xs[0], y]), np.array([xs[-1], y])) * (xs[-1] - xs[0])
+        assert got.size, (y, exact)
+        near = np.abs(got[:, None] - exact[None, :])
+        assert near.min(axis=1).max() <= CONTRACT * tol and near.min(axis=0).max() <= CONTRACT * tol, (y, exact, got)
+        for x, inside in ((exact[0] - 1e-4, True), (0.5 * (exact[0] + exact[1]), False),
+                          (0.5 * (exact[1] + exact[2]), True), (exact[2] + 1e-4, False)):
+            assert _passes(spec, x, y) == inside, (x, y)
+            assert c.in_region(x, y) == inside, (x, y)

@@ -19,9 +19,14 @@ whose sides are two branches of its zero set, meeting at its saddle: interferenc
 of 58/109 and 55/102 internal, cut 7.5 and 2.4 tol short at tol 1e-3), the sides are traced from each
 end to where they meet (:func:`meetings`). An end beside the tip sweep's kink, where its margin is flat at the
 sweep's resolution and smallest, binds the part whose zero lies there (exit jamming, where the tip
-sweep starts to penetrate: 25/54 z0 20's wedge). A new outline is taken only where it is the region's
-edge: every chord's middle within ``tol`` of its part's zero, every part at every new vertex on its right side
-or within ``tol`` of its zero (by its own slope), and no chord crossing the rest of the region's outline.
+sweep starts to penetrate: 25/54 z0 20's wedge); so does an end where the smallest part is flat, farther than
+``tol`` from its zero by its slope, and another lies within ``tol`` of its own (beside a saddle: the nearest by value
+over slope). Where the crossing nearest a chord's start is not its corner, the one nearest its end is taken (a strip
+of the region between two parts ends where they cross at each of its ends; the outline from the start runs the
+other way along it: 56/63 z0 25's strip under interference.1's wedge at (1, 1)). A new outline is
+taken only where it is the region's edge: every chord's middle within ``tol`` of its part's zero, every part at
+every new vertex on its right side or within ``tol`` of its zero (by its own slope), and no chord crossing the
+rest of the region's outline.
 
 The tips themselves are solved by :mod:`~gearkit.blocking.apex` (:func:`crossings`, :func:`meetings`:
 also this module's names).
@@ -135,7 +140,37 @@ def _binding(G, P, tol: float) -> np.ndarray:
         with np.errstate(invalid="ignore"):
             near = np.abs(v) <= tol * g
         b[i[near]] = c[near]
+    _nearest_zero(G, P, V, b, fin, tol)
     return np.where(fin, b, -1)
+
+
+def _nearest_zero(G, P, V, b, fin, tol: float) -> None:
+    """Where the smallest part ``b`` (``V``: every part at ``P``) lies farther than ``tol`` from its zero by its
+    own slope (flat beside a saddle, where its value is small far from its zero) and another part lies within
+    ``tol`` of its own, ``b`` is set to the part nearest its zero (value over slope): the outline's vertex lies on
+    that part's zero. 56/63 z0 25 internal at tol 1e-5: beside interference.1's saddle at (1, 1) it is below
+    4e-7 across the whole strip between its wedge and exit jamming, whose zero the vertex lies on (5e-7 off; by
+    interference.1's slope 5.7 tol): both ends of the cut across the strip read interference.1 and the cut
+    was not carried to the strip's end, where the two cross."""
+    i = np.flatnonzero(fin & ~np.isin(b, G.costly))
+    if not i.size:
+        return
+    p, c = P[i], b[i]
+    v = V[c, i]
+    g = np.hypot(G(p + [STEP_H, 0.0], c) - v, G(p + [0.0, STEP_H], c) - v) / STEP_H
+    with np.errstate(invalid="ignore"):
+        far = ~(np.abs(v) <= tol * g)
+    i = i[far]
+    if not i.size:
+        return
+    p, W = P[i], V[:, i]
+    S = np.hypot(G.many(p + [STEP_H, 0.0]) - W, G.many(p + [0.0, STEP_H]) - W) / STEP_H
+    with np.errstate(invalid="ignore", divide="ignore"):
+        dist = np.where(np.isfinite(S) & (S > 0), np.abs(W) / S, np.inf)
+    dist[G.costly] = np.inf
+    c = np.argmin(dist, axis=0)
+    near = dist[c, np.arange(i.size)] <= tol
+    b[i[near]] = c[near]
 
 
 def _segment_distance(A, B, P) -> np.ndarray:
@@ -181,13 +216,15 @@ def carry_to_tips(F, G, lines, kept, region: int, tol: float, trace) -> list:
     tips = np.full(A.shape, np.nan)
     if len(A):
         span = float(np.hypot(G.window[1] - G.window[0], G.window[3] - G.window[2]))
-        T, conv = crossings(G, A, ia, ib, vtol, REACH * span)
-        conv &= np.hypot(*(T - A).T) <= REACH * span
-        c = np.flatnonzero(conv)  # a corner farther than tol from the chord and the chords beside it
-        conv[c] = np.minimum.reduce([_segment_distance(u[c], v[c], T[c]) for u, v in
-                                     ((before, A), (A, B), (B, after))]) > tol
-        c = np.flatnonzero(conv)  # ... on the side of it the region's part beyond it lies (_outward)
-        conv[c] = _outward(F, region, A[c], B[c], T[c])
+        T, conv, seen = _corners(F, G, region, A, B, ia, ib, before, after, A, tol, span)
+        # the crossing nearest the chord's start may be the other end of a strip between the two parts (the
+        # outline from that start runs the other way along the strip): where it is not the chord's corner (nor
+        # within tol of the outline), the crossing nearest the chord's end
+        again = np.flatnonzero(~conv & ~seen)
+        if again.size:
+            T2, conv2, _ = _corners(F, G, region, A[again], B[again], ia[again], ib[again], before[again],
+                                    after[again], B[again], tol, span)
+            T[again[conv2]], conv[again[conv2]] = T2[conv2], True
         tips[conv] = T[conv]
     corner = np.isfinite(tips[:, 0])
     sides = {}  # chord (start, end) -> its sides (part, start, end)
@@ -253,6 +290,24 @@ def carry_to_tips(F, G, lines, kept, region: int, tol: float, trace) -> list:
         lines[m] = (k, np.vstack([q[:lo], path, q[hi + 1:]]),
                     np.concatenate([g[:lo], g[j:j + 1], inner, g[j + 1:j + 2], g[hi + 1:]]))
     return lines
+
+
+def _corners(F, G, region: int, A, B, ia, ib, before, after, x0, tol: float, span: float):
+    """The corners of the chords ``A -> B`` (ends binding parts ``ia``, ``ib``; ``before``, ``after`` the outline's
+    vertices beside them): the crossing of the two parts' zero lines nearest ``x0`` (:func:`crossings`), within
+    ``REACH`` of the window's diagonal ``span`` of ``A``, farther than ``tol`` from the chord and the chords beside it,
+    on the side of it where the region's part beyond it lies (:func:`_outward`): ``(points, corner (n,) bool, seen
+    (n,) bool)``, ``seen`` where the crossing lies within ``tol`` of those chords (the outline has it)."""
+    T, conv = crossings(G, x0, ia, ib, 0.25 * tol, REACH * span)
+    conv &= np.hypot(*(T - A).T) <= REACH * span
+    seen = np.zeros(len(A), bool)
+    c = np.flatnonzero(conv)  # a corner farther than tol from the chord and the chords beside it
+    conv[c] = np.minimum.reduce([_segment_distance(u[c], v[c], T[c]) for u, v in
+                                 ((before, A), (A, B), (B, after))]) > tol
+    seen[c[~conv[c]]] = True
+    c = np.flatnonzero(conv)  # ... on the side of it the region's part beyond it lies (_outward)
+    conv[c] = _outward(F, region, A[c], B[c], T[c])
+    return T, conv, seen
 
 
 def _outward(F, region: int, A, B, T) -> np.ndarray:
