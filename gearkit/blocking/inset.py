@@ -131,12 +131,13 @@ def add_inset(fig, ax, polygons, star, draw):
         return None
     to_axes = ax.transAxes.inverted()
     (c0, c1), (c2, c3) = to_axes.transform([spot, (spot[0] + side + left + 2 * gap, spot[1] + side + bottom + 2 * gap)])
+    # above the lines (zorder 1, 2) and their labels (3), below the star and the mark (10, 11), which it never covers
     card = Rectangle((c0, c1), c2 - c0, c3 - c1, transform=ax.transAxes, facecolor="white", edgecolor="#999999",
-                     lw=0.6, zorder=19)
+                     lw=0.6, zorder=4.5)
     ax.add_patch(card)
     (b0, b1), (b2, b3) = to_axes.transform([(spot[0] + gap + left, spot[1] + gap + bottom),
                                             (spot[0] + gap + left + side, spot[1] + gap + bottom + side)])
-    inset = ax.inset_axes([b0, b1, b2 - b0, b3 - b1], zorder=20)
+    inset = ax.inset_axes([b0, b1, b2 - b0, b3 - b1], zorder=5)
     draw(inset)
     inset.plot([p[0]], [p[1]], marker=star.get_marker(), ms=INSET_MARKER, color=star.get_color(), mec="white",
                mew=0.6, ls="none", zorder=10)
