@@ -173,3 +173,22 @@ def test_a_chord_along_a_thin_wedge_keeps_to_its_side(axis, at, lo, hi):
     near = np.abs(got[:, None] - exact[None, :])
     assert near.min(axis=1).max() <= CONTRACT * tol, (got, exact)
     assert near.min(axis=0).max() <= CONTRACT * tol, (got, exact)
+
+
+def test_a_regions_chord_is_split_at_the_nearer_zero_not_the_far_side_the_secant_favours():
+    """densify on a chord of a measured curve (the region's: the smallest of two parts, F = min(1e-3 (y - 0.1)
+    (y - 0.45), 10 (y + 0.8))) from (-0.5, 0) to (0.5, 0): its middle lies in a strip of F > 0 beside a thin wedge
+    of F < 0 (0.1 < y < 0.45, the gentle part flat) and 0.8 above a steep zero; the normal's ends (y = +-0.5) are of
+    the middle's sign. The wide search found the steep zero at the reach, and the secant from the middle (F = 4.5e-5)
+    to the reach (F = -2) read it 2e-5 off, nearer than the ladder's zero at y = 0.1 within the normal's ends: the
+    chord was split at y = -0.8 (56/63 z0 25 internal at tol 1e-5: a chord from exit jamming to interference.1's
+    wedge, its middle in the strip between them, split at exit jamming 0.8 chords off, and the outline folded back
+    along it). The zeros are y = 0.1, 0.45 and -0.8 (closed form): the chord is split on the nearest, every new vertex
+    within tol / 4 of y = 0.1 and none near -0.8."""
+    from gearkit.blocking.level import densify
+
+    tol = 1e-3
+    F = lambda p, k: np.minimum(1e-3 * (p[:, 1] - 0.1) * (p[:, 1] - 0.45), 10.0 * (p[:, 1] + 0.8))  # noqa: E731
+    out = densify(F, [(0, np.array([[-0.5, 0.0], [0.5, 0.0]]), np.full(2, np.nan))], tol, None, (0,), (), False, [])
+    inner = np.concatenate([q[1:-1] for _, q in out])
+    assert len(inner) and np.all(np.abs(inner[:, 1] - 0.1) <= tol / 4), inner

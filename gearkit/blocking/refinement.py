@@ -17,11 +17,14 @@ falling geometrically to ``tol / 4`` (a strip, a saddle's thin wedge, or beside 
 it, narrower than their spacing), and so is a region's chord whose zero is found only beyond the normal's ends
 (a strip narrower than the normal's half chord beside it hid the nearer one: 59/68 z0 25 internal at tol 1e-3,
 a chord along the region's strip, split at the far side of a wedge of its outside 1.7 chords off, zigzagged
-across the wedge, 35 tol off); a zero so found past another of the region's chords is none (:func:`_past_lines`:
-a link of the grid's chain of diamonds along a flat strip, refined down the strip past the next link's cut, took
-its part twice). One from one side of a strip to the other (brackets.two_lines) is cut,
-not split (a zigzag across the strip lost an arm: 46/49's interference.1 beside (1, 1)), its ends carried
-on (ends). So every point of a polyline lies within about ``1.25 tol`` of its curve; coarser tols cost less.
+across the wedge, 35 tol off), that zero read as far as its root (solved) lies, not by the secant from the middle
+(a steep far zero read nearer than the ladder's: 56/63 z0 25 at tol 1e-5, the region's outline folded back along
+exit jamming 0.8 chords off, its middle 0.1 chords from interference.1's wedge); a zero so found past another of
+the region's chords is none (:func:`_past_lines`: a link of the grid's chain of diamonds along a flat strip,
+refined down the strip past the next link's cut, took its part twice). One from one side of a strip to the
+other (brackets.two_lines) is cut, not split (a zigzag across the strip lost an arm: 46/49's interference.1 beside
+(1, 1)), its ends carried on (ends). So every point of a polyline lies within about ``1.25 tol`` of its curve;
+coarser tols cost less.
 
 ``F`` may have kinks (e.g. the smallest of several margins); a corner of a zero set is approached
 by splitting the chords beside it until they pass within ``tol``.
@@ -225,9 +228,13 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
                 best.consider(wide[ok], lo[ok], flo[ok], ps[rw, j][ok], vs[rw, j][ok], diagonal=r >= 2)
             # a measured curve's zero found only at the reach or twice it may lie across a wedge of the other sign
             # while a strip narrower than the normal's half chord hides the nearer one beside the middle (a chord
-            # along the strip's edge): the ladder within the normal's ends offers the nearer (NearestBracket)
+            # along the strip's edge): the ladder within the normal's ends offers the nearer (NearestBracket), read
+            # against the far zero's root (the secant from the middle to a steep far side reads it next to the middle)
             beyond = wide[best.have[wide] & ~tw]
             if beyond.size:
+                far_root = segment_roots(F, best.lo[beyond], best.end[beyond], best.flo[beyond], best.fe[beyond],
+                                         vtol, km[beyond])
+                best.dist[beyond] = np.hypot(*(far_root - mm[beyond]).T)
                 best.ladder(F, beyond, nm_[beyond], 0.5 * Lm[beyond], km[beyond], vtol, np.ones(beyond.size, bool))
         thin = np.flatnonzero(~best.have & (Lm > vtol))
         if thin.size:  # no zero at the samples: a strip narrower than their spacing, searched on a ladder (a
