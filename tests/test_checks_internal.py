@@ -15,7 +15,7 @@ from gearkit.pair.internal import exit_jamming_margin, nu_radius, plunge_trimmin
 from gearkit.pair import PairSpec, pair_geometry
 from gearkit.families.involute import ShaperCutter
 
-from sweeporacle import brute_sweep
+from sweeporacle import brute_maximum, brute_sweep
 
 SIDE = 1e-3
 SHAPER = ShaperCutter(20, addendum=1.3)  # medium-worn shaper, x_c = 0.3
@@ -193,3 +193,20 @@ def test_tip_sweep_against_brute_force(spec):
     else:
         assert depth <= SWEEP_BAND * res + step_error
     assert abs(brute - res) > step_error and (depth > res) == (brute > res)
+
+
+def test_tip_sweep_finds_the_deeper_of_two_close_maxima():
+    """34/76 (shaper 33) at a shift pair on its tip_interference line: the two corners' maxima over the
+    pinion turn (at -0.844 and +0.659 rad) lie 2.8e-7 m_n apart, within the branch and bound's stop
+    (resolution / 100); only the deepest sample's maximum was refined, the lower one (9.9660e-5 against
+    9.9943e-5 mm), which put the map's tip_interference zero 2.3 tol off its line traced at tol 1e-7.
+    Against the brute-force sweep refined about every sample that may lie beside the maximum: equal
+    within what the refined samples can miss (a few 1e-13 mm), and never shallower."""
+    from gearkit.pair.internal import tip_sweep_depth
+
+    g = pair_geometry(PairSpec(34, 76, 1.0, 1.0736059920785432, 0.2142069902277642, kind="internal",
+                               tool2=ShaperCutter(33)))
+    brute, below = brute_maximum(g)
+    depth, _ = tip_sweep_depth(g)
+    assert below < 1e-9  # the oracle resolves the two maxima (2.8e-7 apart)
+    assert brute - 1e-12 <= depth <= brute + below + 1e-12

@@ -141,8 +141,8 @@ def tip_sweep(g: PairGeometry, resolution: float | None = None) -> tuple[float, 
     second-order bounds of each corner's depth, then zooming samples).
 
     Contact along the path of contact has depth 0, so penetrations up to ``resolution`` (default
-    ``1e-4 m_n``) count as contact; beyond it the returned depth is accurate to ``resolution / 100``
-    or better.
+    ``1e-4 m_n``) count as contact; beyond it the returned depth is the deepest maximum to
+    round-off (of two maxima closer than ``resolution / 100`` too).
 
     Returns
     -------

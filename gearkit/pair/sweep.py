@@ -127,11 +127,11 @@ def sweep_depth(sec, z1: int, z2: int, a, ra1, ra2, rl1, rf2, t1, t2, rw2, resol
     interval whose mid-point depth plus its slack (see :func:`_corner`) stays below
     ``max(best, SWEEP_BAND resolution)`` cannot hold the maximum (nor an interference) and is
     dropped; the rest are cut in ``SWEEP_SPLIT`` until the slack is below ``resolution / 100``; then
-    zooming samples refine the deepest sample above ``SWEEP_BAND resolution`` to round-off (climbing
-    beyond the branch and bound's bracket where the depth keeps rising there). A maximum above
-    ``SWEEP_BAND resolution`` is found to ``resolution / 100`` or better (to round-off where it is the
-    only one that close); below it, a lower bound is returned (contact along the path of contact,
-    depth 0, is not refined).
+    zooming samples refine, above ``SWEEP_BAND resolution``, the deepest sample and every interval left
+    whose bound passes it (two maxima closer than the slack, e.g. of the two corners: either may be the
+    deeper) to round-off (climbing beyond the branch and bound's bracket where the depth keeps rising
+    there). A maximum above ``SWEEP_BAND resolution`` is thus found to round-off; below it, a lower
+    bound is returned (contact along the path of contact, depth 0, is not refined).
     """
     a, ra1, ra2, rl1, rf2, t1, t2, rw2 = (np.atleast_1d(np.asarray(v, dtype=float))
                                           for v in (a, ra1, ra2, rl1, rf2, t1, t2, rw2))
@@ -181,6 +181,7 @@ def sweep_depth(sec, z1: int, z2: int, a, ra1, ra2, rl1, rf2, t1, t2, rw2, resol
     w = math.pi / SWEEP_START
     owner = np.repeat(np.arange(n), SWEEP_START)
     mid = np.tile(-math.pi + w * (2 * np.arange(SWEEP_START) + 1), n)
+    ends = []  # (owner, mid, half width, bound): intervals cut no further that may yet hold the maximum
     with np.errstate(invalid="ignore", divide="ignore"):
         while owner.size:
             d, bound, slack = depth(owner, mid, w)
@@ -192,34 +193,47 @@ def sweep_depth(sec, z1: int, z2: int, a, ra1, ra2, rl1, rf2, t1, t2, rw2, resol
             first = hit[np.unique(owner[hit], return_index=True)[1]]
             up = top > best[o]
             best[o[up]], at[o[up]], width[o[up]] = top[up], mid[first[up]], w
-            keep = (bound > np.maximum(best, floor)[owner]) & (slack >= stop) & (best < enough)[owner]
+            open_ = (bound > np.maximum(best, floor)[owner]) & (best < enough)[owner]
+            keep = open_ & (slack >= stop)
+            done = np.flatnonzero(open_ & ~keep)
+            ends.append((owner[done], mid[done], np.full(done.size, w), bound[done]))
             owner, m = owner[keep], mid[keep]
             owner = np.repeat(owner, SWEEP_SPLIT)
             w /= SWEEP_SPLIT
             mid = (m[:, None] + w * (2 * np.arange(SWEEP_SPLIT) + 1 - SWEEP_SPLIT)).ravel()
-        # zoom on the deepest sample's neighbourhood, where it matters (above the floor): SWEEP_ZOOM samples
-        # across the bracket, then the bracket around the best of them (the maximum is the only one there).
+        # zoom, where it matters (above the floor), on the deepest sample's neighbourhood and on every interval
+        # left whose bound passes it (a second maximum within the stop of the first, e.g. of the other corner:
+        # 34/76 shaper 33, two maxima 2.8e-7 m_n apart, the lower one refined): SWEEP_ZOOM samples across
+        # each bracket, then the bracket around the best of them (the maximum is the only one there).
         # A bracket whose deepest sample is one of its ends does not hold the maximum (an interval the
         # branch and bound left for its small slack may hold it, beyond the bracket): the bracket moves
         # to be centred there, as wide, up to SWEEP_SLIDES times
         live = np.flatnonzero(np.isfinite(best) & (best > floor) & (best < enough))
         if not live.size:
             return best, at
-        h = 2 * width[live] / (SWEEP_ZOOM - 1)  # the bracket [at - 2 width, at + 2 width]: its sample step
-        x0 = at[live] - 2 * width[live]
+        e_owner, e_mid, e_w, e_bound = (np.concatenate(v) for v in zip(*ends))
+        more = (e_bound > best[e_owner]) & (best[e_owner] > floor) & (best[e_owner] < enough)
+        more &= (e_mid != at[e_owner]) | (e_w != width[e_owner])  # the deepest sample's bracket is zoomed anyway
+        pair = np.concatenate([live, e_owner[more]])  # the pair of each bracket
+        half = np.concatenate([width[live], e_w[more]])
+        h = 2 * half / (SWEEP_ZOOM - 1)  # the bracket [centre - 2 half, centre + 2 half]: its sample step
+        x0 = np.concatenate([at[live], e_mid[more]]) - 2 * half
         grid = np.arange(SWEEP_ZOOM)
-        shrunk, slid = np.zeros(live.size, int), np.zeros(live.size, int)
-        while live.size:
+        shrunk, slid = np.zeros(pair.size, int), np.zeros(pair.size, int)
+        while pair.size:
             xs = x0[:, None] + h[:, None] * 2 * grid
-            f = depth(np.repeat(live, SWEEP_ZOOM), xs.ravel()).reshape(xs.shape)
+            f = depth(np.repeat(pair, SWEEP_ZOOM), xs.ravel()).reshape(xs.shape)
             j = np.argmax(np.where(np.isnan(f), -np.inf, f), axis=1)
-            rows = np.arange(live.size)
-            up = f[rows, j] > best[live]
-            best[live[up]], at[live[up]] = f[rows, j][up], xs[rows, j][up]
+            rows = np.arange(pair.size)
+            fj, xj = f[rows, j], xs[rows, j]
+            lead = np.lexsort((-fj, pair))  # per pair, its deepest bracket's sample first
+            lead = lead[np.r_[True, pair[lead][1:] != pair[lead][:-1]]]
+            up = fj[lead] > best[pair[lead]]
+            best[pair[lead][up]], at[pair[lead][up]] = fj[lead][up], xj[lead][up]
             slide = ((j == 0) | (j == SWEEP_ZOOM - 1)) & (slid < SWEEP_SLIDES)
-            x0 = np.where(slide, xs[rows, j] - (SWEEP_ZOOM - 1) * h, xs[rows, j] - 2 * h)
+            x0 = np.where(slide, xj - (SWEEP_ZOOM - 1) * h, xj - 2 * h)
             h = np.where(slide, h, 4 * h / (2 * (SWEEP_ZOOM - 1)))
             slid, shrunk = slid + slide, shrunk + ~slide
             more = shrunk < SWEEP_REFINE
-            live, x0, h, shrunk, slid = live[more], x0[more], h[more], shrunk[more], slid[more]
+            pair, x0, h, shrunk, slid = pair[more], x0[more], h[more], shrunk[more], slid[more]
     return best, at
