@@ -4,6 +4,7 @@ next link's, and the strip's last cut must be carried on to its end. Oracle: the
 (``PairField.margin``, their zeros along rows solved by brentq) and ``check_pair`` (the row helpers of
 ``test_blocking_region``).
 """
+import dataclasses
 import functools
 
 import numpy as np
@@ -11,9 +12,10 @@ import pytest
 
 from gearkit.blocking import blocking_contour
 from gearkit.blocking.field import PairField
+from gearkit.checks import check_pair
 from gearkit.families.involute import ShaperCutter
 from gearkit.pair import PairSpec
-from test_blocking_region import _row_crosses_the_strip
+from test_blocking_region import CONTRACT, _crossings, _row_crosses_the_strip, _smallest, _zeros
 
 TOL = 1e-5
 SIDE = 4e-3  #: each row is sampled this far beyond the strip's edges (short of every other zero)
@@ -49,3 +51,36 @@ def test_a_flat_strips_links_are_not_refined_past_each_others_cuts(key):
     for y in rows:
         xs = np.linspace(xl + sl * (y - yl) - SIDE, xr + sr * (y - yr) + SIDE, 61)
         _row_crosses_the_strip(spec, field, c, y, xs, TOL)
+
+
+def _segment_meets_the_strip(spec, field, c, a, b, n=61):
+    """On the segment ``a -> b`` (sampled at ``n`` points): the check's smallest hard margin has two zeros (brentq),
+    every crossing of the region's polygons lies within 2 tol of one and each has a crossing within 2 tol; the
+    middle between them passes check_pair and is in the region."""
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    span = float(np.hypot(*(b - a)))
+    exact = _zeros(lambda s: _smallest(field, *(a + s * (b - a))), np.linspace(0.0, 1.0, n)) * span
+    assert len(exact) == 2, (a, b, exact)
+    got = _crossings(c.region, a, b) * span
+    near = np.abs(got[:, None] - exact[None, :])
+    assert got.size and near.min(axis=1).max() <= CONTRACT * TOL, (a, b, exact, got)
+    assert near.min(axis=0).max() <= CONTRACT * TOL, (a, b, exact, got)
+    mid = a + 0.5 * (exact[0] + exact[1]) / span * (b - a)
+    assert check_pair(dataclasses.replace(spec, shift1=float(mid[0]), shift2=float(mid[1]))).ok, mid
+    assert c.in_region(*mid), mid
+
+
+def test_a_flat_strips_last_cut_is_carried_to_its_end():
+    """25/59 internal (shaper z0 35) at tol 1e-5: the same strip's last cut, across it at (0.543, -0.138) with its
+    normal along the strip, 0.0055 long (the strip's width), found no zero at the normal's reach or twice it: the
+    strip's end (exit jamming and trimming.plunge at x2 = -0.1471) lay 2.01 of its lengths beyond. The cut was
+    kept there and the outline missed the strip's last 0.01 (273 tol off). On rows through that part, and on
+    columns across the strip's end, every crossing of the polygons lies within 2 tol of a zero of the check's
+    smallest hard margin (brentq) and every zero has one; the middle between them passes check_pair and is in the
+    region."""
+    spec, field, c = _internal(25, 59, 35)
+    (xl, sl, yl), (xr, sr, yr), _ = STRIPS[(25, 59, 35)]
+    for y in (-0.1466, -0.145, -0.143, -0.141, -0.139, -0.137):
+        _segment_meets_the_strip(spec, field, c, (xl + sl * (y - yl) - SIDE, y), (xr + sr * (y - yr) + SIDE, y))
+    for x in (0.5325, 0.534, 0.5355, 0.537):  # up from below the end to past the strip's left edge
+        _segment_meets_the_strip(spec, field, c, (x, yl - SIDE), (x, yl + (x - xl) / sl + SIDE))

@@ -118,7 +118,8 @@ def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), 
     # lines the grid cut short of their ends (a saddle): carried on to them (ends)
     lines = extend_ends(F, lines, grids, tol, measure, carry)
     lines = densify(F, onset_vertices(F, lines, *onsets, vtol), tol, max_step, measure, kinked, True, kept)
-    lines = reconnect(F, lines, kept, tol, lambda ls, kp: densify(F, ls, tol, max_step, measure, kinked, True, kp))
+    lines = reconnect(F, lines, kept, tol, lambda ls, kp, rest=None: densify(F, ls, tol, max_step, measure, kinked,
+                                                                               True, kp, down=rest))
     if parts is not None and measure:  # the region's chords still across a wedge or a strip: its edge (tips)
         lines = carry_to_tips(F, parts, lines, kept, measure[0], tol,  # (a side is taken whole or not at all)
                               lambda g, ls: densify(g, ls, tol, max_step, (), range(g.size), dips=False))

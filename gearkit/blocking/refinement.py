@@ -36,6 +36,7 @@ import numpy as np
 from gearkit.blocking.brackets import NearestBracket, segment_roots, two_lines
 from gearkit.blocking.corners import corner_splits
 from gearkit.blocking.edges import touchdowns, toward_edge
+from gearkit.blocking.flats import carry_down
 from gearkit.blocking.grid import cut_positions
 
 __all__ = ["densify"]
@@ -110,7 +111,7 @@ def _past_lines(lines, which, A, B, m, F0, root, tol: float) -> np.ndarray:
 
 
 def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kinked=(), slopes=False,
-            kept=None, dips=True, loose=None, others=()) -> list:
+            kept=None, dips=True, loose=None, others=(), down=None) -> list:
     """``lines`` (a list of ``(k, points (n, 2), slope (n,))``: curve index, vertices on the curve, and
     estimates of ``|grad F_k|`` there, NaN if unknown) with vertices added until every chord lies
     within ``tol`` of its curve and is at most ``max_step`` long (a fourth entry, a mask of the
@@ -124,8 +125,9 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
     lines dipping to the no-pair edge carried to it (:func:`~gearkit.blocking.edges.touchdowns`). ``loose``: a
     list to which the ends of a line's chords cut are added as ``(k, end, chord length)``, to carry on (ends).
     ``others``: ``[(k, points)]``, lines not refined here that a measured curve's zeros are read against
-    (:func:`_past_lines`)."""
-    vtol = VERTEX_FRACTION * tol
+    (:func:`_past_lines`). ``down`` (``[(k, points)]``, the other lines, or None): a measured curve's cut across a
+    flat strip moved once towards its end where no line crosses the way (:func:`~gearkit.blocking.flats.carry_down`)."""
+    vtol, moved_once = VERTEX_FRACTION * tol, set()
     step = np.inf if not max_step else float(max_step)
     state = [(ln[0], np.asarray(ln[1], float), np.asarray(ln[2], float),
               np.asarray(ln[3], bool) if len(ln) > 3 else np.ones(len(ln[1]) - 1, bool)) for ln in lines]
@@ -261,6 +263,16 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
                 seen = [st[:2] for st in state] + list(others)
                 found[far[_past_lines(seen, km[far], A[meas[far]], B[meas[far]], mm[far], f0[far], root[far],
                                       tol)]] = False
+        # down: a cut across a flat strip moved once towards its end (flats; a wedge walked down: 23/89, 2388 tol off)
+        dn = np.flatnonzero(~found & ~trust[km] & live[meas]) if down is not None else np.zeros(0, int)
+        dn, (A2, B2) = dn[[(tuple(A[r]), tuple(B[r])) not in moved_once for r in meas[dn]]], np.zeros((2, 0, 2))
+        if dn.size:
+            seen = [st[:2] for st in state] + list(others) + list(down)
+            moved, end, A2, B2 = carry_down(F, A[meas[dn]], B[meas[dn]], km[dn], tol)
+            g, i = np.flatnonzero(moved), dn[moved]
+            moved[g[_past_lines(seen, km[i], A[meas[i]], B[meas[i]], mm[i], f0[i], end[g], tol)]] = False
+            dn, A2, B2 = meas[dn[moved]], A2[moved], B2[moved]
+            moved_once |= {(tuple(a), tuple(b)) for a, b in zip(A2, B2)}
         off = np.einsum("ij,ij->i", root - m[meas], nrm[meas])
         # a zero found on a diagonal ray is as far as it lies from the middle (an acute corner beyond it)
         dev = np.where(best.diagonal, np.hypot(*(root - mm).T), np.abs(off))
@@ -325,6 +337,7 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
             ends = np.searchsorted(own[order], np.arange(rows.size + 1))
             for q, rr in enumerate(rows):
                 inserts[rr] = (ps_all[ends[q]:ends[q + 1]], gg_all[ends[q]:ends[q + 1]])
+        inserts.update({r: (np.array([a2, b2]), np.full(2, np.nan)) for r, a2, b2 in zip(dn.tolist(), A2, B2)})
         # write back: per polyline, insert new vertices after their chord's start
         base_row = 0
         cuts = {}
@@ -382,5 +395,6 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
     if again:  # the polylines that got a vertex beside a corner: densified again
         done = [out[n] if slopes else out[n][:2] for n in range(len(out)) if n not in again]
         return done + densify(F, [out[n] for n in sorted(again)], tol, max_step, measure, kinked, slopes, kept,
-                              others=list(others) + [out[n][:2] for n in range(len(out)) if n not in again])
+                              others=list(others) + [out[n][:2] for n in range(len(out)) if n not in again],
+                              down=down)
     return out if slopes else [(k, p) for k, p, _ in out]

@@ -145,9 +145,11 @@ def reconnect(F, lines, kept, tol: float, refine) -> list:
     dropped. The lines changed are refined again by ``refine(lines, kept)``
     (:func:`~gearkit.blocking.refinement.densify`, which adds the chords it finds no zero across to the new
     ``kept``), round after round (``RECONNECT_ROUNDS``); ``kept`` is extended by their chords kept. The
-    joined lines still holding a cut that paired with none are refined once more by ``refine(lines, None)``:
-    no cut is then left alone as across a flat strip (:func:`~gearkit.blocking.corners.corner_splits`; a
-    strip's last cut short of its end: 25/59 internal at tol 1e-3, 5.6 tol off). A loop holding a cut that lies
+    joined lines still holding a cut that paired with none are refined once more by ``refine(lines, None, rest)``
+    (``rest``: the other lines, ``[(k, points)]``): no cut is then left alone as across a flat strip
+    (:func:`~gearkit.blocking.corners.corner_splits`; a strip's last cut short of its end: 25/59 internal at tol
+    1e-3, 5.6 tol off), and one across a flat strip is carried down it to its end where neither these lines nor
+    ``rest`` cross the way (:func:`~gearkit.blocking.flats.carry_down`). A loop holding a cut that lies
     inside another loop of the same sense is dropped (:func:`drop_covered`): its part is held already."""
     todo, joined = list(kept), set()
     for _ in range(RECONNECT_ROUNDS):
@@ -162,7 +164,8 @@ def reconnect(F, lines, kept, tol: float, refine) -> list:
     left = {w[0] for w in (locate_chord(lines, k, a, b) for k, a, b in kept) if w is not None} \
         & {n for n, (_, q, _) in enumerate(lines) if id(q) in joined}
     if left:  # a joined loop's cuts not re-joined: refined with none left alone (no flat strip across them)
-        lines = [lines[n] for n in range(len(lines)) if n not in left] + refine([lines[n] for n in sorted(left)], None)
+        rest = [lines[n] for n in range(len(lines)) if n not in left]
+        lines = rest + refine([lines[n] for n in sorted(left)], None, [(k, q) for k, q, _ in rest])
     return drop_covered(lines, kept, tol)
 
 
