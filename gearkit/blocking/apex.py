@@ -6,7 +6,9 @@ where the wedge's sides are two branches of one part's zero set meeting at its s
 branches meet (:func:`meetings`: their tangents crossed, the ends moved halfway to that estimate and
 back onto their lines, round after round). Each function ``G(points (n, 2), which (n,) int) -> (n,)``
 is a part of the region's function (:func:`~gearkit.blocking.tips.part_evaluator`); every step is
-bounded by ``reach``, and a solve that does not converge says so.
+bounded by ``reach``, and a solve that does not converge says so. :func:`corners`: which crossings are the
+corners an outline's chords cut (far enough from them, on the side the region's part beyond lies:
+:func:`outward`).
 
 >>> import numpy as np
 >>> P = lambda p, k: np.where(k == 0, p[:, 1] - 0.1 * p[:, 0], 0.2 * p[:, 0] - p[:, 1])  # a wedge, tip (0, 0)
@@ -18,10 +20,12 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["crossings", "meetings", "NEWTON_ITERATIONS", "STEP_H", "CROSSING_SIN"]
+__all__ = ["corners", "crossings", "meetings", "outward", "segment_distance", "NEWTON_ITERATIONS", "STEP_H",
+           "CROSSING_SIN", "REACH"]
 
 NEWTON_ITERATIONS = 40  #: most Newton steps to a tip
 STEP_H = 1e-7  #: forward difference of the parts' gradients (shift units; their round-off is ~1e-15)
+REACH = 0.25  #: a tip lies within this fraction of the window's diagonal of the chord's end
 CROSSING_SIN = 1e-5  #: two zero lines at a smaller angle (its sine) are parallel to the gradients' accuracy
 #: (forward differences, STEP_H: about 1e-7 on lines that coincide)
 
@@ -127,3 +131,40 @@ def meetings(G, A, B, which, vtol: float, reach: float):
             b[act] = onto(0.5 * (b[act] + t), which[act])
             ok[act[~(np.all(np.isfinite(a[act]), axis=1) & np.all(np.isfinite(b[act]), axis=1))]] = False
     return T, ok & done
+
+
+def segment_distance(A, B, P) -> np.ndarray:
+    """Distance of each ``P[i]`` from the segment ``A[i] -> B[i]``."""
+    d = B - A
+    t = np.clip(np.einsum("ij,ij->i", P - A, d) / np.maximum(np.einsum("ij,ij->i", d, d), 1e-300), 0.0, 1.0)
+    return np.hypot(*(A + t[:, None] * d - P).T)
+
+
+def corners(F, G, region: int, A, B, ia, ib, before, after, x0, tol: float, span: float):
+    """The corners of the chords ``A -> B`` (ends binding parts ``ia``, ``ib``; ``before``, ``after`` the outline's
+    vertices beside them): the crossing of the two parts' zero lines nearest ``x0`` (:func:`crossings`), within
+    ``REACH`` of the window's diagonal ``span`` of ``A``, farther than ``tol`` from the chord and the chords beside it,
+    on the side of it where the region's part beyond it lies (:func:`outward`): ``(points, corner (n,) bool, seen
+    (n,) bool)``, ``seen`` where the crossing lies within ``tol`` of those chords (the outline has it)."""
+    T, conv = crossings(G, x0, ia, ib, 0.25 * tol, REACH * span)
+    conv &= np.hypot(*(T - A).T) <= REACH * span
+    seen = np.zeros(len(A), bool)
+    c = np.flatnonzero(conv)  # a corner farther than tol from the chord and the chords beside it
+    conv[c] = np.minimum.reduce([segment_distance(u[c], v[c], T[c]) for u, v in
+                                 ((before, A), (A, B), (B, after))]) > tol
+    seen[c[~conv[c]]] = True
+    c = np.flatnonzero(conv)  # ... on the side of it the region's part beyond it lies (outward)
+    conv[c] = outward(F, region, A[c], B[c], T[c])
+    return T, conv, seen
+
+
+def outward(F, region: int, A, B, T) -> np.ndarray:
+    """True where carrying the chord ``A -> B`` (the region on its left) to the corner ``T`` changes the
+    region by a part of the right kind: ``F`` positive halfway from the chord's middle to ``T`` where ``T``
+    lies right of the chord (a wedge of the region taken in), negative where it lies left (a notch of its
+    outside taken out). A cut across a wedge whose tip lies behind it, inside its loop (the upper cut of
+    a grid node's diamond alone in the wedge, which Newton's steps carry down to the tip its lower cut
+    is carried to), is no corner: carried there, the loop passed the tip twice."""
+    left = (B[:, 0] - A[:, 0]) * (T[:, 1] - A[:, 1]) - (B[:, 1] - A[:, 1]) * (T[:, 0] - A[:, 0]) > 0
+    f = F(0.25 * (A + B) + 0.5 * T, np.full(len(A), region))
+    return np.where(left, f < 0, f > 0)

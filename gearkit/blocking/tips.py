@@ -35,11 +35,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from gearkit.blocking.apex import STEP_H, crossings, meetings
+from gearkit.blocking.apex import REACH, STEP_H, corners, crossings, meetings, segment_distance
 
 __all__ = ["part_evaluator", "crossings", "meetings", "carry_to_tips"]
 
-REACH = 0.25  #: a tip lies within this fraction of the window's diagonal of the chord's end
 
 
 def part_evaluator(field, window, count=None):
@@ -173,18 +172,11 @@ def _nearest_zero(G, P, V, b, fin, tol: float) -> None:
     b[i[near]] = c[near]
 
 
-def _segment_distance(A, B, P) -> np.ndarray:
-    """Distance of each ``P[i]`` from the segment ``A[i] -> B[i]``."""
-    d = B - A
-    t = np.clip(np.einsum("ij,ij->i", P - A, d) / np.maximum(np.einsum("ij,ij->i", d, d), 1e-300), 0.0, 1.0)
-    return np.hypot(*(A + t[:, None] * d - P).T)
-
-
 def _along(path, P, reach) -> np.ndarray:
     """True for each point of ``P`` within ``reach`` of the polyline ``path``."""
     d = np.full(len(P), np.inf)
     for u, v in zip(path[:-1], path[1:]):
-        d = np.minimum(d, _segment_distance(np.broadcast_to(u, P.shape), np.broadcast_to(v, P.shape), P))
+        d = np.minimum(d, segment_distance(np.broadcast_to(u, P.shape), np.broadcast_to(v, P.shape), P))
     return d <= reach
 
 
@@ -216,13 +208,13 @@ def carry_to_tips(F, G, lines, kept, region: int, tol: float, trace) -> list:
     tips = np.full(A.shape, np.nan)
     if len(A):
         span = float(np.hypot(G.window[1] - G.window[0], G.window[3] - G.window[2]))
-        T, conv, seen = _corners(F, G, region, A, B, ia, ib, before, after, A, tol, span)
+        T, conv, seen = corners(F, G, region, A, B, ia, ib, before, after, A, tol, span)
         # the crossing nearest the chord's start may be the other end of a strip between the two parts (the
         # outline from that start runs the other way along the strip): where it is not the chord's corner (nor
         # within tol of the outline), the crossing nearest the chord's end
         again = np.flatnonzero(~conv & ~seen)
         if again.size:
-            T2, conv2, _ = _corners(F, G, region, A[again], B[again], ia[again], ib[again], before[again],
+            T2, conv2, _ = corners(F, G, region, A[again], B[again], ia[again], ib[again], before[again],
                                     after[again], B[again], tol, span)
             T[again[conv2]], conv[again[conv2]] = T2[conv2], True
         tips[conv] = T[conv]
@@ -252,7 +244,7 @@ def carry_to_tips(F, G, lines, kept, region: int, tol: float, trace) -> list:
         # chord beside the tip measured a quarter from it: corner_splits; a side traced alone from its end kept one
         # chord along a branch that bends towards the saddle near its end, its middle 0.48 tol off and its last
         # hundredth 2.1 tol, 42/67 z0 40 internal at tol 1e-5)
-        for i in np.flatnonzero(conv & (_segment_distance(a, b, T) > tol)):
+        for i in np.flatnonzero(conv & (segment_distance(a, b, T) > tol)):
             (ab, k) = lone[i]
             sides[ab] = [(k, a[i], T[i]), (k, T[i], b[i])]
             more[(k, ab[0], ab[1])] = T[i]
@@ -296,36 +288,6 @@ def carry_to_tips(F, G, lines, kept, region: int, tol: float, trace) -> list:
         lines[m] = (k, np.vstack([q[:lo], path, q[hi + 1:]]),
                     np.concatenate([g[:lo], g[j:j + 1], inner, g[j + 1:j + 2], g[hi + 1:]]))
     return lines
-
-
-def _corners(F, G, region: int, A, B, ia, ib, before, after, x0, tol: float, span: float):
-    """The corners of the chords ``A -> B`` (ends binding parts ``ia``, ``ib``; ``before``, ``after`` the outline's
-    vertices beside them): the crossing of the two parts' zero lines nearest ``x0`` (:func:`crossings`), within
-    ``REACH`` of the window's diagonal ``span`` of ``A``, farther than ``tol`` from the chord and the chords beside it,
-    on the side of it where the region's part beyond it lies (:func:`_outward`): ``(points, corner (n,) bool, seen
-    (n,) bool)``, ``seen`` where the crossing lies within ``tol`` of those chords (the outline has it)."""
-    T, conv = crossings(G, x0, ia, ib, 0.25 * tol, REACH * span)
-    conv &= np.hypot(*(T - A).T) <= REACH * span
-    seen = np.zeros(len(A), bool)
-    c = np.flatnonzero(conv)  # a corner farther than tol from the chord and the chords beside it
-    conv[c] = np.minimum.reduce([_segment_distance(u[c], v[c], T[c]) for u, v in
-                                 ((before, A), (A, B), (B, after))]) > tol
-    seen[c[~conv[c]]] = True
-    c = np.flatnonzero(conv)  # ... on the side of it the region's part beyond it lies (_outward)
-    conv[c] = _outward(F, region, A[c], B[c], T[c])
-    return T, conv, seen
-
-
-def _outward(F, region: int, A, B, T) -> np.ndarray:
-    """True where carrying the chord ``A -> B`` (the region on its left) to the corner ``T`` changes the
-    region by a part of the right kind: ``F`` positive halfway from the chord's middle to ``T`` where ``T``
-    lies right of the chord (a wedge of the region taken in), negative where it lies left (a notch of its
-    outside taken out). A cut across a wedge whose tip lies behind it, inside its loop (the upper cut of
-    a grid node's diamond alone in the wedge, which Newton's steps carry down to the tip its lower cut
-    is carried to), is no corner: carried there, the loop passed the tip twice."""
-    left = (B[:, 0] - A[:, 0]) * (T[:, 1] - A[:, 1]) - (B[:, 1] - A[:, 1]) * (T[:, 0] - A[:, 0]) > 0
-    f = F(0.25 * (A + B) + 0.5 * T, np.full(len(A), region))
-    return np.where(left, f < 0, f > 0)
 
 
 def _on_edge(G, path, part, tol: float) -> bool:
