@@ -22,9 +22,9 @@ SIDE = 4e-3  #: each row is sampled this far beyond the strip's edges (short of 
 
 
 @functools.lru_cache(maxsize=None)
-def _internal(z1, z2, z0):
+def _internal(z1, z2, z0, tol=TOL):
     spec = PairSpec(z1, z2, 1.0, kind="internal", tool2=ShaperCutter(z0))
-    return spec, PairField(spec), blocking_contour(spec, tol=TOL, lines=[])
+    return spec, PairField(spec), blocking_contour(spec, tol=tol, lines=[])
 
 
 # internal pair (shaper z0) -> the strip's two edges as lines x1 = x0 + slope (x2 - y0) (to place each row's
@@ -46,7 +46,7 @@ def test_a_flat_strips_links_are_not_refined_past_each_others_cuts(key):
     the strip's end at trimming.plunge, was kept there). On rows through the strip, from its end up, every
     crossing of the polygons lies within 2 tol of a zero of the check's smallest hard margin (brentq) and every
     zero has one; the strip's middle passes check_pair and is in the region."""
-    spec, field, c = _internal(*key)
+    spec, field, c = _internal(*key, TOL)
     (xl, sl, yl), (xr, sr, yr), rows = STRIPS[key]
     for y in rows:
         xs = np.linspace(xl + sl * (y - yl) - SIDE, xr + sr * (y - yr) + SIDE, 61)
@@ -84,3 +84,57 @@ def test_a_flat_strips_last_cut_is_carried_to_its_end():
         _segment_meets_the_strip(spec, field, c, (xl + sl * (y - yl) - SIDE, y), (xr + sr * (y - yr) + SIDE, y))
     for x in (0.5325, 0.534, 0.5355, 0.537):  # up from below the end to past the strip's left edge
         _segment_meets_the_strip(spec, field, c, (x, yl - SIDE), (x, yl + (x - xl) / sl + SIDE))
+
+
+# internal pair (shaper z0), tol -> the strip's or wedge's two edges as in STRIPS, its rows, and columns x1 = x with
+# their x2 span, crossing the strip's end (each with two zeros of the check's smallest hard margin)
+ENDS = {(19, 72, 33, 1e-3): ((0.4855, 0.7475, -0.5825), (0.4901, 1.051, -0.5917),
+                             (-0.594, -0.592, -0.59, -0.588, -0.586, -0.584), ((0.481, -0.600, -0.585),)),
+        (19, 72, 33, 1e-5): ((0.4855, 0.7475, -0.5825), (0.4901, 1.051, -0.5917),
+                             (-0.595, -0.594, -0.592, -0.59, -0.588, -0.586, -0.584),
+                             ((0.4785, -0.600, -0.590), (0.481, -0.600, -0.585), (0.484, -0.600, -0.583))),
+        (25, 59, 35, 1e-5): ((0.5315, 0.781, -0.1471), (0.5372, 1.035, -0.1471), (-0.147, -0.146, -0.144, -0.142),
+                             ((0.534, -0.152, -0.140), (0.536, -0.152, -0.138))),
+        (40, 64, 22, 1e-5): ((0.4887, 0.778, 0.0417), (0.4978, 1.029, 0.0312),
+                             (-0.035, -0.03, -0.02, -0.01, 0.0, 0.01, 0.02, 0.03, 0.04), ())}
+
+
+def _column_crosses_the_end(spec, field, c, x, ys, tol):
+    """On the column ``x`` over ``ys``: the check's smallest hard margin has two zeros (brentq), every crossing of
+    the region's polygons lies within 2 tol of one and each has a crossing within 2 tol; the middle between them
+    passes check_pair and is in the region."""
+    import dataclasses
+
+    from gearkit.checks import check_pair
+
+    exact = _zeros(lambda y: _smallest(field, x, y), ys)
+    assert len(exact) == 2, (x, exact)
+    got = ys[0] + _crossings(c.region, np.array([x, ys[0]]), np.array([x, ys[-1]])) * (ys[-1] - ys[0])
+    near = np.abs(got[:, None] - exact[None, :])
+    assert got.size and near.min(axis=1).max() <= CONTRACT * tol, (x, exact, got)
+    assert near.min(axis=0).max() <= CONTRACT * tol, (x, exact, got)
+    mid = 0.5 * (exact[0] + exact[1])
+    assert check_pair(dataclasses.replace(spec, shift1=float(x), shift2=float(mid))).ok, (x, mid)
+    assert c.in_region(x, mid), (x, mid)
+
+
+@pytest.mark.parametrize("key", sorted(ENDS))
+def test_a_flat_strips_cut_is_carried_to_its_end_or_its_tip(key):
+    """19/72 (shaper z0 33) internal at tol 1e-3 and 1e-5: the flat strip between interference.1 and exit jamming
+    (0.01 wide) ends at trimming.plunge's line (x2 = -0.5953) before its sides meet (0.044 below it); the
+    crossing of the sides, carried to, was no edge (trimming.plunge below zero there) and the strip's last cut was
+    left 0.01 to 0.013 short of its end, 4.9 and 513 tol off: the end is the two corners with the part across the
+    strip (so too 25/59, z0 35, at 1e-5: its strip's last cut 0.01 short of trimming.plunge, 273 tol). 40/64 (z0 22) at tol 1e-5: the flat wedge between the same two, 0.002 to 0.01 wide, the loop's cut
+    0.07 above a lone diamond (too far to pair with its cut); the carry of the cut to the wedge's tip crossed the
+    diamond and the loop's own folds along exit jamming and was not taken, the wedge between them left out, 691
+    tol off. On rows through the strip (and columns through its end), every crossing of the polygons lies within
+    2 tol of a zero of the check's smallest hard margin (brentq) and every zero has one; the middle passes
+    check_pair and is in the region."""
+    *pair, tol = key
+    spec, field, c = _internal(*pair, tol)
+    (xl, sl, yl), (xr, sr, yr), rows, columns = ENDS[key]
+    for y in rows:
+        xs = np.linspace(xl + sl * (y - yl) - SIDE, xr + sr * (y - yr) + SIDE, 61)
+        _row_crosses_the_strip(spec, field, c, y, xs, tol)
+    for x, lo, hi in columns:
+        _column_crosses_the_end(spec, field, c, x, np.linspace(lo, hi, 61), tol)
