@@ -90,6 +90,24 @@ def test_a_strip_cut_across_twice_is_taken_once(pair, tol, xr, rows):
     _rows_cross_the_strip(spec, field, c, np.linspace(*xr, 37), rows, tol)
 
 
+def test_a_wedge_beside_a_strips_cut_is_not_cut_off():
+    """31/66 at tol 1e-3: the wedge of the region above the crossing of interference.1 and interference.2 near
+    (-1.0195, 0.985), which goes on up into the strip towards interference.2's saddle neck at (-1, 1). The grid cut
+    the strip across just above the wedge; its cut, measured again once a corner split changed its loop, read the
+    wedge's far side (0.029 below its middle, through the wedge's own chords) as its zero, the loop folded down
+    into the wedge and back, and the region came out with a separate triangle closed across the wedge by a chord
+    3.95 tol off any zero. On rows through the wedge between the crossing and the neck, every crossing of the
+    polygons lies within 2 tol of a zero of the check's smallest hard margin (brentq) and every zero has one; the
+    wedge's middle passes check_pair and is in the region."""
+    tol = 1e-3
+    spec = PairSpec(31, 66, 1.0)
+    field = PairField(spec)
+    c = blocking_contour(spec, tol=tol)
+    xs = np.linspace(-1.03, -1.003, 55)
+    for y in (0.987, 0.989, 0.991, 0.993, 0.995):
+        _row_crosses_the_strip(spec, field, c, y, xs, tol)
+
+
 def _rows_cross_the_strip(spec, field, c, xs, rows, tol):
     """On each row x2 = y of ``rows`` (x1 sampled at ``xs``) of the pair ``spec``, the region's polygons cross where the
     check's smallest hard margin does (brentq: the strip's two edges), within 2 tol, and the strip's

@@ -14,7 +14,7 @@ import numpy as np
 
 from gearkit.blocking.brackets import NearestBracket, segment_roots
 
-__all__ = ["corner_splits"]
+__all__ = ["corner_splits", "uncut"]
 
 CORNER_COS = math.cos(math.radians(20.0))  #: a polyline turning more than this at a vertex has a corner beside it
 CORNER_FRACTION = 0.25  #: ... measured this far along its chords from the turning end
@@ -105,3 +105,20 @@ def corner_splits(F, lines, tol: float, curves, split: float, vtol: float, kept=
             g = np.insert(g, i + 1, gq)
         lines[n] = (k, p, g)
     return set(inserts)
+
+
+def uncut(lines, kept) -> list:
+    """``lines`` (``[(k, points, slopes)]``) with a mask of the chords to densify again after a corner split: all
+    but the cuts of ``kept`` (chords ``(k, start, end)`` densify found no zero across), which stay as they are.
+    Measured again against their loop's refined chords, a cut's far zero may no longer lie past them (31/66 at
+    tol 1e-3: a cut across the strip above a wedge took the wedge's far side 0.029 off as its zero, the loop
+    folded into the wedge and back and the region kept a triangle closed by a chord 3.95 tol off).
+
+    >>> import numpy as np
+    >>> p = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0]])
+    >>> uncut([(0, p, np.ones(3))], [(0, p[0], p[1])])[0][3]
+    array([False,  True])
+    """
+    cut = {(k, tuple(a), tuple(b)) for k, a, b in (kept or ())}
+    return [(k, p, g, np.array([(k, tuple(a), tuple(b)) not in cut for a, b in zip(p[:-1], p[1:])], bool))
+            for k, p, g in lines]

@@ -34,7 +34,7 @@ from __future__ import annotations
 import numpy as np
 
 from gearkit.blocking.brackets import NearestBracket, segment_roots, two_lines
-from gearkit.blocking.corners import corner_splits
+from gearkit.blocking.corners import corner_splits, uncut
 from gearkit.blocking.edges import touchdowns, toward_edge
 from gearkit.blocking.flats import carry_down
 from gearkit.blocking.grid import cut_positions
@@ -392,9 +392,9 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
     out = [(st[0], st[1], st[2]) for st in state if len(st[1]) >= 2]
     corners = set(kinked) | set(measure)
     again = corner_splits(F, out, tol, corners, SPLIT_FRACTION * tol, VERTEX_FRACTION * tol, kept or ())
-    if again:  # the polylines that got a vertex beside a corner: densified again
+    if again:  # the polylines that got a vertex beside a corner: densified again, but for their cuts (uncut)
         done = [out[n] if slopes else out[n][:2] for n in range(len(out)) if n not in again]
-        return done + densify(F, [out[n] for n in sorted(again)], tol, max_step, measure, kinked, slopes, kept,
-                              others=list(others) + [out[n][:2] for n in range(len(out)) if n not in again],
-                              down=down)
+        return done + densify(F, uncut([out[n] for n in sorted(again)], kept), tol, max_step, measure, kinked,
+                              slopes, kept, down=down,
+                              others=list(others) + [out[n][:2] for n in range(len(out)) if n not in again])
     return out if slopes else [(k, p) for k, p, _ in out]
