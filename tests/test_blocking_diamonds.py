@@ -15,7 +15,7 @@ from gearkit.blocking.field import PairField
 from gearkit.checks import check_pair
 from gearkit.families.involute import ShaperCutter
 from gearkit.pair import PairSpec
-from test_blocking_region import CONTRACT, _crossings, _row_crosses_the_strip, _smallest, _zeros
+from test_blocking_region import CONTRACT, _crossings, _crosses_the_strip, _smallest, _zeros
 
 TOL = 1e-5
 SIDE = 4e-3  #: each row is sampled this far beyond the strip's edges (short of every other zero)
@@ -50,7 +50,7 @@ def test_a_flat_strips_links_are_not_refined_past_each_others_cuts(key):
     (xl, sl, yl), (xr, sr, yr), rows = STRIPS[key]
     for y in rows:
         xs = np.linspace(xl + sl * (y - yl) - SIDE, xr + sr * (y - yr) + SIDE, 61)
-        _row_crosses_the_strip(spec, field, c, y, xs, TOL)
+        _crosses_the_strip(spec, field, c, y, xs, TOL)
 
 
 def _segment_meets_the_strip(spec, field, c, a, b, n=61):
@@ -99,25 +99,6 @@ ENDS = {(19, 72, 33, 1e-3): ((0.4855, 0.7475, -0.5825), (0.4901, 1.051, -0.5917)
                              (-0.035, -0.03, -0.02, -0.01, 0.0, 0.01, 0.02, 0.03, 0.04), ())}
 
 
-def _column_crosses_the_end(spec, field, c, x, ys, tol):
-    """On the column ``x`` over ``ys``: the check's smallest hard margin has two zeros (brentq), every crossing of
-    the region's polygons lies within 2 tol of one and each has a crossing within 2 tol; the middle between them
-    passes check_pair and is in the region."""
-    import dataclasses
-
-    from gearkit.checks import check_pair
-
-    exact = _zeros(lambda y: _smallest(field, x, y), ys)
-    assert len(exact) == 2, (x, exact)
-    got = ys[0] + _crossings(c.region, np.array([x, ys[0]]), np.array([x, ys[-1]])) * (ys[-1] - ys[0])
-    near = np.abs(got[:, None] - exact[None, :])
-    assert got.size and near.min(axis=1).max() <= CONTRACT * tol, (x, exact, got)
-    assert near.min(axis=0).max() <= CONTRACT * tol, (x, exact, got)
-    mid = 0.5 * (exact[0] + exact[1])
-    assert check_pair(dataclasses.replace(spec, shift1=float(x), shift2=float(mid))).ok, (x, mid)
-    assert c.in_region(x, mid), (x, mid)
-
-
 @pytest.mark.parametrize("key", sorted(ENDS))
 def test_a_flat_strips_cut_is_carried_to_its_end_or_its_tip(key):
     """19/72 (shaper z0 33) internal at tol 1e-3 and 1e-5: the flat strip between interference.1 and exit jamming
@@ -135,6 +116,6 @@ def test_a_flat_strips_cut_is_carried_to_its_end_or_its_tip(key):
     (xl, sl, yl), (xr, sr, yr), rows, columns = ENDS[key]
     for y in rows:
         xs = np.linspace(xl + sl * (y - yl) - SIDE, xr + sr * (y - yr) + SIDE, 61)
-        _row_crosses_the_strip(spec, field, c, y, xs, tol)
+        _crosses_the_strip(spec, field, c, y, xs, tol)
     for x, lo, hi in columns:
-        _column_crosses_the_end(spec, field, c, x, np.linspace(lo, hi, 61), tol)
+        _crosses_the_strip(spec, field, c, x, np.linspace(lo, hi, 61), tol, column=True)

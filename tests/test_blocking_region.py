@@ -105,7 +105,7 @@ def test_a_wedge_beside_a_strips_cut_is_not_cut_off():
     c = blocking_contour(spec, tol=tol)
     xs = np.linspace(-1.03, -1.003, 55)
     for y in (0.987, 0.989, 0.991, 0.993, 0.995):
-        _row_crosses_the_strip(spec, field, c, y, xs, tol)
+        _crosses_the_strip(spec, field, c, y, xs, tol)
 
 
 def _rows_cross_the_strip(spec, field, c, xs, rows, tol):
@@ -403,28 +403,29 @@ def test_a_piece_of_a_flat_strip_taken_twice_is_no_hole(key, rows, xr):
     _rows_meet_the_strips_edges(key, rows, xr)
 
 
-def _row_crosses_the_strip(spec, field, c, y, xs, tol):
-    """On the row ``y`` over ``xs``: the check's smallest hard margin has two zeros (brentq), every crossing of
-    the region's polygons lies within 2 tol of one and each has a crossing within 2 tol; the middle between them
-    passes check_pair and is in the region."""
+def _crosses_the_strip(spec, field, c, y, xs, tol, column=False):
+    """On the row ``y`` over ``xs`` (``column``: the column x1 = ``y`` over x2 in ``xs``): the check's smallest
+    hard margin has two zeros (brentq), every crossing of the region's polygons lies within 2 tol of one and each
+    has a crossing within 2 tol; the middle between them passes check_pair and is in the region."""
     import dataclasses
 
-    exact = _zeros(lambda x: _smallest(field, x, y), xs)
+    at = (lambda s: (y, s)) if column else (lambda s: (s, y))
+    exact = _zeros(lambda s: _smallest(field, *at(s)), xs)
     assert len(exact) == 2, (y, exact)
-    got = xs[0] + _crossings(c.region, np.array([xs[0], y]), np.array([xs[-1], y])) * (xs[-1] - xs[0])
+    got = xs[0] + _crossings(c.region, np.array(at(xs[0])), np.array(at(xs[-1]))) * (xs[-1] - xs[0])
     near = np.abs(got[:, None] - exact[None, :])
     assert got.size and near.min(axis=1).max() <= CONTRACT * tol, (y, exact, got)
     assert near.min(axis=0).max() <= CONTRACT * tol, (y, exact, got)
-    mid = 0.5 * (exact[0] + exact[1])
-    assert check_pair(dataclasses.replace(spec, shift1=float(mid), shift2=float(y))).ok, (y, mid)
-    assert c.in_region(mid, y), (y, mid)
+    x1, x2 = at(0.5 * (exact[0] + exact[1]))
+    assert check_pair(dataclasses.replace(spec, shift1=float(x1), shift2=float(x2))).ok, (x1, x2)
+    assert c.in_region(x1, x2), (x1, x2)
 
 
 def _rows_meet_the_strips_edges(key, rows, xr):
     spec, field, c = _internal(*key)
     xs = np.linspace(*xr, 61)
     for y in rows:
-        _row_crosses_the_strip(spec, field, c, y, xs, 1e-3)
+        _crosses_the_strip(spec, field, c, y, xs, 1e-3)
 
 
 @pytest.mark.parametrize("key", sorted(FLAT_STRIPS))
@@ -513,7 +514,7 @@ def test_a_link_of_a_strips_chain_another_loop_holds_is_not_taken_twice(key, tip
     spec, field, c = _internal(*key)
     for y in rows:
         xc = tip[0] + slope * (y - tip[1])
-        _row_crosses_the_strip(spec, field, c, y, np.linspace(xc - 0.02, xc + 0.02, 41), 1e-3)
+        _crosses_the_strip(spec, field, c, y, np.linspace(xc - 0.02, xc + 0.02, 41), 1e-3)
 
 
 def test_a_link_of_a_strips_chain_carried_to_the_tip_beside_another_is_not_taken_twice():
@@ -530,4 +531,4 @@ def test_a_link_of_a_strips_chain_carried_to_the_tip_beside_another_is_not_taken
     c = blocking_contour(spec, tol=tol, lines=[])
     for y in (-0.1, -0.09, -0.085, -0.083, -0.08):
         xc = 0.3276 + 0.904 * (y + 0.1119)
-        _row_crosses_the_strip(spec, field, c, y, np.linspace(xc - 0.01, xc + 0.01, 41), tol)
+        _crosses_the_strip(spec, field, c, y, np.linspace(xc - 0.01, xc + 0.01, 41), tol)

@@ -98,7 +98,7 @@ def test_a_cut_whose_tip_lies_behind_it_is_not_carried_there():
     there too, the even-odd rule left the wedge's end out (18.6 tol off). On rows through the diamond and below
     it every crossing of the polygons lies within 2 tol of a zero of the check's smallest hard margin (brentq)
     and every zero has a crossing within 2 tol; the wedge's middle passes check_pair and is in the region."""
-    from test_blocking_region import _row_crosses_the_strip
+    from test_blocking_region import _crosses_the_strip
 
     tol = 1e-5
     spec = PairSpec(23, 89, 1.0, kind="internal", tool2=ShaperCutter(19))
@@ -106,7 +106,7 @@ def test_a_cut_whose_tip_lies_behind_it_is_not_carried_there():
     c = blocking_contour(spec, tol=tol, lines=[])
     for y in (-0.7944, -0.794, -0.793, -0.792, -0.7915, -0.791):
         xc = 0.4724 + 0.72 * (y + 0.7947)
-        _row_crosses_the_strip(spec, field, c, y, np.linspace(xc - 0.002, xc + 0.002, 401), tol)
+        _crosses_the_strip(spec, field, c, y, np.linspace(xc - 0.002, xc + 0.002, 401), tol)
 
 
 def test_a_link_refined_to_the_wedge_tip_the_loop_reached_leaves_no_sliver():
