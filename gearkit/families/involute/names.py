@@ -3,6 +3,8 @@ file) and :func:`tool_label` (what every output prints), so a tool is spelled on
 """
 from __future__ import annotations
 
+import functools
+
 from gearkit.errors import SpecError
 from gearkit.families.involute.tools import ISO53_PROFILES, BasicRack, ShaperCutter
 
@@ -63,11 +65,24 @@ def tool_label(tool) -> str:
         extra += [f"h_f0*={tool.dedendum:g}"] if tool.dedendum != 1.25 else []
         extra += [f"rho_a0*={tool.tip_radius:g}"] if tool.tip_radius else []
         return ", ".join([f"shaper cutter z0={tool.teeth}"] + extra + angle)
-    if tool == BasicRack(tool.pressure_angle_deg):
+    if tool == _standard_rack(tool.pressure_angle_deg):
         what = "standard basic rack"
-    elif tool.pressure_angle_deg == 20.0 and tool in [BasicRack.iso53(k) for k in ISO53_PROFILES]:
-        what = f"ISO 53 {next(k for k in ISO53_PROFILES if BasicRack.iso53(k) == tool)}"
+    elif tool.pressure_angle_deg == 20.0 and any(rack == tool for _, rack in _iso53_racks()):
+        what = f"ISO 53 {next(k for k, rack in _iso53_racks() if rack == tool)}"
     else:
         what = f"h_aP* {tool.addendum:g}, h_fP* {tool.dedendum:g}, rho_fP* {tool.fillet:.4g}"
         what += f", pr* {tool.protuberance:g}" if tool.protuberance else ""
     return f"rack ({', '.join([what] + angle)})"
+
+
+@functools.lru_cache(maxsize=64)
+def _standard_rack(pressure_angle_deg) -> BasicRack:
+    """The standard basic rack at this angle, made once (the pair check labels both tools of every pair
+    it builds, and making a rack validates it)."""
+    return BasicRack(pressure_angle_deg)
+
+
+@functools.lru_cache(maxsize=1)
+def _iso53_racks() -> tuple:
+    """((profile, rack), ...) of the ISO 53 profiles, made once."""
+    return tuple((k, BasicRack.iso53(k)) for k in ISO53_PROFILES)
