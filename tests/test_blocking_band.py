@@ -51,6 +51,18 @@ def _zeros_from_edge(f, lo, hi, top):
     return zeros_from_edge(f, lo, hi, top, DISTANCES)
 
 
+_ZEROS = {}  #: the oracle's zeros by (oracle, spec, line, window): one pair's line traced at several tolerances
+
+
+def _shared_zeros(oracle, spec, contour, name):
+    """``oracle(contour.field, name, contour.window)``, worked out once for the cases that trace the same
+    pair's line in the same window at other tolerances (the scalar margins do not depend on tol)."""
+    key = (oracle.__name__, spec, name, tuple(contour.window))
+    if key not in _ZEROS:
+        _ZEROS[key] = oracle(contour.field, name, contour.window)
+    return _ZEROS[key]
+
+
 def _farthest(zeros, components):
     return float(np.min([distances_to_polyline(zeros, q) for q in components], axis=0).max())
 
@@ -87,8 +99,9 @@ INTERNAL = [  # (z1, z2, shaper teeth, line, tol): the band was not traced (1.0e
 
 @pytest.mark.parametrize("z1, z2, name, tol", CASES)
 def test_a_line_running_along_the_no_pair_edge_is_traced_to_tol(z1, z2, name, tol):
-    c = blocking_contour(PairSpec(z1, z2, 1.0), tol=tol, lines=[name])
-    zeros = _edge_zeros(c.field, name, c.window)
+    spec = PairSpec(z1, z2, 1.0)
+    c = blocking_contour(spec, tol=tol, lines=[name])
+    zeros = _shared_zeros(_edge_zeros, spec, c, name)
     assert len(zeros) >= 3, name  # the oracle sees the line beside the edge
     assert _farthest(zeros, c.line(name).components) <= CONTRACT * tol
 
@@ -178,8 +191,9 @@ LEFT = [  # (z1, z2, shaper teeth, line, tol): an internal pair's edge where x1 
 def test_an_internal_pair_line_beside_the_no_pair_edge_is_traced_to_tol(z1, z2, z0, name, tol, left):
     """The exact zeros on columns rising from the edge below (INTERNAL), or on rows from the left side of
     the edge, where x1 is about constant (LEFT), within 2 tol of the traced line."""
-    c = blocking_contour(PairSpec(z1, z2, 1.0, kind="internal", tool2=ShaperCutter(z0)), tol=tol, lines=[name])
-    zeros = (_left_edge_zeros if left else _edge_zeros)(c.field, name, c.window)
+    spec = PairSpec(z1, z2, 1.0, kind="internal", tool2=ShaperCutter(z0))
+    c = blocking_contour(spec, tol=tol, lines=[name])
+    zeros = _shared_zeros(_left_edge_zeros if left else _edge_zeros, spec, c, name)
     assert len(zeros) >= 3, name
     assert c.line(name).components, name
     assert _farthest(zeros, c.line(name).components) <= CONTRACT * tol
