@@ -208,3 +208,28 @@ def test_the_tip_sweep_in_blocks_is_the_sweep_at_once(monkeypatch):
     finite = np.isfinite(runs[0])
     assert np.array_equal(runs[0][finite], runs[1][finite]) and np.array_equal(finite, np.isfinite(runs[1]))
     assert np.count_nonzero(runs[0][finite] < 0) >= 20 and np.count_nonzero(runs[0][finite] > 0) >= 20
+
+
+def test_the_tip_interference_line_is_measured_where_its_margin_is_flat():
+    """The tip sweep's margin is its resolution (flat) wherever the sweep finds no penetration, so a chord's
+    middle on that side reads the flat level whatever its distance from the line, and an estimate from it
+    kept chords far off (29/39, shaper 19, at tol 1e-3: a grid chord's middle 2.6 tol from the zero, kept as
+    0.3). Every chord's middle of the traced line has a sign change of the tip sweep's margin within the
+    contract to either side along the chord's normal (where both ends have a pair)."""
+    from gearkit.blocking.arrays import evaluator
+
+    tol = 1e-3
+    c = blocking_contour(PairSpec(29, 39, 1.0, kind="internal", tool2=ShaperCutter(19)), tol=tol,
+                         lines=["tip_interference"])
+    P = np.concatenate([np.concatenate([q[:-1], q[1:]], axis=1) for q in c.lines[0].components])
+    a, b = P[:, :2], P[:, 2:]
+    d = b - a
+    n = np.column_stack([-d[:, 1], d[:, 0]]) / np.hypot(d[:, 0], d[:, 1])[:, None]
+    m = 0.5 * (a + b)
+    F = evaluator(c.field, ["tip_interference"], None)
+    k = np.zeros(len(m), int)
+    lo, hi = F(m - CONTRACT * tol * n, k), F(m + CONTRACT * tol * n, k)
+    both = np.isfinite(lo) & np.isfinite(hi)
+    assert np.count_nonzero(both) >= 60
+    off = both & ((lo > 0) == (hi > 0))
+    assert not off.any(), f"no zero within {CONTRACT} tol of the chords' middles {m[off]}"

@@ -107,7 +107,9 @@ def trace(field: PairField, window, names, tol: float, max_step: float | None = 
                 curves.append(refine_grid(F, len(ids) - 1, px, py, rv, cells, REGION_REFINE))
             else:
                 curves.append((px, py, np.full_like(rv, -1.0)))
-        kinked = [k for k, n in enumerate(names) if n.partition("=")[0] == "contact_ratio"]
+        # a kink between two branches of one margin (the contact ratio's limiting end), and the tip sweep's margin,
+        # flat at its resolution on the side it finds no penetration: a chord's middle there says nothing of its zero
+        kinked = [k for k, n in enumerate(names) if n.partition("=")[0] in ("contact_ratio", "tip_interference")]
         bar.update(2)
         # the form circles break their slope where a gear starts to undercut: so do the lines reading them
         onsets = (undercut_onsets(field), {k for k, n in enumerate(ids) if not n.startswith("undercut.")})
