@@ -17,7 +17,8 @@ Modules, in the order a contour is made:
   internal pair's :mod:`~gearkit.blocking.ring_arrays`;
 * lines: :mod:`~gearkit.blocking.tracing` drives :mod:`~gearkit.blocking.level` (marching squares on
   the grids of :mod:`~gearkit.blocking.grid`, chords refined until they keep the tolerance in
-  :mod:`~gearkit.blocking.refinement`, roots and strips in :mod:`~gearkit.blocking.brackets`, kinked
+  :mod:`~gearkit.blocking.refinement`, a chord's zero searched beyond its normal's ends in
+  :mod:`~gearkit.blocking.wide`, roots and strips in :mod:`~gearkit.blocking.brackets`, kinked
   corners in :mod:`~gearkit.blocking.corners`); beside the no-pair area, :mod:`~gearkit.blocking.band`
   on the lattice of :mod:`~gearkit.blocking.lattice`, its edge in :mod:`~gearkit.blocking.edges`, its
   pieces joined to the grid's lines by :mod:`~gearkit.blocking.joins`; lines

@@ -14,14 +14,9 @@ as many pieces as its curvature needs
 (``sqrt(deviation / (tol / 2))``, new vertices solved near the parabola through the three known points),
 round after round. A chord with no zero at those samples is searched again at distances from its middle
 falling geometrically to ``tol / 4`` (a strip, a saddle's thin wedge, or beside a region's edge a strip of
-it, narrower than their spacing), and so is a region's chord whose zero is found only beyond the normal's ends
-(a strip narrower than the normal's half chord beside it hid the nearer one: 59/68 z0 25 internal at tol 1e-3,
-a chord along the region's strip, split at the far side of a wedge of its outside 1.7 chords off, zigzagged
-across the wedge, 35 tol off), that zero read as far as its root (solved) lies, not by the secant from the middle
-(a steep far zero read nearer than the ladder's: 56/63 z0 25 at tol 1e-5, the region's outline folded back along
-exit jamming 0.8 chords off, its middle 0.1 chords from interference.1's wedge); a zero so found past another of
-the region's chords is none (:func:`_past_lines`: a link of the grid's chain of diamonds along a flat strip,
-refined down the strip past the next link's cut, took its part twice). One from one side of a strip to the
+it, narrower than their spacing), and beyond the normal's ends (:mod:`~gearkit.blocking.wide`; a region's zero
+found only there is read as far as its root lies against the ladder's within the normal's ends, and is none past
+another of the region's chords: :func:`~gearkit.blocking.wide.past_lines`). One from one side of a strip to the
 other (brackets.two_lines) is cut, not split (a zigzag across the strip lost an arm: 46/49's interference.1 beside
 (1, 1)), its ends carried on (ends). So every point of a polyline lies within about ``1.25 tol`` of its curve;
 coarser tols cost less.
@@ -38,6 +33,7 @@ from gearkit.blocking.corners import corner_splits, uncut
 from gearkit.blocking.edges import touchdowns, toward_edge
 from gearkit.blocking.flats import carry_down
 from gearkit.blocking.grid import cut_positions
+from gearkit.blocking.wide import past_lines, search_wide
 
 __all__ = ["densify"]
 
@@ -50,13 +46,6 @@ STEEP = 1e5  #: ... and below this (beside the no-pair edge F goes as a cube roo
 SPLIT_MEASURED = 0.5  #: the same for measured curves (a region's corners: its zero may be found on a diagonal)
 MAX_ROUNDS = 60  #: rounds of chord splitting
 MAX_PIECES = 64  #: most pieces one chord is split into in one round
-WIDE_REACH = 1.0  #: a chord's second search for its curve reaches this many chord lengths to each side
-RAY_FRACTIONS = (0.125, 0.25, 0.375, 0.5, 0.75, 1.0, 2.0)  #: where the second search samples (x reach)
-NRAYS = 1  #: directions searched: the normal only (a diagonal ray's zero may lie on the other branch of a
-#: saddle: a chord joining two branches was kept 3.8e-5 off its line at every tol below 1e-4)
-PLAIN = (5, 6)  #: the samples a measured curve's search reads: the reach, then twice it (an acute corner)
-PAST = 2.0  #: a measured curve's zero farther than this many tol (and half that chord) past another of its chords
-#: is not the searching chord's (:func:`_past_lines`)
 WIDE_REGION = True  #: the wider search for measured curves too
 SHORT_KEEP = 2.5  #: a line's chord this short (tol) with no zero beside it (a saddle's neck) stays: within 1.25 tol
 MEASURED_LADDER = 0.125  #: a measured curve's chord's ladder starts this many chord lengths from its middle
@@ -64,50 +53,6 @@ STRIP_PROBE = 0.5  #: a chord whose middle lies between two zeros is read this m
 JUMP_FACTOR = 100.0  #: a solved vertex with |F| above this times slope x tol sits on a jump, not a zero
 JUMP_FALL = 0.5  #: ... and |F| there above this fraction of the smaller |F| at the bracket's ends (the
 #: solver keeps the better end: a real zero is far below it at any tol, a pole or a jump is not)
-
-
-def _past_lines(lines, which, A, B, m, F0, root, tol: float) -> np.ndarray:
-    """True where the way from a chord's middle ``m`` to a zero found along its normal, ``root`` (``(c, 2)``,
-    chords ``A -> B`` of curves ``which``), crosses a chord of the lines of its curve in ``lines``
-    (``[(k, points)]``; none of its own or beside it) farther from the zero than ``PAST`` tol and half that
-    chord: the zero lies past another line of the curve, across the part that line bounds, so it is not this
-    chord's (the arc a chord stands for bounds, with it, a part no other line enters). A chord across a strip
-    of a region narrower than a grid cell, where its margin is flat (a link of the grid's chain of diamonds),
-    reads along the strip its edge beyond the next link's cut: that zero taken, the loop is refined down the
-    strip past the cut,
-    which then pairs with none (:func:`~gearkit.blocking.region.reconnect`), and the part taken twice is
-    left out by the even-odd rule (55/102 z0 34 and 25/59 z0 35 internal at tol 1e-5, 810 and 565 tol off).
-    Kept as it is, the chord is a cut (re-joined with the next link's). So too where the zero lies on the side
-    of the chord its curve does not (``F0 = F(m)``; ``F > 0`` on a loop's left), through its own loop's part, within
-    ``PAST`` tol of a chord of its own line not beside it: taken, the line would fold back along itself (25/59
-    z0 35 at tol 1e-3: a chord across the strip, its normal down the strip, read its own loop's edge there)."""
-    out = np.zeros(len(m), bool)
-    for k in np.unique(which):
-        own = [q for kk, q in lines if kk == k and len(q) >= 2]
-        segs = [(q[:-1], q[1:]) for q in own]
-        C, D = np.concatenate([s[0] for s in segs]), np.concatenate([s[1] for s in segs])
-        line = np.repeat(np.arange(len(own)), [len(q) - 1 for q in own])
-        E = D - C
-        ell = np.hypot(E[:, 0], E[:, 1])
-        for i in np.flatnonzero(which == k):
-            other = ~(np.all(C == A[i], axis=1) | np.all(C == B[i], axis=1) | np.all(D == A[i], axis=1)
-                      | np.all(D == B[i], axis=1))
-            mine = np.isin(line, line[np.all(C == A[i], axis=1) & np.all(D == B[i], axis=1)])
-            t = np.clip(np.einsum("ij,ij->i", root[i] - C, E) / np.maximum(ell ** 2, 1e-300), 0.0, 1.0)
-            r = root[i] - m[i]
-            inward = (float(r[0] * (A[i][1] - B[i][1]) + r[1] * (B[i][0] - A[i][0])) > 0) == (F0[i] > 0)
-            if inward and np.any(other & mine & (np.hypot(*(C + t[:, None] * E - root[i]).T) <= PAST * tol)):
-                out[i] = True  # on its own line elsewhere, through its own part: the line would fold back
-                continue
-            den = r[0] * E[:, 1] - r[1] * E[:, 0]
-            w = C - m[i]
-            with np.errstate(divide="ignore", invalid="ignore"):
-                s = (w[:, 0] * E[:, 1] - w[:, 1] * E[:, 0]) / den  # along the way, 0 at m, 1 at the root
-                u = (w[:, 0] * r[1] - w[:, 1] * r[0]) / den  # along the chord crossed
-            hit = other & (den != 0) & (s > 0) & (s < 1) & (u >= 0) & (u <= 1)
-            gap = (1.0 - s) * np.hypot(*r)
-            out[i] = bool(np.any(hit & (gap > np.fmax(PAST * tol, 0.5 * ell))))
-    return out
 
 
 def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kinked=(), slopes=False,
@@ -125,8 +70,9 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
     lines dipping to the no-pair edge carried to it (:func:`~gearkit.blocking.edges.touchdowns`). ``loose``: a
     list to which the ends of a line's chords cut are added as ``(k, end, chord length)``, to carry on (ends).
     ``others``: ``[(k, points)]``, lines not refined here that a measured curve's zeros are read against
-    (:func:`_past_lines`). ``down`` (``[(k, points)]``, the other lines, or None): a measured curve's cut across a
-    flat strip moved once towards its end where no line crosses the way (:func:`~gearkit.blocking.flats.carry_down`)."""
+    (:func:`~gearkit.blocking.wide.past_lines`). ``down`` (``[(k, points)]``, the other lines, or None): a
+    measured curve's cut across a flat strip moved once towards its end where no line crosses the way
+    (:func:`~gearkit.blocking.flats.carry_down`)."""
     vtol, moved_once = VERTEX_FRACTION * tol, set()
     step = np.inf if not max_step else float(max_step)
     state = [(ln[0], np.asarray(ln[1], float), np.asarray(ln[2], float),
@@ -198,46 +144,8 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
         if two.size:
             best.nearer(F, two, [(e[two], fe[two]) for e, fe in sides], km[two], vtol)
         wide = np.flatnonzero(~best.have & (trust[km] | WIDE_REGION))
-        if wide.size:
-            tg = np.column_stack([nm_[wide, 1], -nm_[wide, 0]])
-            dirs = [sg * dv for dv in (nm_[wide], (nm_[wide] + tg) / np.sqrt(2), (nm_[wide] - tg) / np.sqrt(2))[:NRAYS]
-                    for sg in (1.0, -1.0)]
-            fr = WIDE_REACH * np.asarray(RAY_FRACTIONS)
-            P = np.stack([mm[wide][:, None, :] + (fr[None, :, None] * Lm[wide][:, None, None]) * dv[:, None, :]
-                          for dv in dirs], axis=1)  # (w, rays, samples, 2)
-            V = F(P.reshape(-1, 2), np.repeat(km[wide], len(dirs) * fr.size)).reshape(P.shape[:3])
-            tw = trust[km[wide]]
-            # a measured curve (the region) keeps the plain search: the normal at full reach (twice it
-            # where there is none), and no zero when both sides change sign (a thin part of the region,
-            # not this chord's edge)
-            sides = np.isfinite(V[:, :2]) & ((V[:, :2] > 0) != (f0[wide] > 0)[:, None, None])  # (w, 2, samples)
-            far = ~np.any(sides[:, :, PLAIN[0]], axis=1)  # no zero at the reach: read twice the reach
-            jp = np.where(far, PLAIN[1], PLAIN[0])
-            rw = np.arange(wide.size)
-            both = sides[rw, 0, jp] & sides[rw, 1, jp]
-            for r in range(len(dirs)):  # rays 0, 1: the normal; the others diagonal
-                vs, ps = V[:, r], P[:, r]
-                change = np.isfinite(vs) & ((vs > 0) != (f0[wide] > 0)[:, None])
-                j = np.argmax(change, axis=1)
-                ok = change[rw, j] & np.all(np.isfinite(vs) | (np.arange(fr.size)[None] >= j[:, None]), axis=1)
-                plain = ~tw & (r < 2)
-                j = np.where(plain, jp, j)
-                ok = np.where(plain, change[rw, j] & ~both, ok & tw)
-                prev = np.maximum(j - 1, 0)
-                start = (j > 0) & ~plain
-                lo = np.where(start[:, None], ps[rw, prev], mm[wide])
-                flo = np.where(start, vs[rw, prev], f0[wide])
-                best.consider(wide[ok], lo[ok], flo[ok], ps[rw, j][ok], vs[rw, j][ok], diagonal=r >= 2)
-            # a measured curve's zero found only at the reach or twice it may lie across a wedge of the other sign
-            # while a strip narrower than the normal's half chord hides the nearer one beside the middle (a chord
-            # along the strip's edge): the ladder within the normal's ends offers the nearer (NearestBracket), read
-            # against the far zero's root (the secant from the middle to a steep far side reads it next to the middle)
-            beyond = wide[best.have[wide] & ~tw]
-            if beyond.size:
-                far_root = segment_roots(F, best.lo[beyond], best.end[beyond], best.flo[beyond], best.fe[beyond],
-                                         vtol, km[beyond])
-                best.dist[beyond] = np.hypot(*(far_root - mm[beyond]).T)
-                best.ladder(F, beyond, nm_[beyond], 0.5 * Lm[beyond], km[beyond], vtol, np.ones(beyond.size, bool))
+        if wide.size:  # none within the normal's ends: searched beyond them (wide)
+            search_wide(F, best, wide, mm, f0, nm_, Lm, km, trust[km], vtol)
         thin = np.flatnonzero(~best.have & (Lm > vtol))
         if thin.size:  # no zero at the samples: a strip narrower than their spacing, searched on a ladder (a
             meas_t = ~trust[km[thin]]  # measured curve's near its middle, to one side only: a cut meets none or two)
@@ -261,7 +169,7 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
             far = solved[~trust[km[solved]] & (np.hypot(*(root[solved] - mm[solved]).T) > 0.5 * Lm[solved])]
             if far.size:
                 seen = [st[:2] for st in state] + list(others)
-                found[far[_past_lines(seen, km[far], A[meas[far]], B[meas[far]], mm[far], f0[far], root[far],
+                found[far[past_lines(seen, km[far], A[meas[far]], B[meas[far]], mm[far], f0[far], root[far],
                                       tol)]] = False
         # down: a cut across a flat strip moved once towards its end (flats; a wedge walked down: 23/89, 2388 tol off)
         dn = np.flatnonzero(~found & ~trust[km] & live[meas]) if down is not None else np.zeros(0, int)
@@ -270,7 +178,7 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
             seen = [st[:2] for st in state] + list(others) + list(down)
             moved, end, A2, B2 = carry_down(F, A[meas[dn]], B[meas[dn]], km[dn], tol)
             g, i = np.flatnonzero(moved), dn[moved]
-            moved[g[_past_lines(seen, km[i], A[meas[i]], B[meas[i]], mm[i], f0[i], end[g], tol)]] = False
+            moved[g[past_lines(seen, km[i], A[meas[i]], B[meas[i]], mm[i], f0[i], end[g], tol)]] = False
             dn, A2, B2 = meas[dn[moved]], A2[moved], B2[moved]
             moved_once |= {(tuple(a), tuple(b)) for a, b in zip(A2, B2)}
         off = np.einsum("ij,ij->i", root - m[meas], nrm[meas])
