@@ -196,3 +196,31 @@ def test_a_strip_under_a_wedge_beside_its_saddle_is_traced_to_both_its_ends():
                           (0.5 * (exact[1] + exact[2]), True), (exact[2] + 1e-4, False)):
             assert _passes(spec, x, y) == inside, (x, y)
             assert c.in_region(x, y) == inside, (x, y)
+
+
+def test_a_wedge_between_a_gentle_and_a_steep_margin_is_taken_once_up_to_its_tip():
+    """18/74 internal (shaper z0 33) at tol 1e-5: the region ends in a wedge between pointing.1 (the line x1 =
+    0.592179, gentle) and interference.1 (steep), its tip at (0.592179, -0.48989), narrower than a grid cell; the
+    grid's chord cut it a cell below the tip. Split up the wedge, a chord along pointing.1 with its middle on it
+    (F = 4e-9) had a zero to each side along its normal: its own line's 6e-9 off and the steep side's 0.0045 off,
+    which the secant from the middle read as the nearer (F = -0.016 there against -0.004); the chord was split
+    there, the splits went from one side of the wedge to the other, the outline went over the wedge's top three
+    times and the part held twice was left out by the even-odd rule (23.2 tol off: on rows 7e-4 and 8e-4 below the
+    tip crossings 8 and 16 tol off, the wedge's middle out of the region up to 7e-4 below it). The tip is solved
+    apart from the tracing (brentq on the two margins' zeros along rows, then on their difference): the outline
+    passes within 2 tol of it; on rows below it every crossing of the polygons lies within 2 tol of a zero of the
+    check's smallest hard margin (brentq) and every zero has one, and the wedge's middle passes check_pair and is
+    in the region."""
+    from scipy.optimize import brentq
+    from test_blocking_region import _crosses_the_strip, _distance_to_outline, _edge
+
+    tol = 1e-5
+    spec = PairSpec(18, 74, 1.0, kind="internal", tool2=ShaperCutter(33))
+    field = PairField(spec)
+    c = blocking_contour(spec, tol=tol, lines=[])
+    edge = lambda name, y: _edge(field, name, y, 0.57, 0.60)  # noqa: E731
+    yt = brentq(lambda y: edge("interference.1", y) - edge("pointing.1", y), -0.495, -0.485, xtol=1e-14)
+    xt = edge("pointing.1", yt)
+    assert _distance_to_outline(c.region, np.array([xt, yt])) <= CONTRACT * tol, (xt, yt)
+    for d in (2e-4, 5e-4, 7e-4, 8e-4, 1e-3, 2e-3, 5e-3):  # (the wedge is about 0.65 d wide d below its tip)
+        _crosses_the_strip(spec, field, c, yt - d, np.linspace(xt - 0.8 * d - 1e-4, xt + 1e-4, 41), tol)

@@ -8,8 +8,9 @@ once, with ``F(points (n, 2), which (n,) int) -> (n,)`` (NaN where undefined) as
 at its quarters too (a curve bent one way then the other crosses its chord at the middle: 25/54 z0 20's sliding
 line at tol 1e-5, a grid chord 7.3 tol off at three quarters, is split at its middle's root); a chord
 estimated within ``tol / 2`` is kept, any other is measured by a root of ``F`` along its normal through ``m`` and, if that
-root (where the normal meets a zero to each side, the nearer by its root: across a kink of ``F`` the secant
-misjudges which, :meth:`~gearkit.blocking.brackets.NearestBracket.nearer`) is more than ``tol`` away, split into
+root (where the normal meets a zero to each side, the nearer by its root, on a line's chord and on a region's:
+across a kink of ``F`` the secant misjudges which, :meth:`~gearkit.blocking.brackets.NearestBracket.nearer`) is
+more than ``tol`` away, split into
 as many pieces as its curvature needs
 (``sqrt(deviation / (tol / 2))``, new vertices solved near the parabola through the three known points),
 round after round. A chord with no zero at those samples is searched again at distances from its middle
@@ -136,11 +137,12 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
                 out_dir[edge] = sgn * nm_[edge]
                 lo_e, flo_e, hi_e, fhi_e = toward_edge(F, mm[edge], f0[edge], end[edge], km[edge])
                 best.consider(edge, lo_e, flo_e, hi_e, fhi_e)
-        # a line's chord with a zero to each side: the nearer root (a region's chord inside a thin part keeps the
-        # secant's choice, which its strips' search relies on: 31/66 at tol 1e-3 lost its strip)
+        # a chord with a zero to each side: the nearer root, the region's too (18/74 z0 33 internal at tol 1e-5: a
+        # chord along the gentle side of a wedge, its middle on it, read the steep side 0.0045 off as the nearer by
+        # the secant, was split there and the outline went over the wedge's tip three times)
         with np.errstate(invalid="ignore"):
             across = np.all([np.isfinite(fe) & ((fe > 0) != (f0 > 0)) for _, fe in sides], axis=0)
-        two = np.flatnonzero(across & trust[km])
+        two = np.flatnonzero(across)
         if two.size:
             best.nearer(F, two, [(e[two], fe[two]) for e, fe in sides], km[two], vtol)
         wide = np.flatnonzero(~best.have & (trust[km] | WIDE_REGION))
