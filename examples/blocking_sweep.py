@@ -23,6 +23,7 @@ import numpy as np
 from gearkit.bench.exact import deviation
 from gearkit.bench.topology import scan_gap
 from gearkit.blocking import blocking_contour
+from gearkit.errors import SpecError
 from gearkit.families.involute import ShaperCutter
 from gearkit.pair import PairSpec
 
@@ -31,7 +32,10 @@ PAIRS_PER_SEED = 8
 
 def pair_of(name: str) -> PairSpec:
     """``"Z1/Z2"`` -> external pair, ``"Z1/Z2/Z0"`` -> internal pair cut by a Z0-tooth shaper."""
-    z = [int(v) for v in name.split("/")]
+    parts = name.split("/")
+    if len(parts) not in (2, 3) or not all(v.isdigit() for v in parts):
+        raise SpecError("pair", f"{name!r} must be Z1/Z2 or Z1/Z2/Z0 (whole numbers of teeth)")
+    z = [int(v) for v in parts]
     if len(z) == 2:
         return PairSpec(z[0], z[1], 1.0)
     return PairSpec(z[0], z[1], 1.0, kind="internal", tool2=ShaperCutter(z[2]))
@@ -71,9 +75,17 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     names = list(args.pairs) + [n for s in args.seed for n in random_names(s, args.internal)]
     kept = total = 0
+    try:
+        for name in names:  # every name read before the first (long) contour
+            pair_of(name)
+    except SpecError as e:
+        ap.exit(2, f"blocking_sweep: {e}\n")
     for tol in args.tol:
         for name in names:
-            r = measure(name, tol)
+            try:
+                r = measure(name, tol)
+            except SpecError as e:
+                ap.exit(2, f"blocking_sweep: {e}\n")
             kept, total = kept + r["ok"], total + 1
             print(f"{name:>10} tol {tol:.0e}  exact {r['exact']:7.3g}  scan {r['scan']:7.3g}  "
                   f"{r['seconds']:6.1f} s{'' if r['ok'] else '  OFF'}", flush=True)
@@ -82,4 +94,7 @@ def main(argv=None) -> int:
 
 
 if __name__ == "__main__":
-    raise SystemExit(main())
+    try:
+        raise SystemExit(main())
+    except KeyboardInterrupt:
+        raise SystemExit("blocking_sweep: interrupted")
