@@ -172,13 +172,19 @@ def _left_edge_zeros(field, name, window):
     """Exact zeros of ``name`` on rows x2 = const running right from the no-pair edge at the window's left
     side (an internal pair's rows end on its edge at the right too: each row's edge is bracketed from
     the left side to ``LEFT_REACH`` in, then sampled as on the columns)."""
-    zeros = [[x, x2] for x2 in np.linspace(window[2], window[3], COLUMNS + 2)[1:-1]
+    x2s = LEFT_ROWS_OF.get(name, np.linspace(window[2], window[3], LEFT_ROWS + 2)[1:-1])
+    zeros = [[x, x2] for x2 in x2s
              for x in _zeros_from_edge(lambda x1: field.margin(name, x1, x2), window[0], window[0] + LEFT_REACH,
                                        np.inf)]
     return np.array(zeros).reshape(-1, 2)
 
 
 LEFT_REACH = 0.5  #: the rows' brackets of the left edge: from the window's left side this far in
+LEFT_ROWS = 30  #: rows x2 = const across the window from its left side
+LEFT_ROWS_OF = {  # 57/130's tip interference (each zero about 200 tip sweeps) meets the left edge only in a loop
+    # between x2 = -0.72 and -0.645, crossed twice by each of these rows (by one at -0.72)
+    "tip_interference": np.linspace(-0.72, -0.65, 8),
+}
 LEFT = [  # (z1, z2, shaper teeth, line, tol): an internal pair's edge where x1 is about constant (57/130: gear 1
     # is cut no tooth below x1 = -2.948), which the columns never cross (411 .. 4.1e5 tol short before)
     (57, 130, 28, "contact_ratio_tip=1.2", 1e-3),

@@ -34,7 +34,7 @@ def _field(key):
 def test_the_conditions_are_positive_exactly_where_the_margin_is_defined(key):
     f, names, F = _field(key)
     rng = np.random.default_rng(3)
-    p = rng.uniform(-2.5, 3.0, (4000, 2))
+    p = rng.uniform(-2.5, 3.0, (1500, 2))
     defined = 0
     for k in range(len(names)):
         which = np.full(len(p), k)
@@ -45,7 +45,7 @@ def test_the_conditions_are_positive_exactly_where_the_margin_is_defined(key):
     assert 0.1 * len(p) * len(names) < defined < 0.95 * len(p) * len(names)  # both sides sampled
 
 
-def _rows(F, k, n=40, seed=5):
+def _rows(F, k, n=12, seed=5):
     """Segments from a defined point to an undefined one."""
     rng = np.random.default_rng(seed)
     p = rng.uniform(-2.5, 3.0, (20 * n, 2))
