@@ -532,3 +532,19 @@ def test_a_link_of_a_strips_chain_carried_to_the_tip_beside_another_is_not_taken
     for y in (-0.1, -0.09, -0.085, -0.083, -0.08):
         xc = 0.3276 + 0.904 * (y + 0.1119)
         _crosses_the_strip(spec, field, c, y, np.linspace(xc - 0.01, xc + 0.01, 41), tol)
+
+
+def test_a_link_whose_cuts_were_split_beside_its_corners_is_not_taken_twice():
+    """36/82 internal (shaper z0 18) at tol 1e-3: a wedge of the region between interference.1 (above) and contact
+    ratio 1 (below), its tip near (0.186, -0.746), narrower than a grid cell; the grid saw two diamonds along it,
+    rows x2 = -0.6458 and -0.6667, joined into one loop that paired with no other cut. The last refinement of the
+    joined loops split both its cuts beside their corners at the wedge's edge (a vertex 0.0036 off the cut across
+    the wedge at the top), so the loop no longer held a chord noted as a cut; carried to the wedge's tip inside the
+    loop carried there already, it was not dropped as covered and the part taken twice was left out (its piece
+    across the wedge 4.5 tol off). On rows through the link and below it every crossing of the polygons lies
+    within 2 tol of a zero of the check's smallest hard margin (brentq) and every zero has a crossing within
+    2 tol; the wedge's middle passes check_pair and is in the region."""
+    spec, field, c = _internal(36, 82, 18)
+    for y in (-0.72, -0.69, -0.672, -0.665, -0.655, -0.645, -0.6424, -0.638, -0.62):
+        xc = 0.2566 + 0.87 * (y + 0.668)  # (about the wedge's middle)
+        _crosses_the_strip(spec, field, c, y, np.linspace(xc - 0.02, xc + 0.02, 41), 1e-3)
