@@ -4,7 +4,9 @@ Oracles: a synthetic function whose zero set is known in closed form (a hyperbol
 neighbourhood of a saddle inside one grid cell), and for the 12/30 pair the saddle of the
 interference.1 margin located independently (a root finder on the gradient of the scalar margin,
 the check's own pair geometry) with the exact zeros around it found on circles by a bracketing root
-finder. ``CONTRACT = 2``: every exact point within 2 tol of the traced line (issue 19).
+finder. ``CONTRACT = 2``: every exact point within 2 tol of the traced line (issue 19). A front at a
+corner of a kinked zero set: a synthetic one in closed form (two rays), and internal 17/76's tip
+sweep, its zeros by brentq on the scalar margin where check_pair's finding changes.
 """
 import math
 
@@ -13,9 +15,11 @@ import pytest
 from scipy.optimize import brentq, root
 
 from gearkit.blocking import blocking_contour
+from gearkit.blocking.field import PairField
 from gearkit.blocking.level import zero_lines
 from gearkit.blocking.region import pad, padded_grid
 from gearkit.distances import distances_to_polyline
+from gearkit.families.involute import ShaperCutter
 from gearkit.pair import PairSpec
 
 from edgezeros import move_solved_edges
@@ -247,3 +251,51 @@ def test_across_sees_a_zero_within_round_off_of_the_edge_from_any_edge_point(del
     assert c >= 0
     zero = 0.5 - delta  # along the normal from Q
     assert s[c] <= zero <= s[c + 1] and s[c + 1] - s[c] <= 1.1 * delta
+
+
+def test_a_front_turns_the_corner_of_a_kinked_zero_set():
+    """F = max(y, p . n) with n = (sin 60, -cos 60): its zero set is the ray y = 0, x <= 0 turning at the
+    origin by 120 degrees into the ray along (cos 240, sin 240) (closed form). A piece ending 0.1 short
+    of the corner is carried round it (no step along the tangent passes a corner: each turns too far)
+    and down the second ray to the window's frame at y = -0.55, every vertex within tol of the two rays
+    (the front stopped at the corner)."""
+    from gearkit.blocking.ends import extend_ends
+
+    u = np.array([math.cos(math.radians(240.0)), math.sin(math.radians(240.0))])
+    F = lambda p, k: np.maximum(p[:, 1], -u[1] * p[:, 0] + u[0] * p[:, 1])  # noqa: E731
+    xs = ys = np.linspace(-1.1, 1.1, 5)  # a padded grid: the window is [-0.55, 0.55]^2
+    tol = 1e-4
+    piece = [(0, np.array([[-0.55, 0.0], [-0.3, 0.0], [-0.1, 0.0]]), np.full(3, np.nan))]
+    (_, q, _, _), = extend_ends(F, piece, [(xs, ys, np.zeros((5, 5)))], tol)
+    end = 0.55 / -u[1] * u  # where the second ray meets the frame
+    assert np.hypot(*(q[-1] - end)) <= CONTRACT * tol
+    on_first = np.where(q[:, 0] <= 0.0, np.abs(q[:, 1]), np.hypot(*q.T))
+    on_second = np.hypot(*(q - np.clip(q @ u, 0.0, None)[:, None] * u).T)
+    assert np.minimum(on_first, on_second).max() <= tol
+    assert np.count_nonzero(on_second <= tol) >= 3  # the second ray traced, not just its ends
+
+
+CORNER_ROWS = np.linspace(-0.925, -0.898, 7)  #: rows x2 = const below the corner of 17/76's wedge ...
+CORNER_SPAN = (0.22, 0.262)  #: ... on which its left side's zero is the one sign change in x1
+
+
+def test_the_tip_interference_line_goes_on_round_the_corner_of_its_wedge():
+    """Internal 17/76, shaper 17, at tol 1e-3: the tip sweep's margin is positive in a wedge beside the
+    no-pair area whose left side turns at a corner near (0.2535, -0.8957) by about 120 degrees. Its upper
+    arm, cut by the grid across the wedge, was carried to the corner and stopped there; its lower arm,
+    ending beside the no-pair area, was not carried: the 0.035 between them was missing (scan 5.67 tol).
+    Oracle: on rows x2 = const between the corner and the lower arm's end, the zero of the scalar margin
+    (brentq), where check_pair's tip_interference finding changes (fails 2e-4 to its left, not to its
+    right); every zero within 2 tol of the traced line (4.7 to 16.6 tol on the old code)."""
+    spec = PairSpec(17, 76, 1.0, kind="internal", tool2=ShaperCutter(17))
+    tol = 1e-3
+    c = blocking_contour(spec, tol=tol, lines=["tip_interference"])
+    f = PairField(spec)  # the check's own form circles (the contour's field interpolates them)
+    zeros = []
+    for x2 in CORNER_ROWS:
+        x1 = brentq(lambda x: f.margin("tip_interference", x, x2), *CORNER_SPAN, xtol=1e-12)
+        assert "tip_interference" in f.check(x1 - 2e-4, x2)[1]
+        assert "tip_interference" not in f.check(x1 + 2e-4, x2)[1]
+        zeros.append([x1, x2])
+    d = _nearest(np.array(zeros), c.line("tip_interference").components)
+    assert d.max() <= CONTRACT * tol, d / tol
