@@ -89,7 +89,7 @@ def carry_down(F, A, B, which, tol: float):
     if not go.size:
         return ok, end, A2, B2
     lo = P[go, j[go] - 1]
-    end[go] = segment_roots(F, lo, P[go, j[go]], V[go, j[go] - 1], V[go, j[go]], vtol, which[go])
+    end[go] = _first_zero(F, P, V, j, go, which, vtol)
     # a way that would move the cut to one of the strip's edges (its first zero on the line of one, more than a
     # chord off): aimed again from the cut's middle at the strip's middle farther down
     ea, eb = _edges(F, lo, u[go], L[go], which[go], vtol)
@@ -116,7 +116,7 @@ def carry_down(F, A, B, which, tol: float):
             return ok, end, A2, B2
         aim = aim[np.isin(aim, go)]
         end[:] = np.nan
-        end[go] = segment_roots(F, P[go, j[go] - 1], P[go, j[go]], V[go, j[go] - 1], V[go, j[go]], vtol, which[go])
+        end[go] = _first_zero(F, P, V, j, go, which, vtol)
     D = np.einsum("ij,ij->i", end[go] - m[go], u[go])
     mid = m[go] + (D - 0.5 * L[go])[:, None] * u[go]  # the moved cut's middle, half a chord short of the end
     fm = F(mid, which[go])
@@ -126,6 +126,11 @@ def carry_down(F, A, B, which, tol: float):
     A2[go[good]], B2[go[good]] = a2[good], b2[good]
     end[go[~good]] = np.nan
     return ok, end, A2, B2
+
+
+def _first_zero(F, P, V, j, go, which, vtol):
+    """The ways ``go``'s first zeros, solved to ``vtol`` between the samples ``j - 1`` and ``j`` of :func:`_walk`."""
+    return segment_roots(F, P[go, j[go] - 1], P[go, j[go]], V[go, j[go] - 1], V[go, j[go]], vtol, which[go])
 
 
 def _off_line(P, Q, X):
