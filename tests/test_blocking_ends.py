@@ -277,6 +277,7 @@ def test_a_front_turns_the_corner_of_a_kinked_zero_set():
 
 CORNER_ROWS = np.linspace(-0.925, -0.898, 7)  #: rows x2 = const below the corner of 17/76's wedge ...
 CORNER_SPAN = (0.22, 0.262)  #: ... on which its left side's zero is the one sign change in x1
+GAP_ROWS = (-0.9276, -0.9282, -0.9288)  #: rows across the 1.9e-3 where the turned front stopped beside the arm
 
 
 def test_the_tip_interference_line_goes_on_round_the_corner_of_its_wedge():
@@ -286,16 +287,24 @@ def test_the_tip_interference_line_goes_on_round_the_corner_of_its_wedge():
     ending beside the no-pair area, was not carried: the 0.035 between them was missing (scan 5.67 tol).
     Oracle: on rows x2 = const between the corner and the lower arm's end, the zero of the scalar margin
     (brentq), where check_pair's tip_interference finding changes (fails 2e-4 to its left, not to its
-    right); every zero within 2 tol of the traced line (4.7 to 16.6 tol on the old code)."""
+    right); every zero within 2 tol of the traced line (4.7 to 16.6 tol on the old code). The front turned
+    round the corner then stopped 1.9e-3 short of the lower arm's end (it ran onto the arm, which no front
+    carried): on rows across that gap the line is crossed once, within 2 tol of the zero (not at all before)."""
+    from edgezeros import row_crossings
+
     spec = PairSpec(17, 76, 1.0, kind="internal", tool2=ShaperCutter(17))
     tol = 1e-3
     c = blocking_contour(spec, tol=tol, lines=["tip_interference"])
     f = PairField(spec)  # the check's own form circles (the contour's field interpolates them)
     zeros = []
-    for x2 in CORNER_ROWS:
+    for x2 in [*CORNER_ROWS, *GAP_ROWS]:
         x1 = brentq(lambda x: f.margin("tip_interference", x, x2), *CORNER_SPAN, xtol=1e-12)
         assert "tip_interference" in f.check(x1 - 2e-4, x2)[1]
         assert "tip_interference" not in f.check(x1 + 2e-4, x2)[1]
         zeros.append([x1, x2])
-    d = _nearest(np.array(zeros), c.line("tip_interference").components)
+    comps = c.line("tip_interference").components
+    d = _nearest(np.array(zeros), comps)
     assert d.max() <= CONTRACT * tol, d / tol
+    for x1, x2 in zeros[len(CORNER_ROWS):]:
+        got = row_crossings(comps, x2, *CORNER_SPAN)
+        assert len(got) == 1 and abs(got[0] - x1) <= CONTRACT * tol, (x2, got, x1)
