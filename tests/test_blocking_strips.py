@@ -8,7 +8,9 @@ wedge to the other had its ends carried on round the turn onto a piece traced th
 sliding loop, 56/59's interference.1 wedge); and where a chord along one side of a thin wedge of one
 sign (the smallest of two margins, its slope jumping at the wedge's ridge) was split at the other side
 (11/22's tip sweep): on rows and columns across it every crossing of the traced line within 2 tol of a
-zero along the scan, and every zero with a crossing."""
+zero along the scan, and every zero with a crossing. A line's chord whose line bulges towards a strip of the
+other sign lying between two rungs of the ladder of its normal (closed form; 45/82's interference.1 beside a
+neck of its negative part, against the check's zeros on rows through the neck) is split, not cut."""
 import functools
 
 import numpy as np
@@ -192,3 +194,64 @@ def test_a_regions_chord_is_split_at_the_nearer_zero_not_the_far_side_the_secant
     out = densify(F, [(0, np.array([[-0.5, 0.0], [0.5, 0.0]]), np.full(2, np.nan))], tol, None, (0,), (), False, [])
     inner = np.concatenate([q[1:-1] for _, q in out])
     assert len(inner) and np.all(np.abs(inner[:, 1] - 0.1) <= tol / 4), inner
+
+
+def test_a_lines_chord_bulging_towards_a_strip_between_the_ladders_rungs_is_split_not_cut():
+    """densify on a chord from (-1, 0) to (1, 0) of the line y = -a(x), a = 0.3 (1 - x^2), beside the strip
+    -a - 0.15 < y < -a where F = (y + a) (y + a + 0.15) is negative (closed form): along the normal through the
+    chord's middle (F > 0) the line lies 0.3 off, the strip's far side 0.45, and F is positive at the normal's
+    ends (+-1), at the wider search's samples (0.25, 0.5, ... chord lengths) and at the ladder's rungs (1, 0.5,
+    0.25, ...: the strip lies between two of them). No zero found, the chord was cut and the line lost (45/82
+    z0 13 internal at tol 1e-3: a chord of interference.1's line beside a neck of its negative part). Samples
+    no farther apart than tol on a line's ladder see the strip: the chord is split down to the line, one
+    polyline from end to end, every vertex within tol / 4 of the parabola and every chord's middle within tol."""
+    from gearkit.blocking.level import densify
+
+    tol = 1e-3
+    a = lambda x: 0.3 * (1.0 - x * x)  # noqa: E731
+    F = lambda p, k: (p[:, 1] + a(p[:, 0])) * (p[:, 1] + a(p[:, 0]) + 0.15)  # noqa: E731
+    chord = np.array([[-1.0, 0.0], [1.0, 0.0]])
+    out = densify(F, [(0, chord, np.full(2, np.nan))], tol)
+    assert len(out) == 1, [q[[0, -1]] for _, q in out]
+    (_, q), = out
+    assert np.array_equal(q[0], chord[0]) and np.array_equal(q[-1], chord[1])
+    x = np.linspace(-1.0, 1.0, 200001)
+    parabola = np.column_stack([x, -a(x)])
+    assert distances_to_polyline(q, parabola).max() <= tol / 4
+    assert distances_to_polyline(0.5 * (q[:-1] + q[1:]), parabola).max() <= tol
+
+
+NECK_ROWS = np.linspace(0.992, 1.006, 15)  #: rows x2 = const through the neck of 45/82 z0 13's interference.1 ...
+NECK_SPAN = (0.975, 1.02, 451)  #: ... sampled in x1 (its zeros 1.3e-3 apart or more on them)
+
+
+def test_a_line_beside_a_neck_of_its_margins_negative_part_is_traced_through():
+    """45/82 internal with a 13-tooth shaper at tol 1e-3: interference.1's negative part narrows to a neck at
+    about (1.0, 1.0) between two lines of its margin. The fronts of the left line's two pieces joined across
+    the neck by a chord of 0.026; split once, its upper half, from (0.9924, 0.9954) to (1.0016, 1.0049), had its
+    middle 1.75 tol beside the line, the negative strip from 1.75 to 3.2 tol off along its normal: between the
+    ladder's rungs at 1.65 and 3.3 tol, as every other sample lay, so no zero was found and the chord was cut
+    (the scan measure's zero on x2 = 0.9975 lay 3.98 tol from the trace). On rows through the neck every zero
+    of the check's scalar margin (brentq; check_pair's interference.1 finding fails 1e-5 to its negative side
+    and not to its positive one) lies within 2 tol of the traced line."""
+    spec = PairSpec(45, 82, 1.0, kind="internal", tool2=ShaperCutter(13))
+    tol = 1e-3
+    c = blocking_contour(spec, tol=tol, lines=["interference.1"])
+    field = PairField(spec)  # the check's own form circles
+
+    zeros = []
+    for x2 in NECK_ROWS:
+        def f(x):
+            return field.margin("interference.1", x, x2)
+        xs = np.linspace(*NECK_SPAN)
+        v = np.array([f(x) for x in xs])
+        for i in np.flatnonzero((v[:-1] > 0) != (v[1:] > 0)):
+            x1 = brentq(f, xs[i], xs[i + 1], xtol=1e-15, rtol=1e-15)
+            out = 1e-5 if v[i] > 0 else -1e-5  # towards the negative side
+            assert "interference.1" in field.check(x1 + out, x2)[1]
+            assert "interference.1" not in field.check(x1 - out, x2)[1]
+            zeros.append([x1, x2])
+    assert len(zeros) >= 2 * (len(NECK_ROWS) - 1)  # the two lines on every row but the neck's own
+    comps = c.line("interference.1").components
+    d = np.min([distances_to_polyline(np.array(zeros), q) for q in comps], axis=0)
+    assert d.max() <= CONTRACT * tol, np.array(zeros)[d > CONTRACT * tol]

@@ -21,6 +21,7 @@ GUARD_FRACTION = 0.5  #: a round's guard stands this fraction of tol beyond its 
 GUARD_SETTLED = 0.5  #: ... where the estimate moved less than this fraction of its bracket since the round
 #: before (it is settling on a root; not beside a jump of F or while the bracket is still wide)
 LADDER_RATIO = 0.5  #: successive distances of :meth:`NearestBracket.ladder`'s samples
+LADDER_EVEN = 64  #: most samples to each side :meth:`NearestBracket.ladder` adds at an even spacing
 SLOPE_WIDTH = 1.0 / 16  #: the slope at a root is read off a bracket at least this fraction of tol wide
 
 
@@ -225,13 +226,15 @@ class NearestBracket:
         self.have[idx] = True
         self.diagonal[idx] = False
 
-    def ladder(self, F, idx, n, reach, which, floor, one_side=None):
+    def ladder(self, F, idx, n, reach, which, floor, one_side=None, spacing=None):
         """Offer the chords ``idx`` the sign change nearest to their middles along their normals ``n``,
         sampled at distances falling geometrically by ``LADDER_RATIO`` from ``reach`` down to ``floor`` to
         either side: a zero of a strip (or of a saddle's thin wedge) narrower than a sampled search's
         spacing is seen. ``one_side`` (a mask over ``idx``): those chords are offered a sign change only
         where their normal meets none on the other side (a chord lying inside a thin part, both sides
-        near, is not on either).
+        near, is not on either). ``spacing`` (per chord, inf: none): samples added no farther apart than
+        that (nor than ``reach / LADDER_EVEN``) out to ``reach``; the ladder's spacing is half the distance, and
+        a strip of the other sign wider than ``spacing`` lying between two of its rungs is seen.
 
         >>> F = lambda p, w: np.abs(p[:, 1] - 3e-4) - 1e-4  # a strip 2e-4 wide, 3e-4 from the middle
         >>> b = NearestBracket(np.zeros((1, 2)), np.array([2e-4]))
@@ -240,10 +243,22 @@ class NearestBracket:
         >>> b.ladder(F, np.array([0]), np.array([[0.0, 1.0]]), np.array([1.0]), np.array([0]), 1e-6)
         >>> bool(b.have[0] and b.lo[0, 1] < 2e-4 < b.end[0, 1])
         True
+        >>> G = lambda p, w: (p[:, 1] + 0.3) * (p[:, 1] + 0.45)  # a strip -0.45 < y < -0.3, between two rungs
+        >>> b = NearestBracket(np.zeros((1, 2)), np.array([0.135]))
+        >>> args = (G, np.array([0]), np.array([[0.0, 1.0]]), np.array([1.0]), np.array([0]), 1e-3)
+        >>> b.ladder(*args)
+        >>> bool(b.have[0])
+        False
+        >>> b.ladder(*args, spacing=np.array([1e-3]))
+        >>> bool(b.have[0] and b.end[0, 1] < -0.3 < b.lo[0, 1])
+        True
         """
         for r, i in enumerate(idx):
             d = reach[r] * LADDER_RATIO ** np.arange(max(1, int(np.ceil(np.log(max(reach[r] / floor, 1.0))
                                                                               / -np.log(LADDER_RATIO))) + 1))
+            if spacing is not None and np.isfinite(spacing[r]):
+                h = max(float(spacing[r]), reach[r] / LADDER_EVEN)
+                d = np.union1d(d, h * np.arange(1, int(reach[r] / h) + 1))[::-1]  # descending, as the ladder's
             s = np.concatenate([-d, [0.0], d[::-1]])
             v = F(self.m[i] + s[:, None] * n[r], np.full(s.size, which[r]))
             seen = []

@@ -15,12 +15,14 @@ as many pieces as its curvature needs
 (``sqrt(deviation / (tol / 2))``, new vertices solved near the parabola through the three known points),
 round after round. A chord with no zero at those samples is searched again at distances from its middle
 falling geometrically to ``tol / 4`` (a strip, a saddle's thin wedge, or beside a region's edge a strip of
-it, narrower than their spacing), and beyond the normal's ends (:mod:`~gearkit.blocking.wide`; a region's zero
-found only there is read as far as its root lies against the ladder's within the normal's ends, and is none past
-another of the region's chords: :func:`~gearkit.blocking.wide.past_lines`). One from one side of a strip to the
-other (brackets.two_lines) is cut, not split (a zigzag across the strip lost an arm: 46/49's interference.1 beside
-(1, 1)), its ends carried on (ends). So every point of a polyline lies within about ``1.25 tol`` of its curve;
-coarser tols cost less.
+it, narrower than their spacing; a line's chord also at samples no farther apart than ``tol``: a strip of the
+other sign between two of those distances, the chord's line beside it, was missed and the chord cut, 45/82 z0 13's
+interference.1 beside a neck of its negative part), and beyond the normal's ends (:mod:`~gearkit.blocking.wide`;
+a region's zero found only there is read as far as its root lies against the ladder's within the normal's ends,
+and is none past another of the region's chords: :func:`~gearkit.blocking.wide.past_lines`). One from one side
+of a strip to the other (brackets.two_lines) is cut, not split (a zigzag across the strip lost an arm: 46/49's
+interference.1 beside (1, 1)), its ends carried on (ends). So every point of a polyline lies within about
+``1.25 tol`` of its curve; coarser tols cost less.
 
 ``F`` may have kinks (e.g. the smallest of several margins); a corner of a zero set is approached
 by splitting the chords beside it until they pass within ``tol``.
@@ -150,8 +152,10 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
             search_wide(F, best, wide, mm, f0, nm_, Lm, km, trust[km], vtol)
         thin = np.flatnonzero(~best.have & (Lm > vtol))
         if thin.size:  # no zero at the samples: a strip narrower than their spacing, searched on a ladder (a
-            meas_t = ~trust[km[thin]]  # measured curve's near its middle, to one side only: a cut meets none or two)
-            best.ladder(F, thin, nm_[thin], np.where(meas_t, MEASURED_LADDER, 0.5) * Lm[thin], km[thin], vtol, meas_t)
+            meas_t = ~trust[km[thin]]  # measured curve's near its middle, to one side only: a cut meets none or two;
+            # a line's with samples no farther apart than tol too: a strip of the other sign between two rungs)
+            best.ladder(F, thin, nm_[thin], np.where(meas_t, MEASURED_LADDER, 0.5) * Lm[thin], km[thin], vtol, meas_t,
+                        np.where(meas_t, np.inf, tol))
         # a chord from one side of a strip to the other is cut (not split into a zigzag across it), its ends
         # carried on along their lines (loose: ends)
         found = best.have & ~two_lines(F, A[meas], B[meas], nm_, km, strip, STRIP_PROBE * tol)
