@@ -328,9 +328,9 @@ def _collides(F, i, r, u, L, front, active, recs, joins, close, turn):
 def _open_end(F, k, rr, q, r, u, sigma, front, joins, close):
     """The end (0: first, 1: last) of record ``rr``'s line ``q`` (of function ``k``) that a front at ``r``
     heading along ``u`` with ``F`` of sign ``sigma`` on its left goes on into: an open end within ``close`` of
-    ``r``, not joined
-    and not carried (no front of its own), that the front meets head on with ``F`` of its sign on the same
-    side (the line's way into ``q`` from that end has ``F`` of sign ``sigma`` on its left); or None. An end
+    ``r``, not joined and not carried (no front of its own), that the front meets head on with ``F`` of its
+    sign on the same side (the line's way into ``q`` from that end has ``F`` of sign ``sigma`` on its left);
+    or None. An end
     left where the grid's line stops beside the no-pair area is not carried: a front turned round a corner
     towards it stopped beside it (internal 17/76 z0 17 at tol 1e-3: tip_interference's turned front 1.9e-3
     from the lower arm's end, the line in two pieces)."""
@@ -342,10 +342,8 @@ def _open_end(F, k, rr, q, r, u, sigma, front, joins, close):
         n = float(np.hypot(*t))
         if (rr, e) in taken or n == 0 or float(np.hypot(*(a - r))) > close or np.dot(t, u) <= 0:
             continue
-        t = t / n
-        h = min(close, 0.5 * n)
-        left, right = F(np.array([a + 0.5 * t * n + h * np.array([-t[1], t[0]]),
-                                  a + 0.5 * t * n - h * np.array([-t[1], t[0]])]), np.full(2, k))
+        mid, side = 0.5 * (a + b), min(close, 0.5 * n) / n * np.array([-t[1], t[0]])  # the first chord's middle
+        left, right = F(np.array([mid + side, mid - side]), np.full(2, k))
         if np.isfinite(left) and np.isfinite(right) and np.sign(left - right) == sigma:
             return e
     return None
