@@ -10,7 +10,9 @@ sign (the smallest of two margins, its slope jumping at the wedge's ridge) was s
 (11/22's tip sweep): on rows and columns across it every crossing of the traced line within 2 tol of a
 zero along the scan, and every zero with a crossing. A line's chord whose line bulges towards a strip of the
 other sign lying between two rungs of the ladder of its normal (closed form; 45/82's interference.1 beside a
-neck of its negative part, against the check's zeros on rows through the neck) is split, not cut."""
+neck of its negative part, against the check's zeros on rows through the neck) is split, not cut; so is a
+line's chord its line crosses like an S, its middle on the line (42/52's exit_jamming at tol 1e-5, against the
+check's zeros on columns across it)."""
 import functools
 
 import numpy as np
@@ -253,5 +255,38 @@ def test_a_line_beside_a_neck_of_its_margins_negative_part_is_traced_through():
             zeros.append([x1, x2])
     assert len(zeros) >= 2 * (len(NECK_ROWS) - 1)  # the two lines on every row but the neck's own
     comps = c.line("interference.1").components
+    d = np.min([distances_to_polyline(np.array(zeros), q) for q in comps], axis=0)
+    assert d.max() <= CONTRACT * tol, np.array(zeros)[d > CONTRACT * tol]
+
+
+S_COLUMNS = np.linspace(-0.55, -0.475, 16)  #: columns x1 = const across 42/52 z0 17's S-bent chord ...
+S_SPAN = (-0.60, -0.47, 401)  #: ... sampled in x2 (one zero of exit_jamming on each)
+
+
+def test_a_lines_chord_its_line_crosses_like_an_s_is_split():
+    """42/52 internal with a 17-tooth shaper at tol 1e-5: exit_jamming's line had a chord from (-0.4708, -0.5)
+    to (-0.5526, -0.5703), 0.107 long, that the line crosses near its middle like an S: 5.4 tol beside it at a
+    quarter, on it at the middle, 48 tol off near the far end. Its middle's root lay 0.36 tol off, so the chord
+    was kept; only a chord kept on its estimate was read at its quarters. On columns across it every zero of
+    the check's scalar margin (brentq; check_pair's exit_jamming finding fails 1e-7 to its negative side and
+    not to its positive one) lies within 2 tol of the traced line (50.9 tol before)."""
+    spec = PairSpec(42, 52, 1.0, kind="internal", tool2=ShaperCutter(17))
+    tol = 1e-5
+    c = blocking_contour(spec, tol=tol, lines=["exit_jamming"])
+    field = PairField(spec)
+    zeros = []
+    for x1 in S_COLUMNS:
+        def f(x2):
+            return field.margin("exit_jamming", x1, x2)
+        ys = np.linspace(*S_SPAN)
+        v = np.array([f(y) for y in ys])
+        for i in np.flatnonzero((v[:-1] > 0) != (v[1:] > 0)):
+            x2 = brentq(f, ys[i], ys[i + 1], xtol=1e-15, rtol=1e-15)
+            out = 1e-7 if v[i] > 0 else -1e-7  # towards the negative side
+            assert "exit_jamming" in field.check(x1, x2 + out)[1]
+            assert "exit_jamming" not in field.check(x1, x2 - out)[1]
+            zeros.append([x1, x2])
+    assert len(zeros) == len(S_COLUMNS)
+    comps = c.line("exit_jamming").components
     d = np.min([distances_to_polyline(np.array(zeros), q) for q in comps], axis=0)
     assert d.max() <= CONTRACT * tol, np.array(zeros)[d > CONTRACT * tol]
