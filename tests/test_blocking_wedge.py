@@ -224,3 +224,29 @@ def test_a_wedge_between_a_gentle_and_a_steep_margin_is_taken_once_up_to_its_tip
     assert _distance_to_outline(c.region, np.array([xt, yt])) <= CONTRACT * tol, (xt, yt)
     for d in (2e-4, 5e-4, 7e-4, 8e-4, 1e-3, 2e-3, 5e-3):  # (the wedge is about 0.65 d wide d below its tip)
         _crosses_the_strip(spec, field, c, yt - d, np.linspace(xt - 0.8 * d - 1e-4, xt + 1e-4, 41), tol)
+
+
+def test_a_thin_wedge_split_beside_its_turn_is_not_folded_off_its_loop():
+    """35/56 internal (shaper z0 22) at tol 1e-5: the region has a thin wedge between interference.1 (left) and
+    exit jamming (right), its tip at about (0.52416, 0.12449), the tip sweep flat inside it. A chord of the outline
+    near its turn, measured a quarter from it (corner_splits), had F = +3.5e-6 there with its own side's zero
+    beside it and interference.1's 0.0029 off on the other side; the secant's guess read the far side as the
+    nearer, the chord got a vertex on interference.1, and the outline crossed the wedge and back: an 11-vertex
+    loop folded off, which the even-odd rule left out (the region 13.8 tol off). The tip is solved apart from the
+    tracing (brentq on the two margins' zeros along rows, then on their difference): the outline passes within
+    2 tol of it; on rows above it every crossing of the polygons lies within 2 tol of a zero of the check's
+    smallest hard margin (brentq) and every zero has one, and the wedge's middle passes check_pair and is in the
+    region."""
+    from scipy.optimize import brentq
+    from test_blocking_region import _crosses_the_strip, _distance_to_outline, _edge
+
+    tol = 1e-5
+    spec = PairSpec(35, 56, 1.0, kind="internal", tool2=ShaperCutter(22))
+    field = PairField(spec)
+    c = blocking_contour(spec, tol=tol, lines=[])
+    edge = lambda name, y: _edge(field, name, y, 0.522, 0.530)  # noqa: E731
+    yt = brentq(lambda y: edge("interference.1", y) - edge("exit_jamming", y), 0.1240, 0.1250, xtol=1e-14)
+    xt = edge("interference.1", yt)
+    assert _distance_to_outline(c.region, np.array([xt, yt])) <= CONTRACT * tol, (xt, yt)
+    for d in (2e-4, 5e-4, 1e-3, 1.5e-3, 2e-3, 3e-3, 4e-3, 5e-3):  # (the wedge is about 0.25 d wide d above its tip)
+        _crosses_the_strip(spec, field, c, yt + d, np.linspace(xt + 0.6 * d - 1e-4, xt + 1.2 * d + 1e-4, 41), tol)

@@ -170,7 +170,7 @@ def corners(F, G, region: int, A, B, ia, ib, before, after, x0, tol: float, span
                               for X in (T[c], ends[c, 0], ends[c, 1])]) > tol
     seen[c[~conv[c]]] = True
     c = np.flatnonzero(conv)  # ... on the side of it the region's part beyond it lies (outward)
-    conv[c] = outward(F, region, A[c], B[c], T[c])
+    conv[c] = outward(F, region, A[c], B[c], T[c], tol)
     return T, conv, seen, ends, cut
 
 
@@ -198,13 +198,25 @@ def across(G, T, ia, ib, tol: float) -> np.ndarray:
     return np.where(d[np.arange(n), j] < -tol, parts[j], -1)
 
 
-def outward(F, region: int, A, B, T) -> np.ndarray:
+def outward(F, region: int, A, B, T, tol: float = 0.0) -> np.ndarray:
     """True where carrying the chord ``A -> B`` (the region on its left) to the corner ``T`` changes the
     region by a part of the right kind: ``F`` positive halfway from the chord's middle to ``T`` where ``T``
     lies right of the chord (a wedge of the region taken in), negative where it lies left (a notch of its
     outside taken out). A cut across a wedge whose tip lies behind it, inside its loop (the upper cut of
     a grid node's diamond alone in the wedge, which Newton's steps carry down to the tip its lower cut
-    is carried to), is no corner: carried there, the loop passed the tip twice."""
-    left = (B[:, 0] - A[:, 0]) * (T[:, 1] - A[:, 1]) - (B[:, 1] - A[:, 1]) * (T[:, 0] - A[:, 0]) > 0
+    is carried to), is no corner: carried there, the loop passed the tip twice. A corner within ``tol`` of
+    the chord's line, beyond its end, is one: the chord runs along a thin wedge's side towards its tip, the
+    point halfway lies on that side, and ``F`` there is round-off (25/54 z0 20 internal at tol 1e-3, the
+    chord's end 2.3 tol short of the tip; the carried path is the region's edge or is not taken,
+    :func:`~gearkit.blocking.tips.carry_to_tips`).
+
+    >>> F = lambda p, k: 1e-3 * p[:, 0] - np.abs(p[:, 1])  # a thin wedge along y = 0, tip (0, 0), region x > 0
+    >>> A, B = np.array([[2.0, 1.5e-3]]), np.array([[1.0, 0.95e-3]])  # inside it, towards its upper side
+    >>> T = np.zeros((1, 2))  # 4e-4 left of the chord's line
+    >>> outward(F, 0, A, B, T), outward(F, 0, A, B, T, 5e-4)
+    (array([False]), array([ True]))
+    """
+    d = B - A
+    side = (d[:, 0] * (T[:, 1] - A[:, 1]) - d[:, 1] * (T[:, 0] - A[:, 0])) / np.maximum(np.hypot(*d.T), 1e-300)
     f = F(0.25 * (A + B) + 0.5 * T, np.full(len(A), region))
-    return np.where(left, f < 0, f > 0)
+    return (np.abs(side) <= tol) | np.where(side > 0, f < 0, f > 0)
