@@ -223,6 +223,26 @@ def test_a_lines_chord_bulging_towards_a_strip_between_the_ladders_rungs_is_spli
     assert distances_to_polyline(0.5 * (q[:-1] + q[1:]), parabola).max() <= tol
 
 
+def _checked_zeros(field, name, at, span, step, column=False):
+    """The zeros of the check's scalar margin ``name`` on the row x2 = ``at`` (``column``: x1 = ``at``) sampled
+    over ``span`` (linspace's arguments), solved by brentq, each confirmed by check_pair's finding ``name``
+    failing ``step`` to its negative side and not to its positive one: ``(n, 2)`` points (x1, x2)."""
+    point = (lambda s: (at, s)) if column else (lambda s: (s, at))
+
+    def f(s):
+        return field.margin(name, *point(s))
+    ts = np.linspace(*span)
+    v = np.array([f(t) for t in ts])
+    zeros = []
+    for i in np.flatnonzero((v[:-1] > 0) != (v[1:] > 0)):
+        t = brentq(f, ts[i], ts[i + 1], xtol=1e-15, rtol=1e-15)
+        out = step if v[i] > 0 else -step  # towards the negative side
+        assert name in field.check(*point(t + out))[1], point(t)
+        assert name not in field.check(*point(t - out))[1], point(t)
+        zeros.append(point(t))
+    return np.array(zeros, float).reshape(-1, 2)
+
+
 NECK_ROWS = np.linspace(0.992, 1.006, 15)  #: rows x2 = const through the neck of 45/82 z0 13's interference.1 ...
 NECK_SPAN = (0.975, 1.02, 451)  #: ... sampled in x1 (its zeros 1.3e-3 apart or more on them)
 
@@ -241,22 +261,11 @@ def test_a_line_beside_a_neck_of_its_margins_negative_part_is_traced_through():
     c = blocking_contour(spec, tol=tol, lines=["interference.1"])
     field = PairField(spec)  # the check's own form circles
 
-    zeros = []
-    for x2 in NECK_ROWS:
-        def f(x):
-            return field.margin("interference.1", x, x2)
-        xs = np.linspace(*NECK_SPAN)
-        v = np.array([f(x) for x in xs])
-        for i in np.flatnonzero((v[:-1] > 0) != (v[1:] > 0)):
-            x1 = brentq(f, xs[i], xs[i + 1], xtol=1e-15, rtol=1e-15)
-            out = 1e-5 if v[i] > 0 else -1e-5  # towards the negative side
-            assert "interference.1" in field.check(x1 + out, x2)[1]
-            assert "interference.1" not in field.check(x1 - out, x2)[1]
-            zeros.append([x1, x2])
+    zeros = np.concatenate([_checked_zeros(field, "interference.1", x2, NECK_SPAN, 1e-5) for x2 in NECK_ROWS])
     assert len(zeros) >= 2 * (len(NECK_ROWS) - 1)  # the two lines on every row but the neck's own
     comps = c.line("interference.1").components
-    d = np.min([distances_to_polyline(np.array(zeros), q) for q in comps], axis=0)
-    assert d.max() <= CONTRACT * tol, np.array(zeros)[d > CONTRACT * tol]
+    d = np.min([distances_to_polyline(zeros, q) for q in comps], axis=0)
+    assert d.max() <= CONTRACT * tol, zeros[d > CONTRACT * tol]
 
 
 S_COLUMNS = np.linspace(-0.55, -0.475, 16)  #: columns x1 = const across 42/52 z0 17's S-bent chord ...
@@ -274,19 +283,8 @@ def test_a_lines_chord_its_line_crosses_like_an_s_is_split():
     tol = 1e-5
     c = blocking_contour(spec, tol=tol, lines=["exit_jamming"])
     field = PairField(spec)
-    zeros = []
-    for x1 in S_COLUMNS:
-        def f(x2):
-            return field.margin("exit_jamming", x1, x2)
-        ys = np.linspace(*S_SPAN)
-        v = np.array([f(y) for y in ys])
-        for i in np.flatnonzero((v[:-1] > 0) != (v[1:] > 0)):
-            x2 = brentq(f, ys[i], ys[i + 1], xtol=1e-15, rtol=1e-15)
-            out = 1e-7 if v[i] > 0 else -1e-7  # towards the negative side
-            assert "exit_jamming" in field.check(x1, x2 + out)[1]
-            assert "exit_jamming" not in field.check(x1, x2 - out)[1]
-            zeros.append([x1, x2])
+    zeros = np.concatenate([_checked_zeros(field, "exit_jamming", x1, S_SPAN, 1e-7, column=True) for x1 in S_COLUMNS])
     assert len(zeros) == len(S_COLUMNS)
     comps = c.line("exit_jamming").components
-    d = np.min([distances_to_polyline(np.array(zeros), q) for q in comps], axis=0)
-    assert d.max() <= CONTRACT * tol, np.array(zeros)[d > CONTRACT * tol]
+    d = np.min([distances_to_polyline(zeros, q) for q in comps], axis=0)
+    assert d.max() <= CONTRACT * tol, zeros[d > CONTRACT * tol]
