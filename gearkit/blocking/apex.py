@@ -205,10 +205,10 @@ def outward(F, region: int, A, B, T, tol: float = 0.0) -> np.ndarray:
     outside taken out). A cut across a wedge whose tip lies behind it, inside its loop (the upper cut of
     a grid node's diamond alone in the wedge, which Newton's steps carry down to the tip its lower cut
     is carried to), is no corner: carried there, the loop passed the tip twice. A corner within ``tol`` of
-    the chord's line, beyond its end, is one: the chord runs along a thin wedge's side towards its tip, the
-    point halfway lies on that side, and ``F`` there is round-off (25/54 z0 20 internal at tol 1e-3, the
-    chord's end 2.3 tol short of the tip; the carried path is the region's edge or is not taken,
-    :func:`~gearkit.blocking.tips.carry_to_tips`).
+    the chord's line, beyond its end (:func:`corners` asks only of corners farther than ``tol`` from the chord),
+    is one: the chord runs along a thin wedge's side towards its tip, the point halfway lies on that side, and
+    ``F`` there is round-off (25/54 z0 20 internal at tol 1e-3, the chord's end 2.3 tol short of the tip; the
+    carried path is the region's edge or is not taken, :func:`~gearkit.blocking.tips.carry_to_tips`).
 
     >>> F = lambda p, k: 1e-3 * p[:, 0] - np.abs(p[:, 1])  # a thin wedge along y = 0, tip (0, 0), region x > 0
     >>> A, B = np.array([[2.0, 1.5e-3]]), np.array([[1.0, 0.95e-3]])  # inside it, towards its upper side

@@ -29,8 +29,8 @@ def corner_splits(F, lines, tol: float, curves, split: float, vtol: float, kept=
     slopes too; the zero solved to ``vtol``; with a zero to each side, the one whose root is the nearer, not the
     secant's guess: 35/56 z0 22 internal at tol 1e-5, F = +3.5e-6 a quarter from a thin wedge's turn, its own
     side's zero beside it and the other side's 0.0029 off, read as the nearer; the outline crossed the wedge and
-    back, and the loop it folded off was left out, 13.8 tol). ``lines``: ``[(k, points (n, 2), slopes (n,))]``, changed in
-    place. ``kept``: chords ``(k, start, end)`` that densify found no zero across; one along which ``F`` is
+    back, and the loop it folded off was left out, 13.8 tol). ``lines``: ``[(k, points (n, 2), slopes (n,))]``,
+    changed in place. ``kept``: chords ``(k, start, end)`` that densify found no zero across; one along which ``F`` is
     flat (at its quarters and middle, within ``FLAT``: the tip sweep's margin at its resolution, where it
     finds no penetration) crosses a flat strip of the region narrower than itself and is left alone as a cut
     (for :func:`~gearkit.blocking.region.reconnect`): a zero a quarter along it is the strip's edge beside
