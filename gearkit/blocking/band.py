@@ -29,6 +29,12 @@ the edge before the next column is seen by the columns). An internal pair's rows
 twice, where x1 is about constant (gear 1 cut no tooth below) and where inv alpha_w reaches 1e-9:
 each way round is taken on its own (57/130's steep left edge: B6 tip interference 0.05 short).
 
+A line may also lie in a sliver along the edge shorter than the columns' spacing, between two columns whose
+margins on the edge have one sign (28/80 z0 38's trimming.nu, negative for 0.015 along the edge and at most
+6.5e-5 from it): where the margins on the edge, carried on from the columns beside, change sign between two
+columns, more columns are tried between them and kept where they show it
+(:func:`~gearkit.blocking.lattice.dip_columns`).
+
 Every margin is evaluated at the lattice's nodes (one evaluation of the pair formulas for all);
 marching squares in lattice coordinates give each line's topology there, and every vertex is
 solved on its lattice edge (a segment in (x1, x2)) like the grid's. A sign change through a pole
@@ -59,7 +65,7 @@ import numpy as np
 from gearkit.blocking.brackets import segment_roots
 from gearkit.blocking.grid import edge_nodes, true_runs
 from gearkit.blocking.joins import join_pieces, once, traced_cell
-from gearkit.blocking.lattice import band_lattice, covering, run_ends, steep_cells
+from gearkit.blocking.lattice import band_lattice, covering, dip_columns, run_ends, steep_cells
 
 __all__ = ["band_lines", "once"]
 
@@ -97,14 +103,22 @@ def band_lines(F, lines, grids, tol: float, measure=(), many=None, carry=None, s
         return F(p[:, ::-1], k)
     if getattr(F, "slack", None) is not None:  # the measure of the no-pair area, transposed alike
         FT.slack = lambda p, k: F.slack(p[:, ::-1], k)
+    manyT = None if many is None else (lambda p, k: many(p[:, ::-1], k))
     rows = []
     for sense in (1, -1):
         steep = steep_cells(np.isfinite(values[1:-1, 1:-1]).T, sense)
-        lattice = band_lattice(FT, (ys, xs, values.T), ks[0], steep, sense=sense) if steep.any() else None
-        rows += [] if lattice is None else [lattice]
+        if steep.any():
+            def build_rows(extra=(), steep=steep, sense=sense):
+                return band_lattice(FT, (ys, xs, values.T), ks[0], steep, extra=tuple(extra), sense=sense)
+            lattice = dip_columns(FT, build_rows, build_rows(), ks, manyT)
+            rows += [] if lattice is None else [lattice]
     # a column through each end of the rows' band on the edge: a line along the edge across it that meets
     # the edge before the next column is seen by the columns (its tail is no piece of a row)
-    cols = band_lattice(F, grid, ks[0], extra=tuple(x for r in rows for x in run_ends(r)))
+    ends = tuple(x for r in rows for x in run_ends(r))
+
+    def build_cols(extra=()):
+        return band_lattice(F, grid, ks[0], extra=ends + tuple(extra))
+    cols = dip_columns(F, build_cols, build_cols(), ks, many)
 
     def traced(k, p):
         return traced_cell(grids[k], p, [q for kk, q in specks if kk == k])
@@ -148,7 +162,11 @@ def _pieces(F, P, valid, V, ks, tol, carry=None, far=None):
         grid[valid] = V[n]
         if not (np.any(grid > 0) and np.any(grid < 0)):
             continue
-        gen = contourpy.contour_generator(ci, ri, np.ma.masked_invalid(grid), name="serial", line_type="Separate")
+        # a cell with a node past the frame is left out whole (the corner's triangle is not traced): a vertex on
+        # its diagonal lies on no lattice edge and is dropped, and the line's end before it was then no end of
+        # the piece (23/44 z0 35's tip thickness line under the frame, not carried on: 7.6 tol at 1e-3)
+        gen = contourpy.contour_generator(ci, ri, np.ma.masked_invalid(grid), name="serial", line_type="Separate",
+                                          corner_mask=False)
         raw += [(k, n, np.asarray(p, float), grid) for p in gen.lines(0.0) if len(p) >= 2]
     if not raw:
         return []
