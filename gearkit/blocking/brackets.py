@@ -188,15 +188,15 @@ class NearestBracket:
         self.have[i] = True
         self.diagonal[i] = diagonal
 
-    def nearer(self, F, idx, sides, which, tol: float):
-        """For the chords ``idx`` whose middles have a zero to each side (``sides``: ``[(end (i, 2), value
-        (i,))]``, each end's value of the other sign than the middle's): the bracket of the side whose root
-        (solved to ``tol``) lies nearer the middle. :meth:`consider` predicts a zero's distance by the
-        secant from the middle to the end, which across a kink of ``F`` (the smallest of two margins, a thin
-        wedge of one sign) reads the steep side's far zero as the nearer: 11/22 internal with its 15-tooth
-        cutter at tol 1e-5, a chord of the tip sweep's line along its wedge's gentle side (slope 0.012, its
-        middle 9e-8 from it) was split at the steep side's zero 2.2e-4 off, and the line zigzagged across
-        the wedge (4.4 tol).
+    def nearer(self, F, sides, which, tol: float):
+        """For the chords whose middles have a zero to each side (``sides``: ``[(end (n, 2), value (n,))]``,
+        every chord's end and value there; to each side: the end's value defined and of the other sign than
+        the middle's): the bracket of the side whose root (solved to ``tol``) lies nearer the middle.
+        :meth:`consider` predicts a zero's distance by the secant from the middle to the end, which across
+        a kink of ``F`` (the smallest of two margins, a thin wedge of one sign) reads the steep side's far
+        zero as the nearer: 11/22 internal with its 15-tooth cutter at tol 1e-5, a chord of the tip sweep's
+        line along its wedge's gentle side (slope 0.012, its middle 9e-8 from it) was split at the steep
+        side's zero 2.2e-4 off, and the line zigzagged across the wedge (4.4 tol).
 
         >>> F = lambda p, w: np.minimum(1e-2 * (1e-4 - p[:, 1]), p[:, 1] + 1e-4)  # a wedge, zeros at +-1e-4
         >>> b = NearestBracket(np.zeros((1, 2)), np.array([1e-6]))
@@ -205,10 +205,15 @@ class NearestBracket:
         ...     b.consider(np.array([0]), b.m, b.flo, e, F(e, 0))
         >>> bool(b.end[0, 1] < 0)  # the secant's choice: the steep side's zero
         True
-        >>> b.nearer(F, np.array([0]), [(e, F(e, 0)) for e in ends], np.array([0]), 1e-9)
+        >>> b.nearer(F, [(e, F(e, 0)) for e in ends], np.array([0]), 1e-9)
         >>> bool(b.end[0, 1] > 0)
         True
         """
+        with np.errstate(invalid="ignore"):
+            idx = np.flatnonzero(np.all([np.isfinite(fe) & ((fe > 0) != (self.f_mid > 0)) for _, fe in sides], axis=0))
+        if not idx.size:
+            return
+        sides, which = [(e[idx], fe[idx]) for e, fe in sides], which[idx]
         k = len(idx)
         m = self.m[idx]
         ends = np.concatenate([e for e, _ in sides])

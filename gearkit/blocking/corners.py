@@ -89,10 +89,7 @@ def corner_splits(F, lines, tol: float, curves, split: float, vtol: float, kept=
         end = P + sgn * 0.5 * L[:, None] * nrm
         sides.append((end, F(end, which)))
         best.consider(np.arange(len(rows)), P, fp, *sides[-1])
-    with np.errstate(invalid="ignore"):  # a zero to each side: the nearer root (not the secant's guess)
-        two = np.flatnonzero(np.all([np.isfinite(fe) & ((fe > 0) != (fp > 0)) for _, fe in sides], axis=0))
-    if two.size:
-        best.nearer(F, two, [(e[two], fe[two]) for e, fe in sides], which[two], vtol)
+    best.nearer(F, sides, which, vtol)  # a zero to each side: the nearer root (not the secant's guess)
     found = np.flatnonzero(best.have)
     if not found.size:
         return set()

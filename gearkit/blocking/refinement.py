@@ -142,11 +142,7 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
         # a chord with a zero to each side: the nearer root, the region's too (18/74 z0 33 internal at tol 1e-5: a
         # chord along the gentle side of a wedge, its middle on it, read the steep side 0.0045 off as the nearer by
         # the secant, was split there and the outline went over the wedge's tip three times)
-        with np.errstate(invalid="ignore"):
-            across = np.all([np.isfinite(fe) & ((fe > 0) != (f0 > 0)) for _, fe in sides], axis=0)
-        two = np.flatnonzero(across)
-        if two.size:
-            best.nearer(F, two, [(e[two], fe[two]) for e, fe in sides], km[two], vtol)
+        best.nearer(F, sides, km, vtol)
         wide = np.flatnonzero(~best.have & (trust[km] | WIDE_REGION))
         if wide.size:  # none within the normal's ends: searched beyond them (wide)
             search_wide(F, best, wide, mm, f0, nm_, Lm, km, trust[km], vtol)
