@@ -264,6 +264,20 @@ def test_a_line_beside_a_steep_edge_is_traced_to_the_frame_past_the_lattice(z1, 
     assert _farthest(zeros, c.line(name).components) <= CONTRACT * tol
 
 
+def test_a_line_nearer_the_edge_than_its_chords_root_is_solved_is_not_cut():
+    """45/47 at tol 1e-5: the sliding leg zeta1 = zeta2 runs 2e-8 .. 7e-8 from the no-pair edge from x1 = -0.378
+    to where it meets the edge at -0.3569, its factor going from -7.9 on the edge to 0 there. Each chord's root
+    along its normal, solved to tol / 4, kept |F| high and was read as a jump: the chords were cut and the line
+    lost between -0.377 and -0.360 (158 tol at 1e-5 before). The exact zeros on rows running right from the edge
+    within 2 tol of the traced line."""
+    tol = 1e-5
+    c = blocking_contour(PairSpec(45, 47, 1.0), tol=tol, lines=["sliding"])
+    x2s = np.linspace(-1.508, -1.524, 9)
+    zeros = _row_zeros(c.field, "sliding", x2s, -0.5, -0.3)
+    assert len(zeros) >= len(x2s)  # the oracle sees the line on every row
+    assert _farthest(zeros, c.line("sliding").components) <= CONTRACT * tol
+
+
 ISLANDS = [  # (spec, line, tol, columns x1): a line in a sliver along the edge shorter than the lattice's columns'
     # spacing, between two columns whose margins on the edge have one sign: 28/80 z0 38's trimming.nu is negative
     # from x1 = 0.2557 to 0.2677 and at most 6.5e-5 above the edge, between columns 0.0197 apart (no trace at

@@ -56,6 +56,7 @@ STRIP_PROBE = 0.5  #: a chord whose middle lies between two zeros is read this m
 JUMP_FACTOR = 100.0  #: a solved vertex with |F| above this times slope x tol sits on a jump, not a zero
 JUMP_FALL = 0.5  #: ... and |F| there above this fraction of the smaller |F| at the bracket's ends (the
 #: solver keeps the better end: a real zero is far below it at any tol, a pole or a jump is not)
+ROUND_OFF = 1e-12  #: such a root solved again to this fraction of its bracket (a zero beside the edge falls there)
 
 
 def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kinked=(), slopes=False,
@@ -166,6 +167,18 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
             fr = np.abs(F(root[solved], km[solved]))
             bad = (fr > JUMP_FACTOR * slope_end * tol) & (fr > JUMP_FALL * np.fmin(np.abs(best.flo[solved]),
                                                                                np.abs(best.fe[solved])))
+            # |F| did not fall at a root solved to vtol: solved again to round-off, where a zero beside the no-pair
+            # edge (F going as a root of the distance to it) falls and a jump does not (45/47's sliding leg, 5e-8
+            # from the edge for 0.03 along it: F from -7.9 on the edge to 0 there, each chord's root read as a
+            # jump at tol 1e-5 and the line cut, 158 tol; the band's vertices are solved so, band._pieces)
+            again = solved[bad]
+            if again.size:
+                length = np.hypot(*(best.end[again] - best.lo[again]).T)
+                r2, g2 = segment_roots(F, best.lo[again], best.end[again], best.flo[again], best.fe[again],
+                                       ROUND_OFF * float(length.min()), km[again], True)
+                fell = np.abs(F(r2, km[again])) <= JUMP_FALL * np.fmin(np.abs(best.flo[again]), np.abs(best.fe[again]))
+                root[again[fell]], g_root[again[fell]] = r2[fell], g2[fell]
+                bad[np.flatnonzero(bad)[fell]] = False
             found[solved[bad & trust[km[solved]]]] = False
             # a measured curve's zero beyond the normal's ends past another of its chords: none (a cut)
             far = solved[~trust[km[solved]] & (np.hypot(*(root[solved] - mm[solved]).T) > 0.5 * Lm[solved])]
