@@ -250,3 +250,19 @@ def test_a_thin_wedge_split_beside_its_turn_is_not_folded_off_its_loop():
     assert _distance_to_outline(c.region, np.array([xt, yt])) <= CONTRACT * tol, (xt, yt)
     for d in (2e-4, 5e-4, 1e-3, 1.5e-3, 2e-3, 3e-3, 4e-3, 5e-3):  # (the wedge is about 0.25 d wide d above its tip)
         _crosses_the_strip(spec, field, c, yt + d, np.linspace(xt + 0.6 * d - 1e-4, xt + 1.2 * d + 1e-4, 41), tol)
+
+
+def test_no_chord_of_a_line_beside_a_thin_wedges_tip_is_of_no_length():
+    """49/64 internal with a 20-tooth shaper at tol 1e-5: interference.1's line at the tip of a thin wedge near
+    (1.048, 1.032) repeated a vertex next to itself (a front carried to where another piece already ended). A
+    chord of no length has no direction, and the exact measure, reading the zero set along no normal, put the
+    line 4.3 tol off. Every chord of the line has a length, and the exact distance of its vertices and chords'
+    middles from the zeros of its margin (solved on rays to 1e-14, ``gearkit.bench.exact``) is within 2 tol."""
+    from gearkit.bench.exact import deviation
+
+    tol = 1e-5
+    c = blocking_contour(PairSpec(49, 64, 1.0, kind="internal", tool2=ShaperCutter(20)), tol=tol,
+                         lines=["interference.1"])
+    for q in c.line("interference.1").components:
+        assert np.all(np.hypot(*np.diff(q, axis=0).T) > 0)
+    assert deviation(c) <= CONTRACT * tol
