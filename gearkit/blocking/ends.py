@@ -7,7 +7,8 @@ also masks every cell with a corner in the no-pair area, so a line that runs int
 edge ends up to a cell short of it (12/30: pointing.1 and gear 1's tip-thickness lines 0.07 to
 0.13 short of the edge where gear 2's tip meets its base circle). Here every open end inside the
 window (not on its frame) is carried along its line by predictor-corrector continuation; an end
-beside the no-pair area only when its line crosses the edge (:func:`~gearkit.blocking.edges.crossing_ends`:
+beside the no-pair area only when its line runs clear of the area (``F`` defined along its tangent for
+``EDGE_REACH`` cells) or crosses the edge (:func:`~gearkit.blocking.edges.crossing_ends`:
 its tangent meets the edge within ``EDGE_REACH`` cells at more than ``EDGE_DEG`` to it, ``F`` is regular
 there, and the front gets no farther than ``EDGE_BUDGET`` times that distance). A margin that varies as the
 cube or square root of the distance to the edge (those reading the working pressure angle, or a
@@ -32,6 +33,7 @@ from gearkit.blocking.fronts import run_fronts, start_fronts
 __all__ = ["extend_ends"]
 
 MAX_STEP_CELLS = 2.0  #: longest step, in grid cell diagonals (the chords are refined afterwards)
+CLEAR_SAMPLES = 16  #: samples of an end's tangent telling a line clear of the no-pair area
 
 
 def extend_ends(F, lines, grids, tol, measure=(), carry=()):
@@ -87,6 +89,16 @@ def extend_ends(F, lines, grids, tol, measure=(), carry=()):
     starts += [e + (EDGE_REACH * cell,) for e in edge_ends
                if (e[0], e[1]) not in taken and any(c[0] == recs[e[0]][0] and np.hypot(*(c[1] - e[2])) <= tol
                                                     for c in carry)]
+    # an end beside the area whose line runs clear of it: F defined along its tangent for EDGE_REACH cells
+    # (43/52 z0 21's interference.1: two thin wedges meeting at a saddle 0.12 from the edge, their right arms cut
+    # a cell short of it by the grid, tangents 10 degrees off the edge and clear of it: 590 tol at 1e-5)
+    done = taken | {(e[0], e[1]) for e in starts}
+    rest = [e for e in edge_ends if (e[0], e[1]) not in done]
+    if rest:
+        t = np.linspace(0.0, 1.0, CLEAR_SAMPLES + 1)[1:]
+        Q = np.concatenate([e[2][None] + EDGE_REACH * cell * t[:, None] * e[3][None] for e in rest])
+        v = F(Q, np.repeat([recs[e[0]][0] for e in rest], len(t))).reshape(len(rest), len(t))
+        starts += [e + (EDGE_REACH * cell,) for e, ok in zip(rest, np.all(np.isfinite(v), axis=1)) if ok]
     # an end of a chord cut across a strip (densify) starts with a step no longer than that chord: a strip
     # narrowing to a saddle, whose other branches run on nearly straight beyond it (46/49's interference.1
     # at (1, 1)): a first step of two cells passed the saddle onto them and stopped there
