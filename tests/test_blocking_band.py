@@ -279,10 +279,10 @@ def test_a_line_nearer_the_edge_than_its_chords_root_is_solved_is_not_cut():
 
 
 ISLANDS = [  # (spec, line, tol, columns x1): a line in a sliver along the edge shorter than the lattice's columns'
-    # spacing, between two columns whose margins on the edge have one sign: 28/80 z0 38's trimming.nu is negative
-    # from x1 = 0.2557 to 0.2677 and at most 6.5e-5 above the edge, between columns 0.0197 apart (no trace at
-    # all before); 24/107's interference.1 is positive from x1 = 0.3119 along the edge to the window's bottom
-    # frame at 0.3211 (275 tol at 1e-3 before)
+    # spacing: 28/80 z0 38's trimming.nu is negative from x1 = 0.2557 to 0.2677 and at most 6.5e-5 above the edge,
+    # between two columns 0.0197 apart whose margins on the edge have one sign (no trace at all before); 24/107's
+    # interference.1 is positive from x1 = 0.3119 along the edge to the window's bottom frame at 0.3211, its piece
+    # on the lattice one chord 1e-6 long, carried on but dropped as a speck (275 tol at 1e-3 before)
     (PairSpec(28, 80, 1.0, kind="internal", tool2=ShaperCutter(38)), "trimming.nu", 1e-3, np.linspace(0.257, 0.267, 5)),
     (PairSpec(24, 107, 1.0), "interference.1", 1e-3, np.linspace(0.3125, 0.3205, 5)),
 ]

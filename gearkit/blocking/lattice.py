@@ -174,11 +174,11 @@ def dip_columns(F, build, lattice, ks, many=None):
     """``lattice`` (from ``build(extra)``, :func:`band_lattice` with more columns ``extra``) with columns added
     where a function of ``ks`` changes sign along the edge between two of its columns of one sign there: an
     island of a line beside the edge shorter than the columns' spacing (28/80 z0 38's trimming.nu: negative
-    in a sliver 0.015 long and 6.5e-5 wide along the edge, between two columns 0.02 apart, not traced at all;
-    24/107's interference.1 in a sliver along the edge 0.013 long to the window's frame). Tried between two
-    columns where the values on the edge of the two next to them, carried on in a straight line, change sign
-    before the other column: ``DIP_SAMPLES`` columns between them, kept where their edge values show a sign
-    change the two did not. ``F(points, k)`` (``many(points, ks)``: all at once) in the lattice's coordinates.
+    in a sliver 0.015 long and 6.5e-5 wide along the edge, between two columns 0.02 apart, not traced at
+    all). Tried between two columns where the values on the edge of the two next to them, carried on in a
+    straight line, change sign before the other column: ``DIP_SAMPLES`` columns between them, kept where
+    their edge values show a sign change the two did not. ``F(points, k)`` (``many(points, ks)``: all at
+    once) in the lattice's coordinates.
 
     >>> # the edge y = 0, F = |x - 0.5| - 0.02 on it (negative for 0.48 < x < 0.52, between columns 0.4, 0.6)
     >>> def build(extra=()):
