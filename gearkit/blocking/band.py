@@ -62,7 +62,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from gearkit.blocking.brackets import segment_roots
+from gearkit.blocking.brackets import round_off_roots, segment_roots
 from gearkit.blocking.grid import edge_nodes, true_runs
 from gearkit.blocking.joins import join_pieces, once, traced_cell
 from gearkit.blocking.lattice import band_lattice, covering, dip_columns, run_ends, steep_cells
@@ -198,11 +198,8 @@ def _pieces(F, P, valid, V, ks, tol, carry=None, far=None):
         good = ok & (fr <= JUMP_FALL * np.fmin(np.abs(FA), np.abs(FB)))
     again = np.flatnonzero(ok & ~good)  # |F| did not fall at a root solved to tol / 4: solved to round-off,
     if again.size:  # a zero beside the edge, where F varies as a root of the distance, falls there; a pole not
-        R[again], slope[again] = segment_roots(F, A[again], B[again], FA[again], FB[again],
-                                               1e-12 * float(length[again].min()), W[again], True)
-        fr[again] = np.abs(F(R[again], W[again]))
-        with np.errstate(invalid="ignore"):
-            good[again] = fr[again] <= JUMP_FALL * np.fmin(np.abs(FA[again]), np.abs(FB[again]))
+        R[again], slope[again], good[again] = round_off_roots(F, A[again], B[again], FA[again], FB[again], W[again],
+                                                              JUMP_FALL)
     out, at = [], 0
     for k, _, p, _ in raw:
         q, g, use = R[at:at + len(p)], slope[at:at + len(p)], good[at:at + len(p)]

@@ -14,9 +14,10 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["segment_roots", "NearestBracket", "two_lines"]
+__all__ = ["segment_roots", "round_off_roots", "NearestBracket", "two_lines"]
 
 ROOT_ITERATIONS = 100
+ROUND_OFF = 1e-12  #: :func:`round_off_roots` solves to this fraction of the shortest bracket
 GUARD_FRACTION = 0.5  #: a round's guard stands this fraction of tol beyond its estimate ...
 GUARD_SETTLED = 0.5  #: ... where the estimate moved less than this fraction of its bracket since the round
 #: before (it is settling on a root; not beside a jump of F or while the bracket is still wide)
@@ -164,6 +165,25 @@ def segment_roots(F, a, b, fa, fb, tol: float, which, slopes: bool = False):
         g = np.abs(svhi - svlo) / ((shi - slo) * np.hypot(*d.T))
     return roots, g
 
+
+
+def round_off_roots(F, a, b, fa, fb, which, fall: float):
+    """The roots of the brackets ``a``-``b`` solved to round-off (``ROUND_OFF`` of the shortest), for roots whose
+    ``|F|`` did not fall when solved to a tolerance, and whether it falls now, to ``fall`` times the smaller
+    ``|F|`` at the bracket's ends: a zero beside the no-pair edge, where ``F`` goes as a root of the distance to
+    it, falls; a pole or a jump does not. Returns ``(roots (n, 2), slopes (n,), fell (n,) bool)``.
+
+    >>> F = lambda p, w: np.where(w == 0, np.cbrt(p[:, 0] - 1e-9), np.sign(p[:, 0] - 1e-9))  # a zero, a jump
+    >>> a, b = np.array([[-1.0, 0.0]] * 2), np.array([[1.0, 0.0]] * 2)
+    >>> r, g, fell = round_off_roots(F, a, b, F(a, np.arange(2)), F(b, np.arange(2)), np.arange(2), 0.5)
+    >>> fell.tolist(), bool(abs(r[0, 0] - 1e-9) < 1e-11)
+    ([True, False], True)
+    """
+    length = np.hypot(*(np.asarray(b) - np.asarray(a)).T)
+    roots, slopes = segment_roots(F, a, b, fa, fb, ROUND_OFF * float(length.min()), which, True)
+    with np.errstate(invalid="ignore"):
+        fell = np.abs(F(roots, which)) <= fall * np.fmin(np.abs(fa), np.abs(fb))
+    return roots, slopes, fell
 
 class NearestBracket:
     """The nearest bracket of a zero found so far for each chord middle (``lo``/``flo`` to ``end``/``fe``)."""

@@ -31,7 +31,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from gearkit.blocking.brackets import NearestBracket, segment_roots, two_lines
+from gearkit.blocking.brackets import NearestBracket, round_off_roots, segment_roots, two_lines
 from gearkit.blocking.corners import corner_splits, uncut
 from gearkit.blocking.edges import touchdowns, toward_edge
 from gearkit.blocking.flats import carry_down
@@ -56,7 +56,6 @@ STRIP_PROBE = 0.5  #: a chord whose middle lies between two zeros is read this m
 JUMP_FACTOR = 100.0  #: a solved vertex with |F| above this times slope x tol sits on a jump, not a zero
 JUMP_FALL = 0.5  #: ... and |F| there above this fraction of the smaller |F| at the bracket's ends (the
 #: solver keeps the better end: a real zero is far below it at any tol, a pole or a jump is not)
-ROUND_OFF = 1e-12  #: such a root solved again to this fraction of its bracket (a zero beside the edge falls there)
 
 
 def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kinked=(), slopes=False,
@@ -170,13 +169,11 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
             # |F| did not fall at a root solved to vtol: solved again to round-off, where a zero beside the no-pair
             # edge (F going as a root of the distance to it) falls and a jump does not (45/47's sliding leg, 5e-8
             # from the edge for 0.03 along it: F from -7.9 on the edge to 0 there, each chord's root read as a
-            # jump at tol 1e-5 and the line cut, 158 tol; the band's vertices are solved so, band._pieces)
+            # jump at tol 1e-5 and the line cut, 158 tol; the band's vertices are solved so too: round_off_roots)
             again = solved[bad]
             if again.size:
-                length = np.hypot(*(best.end[again] - best.lo[again]).T)
-                r2, g2 = segment_roots(F, best.lo[again], best.end[again], best.flo[again], best.fe[again],
-                                       ROUND_OFF * float(length.min()), km[again], True)
-                fell = np.abs(F(r2, km[again])) <= JUMP_FALL * np.fmin(np.abs(best.flo[again]), np.abs(best.fe[again]))
+                r2, g2, fell = round_off_roots(F, best.lo[again], best.end[again], best.flo[again], best.fe[again],
+                                               km[again], JUMP_FALL)
                 root[again[fell]], g_root[again[fell]] = r2[fell], g2[fell]
                 bad[np.flatnonzero(bad)[fell]] = False
             found[solved[bad & trust[km[solved]]]] = False
