@@ -328,6 +328,29 @@ def test_a_band_run_beside_an_unrefined_grid_chord_is_that_line():
             assert check_pair(dataclasses.replace(spec, shift1=float(x), shift2=float(y))).ok == ok, (x, y)
 
 
+
+def test_a_band_run_past_the_end_of_a_grid_line_is_joined_to_it():
+    """14/63 internal (shaper z0 38) at tol 1e-3: tip interference runs down to the no-pair edge near x1 = 0.4158,
+    nearly parallel to x2. Its grid line ends at x2 = -0.5 on the side of a masked cell, 0.012 above the edge, its
+    first chord (not refined yet) 0.09 long; the band's run on from there to the edge lay on the curve's way on from
+    that chord's end, was read as beside the chord (the same line) and dropped: the trace stopped 6.2 tol short.
+    On rows across that stretch, from x1 = 0.38 to 0.45 (no other zero of the margin there), the traced line crosses
+    each row once, within 2 tol of the zero of the check's scalar tip interference margin (brentq)."""
+    from scipy.optimize import brentq
+
+    tol, name = 1e-3, "tip_interference"
+    spec = PairSpec(14, 63, 1.0, kind="internal", tool2=ShaperCutter(38))
+    c = blocking_contour(spec, tol=tol, lines=[name])
+    for y in np.linspace(-0.5015, -0.5115, 5):
+        def f(x):
+            return c.field.margin(name, x, float(y))
+        lo, hi = f(0.38), f(0.45)
+        assert lo > 0 > hi, (y, lo, hi)
+        exact = brentq(f, 0.38, 0.45, xtol=1e-12)
+        got = row_crossings(c.line(name).components, float(y), 0.38, 0.45)
+        assert len(got) == 1 and abs(got[0] - exact) <= CONTRACT * tol, (y, exact, got)
+
+
 BENT = (58, 63, 16, 1e-7)  #: internal pair, shaper, tol: the sliding line bends beside the edge
 BENT_ROWS = np.linspace(-0.96088, -0.96096, 5)  #: rows x2 = const across its band chord (the edge at -0.96231)
 BENT_SPAN = (-0.8732, -0.8725)  #: where they cross the line (steep there), and no other line
