@@ -119,3 +119,24 @@ def test_a_flat_strips_cut_is_carried_to_its_end_or_its_tip(key):
         _crosses_the_strip(spec, field, c, y, xs, tol)
     for x, lo, hi in columns:
         _crosses_the_strip(spec, field, c, x, np.linspace(lo, hi, 61), tol, column=True)
+
+
+CHAIN_ROWS = (2.40, 2.45, 2.50, 2.55, 2.60, 2.65, 2.70, 2.75, 2.80)  #: rows x2 = const through 33/63's strip ...
+CHAIN_EDGES = (-1.4555, -1.4390, -0.159)  #: ... its left and right edges at x2 = 2.8 and their slope dx1 / dx2
+
+
+@pytest.mark.parametrize("tol", [1e-3, 1e-5])
+def test_the_links_of_a_strip_far_apart_are_one_part_of_the_region(tol):
+    """33/63 external at tol 1e-3 and 1e-5: interference.1 and interference.2 bound a strip of the region 0.013
+    wide that runs from the triangle it widens into (below x2 = 2.3) to its end near (-1.45, 2.82), seen by the
+    grid as a chain of diamonds 0.07 to 0.1 apart, each cut across the strip 0.013 long: too far apart to pair,
+    each link was carried down the strip to its far corner, and the triangle and the strip were held by two and
+    three polygons, the strip's middle left out by the even-odd rule (6.7 and 718 tol off). On rows through the
+    strip, every crossing of the polygons lies within 2 tol of a zero of the check's smallest hard margin (brentq)
+    and every zero has one; the middle passes check_pair and is in the region."""
+    spec = PairSpec(33, 63, 1.0)
+    field, c = PairField(spec), blocking_contour(spec, tol=tol, lines=[])
+    left, right, slope = CHAIN_EDGES
+    for y in CHAIN_ROWS:
+        xs = np.linspace(left + slope * (y - 2.8) - SIDE, right + slope * (y - 2.8) + SIDE, 61)
+        _crosses_the_strip(spec, field, c, y, xs, tol)

@@ -26,6 +26,8 @@ FINE = 41  #: nodes per side of the local grid that looks for the best point of 
 SLIVER = 0.5  #: a loop split off narrower than this fraction of tol on average is a fold (_simple_loops)
 RECONNECT_ROUNDS = 3  #: rounds of re-joining loops cut across a thin part (:func:`reconnect`)
 PAIR_REACH = 4.0  #: two cuts pair when their middles lie within this many times the longer one apart
+CHAIN_REACH = 32.0  #: ... or within this many, where F keeps the sign of their other side all the way between
+CHAIN_SAMPLES = 4  #: ... read at least this many times per length of the shorter cut on that way
 NECK_STEPS = 12  #: most steps towards the saddle between two cuts (:func:`_neck`)
 NECK_H = 1e-6  #: ... its smallest stencil (shift units: the margins' round-off is ~1e-15)
 NECK_SHRINK = 0.25  #: ... shrunk by this where its quadratic has no saddle within reach (a kink inside it)
@@ -138,7 +140,9 @@ def reconnect(F, lines, kept, tol: float, refine) -> list:
     ``tol``. Two of them, ``P1 -> Q1`` and ``P2 -> Q2``, running opposite ways with each on the same
     side of the other, where ``F`` halfway between their middles has the sign of the other side (the
     polylines leave out, or take in, the part between them), become ``P1 -> Q2`` and ``P2 -> Q1`` (two
-    loops become one, or one loop two). Where ``F`` there has their side's sign and the chords lie in two
+    loops become one, or one loop two); so do two such chords farther apart (up to ``CHAIN_REACH`` times the
+    longer), where ``F`` has the sign of the other side all the way from one middle to the other: the links of the
+    grid's chain of diamonds along a strip narrower than a grid cell (:func:`_clear`). Where ``F`` there has their side's sign and the chords lie in two
     loops, each chord's middle inside the other loop, both loops take the part between them (32/77 at tol
     1e-3: a strip of the region cut across twice, the part between the cuts left out by the even-odd
     rule, 10 tol off): the two loops become one along their lines, their vertices between the chords
@@ -222,14 +226,23 @@ def _rejoin(F, lines, kept, tol: float):
         side_v = np.sign(D[v, 0] * (gap - P[v])[:, 1] - D[v, 1] * (gap - P[v])[:, 0])
         near = np.hypot(*(M[u] - M[v]).T)
         ok = (K[u] == K[v]) & (np.einsum("ij,ij->i", D[u], D[v]) < 0) & (side_u == side_v) & (side_u != 0) \
-            & (near <= PAIR_REACH * np.fmax(L[u], L[v]))
+            & (near <= CHAIN_REACH * np.fmax(L[u], L[v]))
         u, v, gap, side, near = u[ok], v[ok], gap[ok], side_u[ok], near[ok]
         fg = F(gap, K[u]) if u.size else np.zeros(0)
+        close = near <= PAIR_REACH * np.fmax(L[u], L[v])
         # where F has a saddle between the chords, its sign there, not halfway between their middles (_neck)
-        sad = np.array([_neck(F, K[a], P[a], Q[a], P[b], Q[b], tol) for a, b in zip(u, v)])
+        sad = np.array([_neck(F, K[a], P[a], Q[a], P[b], Q[b], tol) if c else 0.0 for a, b, c in zip(u, v, close)])
         sg = np.where(sad != 0, sad, np.sign(fg))
         wrong = np.isfinite(fg) & (sg == -side)  # F there has the sign of the chords' other side
-        held = np.isfinite(fg) & (sg == side)  # ... or of their side: taken twice when in two loops
+        held = np.isfinite(fg) & (sg == side) & close  # ... or of their side: taken twice when in two loops
+        # farther apart, two links of the grid's chain of diamonds along a strip narrower than a grid cell: paired
+        # where F keeps that sign all the way from one middle to the other (33/63 at tol 1e-3: interference.1 and .2
+        # bound a strip 0.013 wide, its links 0.07 to 0.1 apart, each cut across it 0.013 long; the links left
+        # alone were each carried to the strip's far corner, the triangle it widens into held three times)
+        far = np.flatnonzero(wrong & ~close)
+        if far.size:
+            wrong[far] = _clear(F, K[u[far]], M[u[far]], M[v[far]], -side[far],
+                                np.fmin(L[u[far]], L[v[far]]) / CHAIN_SAMPLES)
         for t in np.argsort(near):
             if u[t] in used or v[t] in used:
                 continue
@@ -241,6 +254,26 @@ def _rejoin(F, lines, kept, tol: float):
                 used |= {int(u[t]), int(v[t])}
                 lines, changed = _swap(lines, changed, *chords, side=side[t])
     return lines, sorted(changed)
+
+
+def _clear(F, k, a, b, sign, h) -> np.ndarray:
+    """True where ``F_k`` has the sign ``sign`` all the way from ``a`` to ``b`` (each row; read at both ends and
+    at most ``h`` apart between).
+
+    >>> F = lambda p, k: 1e-3 - np.abs(p[:, 1] - 0.01 * p[:, 0] ** 2)  # a strip along a parabola, 2e-3 wide
+    >>> a, b = np.array([[0.0, 0.0], [0.0, 0.0]]), np.array([[0.4, 0.0], [0.8, 0.0]])
+    >>> _clear(F, np.zeros(2, int), a, b, np.ones(2), 1e-3).tolist()  # 1.6e-3 and 6.4e-3 off the strip's middle
+    [False, False]
+    >>> _clear(F, np.zeros(2, int), a, b / 2, np.ones(2), 1e-3).tolist()
+    [True, False]
+    """
+    n = np.maximum(np.ceil(np.hypot(*(b - a).T) / h).astype(int), 1)
+    row = np.repeat(np.arange(len(a)), n + 1)
+    t = np.concatenate([np.linspace(0.0, 1.0, m + 1) for m in n])
+    v = F(a[row] + t[:, None] * (b - a)[row], np.asarray(k)[row])
+    with np.errstate(invalid="ignore"):
+        good = np.isfinite(v) & (np.sign(v) == np.asarray(sign)[row])
+    return np.logical_and.reduceat(good, np.concatenate([[0], np.cumsum(n + 1)[:-1]]))
 
 
 def _neck(F, k, p1, q1, p2, q2, tol: float) -> float:
