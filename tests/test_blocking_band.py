@@ -219,13 +219,17 @@ CORNERS = [  # (z1, z2, line, tol, rows x2, right end of the rows): lines from b
     # meets the frame at x1 = -2.14 through a cell whose grid piece (one chord beside undefined nodes) was
     # dropped: the band's piece was cut there (80 tol at 1e-3, 8025 at 1e-5 before); 34/105's leaves the edge at
     # (-1.983, 2.919), where the edge crosses one grid cell steeply and leaves through the top frame while the
-    # frame's column crosses it twice: no lattice covered that cell and the line had no trace at all
+    # frame's column crosses it twice: no lattice covered that cell and the line had no trace at all; 47/76's
+    # pointing.2 runs from the edge at (-2.400, 2.956) to the frame at x1 = -2.222 in the top row of cells, where
+    # the steep edge steps a grid column over: that cell was in neither lattice, no trace at all either
     (47, 79, "interference.1", 1e-3, np.linspace(2.88, 3.0, 7), -2.0),
     (47, 79, "interference.1", 1e-5, np.linspace(2.88, 3.0, 7), -2.0),
     (44, 112, "tip_thickness.2=0.25", 1e-3, np.linspace(2.955, 3.0, 7), -2.0),
     (44, 112, "tip_thickness.2=0.25", 1e-5, np.linspace(2.955, 3.0, 7), -2.0),
     (34, 105, "tip_thickness.2=0.25", 1e-3, np.linspace(2.925, 3.0, 7), -1.7),
     (34, 105, "tip_thickness.2=0.25", 1e-5, np.linspace(2.925, 3.0, 7), -1.7),
+    (47, 76, "pointing.2", 1e-3, np.linspace(2.958, 3.0, 7), -2.0),
+    (47, 76, "pointing.2", 1e-5, np.linspace(2.958, 3.0, 7), -2.0),
 ]
 
 

@@ -54,7 +54,8 @@ def steep_cells(fin, sense=None):
     cell between grid rows j, j + 1: True where the edge crosses both rows once, the same way round,
     within one grid column (steeper than about 45 degrees in grid units); gaps of one cell between
     such runs filled, runs of one cell dropped but at the window's frame (34/105's edge leaves through the
-    top frame after one such cell, the frame's column crossing it twice: no column lattice there)."""
+    top frame after one such cell, the frame's column crossing it twice: no column lattice there), and the
+    cell at the frame beside a run taken where the edge crosses both its rows once, the same way round."""
     t = crossings(fin, sense)  # (``sense``: see :func:`crossings`)
     n = len(t) - 1
     s = np.array([t[j] is not None and t[j + 1] is not None and t[j][1] == t[j + 1][1] and t[j][0] == t[j + 1][0]
@@ -67,6 +68,13 @@ def steep_cells(fin, sense=None):
     for lo, hi in true_runs(fill):
         if hi - lo < 2 and 0 < lo and hi < n:
             out[lo:hi] = False
+    # the cell at the frame beside a run, the edge crossing both its rows once the same way round, but into the
+    # next grid column: the frame's column there crosses the edge twice, or not at all (47/76's steep edge near
+    # x1 = -2.40 steps a column over in the top row of cells: pointing.2's line from the edge there to the top frame
+    # lay in no lattice, no trace at all)
+    for j, beside in ((0, 1), (n - 1, n - 2)):
+        if n > 1 and ok[j] and out[beside]:
+            out[j] = True
     return out
 
 
