@@ -197,3 +197,26 @@ def test_a_chord_its_line_crosses_at_the_middle_is_refined():
         exact = brentq(lambda x: field.margin("sliding", x, float(y)), xs[i[0]], xs[i[0] + 1], xtol=1e-13)
         got = row_crossings(c.line("sliding").components, float(y), xs[0], xs[-1])
         assert len(got) == 1 and abs(got[0] - exact) <= 2.0 * tol, (y, exact, got)
+
+
+@pytest.mark.parametrize("tol", [1e-3, 1e-5])
+def test_the_leg_of_two_alike_gears_along_equal_shifts_is_traced(tol):
+    """17/17: two alike gears with equal shifts make a symmetric pair, the same specific sliding at both ends of
+    the path, so the leg zeta1 = zeta2 runs along x1 = x2 where the margin changes sign across it. The grid's nodes
+    lie on that line (the window is square), the margin there +-1e-17, and every vertex along it, on a grid edge
+    with no sign change, was read as a jump and dropped: no trace from (-0.32, -0.32) to (-0.10, -0.10), 129 tol at
+    1e-3. Oracle: at points of x1 = x2 where the check's scalar margin takes opposite signs 2e-4 to either side
+    (across the line), the margin there is zero to round-off (the pair's symmetry) and the traced line passes
+    within 2 tol."""
+    field = PairField(PairSpec(17, 17, 1.0))
+    c = blocking_contour(PairSpec(17, 17, 1.0), tol=tol, lines=["sliding"])
+    h = 2e-4
+    on = []
+    for t in np.linspace(-0.31, -0.12, 8):
+        above, below = field.margin("sliding", t - h, t + h), field.margin("sliding", t + h, t - h)
+        if above * below < 0:
+            assert abs(field.margin("sliding", t, t)) <= 1e-12, t
+            on.append([t, t])
+    assert len(on) >= 6  # the oracle sees the line across most of the stretch
+    d = np.min([distances_to_polyline(np.array(on), q) for q in c.line("sliding").components], axis=0)
+    assert d.max() <= CONTRACT * tol, np.array(on)[d > CONTRACT * tol]

@@ -41,6 +41,7 @@ __all__ = ["zero_lines", "densify"]
 
 BRIDGE_CELLS = 3.0  #: open pieces of one curve whose ends face each other this many cell diagonals apart join
 BRIDGE_COS = 0.5  #: ... when the gap runs within 60 degrees of both ends' directions
+NODE_ZERO = 1e-12  #: a vertex on a node whose |F| is below this fraction of the larger at its edge's ends is a zero
 
 
 def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), kinked=(), onsets=((), ()),
@@ -93,7 +94,11 @@ def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), 
     fv = np.abs(F(moved, ids))
     with np.errstate(invalid="ignore"):  # and |F| hardly fell from the edge's ends: a zero falls a lot
         fell = fv <= JUMP_FALL * np.fmin(np.abs(fa), np.abs(fb))
-    jump = np.where(ok, (fv > JUMP_FACTOR * grad * tol) & ~fell, ~(fv == 0))
+        # a vertex at a node where F is zero to round-off is on no edge with a sign change either, but a zero: 17/17's
+        # sliding margin is zero on x1 = x2 (both gears alike), +-1e-17 at the nodes there, and every vertex along
+        # that line was read as a jump and dropped (129 tol at 1e-3)
+        node_zero = np.isfinite(fa) & np.isfinite(fb) & (fv <= NODE_ZERO * np.fmax(np.abs(fa), np.abs(fb)))
+    jump = np.where(ok, (fv > JUMP_FACTOR * grad * tol) & ~fell, ~((fv == 0) | node_zero))
     jump[np.isin(ids, list(measure))] = False  # the region: where no pair exists is its edge too
     lines, k0 = [], 0
     for p, k in zip(raw, owner):
