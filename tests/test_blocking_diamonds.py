@@ -140,3 +140,24 @@ def test_the_links_of_a_strip_far_apart_are_one_part_of_the_region(tol):
     for y in CHAIN_ROWS:
         xs = np.linspace(left + slope * (y - 2.8) - SIDE, right + slope * (y - 2.8) + SIDE, 61)
         _crosses_the_strip(spec, field, c, y, xs, tol)
+
+
+FRAME_ROWS = (2.88, 2.90, 2.92, 2.94, 2.96, 2.98, 2.995)  #: rows x2 = const through 34/81's strip below the frame ...
+FRAME_EDGES = (-1.4675, -1.4585, -0.135)  #: ... its left and right edges at x2 = 3 and their slope dx1 / dx2
+
+
+@pytest.mark.parametrize("tol", [1e-3, 1e-5])
+def test_a_strip_running_out_through_the_frame_is_carried_to_it(tol):
+    """34/81 external at tol 1e-3 and 1e-5: interference.1 and interference.2 bound a strip of the region 0.006 wide
+    that runs out through the window's top frame (x2 = 3), whose last row of grid nodes lies outside it; the grid
+    closed the outline across the strip at x2 = 2.875, and the sides, which cross far down, were carried nowhere
+    (3 and 300 tol off). On rows through the strip up to the frame, every crossing of the polygons lies within 2 tol
+    of a zero of the check's smallest hard margin (brentq) and every zero has one; the middle passes check_pair and
+    is in the region."""
+    spec = PairSpec(34, 81, 1.0)
+    field, c = PairField(spec), blocking_contour(spec, tol=tol, lines=[])
+    assert c.window[3] == 3.0
+    left, right, slope = FRAME_EDGES
+    for y in FRAME_ROWS:
+        xs = np.linspace(left + slope * (y - 3.0) - SIDE, right + slope * (y - 3.0) + SIDE, 61)
+        _crosses_the_strip(spec, field, c, y, xs, tol)

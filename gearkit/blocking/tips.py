@@ -43,7 +43,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from gearkit.blocking.apex import REACH, STEP_H, corners, crossings, meetings, segment_distance
+from gearkit.blocking.apex import REACH, STEP_H, corners, crossings, frame_corners, meetings, segment_distance
 
 __all__ = ["part_evaluator", "crossings", "meetings", "carry_to_tips"]
 
@@ -225,10 +225,17 @@ def carry_to_tips(F, G, lines, kept, region: int, tol: float, trace) -> list:
         # within tol of the outline), the crossing nearest the chord's end
         again = np.flatnonzero(~conv & ~seen)
         if again.size:
-            T2, conv2, _, ends2, cut2 = corners(F, G, region, A[again], B[again], ia[again], ib[again],
+            T2, conv2, seen2, ends2, cut2 = corners(F, G, region, A[again], B[again], ia[again], ib[again],
                                                 before[again], after[again], B[again], tol, span)
             T[again[conv2]], conv[again[conv2]] = T2[conv2], True
             ends[again[conv2]], cut[again[conv2]] = ends2[conv2], cut2[conv2]
+            # nor that: the strip between the two parts may run out through the window's frame (frame_corners)
+            out = again[~conv2 & ~seen2]
+            if out.size:
+                T3, conv3, _, ends3, cut3 = frame_corners(F, G, region, A[out], B[out], ia[out], ib[out],
+                                                          before[out], after[out], tol, span)
+                T[out[conv3]], conv[out[conv3]] = T3[conv3], True
+                ends[out[conv3]], cut[out[conv3]] = ends3[conv3], cut3[conv3]
         tips[conv] = T[conv]
     corner = np.isfinite(tips[:, 0])
     sides = {}  # chord (start, end) -> its sides (part, start, end)
