@@ -213,18 +213,18 @@ def _row_zeros(field, name, x2s, lo, hi):
 
 
 CORNERS = [  # (z1, z2, line, tol, rows x2, right end of the rows): lines from beside the steep no-pair edge to the
-    # window's top frame x2 = 3 (15/106: its bottom frame x2 = -3). 47/79's interference.1 ran on the grid up to the row x2 = 2.875 and stopped there,
-    # 0.13 short of the frame (the band's end marked to go on was the grid line's end within tol, not the same
-    # point: 52 tol at 1e-3, 5184 at 1e-5 before); 44/112's tip thickness line leaves the edge near x1 = -2.31 and
-    # meets the frame at x1 = -2.14 through a cell whose grid piece (one chord beside undefined nodes) was
-    # dropped: the band's piece was cut there (80 tol at 1e-3, 8025 at 1e-5 before); 34/105's leaves the edge at
-    # (-1.983, 2.919), where the edge crosses one grid cell steeply and leaves through the top frame while the
-    # frame's column crosses it twice: no lattice covered that cell and the line had no trace at all; 47/76's
-    # pointing.2 runs from the edge at (-2.400, 2.956) to the frame at x1 = -2.222 in the top row of cells, where
-    # the steep edge steps a grid column over: that cell was in neither lattice, no trace at all either; 15/106's
-    # contact_ratio_tip=1.2 runs from the bottom frame at x1 = 0.550 up beside the edge, which leaves through that
-    # frame in a cell whose right column was left to the next cell, itself not used (the edge past the frame on both
-    # its sides): the line stopped 0.014 above the frame (12.8 tol at 1e-3, 1280 at 1e-5)
+    # window's top frame x2 = 3 (15/106: its bottom frame x2 = -3). 47/79's interference.1 ran on the grid up to the
+    # row x2 = 2.875 and stopped there, 0.13 short of the frame (the band's end marked to go on was the grid line's
+    # end within tol, not the same point: 52 tol at 1e-3, 5184 at 1e-5 before); 44/112's tip thickness line leaves
+    # the edge near x1 = -2.31 and meets the frame at x1 = -2.14 through a cell whose grid piece (one chord beside
+    # undefined nodes) was dropped: the band's piece was cut there (80 tol at 1e-3, 8025 at 1e-5 before); 34/105's
+    # leaves the edge at (-1.983, 2.919), where the edge crosses one grid cell steeply and leaves through the top
+    # frame while the frame's column crosses it twice: no lattice covered that cell and the line had no trace at
+    # all; 47/76's pointing.2 runs from the edge at (-2.400, 2.956) to the frame at x1 = -2.222 in the top row of
+    # cells, where the steep edge steps a grid column over: that cell was in neither lattice, no trace at all
+    # either; 15/106's contact_ratio_tip=1.2 runs from the bottom frame at x1 = 0.550 up beside the edge, which
+    # leaves through that frame in a cell whose right column was left to the next cell, itself not used (the edge
+    # past the frame on both its sides): the line stopped 0.014 above the frame (12.8 tol at 1e-3, 1280 at 1e-5)
     (47, 79, "interference.1", 1e-3, np.linspace(2.88, 3.0, 7), -2.0),
     (47, 79, "interference.1", 1e-5, np.linspace(2.88, 3.0, 7), -2.0),
     (44, 112, "tip_thickness.2=0.25", 1e-3, np.linspace(2.955, 3.0, 7), -2.0),

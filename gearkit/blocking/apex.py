@@ -20,8 +20,8 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["across", "corners", "frame_corners", "crossings", "meetings", "outward", "segment_distance", "NEWTON_ITERATIONS", "STEP_H",
-           "CROSSING_SIN", "REACH"]
+__all__ = ["across", "corners", "frame_corners", "crossings", "meetings", "outward", "segment_distance",
+           "NEWTON_ITERATIONS", "STEP_H", "CROSSING_SIN", "REACH"]
 
 NEWTON_ITERATIONS = 40  #: most Newton steps to a tip
 STEP_H = 1e-7  #: forward difference of the parts' gradients (shift units; their round-off is ~1e-15)

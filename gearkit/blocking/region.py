@@ -142,10 +142,10 @@ def reconnect(F, lines, kept, tol: float, refine) -> list:
     polylines leave out, or take in, the part between them), become ``P1 -> Q2`` and ``P2 -> Q1`` (two
     loops become one, or one loop two); so do two such chords farther apart (up to ``CHAIN_REACH`` times the
     longer), where ``F`` has the sign of the other side all the way from one middle to the other: the links of the
-    grid's chain of diamonds along a strip narrower than a grid cell (:func:`_clear`). Where ``F`` there has their side's sign and the chords lie in two
-    loops, each chord's middle inside the other loop, both loops take the part between them (32/77 at tol
-    1e-3: a strip of the region cut across twice, the part between the cuts left out by the even-odd
-    rule, 10 tol off): the two loops become one along their lines, their vertices between the chords
+    grid's chain of diamonds along a strip narrower than a grid cell (:func:`_clear`). Where ``F`` there has their
+    side's sign and the chords lie in two loops, each chord's middle inside the other loop, both loops take the part
+    between them (32/77 at tol 1e-3: a strip of the region cut across twice, the part between the cuts left out by
+    the even-odd rule, 10 tol off): the two loops become one along their lines, their vertices between the chords
     dropped. The lines changed are refined again by ``refine(lines, kept)``
     (:func:`~gearkit.blocking.refinement.densify`, which adds the chords it finds no zero across to the new
     ``kept``), round after round (``RECONNECT_ROUNDS``); ``kept`` is extended by their chords kept. The

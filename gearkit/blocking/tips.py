@@ -29,12 +29,14 @@ every new vertex on its right side or within ``tol`` of its zero (by its own slo
 rest of the region's outline.
 
 Where the two parts' lines meet past the zero of a third hard margin (a strip ending across its line before its
-sides meet: 19/72 z0 33 internal, the flat strip between interference.1 and exit jamming ended by
-trimming.plunge's line 0.044 above their crossing), the corner is that strip's end, the chord replaced by three
-sides (:func:`~gearkit.blocking.apex.across`). A loop lying wholly in the part a carry takes (a link of the grid's
-chain of diamonds farther down the wedge than a cut pairs, :func:`_covered`; dropped afterwards as covered) and a
-chord crossing the carried path within ``2 tol`` of it (the outline folded along the wedge's side,
-:func:`_grazing`) do not stop the carry (40/64 z0 22 internal at tol 1e-5).
+sides meet: 19/72 z0 33 internal, the flat strip between interference.1 and exit jamming ended by trimming.plunge's
+line 0.044 above their crossing), the corner is that strip's end, the chord replaced by three sides
+(:func:`~gearkit.blocking.apex.across`); where they meet nowhere within reach and the strip runs out through the
+window's frame, its end is there, the window's edge the third side (34/81's strip between interference.1 and .2,
+closed by the grid 0.125 short of the top frame: :func:`~gearkit.blocking.apex.frame_corners`). A loop lying wholly
+in the part a carry takes (a link of the grid's chain of diamonds farther down the wedge than a cut pairs,
+:func:`_covered`; dropped afterwards as covered) and a chord crossing the carried path within ``2 tol`` of it (the
+outline folded along the wedge's side, :func:`_grazing`) do not stop the carry (40/64 z0 22 internal at tol 1e-5).
 
 The tips themselves are solved by :mod:`~gearkit.blocking.apex` (:func:`crossings`, :func:`meetings`:
 also this module's names).
@@ -226,7 +228,7 @@ def carry_to_tips(F, G, lines, kept, region: int, tol: float, trace) -> list:
         again = np.flatnonzero(~conv & ~seen)
         if again.size:
             T2, conv2, seen2, ends2, cut2 = corners(F, G, region, A[again], B[again], ia[again], ib[again],
-                                                before[again], after[again], B[again], tol, span)
+                                                    before[again], after[again], B[again], tol, span)
             T[again[conv2]], conv[again[conv2]] = T2[conv2], True
             ends[again[conv2]], cut[again[conv2]] = ends2[conv2], cut2[conv2]
             # nor that: the strip between the two parts may run out through the window's frame (frame_corners)
