@@ -24,7 +24,8 @@ Modules, in the order a contour is made:
   pieces joined to the grid's lines by :mod:`~gearkit.blocking.joins`; lines
   the grid cut short carried on by :mod:`~gearkit.blocking.ends` (continued as the fronts of
   :mod:`~gearkit.blocking.fronts`), undercut onsets made exact by :mod:`~gearkit.blocking.onsets`;
-* region: :mod:`~gearkit.blocking.region` (polygons where the check passes), its thin wedges traced to
+* region: :mod:`~gearkit.blocking.region` (polygons where the check passes; what its function does between two
+  cuts of its outline in :mod:`~gearkit.blocking.between`), its thin wedges traced to
   their tips by :mod:`~gearkit.blocking.tips` (each tip solved in the plane by :mod:`~gearkit.blocking.apex`),
   a flat strip's last cut carried down to the strip's end by :mod:`~gearkit.blocking.flats`;
 * use: :mod:`~gearkit.blocking.contour` (the result and point queries), :mod:`~gearkit.blocking.recommend`,
