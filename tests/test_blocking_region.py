@@ -238,11 +238,11 @@ def test_a_thin_wedge_is_traced_to_its_tip(pair, a, b, xr, yr, tol):
 
 
 def test_the_regions_parts_are_the_margins_and_the_window():
-    """The parts of the region's function (tips.part_evaluator) at random points: each hard margin as
+    """The parts of the region's function (parts.part_evaluator) at random points: each hard margin as
     the check's scalar margin gives it, each window part the distance to its edge, and their smallest
     the region's function where a pair exists."""
     from gearkit.blocking.arrays import evaluator
-    from gearkit.blocking.tips import part_evaluator
+    from gearkit.blocking.parts import part_evaluator
 
     field = PairField(PairSpec(33, 78, 1.0))
     window = (-1.0, 2.0, -3.0, 0.5)

@@ -26,8 +26,10 @@ Modules, in the order a contour is made:
   :mod:`~gearkit.blocking.fronts`), undercut onsets made exact by :mod:`~gearkit.blocking.onsets`;
 * region: :mod:`~gearkit.blocking.region` (polygons where the check passes; what its function does between two
   cuts of its outline in :mod:`~gearkit.blocking.between`), its thin wedges traced to
-  their tips by :mod:`~gearkit.blocking.tips` (each tip solved in the plane by :mod:`~gearkit.blocking.apex`),
-  a flat strip's last cut carried down to the strip's end by :mod:`~gearkit.blocking.flats`;
+  their tips by :mod:`~gearkit.blocking.tips` (each tip solved in the plane by :mod:`~gearkit.blocking.apex`, the
+  region's parts and which binds where in :mod:`~gearkit.blocking.parts`, a part beyond a saddle's neck walked round
+  by :mod:`~gearkit.blocking.walk`), a flat strip's last cut carried down to the strip's end by
+  :mod:`~gearkit.blocking.flats`;
 * use: :mod:`~gearkit.blocking.contour` (the result and point queries), :mod:`~gearkit.blocking.recommend`,
   :mod:`~gearkit.blocking.plot` (pictures, JSON; the zoom about a star the region is thinner than in
   :mod:`~gearkit.blocking.inset`), :mod:`~gearkit.blocking.atlas` (many pairs in parallel).

@@ -1,8 +1,8 @@
 """Corners of the admissible region that its chords cut: thin wedges traced to their tips.
 
-The region's edge is the zero set of the smallest of its parts (the hard margins and the distances
-to the window's edges: :func:`part_evaluator`); where the part binding at one vertex of its outline
-differs from the next one's, the edge turns a corner between them, where the two parts cross. A
+The region's edge is the zero set of the smallest of its parts (the hard margins and the distances to the window's
+edges: :func:`~gearkit.blocking.parts.part_evaluator`); where the part binding at one vertex of its outline differs
+from the next one's, the edge turns a corner between them, where the two parts cross. A
 chord's middle near the edge says nothing of such a corner: where the parts cross at a small angle
 the region ends in a wedge narrower than a grid cell, which marching squares closes across short of
 its tip (33/78 at tol 1e-5: the wedge between interference.1 and interference.2 cut 0.1 short of
@@ -17,7 +17,10 @@ bind the same part (along a strip of the region narrower than itself, its middle
 is replaced by that part's line; where that line from end to end is cut (across a wedge of the part
 whose sides are two branches of its zero set, meeting at its saddle: interference.1's wedges at (1, 1)
 of 58/109 and 55/102 internal, cut 7.5 and 2.4 tol short at tol 1e-3), the sides are traced from one
-end through where they meet (:func:`meetings`) to the other, the tip a corner of that line. An end beside
+end through where they meet (:func:`meetings`) to the other, the tip a corner of that line; where they meet at no
+corner the outline can take (the region goes on through the saddle's neck between them into a part beyond it that
+no grid node sees: 29/37 at tol 1e-5, 6.6 tol off), the edge from one end of the chord to the other is walked
+(:mod:`~gearkit.blocking.walk`). Which part binds at a vertex (:func:`~gearkit.blocking.parts.binding`): an end beside
 the tip sweep's kink, where its margin is flat at the sweep's resolution and smallest, binds the part whose
 zero lies there (exit jamming, where the tip sweep starts to penetrate: 25/54 z0 20's wedge); so does an end where the smallest part is flat, farther than
 ``tol`` from its zero by its slope, and another lies within ``tol`` of its own (beside a saddle: the nearest by value
@@ -46,73 +49,12 @@ from __future__ import annotations
 import numpy as np
 
 from gearkit.blocking.apex import REACH, STEP_H, corners, crossings, frame_corners, meetings, segment_distance
+from gearkit.blocking.parts import binding
+from gearkit.blocking.walk import walk_sides
 
-__all__ = ["part_evaluator", "crossings", "meetings", "carry_to_tips"]
+__all__ = ["crossings", "meetings", "carry_to_tips"]
 
 GRAZE_SAMPLES = 17  #: points along a chord crossing a carried path read for how far they lie inside its part
-
-
-
-def part_evaluator(field, window, count=None):
-    """``G(points (n, 2), which (n,) int) -> (n,)``: part ``which[i]`` of the region's function at
-    ``points[i]``: the hard margins of ``field`` (NaN where no pair exists), then the distances to the
-    window's four edges (x1 - lo, hi - x1, x2 - lo, hi - x2); ``G.size`` parts, ``G.window``, and
-    ``G.many(points)``: every part at the points, ``(G.size, n)``; ``G.costly``: the parts whose
-    corners are not carried (the tip sweep); ``G.flat``: part -> the level at which it is flat (the tip
-    sweep's resolution, where it finds no penetration). The region's function
-    (:func:`~gearkit.blocking.arrays.evaluator`'s ``"region"``) is their smallest. ``count``: a list
-    whose first item counts the points evaluated (times the parts, for ``G.many``)."""
-    from gearkit.blocking.arrays import evaluator
-    from gearkit.pair.internal import SWEEP_RESOLUTION
-
-    hard = list(field.hard)
-    M = evaluator(field, hard, None)
-    edges = np.array([0, 0, 1, 1]), np.array([False, True, False, True])  # axis, upper
-    lo = np.array([window[0], window[2]], dtype=float)
-    hi = np.array([window[1], window[3]], dtype=float)
-
-    def G(p, which):
-        p = np.asarray(p, dtype=float).reshape(-1, 2)
-        if count is not None:
-            count[0] += len(p)
-        which = np.asarray(which)
-        out = np.empty(len(p))
-        m = which < len(hard)
-        if np.count_nonzero(m):
-            out[m] = M(p[m], which[m])
-        j = which[~m] - len(hard)
-        axis, upper = j // 2, j % 2 == 1
-        v = p[~m, axis]
-        out[~m] = np.where(upper, hi[axis] - v, v - lo[axis])
-        return out
-
-    def many(p):
-        """Every part at the points ``p``: ``(G.size, n)``."""
-        p = np.asarray(p, dtype=float).reshape(-1, 2)
-        if count is not None:
-            count[0] += len(p) * G.size
-        v = p[:, edges[0]].T
-        w = np.where(edges[1][:, None], hi[edges[0]][:, None] - v, v - lo[edges[0]][:, None])
-        return np.concatenate([M.many(p, range(len(hard))), w]) if len(p) else np.zeros((G.size, 0))
-    def slack(p, which):
-        """The conditions for part ``which[i]`` to be defined at ``p[i]`` (:func:`~gearkit.blocking.arrays.evaluator`'s
-        ``slack``; a window's edge is defined everywhere)."""
-        p = np.asarray(p, dtype=float).reshape(-1, 2)
-        if count is not None:
-            count[0] += len(p)
-        which = np.asarray(which)
-        out = np.full((len(p), 4), np.inf)
-        m = which < len(hard)
-        if np.count_nonzero(m):
-            out[m] = M.slack(p[m], which[m])
-        return out
-    G.size, G.window, G.many, G.slack = len(hard) + 4, tuple(window), many, slack
-    # the tip sweep (B6 tip interference): a sweep of the tips at every point, exact only down to -SWEEP_ENOUGH
-    # and not smooth below: its corners are left as the outline has them (traced as one of its parts, a side
-    # took minutes on 20/49 internal at tol 1e-3)
-    G.costly = [i for i, n in enumerate(hard) if n == "tip_interference"]
-    G.flat = {i: SWEEP_RESOLUTION for i in G.costly}  # its margin where it finds no penetration (its kink's level)
-    return G
 
 
 def _crosses(P, Q, A, B) -> np.ndarray:
@@ -127,63 +69,6 @@ def _crosses(P, Q, A, B) -> np.ndarray:
     return np.any(hit, axis=1)
 
 
-def _binding(G, P, tol: float) -> np.ndarray:
-    """The part smallest at each point of ``P`` (``(n,)`` int; -1 where one is undefined: no pair). Where
-    that is a costly part at its flat level (``G.flat``: the tip sweep finding no penetration, its margin
-    the sweep's resolution, its slope nil) and the smallest of the others lies within ``tol`` of its zero
-    (its value over its slope), the other: the edge there is the other's zero, the costly part's kink
-    beside it (25/54 z0 20: exit jamming, where the tip sweep starts to penetrate)."""
-    V = G.many(P)
-    fin = np.all(np.isfinite(V), axis=0)
-    V = np.where(np.isfinite(V), V, np.inf)
-    b = np.argmin(V, axis=0)
-    flat = np.zeros(len(b), bool)
-    for k, level in G.flat.items():
-        flat |= (b == k) & (V[k] >= level * (1 - 1e-9))
-    i = np.flatnonzero(flat & fin)
-    if i.size:
-        W = V[:, i].copy()
-        W[G.costly] = np.inf
-        c = np.argmin(W, axis=0)
-        v = W[c, np.arange(i.size)]
-        p = P[i]
-        g = np.hypot(G(p + [STEP_H, 0.0], c) - v, G(p + [0.0, STEP_H], c) - v) / STEP_H
-        with np.errstate(invalid="ignore"):
-            near = np.abs(v) <= tol * g
-        b[i[near]] = c[near]
-    _nearest_zero(G, P, V, b, fin, tol)
-    return np.where(fin, b, -1)
-
-
-def _nearest_zero(G, P, V, b, fin, tol: float) -> None:
-    """Where the smallest part ``b`` (``V``: every part at ``P``) lies farther than ``tol`` from its zero by its
-    own slope (flat beside a saddle, where its value is small far from its zero) and another part lies within
-    ``tol`` of its own, ``b`` is set to the part nearest its zero (value over slope): the outline's vertex lies on
-    that part's zero. 56/63 z0 25 internal at tol 1e-5: beside interference.1's saddle at (1, 1) it is below
-    4e-7 across the whole strip between its wedge and exit jamming, whose zero the vertex lies on (5e-7 off; by
-    interference.1's slope 5.7 tol): both ends of the cut across the strip read interference.1 and the cut
-    was not carried to the strip's end, where the two cross."""
-    i = np.flatnonzero(fin & ~np.isin(b, G.costly))
-    if not i.size:
-        return
-    p, c = P[i], b[i]
-    v = V[c, i]
-    g = np.hypot(G(p + [STEP_H, 0.0], c) - v, G(p + [0.0, STEP_H], c) - v) / STEP_H
-    with np.errstate(invalid="ignore"):
-        far = ~(np.abs(v) <= tol * g)
-    i = i[far]
-    if not i.size:
-        return
-    p, W = P[i], V[:, i]
-    S = np.hypot(G.many(p + [STEP_H, 0.0]) - W, G.many(p + [0.0, STEP_H]) - W) / STEP_H
-    with np.errstate(invalid="ignore", divide="ignore"):
-        dist = np.where(np.isfinite(S) & (S > 0), np.abs(W) / S, np.inf)
-    dist[G.costly] = np.inf
-    c = np.argmin(dist, axis=0)
-    near = dist[c, np.arange(i.size)] <= tol
-    b[i[near]] = c[near]
-
-
 def _along(path, P, reach) -> np.ndarray:
     """True for each point of ``P`` within ``reach`` of the polyline ``path``."""
     d = np.full(len(P), np.inf)
@@ -196,8 +81,9 @@ def carry_to_tips(F, G, lines, kept, region: int, tol: float, trace) -> list:
     """``lines`` (``[(k, points, slopes)]``) with the region's chords (curve ``region`` of ``F``) that cut
     a corner farther than ``tol`` from them carried to it, and the chords listed in ``kept``
     (``(k, start, end)``: no zero found across them) whose ends bind the same part replaced by its line,
-    or by its two sides to where they meet (see the module's notes). ``G``: the region's parts (:func:`part_evaluator`);
-    ``trace(G, [(part, points (2, 2), slopes)])`` traces lines of single parts to ``tol`` (returns
+    or by its two sides to where they meet, or by the region's edge walked from end to end (see the module's notes).
+    ``G``: the region's parts (:func:`~gearkit.blocking.parts.part_evaluator`); ``trace(G, [(part, points (2, 2),
+    slopes)])`` traces lines of single parts to ``tol`` (returns
     ``[(part, points)]``, a line cut where no zero is found)."""
     from gearkit.blocking.region import locate_chord
 
@@ -206,7 +92,7 @@ def carry_to_tips(F, G, lines, kept, region: int, tol: float, trace) -> list:
     if not own:
         return lines
     P = np.concatenate([q for _, q in own])
-    bind = _binding(G, P, tol)
+    bind = binding(G, P, tol)
     first = np.cumsum([0] + [len(q) for _, q in own])
     A, B, ia, ib, before, after = [], [], [], [], [], []  # the chords, their parts, the chords beside them
     for (m, q), s in zip(own, first):
@@ -219,8 +105,8 @@ def carry_to_tips(F, G, lines, kept, region: int, tol: float, trace) -> list:
     A, B, ia, ib, before, after = (v[smooth] for v in (A, B, ia, ib, before, after))
     tips = np.full(A.shape, np.nan)
     ends, cut = np.full((len(A), 2, 2), np.nan), np.full(len(A), -1)  # a strip's end: its corners (apex.corners)
+    span = float(np.hypot(G.window[1] - G.window[0], G.window[3] - G.window[2]))
     if len(A):
-        span = float(np.hypot(G.window[1] - G.window[0], G.window[3] - G.window[2]))
         T, conv, seen, ends, cut = corners(F, G, region, A, B, ia, ib, before, after, A, tol, span)
         # the crossing nearest the chord's start may be the other end of a strip between the two parts (the
         # outline from that start runs the other way along the strip): where it is not the chord's corner (nor
@@ -250,7 +136,7 @@ def carry_to_tips(F, G, lines, kept, region: int, tol: float, trace) -> list:
     along = [(a, b) for k, a, b in kept if k == region and locate_chord(lines, k, a, b) is not None]
     if along:
         a, b = np.array([c[0] for c in along]), np.array([c[1] for c in along])
-        ba, bb = _binding(G, a, tol), _binding(G, b, tol)
+        ba, bb = binding(G, a, tol), binding(G, b, tol)
         for i in np.flatnonzero((ba == bb) & (ba >= 0) & ~np.isin(ba, G.costly)):
             sides.setdefault((tuple(a[i]), tuple(b[i])), [(int(ba[i]), a[i], b[i])])
     todo = [s for ss in sides.values() for s in ss]
@@ -263,7 +149,6 @@ def carry_to_tips(F, G, lines, kept, region: int, tol: float, trace) -> list:
     lone = [(ab, ss[0][0]) for ab, ss in sides.items() if len(ss) == 1 and (ss[0][0], *ab) not in by_end]
     if lone:
         a, b = np.array([ab[0] for ab, _ in lone]), np.array([ab[1] for ab, _ in lone])
-        span = float(np.hypot(G.window[1] - G.window[0], G.window[3] - G.window[2]))
         T, conv = meetings(G, a, b, np.array([k for _, k in lone]), vtol, REACH * span)
         more = {}  # each wedge's two sides traced as one line of its part through the tip, a corner of it (the
         # chord beside the tip measured a quarter from it: corner_splits; a side traced alone from its end kept one
@@ -279,10 +164,28 @@ def carry_to_tips(F, G, lines, kept, region: int, tol: float, trace) -> list:
             at = np.flatnonzero(np.all(p == t, axis=1)) if t is not None else ()
             if len(at):  # (a line cut in two is none)
                 by_end[(k, tuple(p[0]), tuple(t))], by_end[(k, tuple(t), tuple(p[-1]))] = p[:at[0] + 1], p[at[0]:]
+    lines, left = _carry(G, lines, sides, by_end, region, tol)
+    # a lone chord whose part's sides met at no corner the outline takes (the region goes on through the saddle's
+    # neck between them, 29/37 at tol 1e-5): the region's edge walked from its start to its end (walk)
+    walked, traced = walk_sides(G, [(ab, k) for ab, k in lone if ab in left], tol, REACH * span, trace)
+    if walked:
+        by_end.update(traced)
+        lines = _carry(G, lines, walked, by_end, region, tol)[0]
+    return lines
+
+
+def _carry(G, lines, sides, by_end, region: int, tol: float):
+    """``lines`` with each chord ``(a, b)`` of ``sides`` replaced by its sides' traced lines (``by_end``) where they
+    are the region's edge and cross no other part of the outline (see :func:`carry_to_tips`); and the set of chords
+    left as they were."""
+    from gearkit.blocking.region import locate_chord
+
+    own = [(m, q) for m, (k, q, _) in enumerate(lines) if k == region and len(q) >= 2]
     OA, OB = np.concatenate([q[:-1] for _, q in own]), np.concatenate([q[1:] for _, q in own])
     owner = np.concatenate([np.full(len(q) - 1, m) for m, q in own])
-    lines = list(lines)
+    lines, left = list(lines), set()
     for (a, b), ss in sides.items():
+        left.add((a, b))
         got = [by_end.get((k, tuple(s), tuple(e))) for k, s, e in ss]
         if any(p is None for p in got):
             continue
@@ -316,7 +219,8 @@ def carry_to_tips(F, G, lines, kept, region: int, tol: float, trace) -> list:
         inner = np.full(len(path) - 2, np.nan)
         lines[m] = (k, np.vstack([q[:lo], path, q[hi + 1:]]),
                     np.concatenate([g[:lo], g[j:j + 1], inner, g[j + 1:j + 2], g[hi + 1:]]))
-    return lines
+        left.discard((a, b))
+    return lines, left
 
 
 def _grazing(path, A, B, tol: float) -> np.ndarray:

@@ -27,7 +27,7 @@ from gearkit.blocking.grid import refine_grid, sign_cells
 from gearkit.blocking.level import zero_lines
 from gearkit.blocking.onsets import undercut_onsets
 from gearkit.blocking.region import best_point, orient_loops, pad, padded_grid
-from gearkit.blocking.tips import part_evaluator
+from gearkit.blocking.parts import part_evaluator
 from gearkit.progress import Progress
 
 __all__ = ["Traced", "trace", "empty_reason", "GRID", "REGION_REFINE"]
