@@ -266,3 +266,24 @@ def test_no_chord_of_a_line_beside_a_thin_wedges_tip_is_of_no_length():
     for q in c.line("interference.1").components:
         assert np.all(np.hypot(*np.diff(q, axis=0).T) > 0)
     assert deviation(c) <= CONTRACT * tol
+
+
+def test_a_curved_wedge_is_carried_to_its_tip():
+    """21/55 internal (shaper z0 18) at tol 1e-3: interference.1 and contact ratio 1 bound a wedge of the region 0.14
+    long that bends away from the straight way to its tip; the point halfway from the grid's chord across it (near
+    (0.653, -0.015)) to the tip lay 0.003 outside it, the tip was taken for one behind the chord and the chord was
+    kept (6.5 tol off). The tip is solved apart from the tracing (brentq on the two margins' zeros along rows, then
+    on their difference): the outline passes within 2 tol of it; on rows through the wedge every crossing of the
+    polygons lies within 2 tol of a zero of the check's smallest hard margin (brentq) and every zero has one, and
+    the wedge's middle passes check_pair and is in the region."""
+    from scipy.optimize import brentq
+    from test_blocking_region import _crosses_the_strip, _distance_to_outline, _edge
+
+    spec, field, c = _internal(21, 55, 18)
+    edge = lambda name, y: _edge(field, name, y, 0.53, 0.5752 + (y + 0.12))  # noqa: E731 (short of the no-pair area)
+    yt = brentq(lambda y: edge("interference.1", y) - edge("contact_ratio=1", y), -0.12, -0.11, xtol=1e-14)
+    xt = edge("interference.1", yt)
+    assert _distance_to_outline(c.region, np.array([xt, yt])) <= CONTRACT * TOL, (xt, yt)
+    for y in (-0.02, -0.04, -0.06, -0.08, -0.10):  # the wedge's sides about x1 = 0.6424 + (0.78, 0.95) (x2 + 0.02)
+        xs = np.linspace(0.6424 + 0.78 * (y + 0.02) - 5e-3, 0.6576 + 0.95 * (y + 0.02) + 5e-3, 61)
+        _crosses_the_strip(spec, field, c, y, xs, TOL)
