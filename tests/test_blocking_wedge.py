@@ -287,3 +287,24 @@ def test_a_curved_wedge_is_carried_to_its_tip():
     for y in (-0.02, -0.04, -0.06, -0.08, -0.10):  # the wedge's sides about x1 = 0.6424 + (0.78, 0.95) (x2 + 0.02)
         xs = np.linspace(0.6424 + 0.78 * (y + 0.02) - 5e-3, 0.6576 + 0.95 * (y + 0.02) + 5e-3, 61)
         _crosses_the_strip(spec, field, c, y, xs, TOL)
+
+
+def test_a_cut_is_not_carried_through_a_wedges_tip_to_the_frame():
+    """39/91 internal (shaper z0 19) at tol 5e-3: exit jamming and interference.1 bound a thin wedge of the region
+    whose tip lies at (0.093, -0.964), 0.036 above the window's bottom edge; a cut of a grid node's diamond inside the
+    wedge, its tip behind the cut, was carried along both lines through the tip to where they meet the frame beyond
+    it, 0.005 apart (within tol of each other there), and the triangle of the outside between them was held as
+    region (13.8 tol off). On rows between the tip and the frame the check's smallest hard margin is below zero
+    everywhere it is defined (the oracle): the polygons cross none of them and hold none of their points."""
+    from test_blocking_region import _crossings, _smallest
+
+    tol = 5e-3
+    spec = PairSpec(39, 91, 1.0, kind="internal", tool2=ShaperCutter(19))
+    field, c = PairField(spec), blocking_contour(spec, tol=tol, lines=[])
+    assert c.window[2] == -1.0
+    xs = np.linspace(0.0, 0.16, 81)
+    for y in (-0.97, -0.98, -0.99, -0.998):
+        v = np.array([_smallest(field, x, y) for x in xs])
+        assert np.nanmax(v) < 0, (y, np.nanmax(v))
+        assert _crossings(c.region, np.array([xs[0], y]), np.array([xs[-1], y])).size == 0, y
+        assert not np.any([c.in_region(x, y) for x in xs]), y
