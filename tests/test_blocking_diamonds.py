@@ -161,3 +161,30 @@ def test_a_strip_running_out_through_the_frame_is_carried_to_it(tol):
     for y in FRAME_ROWS:
         xs = np.linspace(left + slope * (y - 3.0) - SIDE, right + slope * (y - 3.0) + SIDE, 61)
         _crosses_the_strip(spec, field, c, y, xs, tol)
+
+
+END_ROWS = (1.765, 1.77, 1.775, 1.78, 1.785, 1.79, 1.793)  #: rows x2 = const through 30/33's strip below its end ...
+END_EDGES = (-1.2688, -1.2570, -0.229, -0.264)  #: ... its edges at x2 = 1.76 and their slopes dx1 / dx2
+
+
+@pytest.mark.parametrize("tol", [1e-3, 1e-5])
+def test_a_strip_ended_by_a_third_margin_short_of_the_frame_is_carried_to_its_end(tol):
+    """30/33 external at tol 1e-3 and 1e-5: interference.1 and interference.2 bound a strip of the region 0.012 wide
+    whose sides meet far behind the grid's cut across it (near (-1.07, 0.97)) and, carried on, would reach the
+    window's top frame; the strip ends 0.035 past the cut where pointing.2's line crosses it (near x2 = 1.795). The
+    carry to the frame was no edge (its sides pass where pointing.2 fails), and the cut was kept (5.8 and 578 tol
+    off). On rows through the strip up to its end, every crossing of the polygons lies within 2 tol of a zero of the
+    check's smallest hard margin (brentq) and every zero has one, the middle passing check_pair and in the region;
+    on rows past its end, where that margin is below zero at every sample, the polygons hold no point."""
+    from test_blocking_region import _smallest
+
+    spec = PairSpec(30, 33, 1.0)
+    field, c = PairField(spec), blocking_contour(spec, tol=tol, lines=[])
+    left, right, sl, sr = END_EDGES
+    for y in END_ROWS:
+        xs = np.linspace(left + sl * (y - 1.76) - 2e-3, right + sr * (y - 1.76) + 2e-3, 61)
+        _crosses_the_strip(spec, field, c, y, xs, tol)
+    xs = np.linspace(-1.30, -1.22, 41)
+    for y in (1.80, 1.81):
+        assert max(_smallest(field, x, y) for x in xs) < 0, y
+        assert not np.any([c.in_region(x, y) for x in xs]), y

@@ -153,16 +153,7 @@ def corners(F, G, region: int, A, B, ia, ib, before, after, x0, tol: float, span
     conv &= np.hypot(*(T - A).T) <= REACH * span
     ends = np.full((len(A), 2, 2), np.nan)
     cut = np.full(len(A), -1)
-    c = np.flatnonzero(conv)  # the sides meet past a third margin's zero: the strip ends across its line
-    cut[c] = across(G, T[c], ia[c], ib[c], tol)
-    c = np.flatnonzero(cut >= 0)
-    if c.size:
-        U, ok_u = crossings(G, A[c], ia[c], cut[c], 0.25 * tol, REACH * span)
-        V, ok_v = crossings(G, B[c], cut[c], ib[c], 0.25 * tol, REACH * span)
-        ok = ok_u & ok_v & (np.hypot(*(U - A[c]).T) <= REACH * span) & (np.hypot(*(V - B[c]).T) <= REACH * span)
-        conv[c[~ok]] = False
-        ends[c[ok], 0], ends[c[ok], 1] = U[ok], V[ok]
-        T[c[ok]] = 0.5 * (U[ok] + V[ok])
+    _third(G, A, B, ia, ib, T, conv, ends, cut, tol, span)  # the sides meet past a third margin's zero
     return (T, *_beyond(F, region, A, B, before, after, T, conv, ends, tol), ends, cut)
 
 
@@ -175,7 +166,11 @@ def frame_corners(F, G, region, A, B, ia, ib, before, after, tol: float, span: f
     whose ends bind one and the other was carried up to the frame and back). 34/81 at tol 1e-3:
     interference.1 and interference.2 bound a strip 0.006 wide running out through the top frame, whose last
     row of nodes lies outside it; the grid closed the outline across it 0.125 short of the frame (3 tol off, 300
-    at 1e-5), and the sides, crossing far down, were carried nowhere."""
+    at 1e-5), and the sides, crossing far down, were carried nowhere. Where a third hard margin lies below zero
+    halfway between the two crossings with the frame (:func:`across`), its line ends the strip short of the frame, as
+    in :func:`corners` (30/33: the strip between interference.1 and .2 ends where pointing.2's line crosses it, 0.035
+    past the grid's cut and 0.53 short of the frame; carried to the frame, its sides were no edge and the cut was
+    kept, 5.8 tol off at 1e-3, 578 at 1e-5)."""
     n = len(A)
     T, ends, cut = np.full((n, 2), np.nan), np.full((n, 2, 2), np.nan), np.full(n, -1)
     lo, hi = np.array(G.window[::2]), np.array(G.window[1::2])
@@ -191,7 +186,26 @@ def frame_corners(F, G, region, A, B, ia, ib, before, after, tol: float, span: f
         best[take], cut[take], ends[take, 0], ends[take, 1] = d[take], e, U[take], V[take]
     conv = np.isfinite(best)
     T[conv] = 0.5 * (ends[conv, 0] + ends[conv, 1])
+    _third(G, A, B, ia, ib, T, conv, ends, cut, tol, span)  # a third margin's line ends the strip short of the frame
     return (T, *_beyond(F, region, A, B, before, after, T, conv, ends, tol), ends, cut)
+
+
+def _third(G, A, B, ia, ib, T, conv, ends, cut, tol: float, span: float) -> None:
+    """Where a third hard margin lies below zero at ``T`` (:func:`across`), the strip between the lines of ``ia`` and
+    ``ib`` (from ``A`` and ``B``) ends across its line: ``ends`` set to the crossings of each side with it, ``cut`` to
+    that margin, ``T`` to their middle; ``conv`` False where they are not found within ``REACH`` of ``span`` (all
+    arrays changed in place, for the ``conv`` rows only)."""
+    c = np.flatnonzero(conv)
+    third = across(G, T[c], ia[c], ib[c], tol)
+    c, third = c[third >= 0], third[third >= 0]
+    if c.size:
+        U, ok_u = crossings(G, A[c], ia[c], third, 0.25 * tol, REACH * span)
+        V, ok_v = crossings(G, B[c], third, ib[c], 0.25 * tol, REACH * span)
+        ok = ok_u & ok_v & (np.hypot(*(U - A[c]).T) <= REACH * span) & (np.hypot(*(V - B[c]).T) <= REACH * span)
+        conv[c[~ok]] = False
+        cut[c] = third
+        ends[c[ok], 0], ends[c[ok], 1] = U[ok], V[ok]
+        T[c[ok]] = 0.5 * (U[ok] + V[ok])
 
 
 def _beyond(F, region, A, B, before, after, T, conv, ends, tol):

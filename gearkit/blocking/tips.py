@@ -39,7 +39,8 @@ sides meet: 19/72 z0 33 internal, the flat strip between interference.1 and exit
 line 0.044 above their crossing), the corner is that strip's end, the chord replaced by three sides
 (:func:`~gearkit.blocking.apex.across`); where they meet nowhere within reach and the strip runs out through the
 window's frame, its end is there, the window's edge the third side (34/81's strip between interference.1 and .2,
-closed by the grid 0.125 short of the top frame: :func:`~gearkit.blocking.apex.frame_corners`). A loop lying wholly
+closed by the grid 0.125 short of the top frame: :func:`~gearkit.blocking.apex.frame_corners`), unless a third
+margin's line ends it short of the frame (30/33's strip ended by pointing.2's line). A loop lying wholly
 in the part a carry takes (a link of the grid's chain of diamonds farther down the wedge than a cut pairs,
 :func:`_covered`; dropped afterwards as covered) and a chord crossing the carried path within ``2 tol`` of it (the
 outline folded along the wedge's side, :func:`_grazing`) do not stop the carry (40/64 z0 22 internal at tol 1e-5).
