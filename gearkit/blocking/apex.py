@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["across", "corners", "frame_corners", "crossings", "meetings", "outward", "segment_distance",
+__all__ = ["across", "corners", "frame_corners", "crossings", "meetings", "outward", "segment_distance", "value_grad",
            "NEWTON_ITERATIONS", "STEP_H", "CROSSING_SIN", "REACH"]
 
 NEWTON_ITERATIONS = 40  #: most Newton steps to a tip
@@ -73,6 +73,14 @@ def crossings(G, x0, ia, ib, vtol: float, reach: float):
     return x, ok & done
 
 
+def value_grad(G, p, k):
+    """Part ``k[i]`` of ``G`` at ``p[i]`` (``(n, 2)``) and its gradient by central differences (exact for a quadratic,
+    as a part is beside its saddle): ``(values (n,), gradients (n, 2))``."""
+    f0, fx, fy, bx, by = G(np.concatenate([p, p + [STEP_H, 0.0], p + [0.0, STEP_H], p - [STEP_H, 0.0],
+                                           p - [0.0, STEP_H]]), np.tile(k, 5)).reshape(5, -1)
+    return f0, np.column_stack([fx - bx, fy - by]) / (2 * STEP_H)
+
+
 def meetings(G, A, B, which, vtol: float, reach: float):
     """Where the zero lines of part ``which[i]`` through ``A[i]`` and through ``B[i]`` meet (``(n, 2)``
     each): the tip of a wedge whose two sides are branches of one part's zero set, crossing at its saddle
@@ -95,14 +103,9 @@ def meetings(G, A, B, which, vtol: float, reach: float):
     ok = np.ones(n, bool)
     done = np.zeros(n, bool)
 
-    def value_grad(p, k):  # central differences: exact for a quadratic, as a part is beside its saddle
-        f0, fx, fy, bx, by = G(np.concatenate([p, p + [STEP_H, 0.0], p + [0.0, STEP_H], p - [STEP_H, 0.0],
-                                               p - [0.0, STEP_H]]), np.tile(k, 5)).reshape(5, -1)
-        return f0, np.column_stack([fx - bx, fy - by]) / (2 * STEP_H)
-
     def onto(p, k):  # Newton steps along the gradient back onto the zero line
         for _ in range(4):
-            f, g = value_grad(p, k)
+            f, g = value_grad(G, p, k)
             with np.errstate(invalid="ignore", divide="ignore"):
                 p = p - (f / np.einsum("ij,ij->i", g, g))[:, None] * g
         return p
@@ -112,8 +115,8 @@ def meetings(G, A, B, which, vtol: float, reach: float):
         if not act.size:
             break
         k = which[act]
-        fa, ga = value_grad(a[act], k)
-        fb, gb = value_grad(b[act], k)
+        fa, ga = value_grad(G, a[act], k)
+        fb, gb = value_grad(G, b[act], k)
         ra = np.einsum("ij,ij->i", ga, a[act]) - fa
         rb = np.einsum("ij,ij->i", gb, b[act]) - fb
         with np.errstate(invalid="ignore", divide="ignore"):

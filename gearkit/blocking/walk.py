@@ -33,7 +33,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from gearkit.blocking.apex import STEP_H, crossings, segment_distance
+from gearkit.blocking.apex import STEP_H, crossings, segment_distance, value_grad
 
 __all__ = ["walk", "walk_sides"]
 
@@ -45,10 +45,9 @@ SHRINK = 1e-3  #: the walk gives up where its step falls below this fraction of 
 
 
 def _value_grad(G, p, k: int):
-    """``G_k`` and its gradient (central differences) at the point ``p``."""
-    f0, fx, fy, bx, by = G(np.array([p, p + [STEP_H, 0.0], p + [0.0, STEP_H], p - [STEP_H, 0.0], p - [0.0, STEP_H]]),
-                           np.full(5, k))
-    return f0, np.array([fx - bx, fy - by]) / (2 * STEP_H)
+    """``G_k`` and its gradient at the point ``p`` (:func:`~gearkit.blocking.apex.value_grad`)."""
+    f, g = value_grad(G, p[None], np.array([k]))
+    return f[0], g[0]
 
 
 def _onto(G, p, k: int, vtol: float):
@@ -152,7 +151,8 @@ def walk_sides(G, chords, tol: float, reach: float, trace):
             continue
         path, part = w
         turn = np.r_[0, np.flatnonzero(np.diff(part)) + 1, len(part)]  # the corners: a side from one to the next
-        walked[ab] = [(int(part[i]), path[i], path[j]) for i, j in zip(turn[:-1], turn[1:])]
-        through += [(int(part[i]), path[i:j + 1], np.full(j + 1 - i, np.nan)) for i, j in zip(turn[:-1], turn[1:])]
+        sides = list(zip(turn[:-1], turn[1:]))
+        walked[ab] = [(int(part[i]), path[i], path[j]) for i, j in sides]
+        through += [(int(part[i]), path[i:j + 1], np.full(j + 1 - i, np.nan)) for i, j in sides]
     traced = trace(G, through) if through else []
     return walked, {(k, tuple(p[0]), tuple(p[-1])): p for k, p in traced}
