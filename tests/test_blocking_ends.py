@@ -308,3 +308,31 @@ def test_the_tip_interference_line_goes_on_round_the_corner_of_its_wedge():
     for x1, x2 in zeros[len(CORNER_ROWS):]:
         got = row_crossings(comps, x2, *CORNER_SPAN)
         assert len(got) == 1 and abs(got[0] - x1) <= CONTRACT * tol, (x2, got, x1)
+
+
+ISLAND_ROWS = (-0.4975, -0.5, -0.5062)  #: rows x2 = const across the top of 13/56's island ...
+ISLAND_SPAN = np.linspace(0.352, 0.3695, 176)  #: ... sampled in x1 for the sign changes of its margin
+
+
+def test_a_thin_island_of_the_tip_sweep_is_cut_across_and_carried_round_its_end():
+    """Internal 13/56, shaper 23, at tol 1e-3: the tip sweep finds no penetration in an island 0.02 long and
+    0.005 wide (its margin flat at the sweep's resolution inside), which the grid closes as a loop of four
+    vertices. Its chord from the upper side to the far end was split at its middle's nearer zero, on the lower
+    side, and then walked down both sides round the tip (the tip sweep's chords are measured, never taken as
+    across a strip): the upper side's last 0.015 and the far end were missing (scan 2.2 tol). Cut as a chord
+    across a thin loop, its ends are carried on round the far end. Oracle: on rows x2 = const across the
+    island's top, every zero of the check's scalar margin (brentq between sign changes of 0.0001-spaced samples)
+    within 2 tol of the traced line (4.4 tol on the old code)."""
+    spec = PairSpec(13, 56, 1.0, kind="internal", tool2=ShaperCutter(23))
+    tol = 1e-3
+    c = blocking_contour(spec, tol=tol, lines=["tip_interference"])
+    f = PairField(spec)
+    zeros = []
+    for x2 in ISLAND_ROWS:
+        g = lambda x: f.margin("tip_interference", x, x2)  # noqa: E731
+        v = np.array([g(x) for x in ISLAND_SPAN])
+        for j in np.flatnonzero((v[:-1] > 0) != (v[1:] > 0)):
+            zeros.append([brentq(g, ISLAND_SPAN[j], ISLAND_SPAN[j + 1], xtol=1e-12), x2])
+    assert len(zeros) == 2 * len(ISLAND_ROWS)  # each row crosses the island
+    d = _nearest(np.array(zeros), c.line("tip_interference").components)
+    assert d.max() <= CONTRACT * tol, d / tol
