@@ -308,3 +308,26 @@ def test_a_cut_is_not_carried_through_a_wedges_tip_to_the_frame():
         assert np.nanmax(v) < 0, (y, np.nanmax(v))
         assert _crossings(c.region, np.array([xs[0], y]), np.array([xs[-1], y])).size == 0, y
         assert not np.any([c.in_region(x, y) for x in xs]), y
+
+
+def test_a_wedge_along_the_no_pair_edge_is_carried_to_its_tip():
+    """21/80 internal (shaper z0 27) at tol 1e-3: interference.1 and, beside the no-pair area's edge, contact ratio 1
+    then exit jamming bound a wedge of the region 0.1 long whose tip lies near (0.358, -0.846). The grid closed the
+    loop across it 0.1 short of the tip; the first Newton step from the cut towards the crossing of its two parts
+    ended in the no-pair area, where neither is defined, the solve failed and the cut was kept (6.6 tol off). The tip
+    is solved apart from the tracing (brentq on the zeros of interference.1 and exit jamming along rows short of the
+    area, then on their difference): the outline passes within 2 tol of it; on rows through the wedge every crossing
+    of the polygons lies within 2 tol of a zero of the check's smallest hard margin (brentq) and every zero has one,
+    and the wedge's middle passes check_pair and is in the region."""
+    from scipy.optimize import brentq
+    from test_blocking_region import _crosses_the_strip, _distance_to_outline, _edge
+
+    spec, field, c = _internal(21, 80, 27)
+    short = lambda y: 0.4471 + (y + 0.76)  # noqa: E731 (1e-3 short of the no-pair area, whose edge runs at 45 degrees)
+    edge = lambda name, y: _edge(field, name, y, 0.33, short(y))  # noqa: E731
+    yt = brentq(lambda y: edge("interference.1", y) - edge("exit_jamming", y), -0.85, -0.843, xtol=1e-14)
+    xt = edge("interference.1", yt)
+    assert _distance_to_outline(c.region, np.array([xt, yt])) <= CONTRACT * TOL, (xt, yt)
+    for y in (-0.77, -0.79, -0.81, -0.83, -0.84):
+        xs = np.linspace(edge("interference.1", y) - 5e-3, short(y), 61)
+        _crosses_the_strip(spec, field, c, y, xs, TOL)
