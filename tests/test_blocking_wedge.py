@@ -331,3 +331,32 @@ def test_a_wedge_along_the_no_pair_edge_is_carried_to_its_tip():
     for y in (-0.77, -0.79, -0.81, -0.83, -0.84):
         xs = np.linspace(edge("interference.1", y) - 5e-3, short(y), 61)
         _crosses_the_strip(spec, field, c, y, xs, TOL)
+
+
+def test_a_third_margin_crossing_a_wedge_at_a_small_angle_ends_it():
+    """18/74 internal (shaper z0 27) at tol 1e-3: interference.1 and contact ratio 1 bound a wedge of the region along
+    the no-pair area's edge, crossing at (0.4139, -0.7289); exit jamming's line crosses the wedge at a small angle,
+    meeting contact ratio 1 near x2 = -0.717 and interference.1 near -0.723, where the region ends. At the two parts'
+    crossing exit jamming lies 0.73 tol below zero by its slope, so no third side was sought, and the outline was
+    carried to that crossing, 8.9 tol beyond the region. The tip is solved apart from the tracing (brentq on the zeros
+    of interference.1 and exit jamming along rows short of the area, then on their difference): the outline passes
+    within 2 tol of it; on rows through the wedge every crossing of the polygons lies within 2 tol of a zero of the
+    check's smallest hard margin and every zero has one, and the wedge's middle passes check_pair and is in the
+    region; on rows more than 2 tol beyond the tip the smallest hard margin is below zero all along (sampled) and
+    the polygons cross none of them."""
+    from scipy.optimize import brentq
+    from test_blocking_region import _crosses_the_strip, _distance_to_outline, _edge
+
+    spec, field, c = _internal(18, 74, 27)
+    short = lambda y: 0.4455 + (y + 0.7)  # noqa: E731 (short of the no-pair area, whose edge runs at 45 degrees)
+    edge = lambda name, y: _edge(field, name, y, 0.40, short(y))  # noqa: E731
+    yt = brentq(lambda y: edge("interference.1", y) - edge("exit_jamming", y), -0.726, -0.72, xtol=1e-14)
+    xt = edge("interference.1", yt)
+    assert _distance_to_outline(c.region, np.array([xt, yt])) <= CONTRACT * TOL, (xt, yt)
+    for y in (-0.70, -0.705, -0.71):
+        xs = np.linspace(edge("interference.1", y) - 3e-3, short(y), 61)
+        _crosses_the_strip(spec, field, c, y, xs, TOL)
+    for y in (yt - 2.5 * TOL, yt - 4 * TOL):
+        xs = np.linspace(0.40, short(y), 201)
+        assert max(_smallest(field, x, y) for x in xs) < 0, y
+        assert _crossings(c.region, np.array([xs[0], y]), np.array([xs[-1], y])).size == 0, y

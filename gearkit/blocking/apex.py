@@ -214,17 +214,18 @@ def frame_corners(F, G, region, A, B, ia, ib, before, after, tol: float, span: f
 def _third(G, A, B, ia, ib, T, conv, ends, cut, tol: float, span: float) -> None:
     """Where a third hard margin lies below zero at ``T`` (:func:`across`), the strip between the lines of ``ia`` and
     ``ib`` (from ``A`` and ``B``) ends across its line: ``ends`` set to the crossings of each side with it, ``cut`` to
-    that margin, ``T`` to their middle; ``conv`` False where they are not found within ``REACH`` of ``span`` (all
-    arrays changed in place, for the ``conv`` rows only)."""
+    that margin, ``T`` to their middle; where they are not found within ``REACH`` of ``span``, ``conv`` False if the
+    margin lies more than ``tol`` below zero at ``T`` (by its value over its slope), else ``T`` kept (all arrays
+    changed in place, for the ``conv`` rows only)."""
     c = np.flatnonzero(conv)
-    third = across(G, T[c], ia[c], ib[c], tol)
-    c, third = c[third >= 0], third[third >= 0]
+    third, deep = across(G, T[c], ia[c], ib[c], tol)
+    c, third, deep = c[third >= 0], third[third >= 0], deep[third >= 0]
     if c.size:
         U, ok_u = crossings(G, A[c], ia[c], third, 0.25 * tol, REACH * span)
         V, ok_v = crossings(G, B[c], third, ib[c], 0.25 * tol, REACH * span)
         ok = ok_u & ok_v & (np.hypot(*(U - A[c]).T) <= REACH * span) & (np.hypot(*(V - B[c]).T) <= REACH * span)
-        conv[c[~ok]] = False
-        cut[c] = third
+        conv[c[~ok & deep]] = False
+        cut[c[ok | deep]] = third[ok | deep]
         ends[c[ok], 0], ends[c[ok], 1] = U[ok], V[ok]
         T[c[ok]] = 0.5 * (U[ok] + V[ok])
 
@@ -245,19 +246,22 @@ def _beyond(F, region, A, B, before, after, T, conv, ends, tol):
     return conv, seen
 
 
-def across(G, T, ia, ib, tol: float) -> np.ndarray:
+def across(G, T, ia, ib, tol: float):
     """The hard margin (not ``ia[i]``, ``ib[i]`` nor a costly one) farthest below zero at each crossing ``T[i]`` of
-    ``ia`` and ``ib``, by its value over its slope, where that is more than ``tol`` below (-1 where none is):
-    the region's strip between the two parts' lines ends across that margin's line before they meet (19/72 z0
-    33 internal at tol 1e-3: interference.1 and exit jamming, 0.01 apart, meet 0.044 below the line of
-    trimming.plunge, which ends the strip; carried to their crossing the outline was no edge, and the chord
-    across the strip was left 4.9 tol off its end). The window's edges are none: a crossing beyond one is no
-    corner of the region (40/105 z0 33 at tol 1e-3: contact ratio 1 and exit jamming, a few tol apart, cross
+    ``ia`` and ``ib``, by its value over its slope (-1 where none is below zero), and whether that is more than
+    ``tol`` below: the region's strip between the two parts' lines ends across that margin's line before they meet
+    (19/72 z0 33 internal at tol 1e-3: interference.1 and exit jamming, 0.01 apart, meet 0.044 below the line of
+    trimming.plunge, which ends the strip; carried to their crossing the outline was no edge, and the chord across
+    the strip was left 4.9 tol off its end). A margin less than ``tol`` below zero there may still end the strip far
+    from it: its line crossing a thin wedge at a small angle, within tol of the tip beyond the region (18/74 z0 27
+    internal at tol 1e-3: exit jamming 0.73 tol from the crossing of interference.1 and contact ratio 1 by its
+    slope, the wedge's tip between them 8.9 tol back from it). The window's edges are none: a crossing beyond one
+    is no corner of the region (40/105 z0 33 at tol 1e-3: contact ratio 1 and exit jamming, a few tol apart, cross
     0.012 below the window; carried along its edge, the outline cut a sliver 15 tol wide out of the region)."""
     parts = np.array([k for k in range(G.size - 4) if k not in G.costly])  # (the last four: the window's edges)
     n = len(T)
     if not n or not parts.size:
-        return np.full(n, -1)
+        return np.full(n, -1), np.zeros(n, bool)
     P = np.repeat(T, parts.size, axis=0)
     W = np.tile(parts, n)
     f = G(P, W)
@@ -266,7 +270,8 @@ def across(G, T, ia, ib, tol: float) -> np.ndarray:
         d = (f / g).reshape(n, parts.size)
     d[(parts[None] == ia[:, None]) | (parts[None] == ib[:, None]) | ~np.isfinite(d)] = np.inf
     j = np.argmin(d, axis=1)
-    return np.where(d[np.arange(n), j] < -tol, parts[j], -1)
+    low = d[np.arange(n), j]
+    return np.where(low < 0, parts[j], -1), low < -tol
 
 
 def outward(F, region: int, A, B, T, tol: float = 0.0) -> np.ndarray:
