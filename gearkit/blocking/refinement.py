@@ -125,10 +125,12 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
         # between its ends; at a saddle's corner the normal only touches zero)
         best = NearestBracket(mm, f0)
         out_dir = np.full(mm.shape, np.nan)  # towards the no-pair area, where the normal runs into it
-        # the middle between two zeros along the normal: in a strip or a thin loop, the kinked curves' too (internal
-        # 13/56 z0 23's tip sweep, flat inside an island 0.005 wide: the grid's chord from its upper side to its far end
-        # was split at the lower side's zero, the nearer, and walked round the tip, the far end left out, 2.2 tol)
-        strip = trust[km]
+        # the middle between two zeros along the normal: in a strip or a thin loop, the kinked curves' too where the
+        # ends of a cut are carried on (``loose``; internal 13/56 z0 23's tip sweep, flat inside an island 0.005 wide:
+        # the grid's chord from its upper side to its far end was split at the lower side's zero, the nearer, and
+        # walked round the tip, the far end left out, 2.2 tol; a chord the continuation's fronts joined across a
+        # thin wedge, cut and not carried again, left both sides open, 19/42 z0 19's tip sweep, 2.07 tol)
+        strip = (trust if loose is not None else estimate)[km]
         sides = []  # each side's end and value: a zero to both sides is told by its root (NearestBracket.nearer)
         for sgn in (1.0, -1.0):
             end = mm + sgn * 0.5 * Lm[:, None] * nm_
