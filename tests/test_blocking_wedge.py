@@ -38,6 +38,19 @@ def _matched(polygons, a, b, exact) -> np.ndarray:
     return got
 
 
+def _tip_on_outline(c, edge, a: str, b: str, ys, tol: float):
+    """The tip of a wedge between the hard margins ``a`` and ``b``, solved apart from the tracing: the row x2 in
+    ``ys`` where their zeros along it (``edge(name, x2)``: brentq) meet (brentq on their difference), x1 there that
+    of ``a``; the region's outline is asserted to pass within 2 tol of it. Returns ``(x1, x2)``."""
+    from scipy.optimize import brentq
+    from test_blocking_region import _distance_to_outline
+
+    yt = brentq(lambda y: edge(a, y) - edge(b, y), *ys, xtol=1e-14)
+    xt = edge(a, yt)
+    assert _distance_to_outline(c.region, np.array([xt, yt])) <= CONTRACT * tol, (xt, yt)
+    return xt, yt
+
+
 def _passes(spec, x1, x2) -> bool:
     return check_pair(dataclasses.replace(spec, shift1=float(x1), shift2=float(x2))).ok
 
@@ -211,17 +224,14 @@ def test_a_wedge_between_a_gentle_and_a_steep_margin_is_taken_once_up_to_its_tip
     passes within 2 tol of it; on rows below it every crossing of the polygons lies within 2 tol of a zero of the
     check's smallest hard margin (brentq) and every zero has one, and the wedge's middle passes check_pair and is
     in the region."""
-    from scipy.optimize import brentq
-    from test_blocking_region import _crosses_the_strip, _distance_to_outline, _edge
+    from test_blocking_region import _crosses_the_strip, _edge
 
     tol = 1e-5
     spec = PairSpec(18, 74, 1.0, kind="internal", tool2=ShaperCutter(33))
     field = PairField(spec)
     c = blocking_contour(spec, tol=tol, lines=[])
     edge = lambda name, y: _edge(field, name, y, 0.57, 0.60)  # noqa: E731
-    yt = brentq(lambda y: edge("interference.1", y) - edge("pointing.1", y), -0.495, -0.485, xtol=1e-14)
-    xt = edge("pointing.1", yt)
-    assert _distance_to_outline(c.region, np.array([xt, yt])) <= CONTRACT * tol, (xt, yt)
+    xt, yt = _tip_on_outline(c, edge, "pointing.1", "interference.1", (-0.495, -0.485), tol)
     for d in (2e-4, 5e-4, 7e-4, 8e-4, 1e-3, 2e-3, 5e-3):  # (the wedge is about 0.65 d wide d below its tip)
         _crosses_the_strip(spec, field, c, yt - d, np.linspace(xt - 0.8 * d - 1e-4, xt + 1e-4, 41), tol)
 
@@ -237,17 +247,14 @@ def test_a_thin_wedge_split_beside_its_turn_is_not_folded_off_its_loop():
     2 tol of it; on rows above it every crossing of the polygons lies within 2 tol of a zero of the check's
     smallest hard margin (brentq) and every zero has one, and the wedge's middle passes check_pair and is in the
     region."""
-    from scipy.optimize import brentq
-    from test_blocking_region import _crosses_the_strip, _distance_to_outline, _edge
+    from test_blocking_region import _crosses_the_strip, _edge
 
     tol = 1e-5
     spec = PairSpec(35, 56, 1.0, kind="internal", tool2=ShaperCutter(22))
     field = PairField(spec)
     c = blocking_contour(spec, tol=tol, lines=[])
     edge = lambda name, y: _edge(field, name, y, 0.522, 0.530)  # noqa: E731
-    yt = brentq(lambda y: edge("interference.1", y) - edge("exit_jamming", y), 0.1240, 0.1250, xtol=1e-14)
-    xt = edge("interference.1", yt)
-    assert _distance_to_outline(c.region, np.array([xt, yt])) <= CONTRACT * tol, (xt, yt)
+    xt, yt = _tip_on_outline(c, edge, "interference.1", "exit_jamming", (0.1240, 0.1250), tol)
     for d in (2e-4, 5e-4, 1e-3, 1.5e-3, 2e-3, 3e-3, 4e-3, 5e-3):  # (the wedge is about 0.25 d wide d above its tip)
         _crosses_the_strip(spec, field, c, yt + d, np.linspace(xt + 0.6 * d - 1e-4, xt + 1.2 * d + 1e-4, 41), tol)
 
@@ -276,14 +283,11 @@ def test_a_curved_wedge_is_carried_to_its_tip():
     on their difference): the outline passes within 2 tol of it; on rows through the wedge every crossing of the
     polygons lies within 2 tol of a zero of the check's smallest hard margin (brentq) and every zero has one, and
     the wedge's middle passes check_pair and is in the region."""
-    from scipy.optimize import brentq
-    from test_blocking_region import _crosses_the_strip, _distance_to_outline, _edge
+    from test_blocking_region import _crosses_the_strip, _edge
 
     spec, field, c = _internal(21, 55, 18)
     edge = lambda name, y: _edge(field, name, y, 0.53, 0.5752 + (y + 0.12))  # noqa: E731 (short of the no-pair area)
-    yt = brentq(lambda y: edge("interference.1", y) - edge("contact_ratio=1", y), -0.12, -0.11, xtol=1e-14)
-    xt = edge("interference.1", yt)
-    assert _distance_to_outline(c.region, np.array([xt, yt])) <= CONTRACT * TOL, (xt, yt)
+    _tip_on_outline(c, edge, "interference.1", "contact_ratio=1", (-0.12, -0.11), TOL)
     for y in (-0.02, -0.04, -0.06, -0.08, -0.10):  # the wedge's sides about x1 = 0.6424 + (0.78, 0.95) (x2 + 0.02)
         xs = np.linspace(0.6424 + 0.78 * (y + 0.02) - 5e-3, 0.6576 + 0.95 * (y + 0.02) + 5e-3, 61)
         _crosses_the_strip(spec, field, c, y, xs, TOL)
@@ -319,15 +323,12 @@ def test_a_wedge_along_the_no_pair_edge_is_carried_to_its_tip():
     area, then on their difference): the outline passes within 2 tol of it; on rows through the wedge every crossing
     of the polygons lies within 2 tol of a zero of the check's smallest hard margin (brentq) and every zero has one,
     and the wedge's middle passes check_pair and is in the region."""
-    from scipy.optimize import brentq
-    from test_blocking_region import _crosses_the_strip, _distance_to_outline, _edge
+    from test_blocking_region import _crosses_the_strip, _edge
 
     spec, field, c = _internal(21, 80, 27)
     short = lambda y: 0.4471 + (y + 0.76)  # noqa: E731 (1e-3 short of the no-pair area, whose edge runs at 45 degrees)
     edge = lambda name, y: _edge(field, name, y, 0.33, short(y))  # noqa: E731
-    yt = brentq(lambda y: edge("interference.1", y) - edge("exit_jamming", y), -0.85, -0.843, xtol=1e-14)
-    xt = edge("interference.1", yt)
-    assert _distance_to_outline(c.region, np.array([xt, yt])) <= CONTRACT * TOL, (xt, yt)
+    _tip_on_outline(c, edge, "interference.1", "exit_jamming", (-0.85, -0.843), TOL)
     for y in (-0.77, -0.79, -0.81, -0.83, -0.84):
         xs = np.linspace(edge("interference.1", y) - 5e-3, short(y), 61)
         _crosses_the_strip(spec, field, c, y, xs, TOL)
@@ -344,15 +345,12 @@ def test_a_third_margin_crossing_a_wedge_at_a_small_angle_ends_it():
     check's smallest hard margin and every zero has one, and the wedge's middle passes check_pair and is in the
     region; on rows more than 2 tol beyond the tip the smallest hard margin is below zero all along (sampled) and
     the polygons cross none of them."""
-    from scipy.optimize import brentq
-    from test_blocking_region import _crosses_the_strip, _distance_to_outline, _edge
+    from test_blocking_region import _crosses_the_strip, _edge
 
     spec, field, c = _internal(18, 74, 27)
     short = lambda y: 0.4455 + (y + 0.7)  # noqa: E731 (short of the no-pair area, whose edge runs at 45 degrees)
     edge = lambda name, y: _edge(field, name, y, 0.40, short(y))  # noqa: E731
-    yt = brentq(lambda y: edge("interference.1", y) - edge("exit_jamming", y), -0.726, -0.72, xtol=1e-14)
-    xt = edge("interference.1", yt)
-    assert _distance_to_outline(c.region, np.array([xt, yt])) <= CONTRACT * TOL, (xt, yt)
+    _, yt = _tip_on_outline(c, edge, "interference.1", "exit_jamming", (-0.726, -0.72), TOL)
     for y in (-0.70, -0.705, -0.71):
         xs = np.linspace(edge("interference.1", y) - 3e-3, short(y), 61)
         _crosses_the_strip(spec, field, c, y, xs, TOL)

@@ -71,7 +71,8 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
     middle value says nothing of its tip), which are otherwise traced as the rest. ``kept``: a list to
     which a measured curve's chords with no zero found across them are added as ``(k, start, end)``. ``dips``:
     lines dipping to the no-pair edge carried to it (:func:`~gearkit.blocking.edges.touchdowns`). ``loose``: a
-    list to which the ends of a line's chords cut are added as ``(k, end, chord length)``, to carry on (ends).
+    list to which the ends of a line's chords cut are added as ``(k, end, chord length)``, to carry on (ends); only with
+    it is a kinked curve's chord across a strip or a thin loop cut (without it, such a chord is split as before).
     ``others``: ``[(k, points)]``, lines not refined here that a measured curve's zeros are read against
     (:func:`~gearkit.blocking.wide.past_lines`). ``down`` (``[(k, points)]``, the other lines, or None): a
     measured curve's cut across a flat strip moved once towards its end where no line crosses the way
