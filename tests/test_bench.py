@@ -233,3 +233,27 @@ def test_the_exact_measure_reaches_into_an_acute_corner_of_a_zero_set():
     for poly in (np.array([P0, up, down, P0]), np.array([P0, down, up, P0])):  # either way round
         d = point_distances(F, [(0, poly)], tol, 1.0)
         assert delta * (1 - 1e-9) <= d[0] <= 2 * delta, d[0] / tol
+
+
+def test_the_exact_measure_sees_the_tip_of_a_thin_wedge_beside_a_chord():
+    """Two thin wedges of the other sign meeting at a saddle, a chord passing over the gap between their
+    tips (internal 58/63 z0 16's interference.1 at tol 1e-3, a chord 0.54 tol from a tip read 3.69 tol):
+    ``F = y^2 - (e x)^2 + (e x0)^2`` is negative in two wedges along the x axis, 2e wide a unit from
+    their tips at x = +-x0. None of the nine rays of the chord's middle (0, h) (normal, chord, diagonals)
+    enters a wedge before x = h / e (2.7 tol out). Oracle: the nearest point of the hyperbola
+    ``y^2 = e^2 (x^2 - x0^2)`` to (0, h), by scipy's minimize_scalar along it; the measure finds a zero on
+    a ray, so no nearer, and within a quarter tol of it."""
+    from scipy.optimize import minimize_scalar
+
+    from gearkit.bench.exact import point_distances
+
+    tol, e, x0, h = 1e-3, 0.15, 3e-4, 4e-4
+
+    def F(p, which):
+        return p[:, 1] ** 2 - (e * p[:, 0]) ** 2 + (e * x0) ** 2
+
+    branch = lambda x: math.hypot(x, e * math.sqrt(max(x * x - x0 * x0, 0.0)) - h)
+    near = minimize_scalar(branch, bounds=(x0, 10 * x0), method="bounded", options={"xatol": 1e-12}).fun
+    assert 0.45 * tol < near < 0.55 * tol  # the tips' neighbourhood, beside the saddle
+    d = point_distances(F, [(0, np.array([[-2e-4, h], [2e-4, h]]))], tol, 1.0)
+    assert near * (1 - 1e-9) <= d[1] <= near + tol / 4, (d[1] / tol, near / tol)

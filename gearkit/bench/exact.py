@@ -13,6 +13,7 @@ RAY_ROUNDS = 10  #: ray lengths tol / 16 ... tol 4**8: the nearest zero first
 SHORT_RATIO = 8.0  #: below tol / 16, the normal is sampled at distances shrinking by this factor
 FLOOR = 1e-13  #: ... down to this fraction of the window's diagonal (round-off)
 EDGE_BISECTIONS = 50  #: the ray along the no-pair edge to pi/4 * 2**-50 rad (see _along_edge)
+FAN_ANGLES, FAN_STEPS = 64, 16  #: a point whose rays' nearest zero is farther than tol: a fan of samples (_fan)
 
 
 def deviation(contour) -> float:
@@ -152,6 +153,9 @@ def point_distances(F, polys, tol: float, span: float, keep=None) -> np.ndarray:
         with np.errstate(divide="ignore", invalid="ignore"):
             est = np.abs(f0[todo]) / g
         dist[todo] = np.where(np.isfinite(est), est, r / 4)
+    far = np.flatnonzero(dist > tol)
+    if far.size:
+        dist[far] = _fan(F, P[far], f0[far], K[far], dist[far])
     return dist
 
 
@@ -186,6 +190,41 @@ def _along_edge(F, P, T, N, f0, K, r, angles, ends_out) -> np.ndarray:
             j = i[hit]
             root = segment_roots(F, P[j], end[hit], f0[j], fe[hit], MEASURE_TOL, K[j])
             best[j] = np.minimum(best[j], np.hypot(*(root - P[j]).T))
+    return best
+
+
+def _fan(F, P, f0, K, reach) -> np.ndarray:
+    """The distance from each point ``P`` to the nearest zero of ``F`` on ``FAN_ANGLES`` rays all round
+    it, sampled at ``FAN_STEPS`` steps out to ``reach`` (the nearest zero found on the nine rays), the
+    first sign change on each solved to ``MEASURE_TOL``; ``reach`` where it is nearer. Where the nearest
+    zero is the tip of a thin wedge of the other sign (two of them meeting at a saddle, internal 58/63
+    z0 16's interference.1 at tol 1e-3) the nine rays pass beside it and meet a zero farther on: a point
+    0.54 tol from the tip read 3.69 tol.
+
+    >>> F = lambda p, k: p[:, 1] - 0.3  # the line x2 = 0.3, seen from the origin with reach 1
+    >>> d = _fan(F, np.zeros((1, 2)), np.array([-0.3]), np.zeros(1), np.ones(1))[0]
+    >>> bool(0.3 <= d < 0.3 / np.cos(np.pi / FAN_ANGLES) + 1e-12)  # on the ray nearest the normal
+    True
+    """
+    from gearkit.blocking.brackets import segment_roots
+
+    a = 2 * np.pi * (np.arange(FAN_ANGLES) + 0.5) / FAN_ANGLES
+    U = np.column_stack([np.cos(a), np.sin(a)])
+    s = np.arange(1, FAN_STEPS + 1) / FAN_STEPS
+    Q = P[:, None, None, :] + (reach[:, None] * s)[:, :, None, None] * U  # (points, steps, angles, 2)
+    n = len(P)
+    V = F(Q.reshape(-1, 2), np.repeat(K, FAN_STEPS * FAN_ANGLES)).reshape(n, FAN_STEPS, FAN_ANGLES)
+    W = np.concatenate([np.broadcast_to(f0[:, None, None], (n, 1, FAN_ANGLES)), V], axis=1)
+    ch = np.isfinite(W[:, :-1]) & np.isfinite(W[:, 1:]) & ((W[:, :-1] > 0) != (W[:, 1:] > 0))
+    j = np.argmax(ch, axis=1)  # (points, angles): the first sign change out along each ray
+    i, k = np.nonzero(np.take_along_axis(ch, j[:, None, :], axis=1)[:, 0])
+    best = reach.copy()
+    if not i.size:
+        return best
+    j = j[i, k]
+    lo = np.where((j > 0)[:, None], Q[i, np.maximum(j - 1, 0), k], P[i])
+    root = segment_roots(F, lo, Q[i, j, k], W[i, j, k], W[i, j + 1, k], MEASURE_TOL, K[i])
+    np.minimum.at(best, i, np.hypot(*(root - P[i]).T))
     return best
 
 
