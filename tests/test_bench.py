@@ -257,3 +257,34 @@ def test_the_exact_measure_sees_the_tip_of_a_thin_wedge_beside_a_chord():
     assert 0.45 * tol < near < 0.55 * tol  # the tips' neighbourhood, beside the saddle
     d = point_distances(F, [(0, np.array([[-2e-4, h], [2e-4, h]]))], tol, 1.0)
     assert near * (1 - 1e-9) <= d[1] <= near + tol / 4, (d[1] / tol, near / tol)
+
+
+def test_the_gap_measure_follows_a_thin_wedge_traced_short_of_its_tip():
+    """A thin wedge of a line's zero set closed 3 tol short of its tip by a chord across it (internal 19/42
+    z0 19's tip sweep at tol 1e-3: 2.9 tol short where it is half a tol wide, between the scan lines,
+    which read 0.85 tol): the corner's bisector is 10 degrees off the wedge's way (the chords do not lie
+    along its sides) and the wedge bends, so a march along the bisector leaves it through a side. Oracle:
+    the tip, where the two sides ``x2 = c x1^2 +- w (1 - x1)`` meet, at (1, c); the measure's zero is a
+    zero of F on the far side of the corner, so no farther from the trace than the tip, and within a
+    quarter tol of it."""
+    from gearkit.bench.topology import corner_gap
+
+    tol, c, w = 1e-3, 0.2, 0.09
+
+    def F(p, which):
+        return np.abs(p[:, 1] - c * p[:, 0] ** 2) - w * (1.0 - p[:, 0])
+
+    x = 1.0 - 3.2e-3  # the corner, off the wedge's middle by a third of its width there
+    corner = np.array([x, c * x * x + 0.3 * w * (1.0 - x)])
+    way = np.array([1.0, 2 * c])  # the wedge's way at its tip
+    turn = np.radians(10.0)  # the bisector 10 degrees off it: the chords' ends placed symmetrically about it
+    b = np.array([[np.cos(turn), -np.sin(turn)], [np.sin(turn), np.cos(turn)]]) @ (way / np.hypot(*way))
+    side = np.array([-b[1], b[0]])
+    trace = np.array([corner - 0.05 * b + 0.004 * side, corner, corner - 0.05 * b - 0.004 * side])
+    tip = np.array([1.0, c])
+    assert F(tip[None], 0)[0] == pytest.approx(0.0, abs=1e-15) and F(corner[None], 0)[0] < 0  # inside
+    from gearkit.distances import distances_to_polyline
+
+    short = float(distances_to_polyline(tip[None], trace)[0])
+    d, at = corner_gap(F, 0, [trace], tol)
+    assert short - tol / 4 <= d <= short + 1e-12, (d / tol, short / tol)
