@@ -336,3 +336,43 @@ def test_a_thin_island_of_the_tip_sweep_is_cut_across_and_carried_round_its_end(
     assert len(zeros) == 2 * len(ISLAND_ROWS)  # each row crosses the island
     d = _nearest(np.array(zeros), c.line("tip_interference").components)
     assert d.max() <= CONTRACT * tol, d / tol
+
+
+WEDGE_WINDOW = (-0.3, 0.2, -0.5, 0.0)  #: about 19/42's thin wedge of the tip sweep, closed short as in the full window
+WEDGE_SPAN = (0.022, 0.032)  #: x1 about the wedge on the rows near its tip
+
+
+def test_a_thin_wedge_of_the_tip_sweep_is_carried_to_its_tip():
+    """Internal 19/42, shaper 19, at tol 1e-3: the tip sweep finds no penetration in a wedge half a tol wide
+    3 tol from its tip (the window WEDGE_WINDOW, whose grid closes it as the whole window's does). A grid
+    cell wider than the wedge closed it by a chord 3.8 tol short of its tip, its middle within the wedge's
+    width of both sides (no measure of the tracing saw it; the bench's scan lines passed beside it). Oracle,
+    apart from the tracing: on a row x2 = const the check's scalar margin has its largest value (scipy's
+    minimize_scalar, bounded about the wedge) above zero above the tip and below zero below it, bisected in
+    x2; the tip within 2 tol of the traced line (3.8 tol on the old code), and the two zeros (brentq) on
+    rows across the wedge up to it too."""
+    from scipy.optimize import minimize_scalar
+
+    spec = PairSpec(19, 42, 1.0, kind="internal", tool2=ShaperCutter(19))
+    tol = 1e-3
+    c = blocking_contour(spec, tol=tol, lines=["tip_interference"], window=WEDGE_WINDOW)
+    f = PairField(spec)
+
+    def top(x2):  # the margin's largest value on the row about the wedge, and where
+        r = minimize_scalar(lambda x: -f.margin("tip_interference", x, x2), bounds=WEDGE_SPAN, method="bounded",
+                            options={"xatol": 1e-10})
+        return -r.fun, r.x
+
+    lo, hi = -0.412, -0.409  # below the tip the sweep penetrates all along the row, above it the wedge
+    assert top(lo)[0] < 0 < top(hi)[0]
+    for _ in range(24):
+        m = 0.5 * (lo + hi)
+        lo, hi = (m, hi) if top(m)[0] < 0 else (lo, m)
+    zeros = [[top(hi)[1], hi]]
+    for x2 in hi + tol * np.array([0.5, 1.0, 2.0, 3.0]):
+        v, x = top(x2)
+        assert v > 0
+        g = lambda x1: f.margin("tip_interference", x1, x2)  # noqa: E731
+        zeros += [[brentq(g, WEDGE_SPAN[0], x, xtol=1e-12), x2], [brentq(g, x, WEDGE_SPAN[1], xtol=1e-12), x2]]
+    d = _nearest(np.array(zeros), c.line("tip_interference").components)
+    assert d.max() <= CONTRACT * tol, d / tol

@@ -17,7 +17,8 @@ where undefined); every step below evaluates all the points it needs, of all the
    ends carried on (:mod:`~gearkit.blocking.ends`).
 
 4. **Saddles the grid got wrong**: loops cut across a thin part re-joined (:func:`~gearkit.blocking.region.reconnect`),
-   wedges cut short of their tips carried to them (:func:`~gearkit.blocking.tips.carry_to_tips`).
+   wedges cut short of their tips carried to them (:func:`~gearkit.blocking.tips.carry_to_tips`; a kinked
+   curve's own: :func:`~gearkit.blocking.corners.carry_corners`).
 
 The band beside the area where ``F`` is undefined, whose cells the grid masks, is traced on a
 lattice of its own and joined to the grid's lines (:mod:`~gearkit.blocking.band`); at the end, an
@@ -30,6 +31,7 @@ import numpy as np
 
 from gearkit.blocking.band import band_lines, once
 from gearkit.blocking.brackets import segment_roots
+from gearkit.blocking.corners import carry_corners
 from gearkit.blocking.ends import extend_ends
 from gearkit.blocking.grid import bridge_pieces, edge_nodes, on_frame, true_runs
 from gearkit.blocking.onsets import onset_vertices
@@ -132,6 +134,7 @@ def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), 
         lines = carry_to_tips(F, parts, lines, kept, measure[0], tol,  # (a side is taken whole or not at all)
                               lambda g, ls: densify(g, ls, tol, max_step, (), range(g.size), dips=False))
         lines = drop_covered(lines, kept, tol)  # a link carried to the tip another loop was carried to
+    lines = carry_corners(F, lines, set(kinked), tol, vtol)  # a kinked curve's wedge closed short of its tip
     for k, q in once([(k, q) for k, q, _ in lines], tol, measure):
         # a vertex repeated next to itself goes (which step left it was not pinned down): a chord of no
         # length has no direction (internal 49/64 z0 20's interference.1 at tol 1e-5, at the tip of a thin
