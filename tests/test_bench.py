@@ -3,6 +3,7 @@
 The ladder's "achieved" must be an independent measurement: it must track the requested tol
 (within 2x, monotone over the ladder) and it must see a polyline that is too coarse.
 """
+import copy
 import math
 import os
 import subprocess
@@ -288,3 +289,32 @@ def test_the_gap_measure_follows_a_thin_wedge_traced_short_of_its_tip():
     short = float(distances_to_polyline(tip[None], trace)[0])
     d, at = corner_gap(F, 0, [trace], tol)
     assert short - tol / 4 <= d <= short + 1e-12, (d / tol, short / tol)
+
+
+def test_the_gap_measure_sees_a_wedge_of_the_region_closed_short_of_its_tip():
+    """External 33/78 at tol 1e-3: the region ends in a wedge of 6 degrees between interference.1 and .2 (traced
+    to its tip). Closed by a chord 3 tol back from that tip (as the grid closes it, the tip left out), the
+    outline's corner has the region's sign beyond it: the gap measure's sections follow the wedge and name the
+    region, its zero at the tip within a tol of the vertex the trace had there (the chord's ends are on the
+    sides, its middle inside the wedge)."""
+    from gearkit.bench.topology import scan_gap
+    from gearkit.blocking import blocking_contour
+    from gearkit.pair import PairSpec
+
+    tol = 1e-3
+    c = blocking_contour(PairSpec(33, 78, 1.0), tol=tol)
+    assert scan_gap(c)[0] <= 2 * tol
+    for n, p in enumerate(c.region):
+        a, b = p[:-2] - p[1:-1], p[2:] - p[1:-1]
+        cos = np.einsum("ij,ij->i", a, b) / np.hypot(*a.T) / np.hypot(*b.T)
+        i = np.flatnonzero(cos > np.cos(np.radians(10.0)))
+        if i.size:
+            break
+    assert i.size == 1, "the region's one wedge of less than 10 degrees"
+    tip, before, after = p[i[0] + 1], p[i[0]], p[i[0] + 2]
+    back = lambda q: tip + 3 * tol * (q - tip) / np.hypot(*(q - tip))  # noqa: E731
+    cut = np.vstack([p[:i[0] + 1], back(before), back(after), p[i[0] + 2:]])  # the tip cut off 3 tol back
+    short = copy.copy(c)
+    short.region = (*c.region[:n], cut, *c.region[n + 1:])
+    d, name, at = scan_gap(short)
+    assert name == "region" and 2 * tol < d <= 3 * tol + tol and np.hypot(*(np.array(at) - tip)) <= tol, (d / tol, at)

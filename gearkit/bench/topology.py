@@ -14,8 +14,9 @@ SCAN_FALL = 0.5  #: a solved sign change is a zero when |F| fell below this frac
 #: of F keeps |F| up)
 EDGE_SAMPLES = 96  #: samples between a scan line's last sample before the no-pair area and its edge ...
 EDGE_FLOOR = 1e-13  #: ... at distances from the edge down to this fraction of the spacing (round-off)
-CORNER_STEPS, CORNER_HALF, CORNER_SAMPLES = 64, 2.0, 65  #: sections on from an acute corner of a trace: how
+CORNER_STEPS, CORNER_HALF, CORNER_SAMPLES = 64, 2.0, 65  #: sections on from a sharp corner of a trace: how
 #: many (a quarter tol apart), their half length in tol, their samples (_beyond_corners)
+CORNER_COS = -0.5  #: ... from each corner whose chords are less than 120 degrees apart
 MEASURE_TOL = 1e-14  #: accuracy of the exact points the bench's measures solve for
 ROUND_OFF = 1e-12  #: |margin| taken as zero
 
@@ -133,8 +134,8 @@ def scan_gap(contour, scans: int = SCANS, samples: int = SCAN_SAMPLES):
     ``MEASURE_TOL`` (a sign change through a jump of the margin, where |F| does not fall, is none); where
     a scan line enters the no-pair area, also at distances from its edge falling geometrically from a
     sample's spacing to round-off (a line that dips to the edge between samples, closer to it than any);
-    and on sections beyond each acute corner of a line's trace (:func:`corner_gap`: a thin wedge traced
-    short of its tip, between the scan lines).
+    and on sections beyond each sharp corner of a line's trace and of the region's outline (:func:`corner_gap`:
+    a thin wedge traced short of its tip, between the scan lines; ``"region"`` names the outline).
     A piece of a line the trace misses (e.g. cut short before a saddle or the no-pair edge) shows as a
     zero far from it, however fine the reference trace is. Returns ``(distance, line name, (x1, x2))``.
 
@@ -152,7 +153,7 @@ def scan_gap(contour, scans: int = SCANS, samples: int = SCAN_SAMPLES):
 
     w = contour.window
     names = [ln.name for ln in contour.lines]
-    F = evaluator(contour.field, names, w)
+    F = evaluator(contour.field, names + ["region"], w)
     u = np.linspace(0.0, 1.0, scans + 2)[1:-1]
     t = np.linspace(0.0, 1.0, samples)
     rows = []  # (scans * 2, samples, 2): lines x1 = const, then x2 = const
@@ -171,6 +172,10 @@ def scan_gap(contour, scans: int = SCANS, samples: int = SCAN_SAMPLES):
         d, at = far_zero(F, k, ln.components, *changes)
         if d > worst[0]:
             worst = (d, ln.name, at)
+    if contour.region:  # the region's outline: its wedges (between two parts crossing) on from their corners
+        d, at = corner_gap(F, len(names), contour.region, contour.tol)
+        if d > worst[0]:
+            worst = (d, "region", at)
     return worst
 
 
@@ -203,7 +208,7 @@ def far_zero(F, k, components, A, B, fa, fb):
 
 
 def corner_gap(F, k, components, tol):
-    """:func:`far_zero` among the zeros on the sections beyond the acute corners of ``components``
+    """:func:`far_zero` among the zeros on the sections beyond the sharp corners of ``components``
     (:func:`_beyond_corners`): how far short of its tip a thin wedge of the zero set is traced.
 
     >>> F = lambda p, k: np.abs(p[:, 1]) - 0.1 * (1.0 - p[:, 0])  # a wedge 0.2 wide, its tip at (1, 0)
@@ -222,14 +227,15 @@ def _changes(Q, W):
 
 
 def _beyond_corners(F, k, components, tol):
-    """Sections across the way on from each acute corner of the traced ``components`` of function ``k``
-    (its chords less than 90 degrees apart): ``(points, values)``, a row per section, ``CORNER_SAMPLES``
-    samples ``CORNER_HALF`` tol either side of its middle. The first lies a quarter tol beyond the
-    corner across its bisector; while a section holds a run of the other sign than its two ends (a
-    thin wedge of the zero set going on), the next lies a quarter tol on from that run's middle, across
-    the way from the first section's middle (at most ``CORNER_STEPS``). A wedge traced short of its tip (internal
-    19/42 z0 19's tip sweep at tol 1e-3, closed 2.9 tol short where it is 0.5 tol wide) lies between
-    the scan lines; the last sections cross its sides next to the tip.
+    """Sections across the way on from each sharp corner of the traced ``components`` of function ``k``
+    (its chords less than 120 degrees apart, ``CORNER_COS``: an acute one, or one of the two a square cut
+    across a wedge makes): ``(points, values)``, a row per section, ``CORNER_SAMPLES`` samples
+    ``CORNER_HALF`` tol either side of its middle. The first lies a quarter tol beyond the corner across its
+    bisector; while a section holds a run of the other sign than its two ends (a thin wedge of the zero set
+    going on), the next lies a quarter tol on from that run's middle, across the way from the first
+    section's middle (at most ``CORNER_STEPS``). A wedge traced short of its tip (internal 19/42 z0 19's tip
+    sweep at tol 1e-3, closed 2.9 tol short where it is 0.5 tol wide) lies between the scan lines; the last
+    sections cross its sides next to the tip.
 
     >>> F = lambda p, k: np.abs(p[:, 1] - 0.05 * p[:, 0]) - 0.1 * (1.0 - p[:, 0])  # a wedge, its tip at (1, 0.05)
     >>> Q, W = _beyond_corners(F, 0, [np.array([[0.0, 0.1], [0.99, 0.05], [0.0, -0.1]])], 1e-3)
@@ -247,9 +253,9 @@ def _beyond_corners(F, k, components, tol):
         b = q[mid + 1] - q[mid]
         a = a / np.maximum(np.hypot(a[:, 0], a[:, 1]), 1e-300)[:, None]
         b = b / np.maximum(np.hypot(b[:, 0], b[:, 1]), 1e-300)[:, None]
-        acute = np.einsum("ij,ij->i", a, b) > 0.0
-        m = a[acute] + b[acute]
-        tips.append(q[mid[acute]])
+        sharp = np.einsum("ij,ij->i", a, b) > CORNER_COS
+        m = a[sharp] + b[sharp]
+        tips.append(q[mid[sharp]])
         ways.append(-m / np.maximum(np.hypot(m[:, 0], m[:, 1]), 1e-300)[:, None])
     rows, vals = [np.zeros((0, CORNER_SAMPLES, 2))], [np.zeros((0, CORNER_SAMPLES))]
     if not tips:
