@@ -32,7 +32,7 @@ import numpy as np
 from gearkit.blocking.band import band_lines, once
 from gearkit.blocking.brackets import segment_roots
 from gearkit.blocking.corners import carry_corners
-from gearkit.blocking.ends import extend_ends
+from gearkit.blocking.ends import extend_ends, join_ends
 from gearkit.blocking.grid import bridge_pieces, edge_nodes, on_frame, true_runs
 from gearkit.blocking.onsets import onset_vertices
 from gearkit.blocking.refinement import JUMP_FACTOR, JUMP_FALL, VERTEX_FRACTION, densify
@@ -127,7 +127,14 @@ def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), 
                     loose=carry)
     # lines the grid cut short of their ends (a saddle): carried on to them (ends)
     lines = extend_ends(F, lines, grids, tol, measure, carry)
-    lines = densify(F, onset_vertices(F, lines, *onsets, vtol), tol, max_step, measure, kinked, True, kept)
+    again = []
+    lines = densify(F, onset_vertices(F, lines, *onsets, vtol), tol, max_step, measure, kinked, True, kept,
+                    loose=again)
+    if again:  # the ends of a chord it cut (across a saddle's neck, 35/61 at tol 3e-4): carried on, and joined
+        lines = extend_ends(F, [ln[:3] for ln in lines], grids, tol, measure, again)
+        lines = densify(F, lines, tol, max_step, measure, kinked, True, kept)
+        xs, ys = grids[0][:2]
+        lines = join_ends(F, lines, {k for k, _, _ in again}, (xs[1], xs[-2], ys[1], ys[-2]), tol)
     lines = reconnect(F, lines, kept, tol, lambda ls, kp, rest=None: densify(F, ls, tol, max_step, measure, kinked,
                                                                                True, kp, down=rest))
     if parts is not None and measure:  # the region's chords still across a wedge or a strip: its edge (tips)
