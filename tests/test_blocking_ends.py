@@ -384,3 +384,23 @@ def test_a_thin_wedge_of_the_tip_sweep_is_carried_to_its_tip():
         zeros += [[brentq(g, WEDGE_SPAN[0], x, xtol=1e-12), x2], [brentq(g, x, WEDGE_SPAN[1], xtol=1e-12), x2]]
     d = _nearest(np.array(zeros), c.line("tip_interference").components)
     assert d.max() <= CONTRACT * tol, d / tol
+
+
+def test_corners_of_two_lines_carried_at_once_take_their_own_wedges():
+    """Two kinked curves, each a wedge closed 4 tol short of its tip by a corner (at the second vertex of one
+    line, the third of the other: carried from the later vertex first, each must take the zeros solved on its
+    own wedge). Oracle, closed form: F_0 = |y| - 0.1 (1 - x), tip (1, 0); F_1 = |y - 5| - 0.2 (1 - x), tip
+    (1, 5); every vertex of each line on its own zero set (to the vertex tolerance, |grad F| about 1) and its
+    farthest one within a quarter tol of its own tip."""
+    from gearkit.blocking.corners import carry_corners
+
+    tol = 1e-3
+    F = lambda p, k: np.where(np.asarray(k) == 0, np.abs(p[:, 1]) - 0.1 * (1.0 - p[:, 0]),  # noqa: E731
+                              np.abs(p[:, 1] - 5.0) - 0.2 * (1.0 - p[:, 0]))
+    a = np.array([[0.0, 0.1], [0.996, 0.0], [0.0, -0.1]])
+    b = np.array([[-1.0, 5.4], [0.0, 5.2], [0.996, 5.0], [0.0, 4.8]])
+    out = carry_corners(F, [(0, a, np.ones(3)), (1, b, np.ones(4))], {0, 1}, tol, tol / 4)
+    for (k, q, _), tip in zip(out, ([1.0, 0.0], [1.0, 5.0])):
+        assert len(q) > 5  # carried
+        assert np.abs(F(q, np.full(len(q), k))).max() <= tol / 4, k
+        assert np.hypot(*(q[np.argmax(q[:, 0])] - tip)) <= tol / 4, k

@@ -213,12 +213,13 @@ def carry_corners(F, lines, curves, tol: float, vtol: float) -> list:
     ks = np.array([which[r] for r in done for _ in range(2 * len(runs[r]))] + [which[r] for r in done])
     zeros = segment_roots(F, np.array([b[0] for b in brackets]), np.array([b[1] for b in brackets]),
                           np.array([b[2] for b in brackets]), np.array([b[3] for b in brackets]), vtol, ks)
-    out, at = [list(ln) for ln in lines], 0
+    out, at = [list(ln) for ln in lines], {}  # where each corner's sides' zeros start (in the order of done)
+    for r in done:
+        at[r] = sum(2 * len(runs[j]) for j in at)
     ends = zeros[len(brackets) - len(done):]
     for r, end in sorted(zip(done, ends), key=lambda e: -rows[e[0]][1]):  # from the end: indices stay valid
         n, i, _, before_left = rows[r]
-        z = zeros[at:at + 2 * len(runs[r])].reshape(-1, 2, 2)
-        at += 2 * len(runs[r])
+        z = zeros[at[r]:at[r] + 2 * len(runs[r])].reshape(-1, 2, 2)
         z = z[np.arange(len(z))[::-WEDGE_EVERY][::-1]]  # a tol apart, the last (next to the tip) kept
         near, far = (z[:, 1], z[:, 0]) if before_left else (z[:, 0], z[:, 1])  # each run: (right, left)
         p, g = out[n][1], out[n][2]
