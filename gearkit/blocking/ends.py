@@ -176,7 +176,7 @@ def join_ends(F, lines, curves, frame, tol: float) -> list:
     3e-4: 0.94 tol apart).
 
     >>> import numpy as np
-    >>> F = lambda p, k: p[:, 1] - 0.0 * p[:, 0]
+    >>> F = lambda p, k: p[:, 1]  # the line x2 = 0, traced in two pieces 1.5 tol apart
     >>> a, b = np.array([[0.0, 0.0], [0.5, 0.0]]), np.array([[0.5015, 0.0], [1.0, 0.0]])
     >>> out = join_ends(F, [(0, a, np.ones(2)), (0, b, np.ones(2))], {0}, (-1.0, 2.0, -1.0, 1.0), 1e-3)
     >>> len(out), len(out[0][1])

@@ -130,7 +130,8 @@ def densify(F, lines, tol: float, max_step: float | None = None, measure=(), kin
         # ends of a cut are carried on (``loose``; internal 13/56 z0 23's tip sweep, flat inside an island 0.005 wide:
         # the grid's chord from its upper side to its far end was split at the lower side's zero, the nearer, and
         # walked round the tip, the far end left out, 2.2 tol; a chord the continuation's fronts joined across a
-        # thin wedge, cut and not carried again, left both sides open, 19/42 z0 19's tip sweep, 2.07 tol)
+        # thin wedge, cut and not carried again, left both sides open, 19/42 z0 19's tip sweep, 2.07 tol: the
+        # densify after the continuation carries its cuts' ends on too, level.zero_lines)
         strip = (trust if loose is not None else estimate)[km]
         sides = []  # each side's end and value: a zero to both sides is told by its root (NearestBracket.nearer)
         for sgn in (1.0, -1.0):
