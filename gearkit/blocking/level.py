@@ -19,8 +19,8 @@ where undefined); every step below evaluates all the points it needs, of all the
 4. **Saddles the grid got wrong**: the ends of a chord the refinement after the continuation cut carried on too,
    and joined where they stop on either side of a saddle's neck (:func:`~gearkit.blocking.ends.join_ends`);
    loops cut across a thin part re-joined (:func:`~gearkit.blocking.region.reconnect`), wedges cut short of
-   their tips carried to them (:func:`~gearkit.blocking.tips.carry_to_tips`; a kinked curve's own, and the
-   region's beyond a saddle's neck: :func:`~gearkit.blocking.corners.carry_corners`).
+   their tips carried to them (:func:`~gearkit.blocking.tips.carry_to_tips`; a kinked curve's own:
+   :func:`~gearkit.blocking.corners.carry_corners`).
 
 The band beside the area where ``F`` is undefined, whose cells the grid masks, is traced on a
 lattice of its own and joined to the grid's lines (:mod:`~gearkit.blocking.band`); at the end, an
