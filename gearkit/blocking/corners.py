@@ -213,9 +213,8 @@ def carry_corners(F, lines, curves, tol: float, vtol: float) -> list:
     ks = np.array([which[r] for r in done for _ in range(2 * len(runs[r]))] + [which[r] for r in done])
     zeros = segment_roots(F, np.array([b[0] for b in brackets]), np.array([b[1] for b in brackets]),
                           np.array([b[2] for b in brackets]), np.array([b[3] for b in brackets]), vtol, ks)
-    out, at = [list(ln) for ln in lines], {}  # where each corner's sides' zeros start (in the order of done)
-    for r in done:
-        at[r] = sum(2 * len(runs[j]) for j in at)
+    out = [list(ln) for ln in lines]
+    at = dict(zip(done, np.cumsum([0] + [2 * len(runs[r]) for r in done])))  # where each corner's zeros start
     ends = zeros[len(brackets) - len(done):]
     for r, end in sorted(zip(done, ends), key=lambda e: -rows[e[0]][1]):  # from the end: indices stay valid
         n, i, _, before_left = rows[r]

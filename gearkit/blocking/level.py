@@ -133,7 +133,7 @@ def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), 
     lines = densify(F, onset_vertices(F, lines, *onsets, vtol), tol, max_step, measure, kinked, True, kept,
                     loose=again)
     if again:  # the ends of a chord it cut (across a saddle's neck, 35/61 at tol 3e-4): carried on, and joined
-        lines = extend_ends(F, [ln[:3] for ln in lines], grids, tol, measure, again)
+        lines = extend_ends(F, lines, grids, tol, measure, again)
         lines = densify(F, lines, tol, max_step, measure, kinked, True, kept)
         xs, ys = grids[0][:2]
         lines = join_ends(F, lines, {k for k, _, _ in again}, (xs[1], xs[-2], ys[1], ys[-2]), tol)
