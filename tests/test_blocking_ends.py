@@ -359,31 +359,54 @@ def test_a_thin_wedge_of_the_tip_sweep_is_carried_to_its_tip():
     minimize_scalar, bounded about the wedge) above zero above the tip and below zero below it, bisected in
     x2; the tip within 2 tol of the traced line (3.8 tol on the old code), and the two zeros (brentq) on
     rows across the wedge up to it too."""
-    from scipy.optimize import minimize_scalar
-
     spec = PairSpec(19, 42, 1.0, kind="internal", tool2=ShaperCutter(19))
     tol = 1e-3
     c = blocking_contour(spec, tol=tol, lines=["tip_interference"], window=WEDGE_WINDOW)
-    f = PairField(spec)
+    zeros = _tip_and_sides(PairField(spec), lambda x2: WEDGE_SPAN, -0.412, -0.409, tol * np.array([0.5, 1, 2, 3]))
+    d = _nearest(zeros, c.line("tip_interference").components)
+    assert d.max() <= CONTRACT * tol, d / tol
+
+
+def test_a_long_thin_wedge_of_the_tip_sweep_is_carried_to_its_tip():
+    """Internal 12/53, shaper 14, at tol 1e-3: the tip sweep finds no penetration in a thin wedge along the
+    diagonal beside the no-pair area, its tip at about (0.092, -0.740); the grid closed it 25 tol short, and the
+    sections carrying a kinked curve's corner on stopped after 16 tol (the bench's gap measure: 16 tol at
+    (0.085, -0.746)). Oracle as for 19/42: the tip bisected in x2 off the margin's largest value on a row, the
+    wedge's two zeros on rows up to 20 tol below it, all within 2 tol of the traced line."""
+    spec = PairSpec(12, 53, 1.0, kind="internal", tool2=ShaperCutter(14))
+    tol = 1e-3
+    c = blocking_contour(spec, tol=tol, lines=["tip_interference"])
+    about = lambda x2: (0.0885 + 1.05 * (x2 + 0.74), 0.0935 + 1.05 * (x2 + 0.74))  # noqa: E731 (the wedge's row)
+    zeros = _tip_and_sides(PairField(spec), about, -0.7401, -0.738, -tol * np.array([0.5, 1, 2, 5, 10, 15, 20]))
+    d = _nearest(zeros, c.line("tip_interference").components)
+    assert d.max() <= CONTRACT * tol, d / tol
+
+
+def _tip_and_sides(f, span, lo: float, hi: float, rows) -> np.ndarray:
+    """The tip of a thin wedge where the tip sweep finds no penetration, and its sides: on a row x2 = const the
+    check's scalar margin has its largest value (scipy's minimize_scalar, bounded to ``span(x2)``) above zero
+    on the wedge's side of the tip and below it beyond, bisected in x2 between ``lo`` and ``hi``; then the two
+    zeros (brentq) on the rows ``tip + rows`` (each inside the wedge)."""
+    from scipy.optimize import minimize_scalar
 
     def top(x2):  # the margin's largest value on the row about the wedge, and where
-        r = minimize_scalar(lambda x: -f.margin("tip_interference", x, x2), bounds=WEDGE_SPAN, method="bounded",
+        r = minimize_scalar(lambda x: -f.margin("tip_interference", x, x2), bounds=span(x2), method="bounded",
                             options={"xatol": 1e-10})
         return -r.fun, r.x
 
-    lo, hi = -0.412, -0.409  # below the tip the sweep penetrates all along the row, above it the wedge
-    assert top(lo)[0] < 0 < top(hi)[0]
+    inside = top(lo)[0] > 0
+    assert inside == (top(hi)[0] < 0)
     for _ in range(24):
         m = 0.5 * (lo + hi)
-        lo, hi = (m, hi) if top(m)[0] < 0 else (lo, m)
-    zeros = [[top(hi)[1], hi]]
-    for x2 in hi + tol * np.array([0.5, 1.0, 2.0, 3.0]):
+        lo, hi = (m, hi) if (top(m)[0] > 0) == inside else (lo, m)
+    tip = lo if inside else hi
+    zeros = [[top(tip)[1], tip]]
+    for x2 in tip + np.asarray(rows):
         v, x = top(x2)
-        assert v > 0
+        assert v > 0, x2
         g = lambda x1: f.margin("tip_interference", x1, x2)  # noqa: E731
-        zeros += [[brentq(g, WEDGE_SPAN[0], x, xtol=1e-12), x2], [brentq(g, x, WEDGE_SPAN[1], xtol=1e-12), x2]]
-    d = _nearest(np.array(zeros), c.line("tip_interference").components)
-    assert d.max() <= CONTRACT * tol, d / tol
+        zeros += [[brentq(g, span(x2)[0], x, xtol=1e-12), x2], [brentq(g, x, span(x2)[1], xtol=1e-12), x2]]
+    return np.array(zeros)
 
 
 def test_corners_of_two_lines_carried_at_once_take_their_own_wedges():

@@ -358,3 +358,26 @@ def test_a_third_margin_crossing_a_wedge_at_a_small_angle_ends_it():
         xs = np.linspace(0.40, short(y), 201)
         assert max(_smallest(field, x, y) for x in xs) < 0, y
         assert _crossings(c.region, np.array([xs[0], y]), np.array([xs[-1], y])).size == 0, y
+
+
+@pytest.mark.parametrize("y", [1.0015, 1.003, 1.0045])
+def test_a_wedge_of_the_region_beyond_a_saddles_neck_is_taken(y):
+    """External 29/37 at tol 1e-3: beyond the neck of interference.2's saddle at (-1, 1) the region goes on in a
+    wedge 5.5 tol long up to (-1.0021, 1.0051), which no grid node sees; the outline closed across the neck at a
+    corner of 111 degrees and left it out. Oracle: on rows x2 = const across the wedge, the zeros of the check's
+    smallest hard margin (brentq) and the polygons' crossings within 2 tol of each other (no crossing at all on
+    the old code), the wedge's middle passing check_pair and in the region."""
+    spec = PairSpec(29, 37, 1.0)
+    field, c = PairField(spec), _external(29, 37)
+    a, b = np.array([-1.004, y]), np.array([-0.9995, y])
+    t = np.linspace(0.0, 1.0, 901)
+    exact = _zeros(lambda s: _smallest(field, *(a + s * (b - a))), t) * float(np.hypot(*(b - a)))
+    assert len(exact) >= 2
+    got = _matched(c.region, a, b, exact)
+    mid = a + 0.5 * (got[0] + got[1]) / float(np.hypot(*(b - a))) * (b - a)
+    assert _passes(spec, *mid) and c.contains(*mid)
+
+
+@functools.lru_cache(maxsize=None)
+def _external(z1, z2):
+    return blocking_contour(PairSpec(z1, z2, 1.0), tol=TOL, lines=[])

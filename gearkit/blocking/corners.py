@@ -19,9 +19,12 @@ __all__ = ["corner_splits", "uncut", "carry_corners"]
 CORNER_COS = math.cos(math.radians(20.0))  #: a polyline turning more than this at a vertex has a corner beside it
 CORNER_FRACTION = 0.25  #: ... measured this far along its chords from the turning end
 FLAT = 1e-2  #: a cut whose F at its quarters and middle agrees within this fraction is across a flat part
-WEDGE_STEPS, WEDGE_HALF, WEDGE_SAMPLES = 64, 2.0, 33  #: sections on from an acute corner (carry_corners): how many
-#: at most (a quarter tol apart), their half length in tol, their samples
+WEDGE_STEPS, WEDGE_HALF, WEDGE_SAMPLES = 256, 2.0, 33  #: sections on from an acute corner (carry_corners): how many
+#: at most (a quarter tol apart: 64 tol on; internal 12/53 z0 14's tip sweep at 1e-3 was closed 25 tol short, and
+#: 64 sections stopped 9 tol short of its tip), their half length in tol, their samples
 WEDGE_EVERY = 4  #: ... every fourth section's zeros kept (the sides a tol apart)
+OBTUSE_COS = -0.5  #: the region's corners carried up to 120 degrees (carry_corners)
+NARROW = 0.5  #: ... when the last run before the tip is at most this part of the widest (a wedge narrowing to it)
 
 
 def corner_splits(F, lines, tol: float, curves, split: float, vtol: float, kept=()) -> set:
@@ -133,7 +136,7 @@ def uncut(lines, kept) -> list:
             for k, p, g in lines]
 
 
-def carry_corners(F, lines, curves, tol: float, vtol: float) -> list:
+def carry_corners(F, lines, curves, tol: float, vtol: float, obtuse=()) -> list:
     """``lines`` (``[(k, points, slopes)]``) with each acute corner of the kinked curves ``curves`` (two chords
     less than 90 degrees apart) that closes a thin wedge of the zero set short of its tip carried to it: a
     chord across the wedge, which a grid cell wider than the wedge closed, leaves the tip out, and its
@@ -145,7 +148,13 @@ def carry_corners(F, lines, curves, tol: float, vtol: float) -> list:
     next section lies on from the run's middle; the tip is the zero between the last run's middle and the
     next section's. The corner is replaced by the sides' zeros (a tol apart, the side nearer the chord before it
     first) and the tip. A corner with no run beyond it (the tip itself), or a wedge wider than the sections or
-    going on past the last, is left as it is; so are the slopes (NaN at the new vertices).
+    going on past the last, is left as it is, and so is a run that does not narrow to its tip (the last at most
+    ``NARROW`` of the widest: one that widens on went through a saddle's neck into the sector beyond it);
+    so are the slopes (NaN at the new vertices). The curves
+    ``obtuse`` (the region's outline) have their corners up to 120 degrees carried too: the outline closed
+    across a saddle's neck whose part beyond it no grid node sees (external 29/37 at tol 1e-3: a wedge
+    of the region 5.5 tol long beyond the neck of interference.2's saddle at (-1, 1), the corner 111
+    degrees); of two such corners next to each other (a square cut across a wedge) the first only.
 
     >>> import numpy as np
     >>> F = lambda p, k: np.abs(p[:, 1]) - 0.1 * (1.0 - p[:, 0])  # a wedge, its tip at (1, 0)
@@ -161,7 +170,7 @@ def carry_corners(F, lines, curves, tol: float, vtol: float) -> list:
         a, b = p[:-2] - p[1:-1], p[2:] - p[1:-1]
         a = a / np.maximum(np.hypot(a[:, 0], a[:, 1]), 1e-300)[:, None]
         b = b / np.maximum(np.hypot(b[:, 0], b[:, 1]), 1e-300)[:, None]
-        for i in np.flatnonzero(np.einsum("ij,ij->i", a, b) > 0.0):
+        for i in np.flatnonzero(np.einsum("ij,ij->i", a, b) > (OBTUSE_COS if k in obtuse else 0.0)):
             m = -(a[i] + b[i]) / max(float(np.hypot(*(a[i] + b[i]))), 1e-300)
             rows.append((n, i + 1, m, float(np.dot(a[i], [-m[1], m[0]])) > 0.0))
     if not rows:
@@ -205,7 +214,13 @@ def carry_corners(F, lines, curves, tol: float, vtol: float) -> list:
             if np.hypot(*way) > 0.5 * tol:
                 D[r] = way / np.hypot(*way)
         live = live[on]
-    done = [r for r in range(len(rows)) if tip[r] is not None]
+    width = [np.array([np.hypot(*(lo[1] - hi[1])) for lo, hi in runs[r]]) for r in range(len(rows))]
+    # a wedge narrows to its tip; a run that widens on is none (internal 58/109 z0 31's region at (1, 1): on
+    # from a corner beside interference.1's saddle, through its neck into the region's sector beyond it)
+    done = [r for r in range(len(rows)) if tip[r] is not None
+            and width[r][-1] <= max(NARROW * width[r].max(), 0.25 * tol)]
+    pair = {(rows[r][0], rows[r][1]) for r in done}
+    done = [r for r in done if (rows[r][0], rows[r][1] - 1) not in pair]  # a square cut's second corner: left
     if not done:
         return lines
     brackets = [b for r in done for pair in runs[r] for b in pair] + [

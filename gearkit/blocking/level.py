@@ -143,7 +143,8 @@ def zero_lines(F, grids, tol: float, max_step: float | None = None, measure=(), 
         lines = carry_to_tips(F, parts, lines, kept, measure[0], tol,  # (a side is taken whole or not at all)
                               lambda g, ls: densify(g, ls, tol, max_step, (), range(g.size), dips=False))
         lines = drop_covered(lines, kept, tol)  # a link carried to the tip another loop was carried to
-    lines = carry_corners(F, lines, set(kinked), tol, vtol)  # a kinked curve's wedge closed short of its tip
+    # a kinked curve's wedge, or the region's, closed short of its tip (the region's beyond a saddle's neck too)
+    lines = carry_corners(F, lines, set(kinked) | set(measure), tol, vtol, set(measure))
     for k, q in once([(k, q) for k, q, _ in lines], tol, measure):
         # a vertex repeated next to itself goes (which step left it was not pinned down): a chord of no
         # length has no direction (internal 49/64 z0 20's interference.1 at tol 1e-5, at the tip of a thin
