@@ -318,3 +318,26 @@ def test_the_gap_measure_sees_a_wedge_of_the_region_closed_short_of_its_tip():
     short.region = (*c.region[:n], cut, *c.region[n + 1:])
     d, name, at = scan_gap(short)
     assert name == "region" and 2 * tol < d <= 3 * tol + tol and np.hypot(*(np.array(at) - tip)) <= tol, (d / tol, at)
+
+
+def test_the_gap_measure_follows_a_wide_wedge_cut_square_far_short_of_its_tip():
+    """A wedge 5 tol wide where a chord cuts it square, 70 tol short of its tip (internal 42/98 z0 16's region at
+    tol 1e-3, closed so short of the window's frame): sections across either corner's bisector cross a side and
+    hold no run, and a section across the wedge 2 tol either side lies all inside it. The measure goes on from the
+    cut's middle along the sides, its sections widened to the wedge and narrowed with it. Oracle: the tip, where
+    the sides ``x2 = +-w (1 - x1)`` meet, at (1, 0); the measure's zero lies beyond the cut, so no farther from the
+    trace than the tip, and within a quarter tol of it."""
+    from gearkit.bench.topology import corner_gap
+    from gearkit.distances import distances_to_polyline
+
+    tol, w = 1e-3, 2.5e-3 / 0.07  # 5 tol wide at x1 = 0.93
+
+    def F(p, which):
+        return np.abs(p[:, 1]) - w * (1.0 - p[:, 0])
+
+    x, y = 0.93, w * 0.07
+    trace = np.array([[0.5, w * 0.5], [x, y], [x, -y], [0.5, -w * 0.5]])  # the sides up to the square cut
+    tip = np.array([1.0, 0.0])
+    short = float(distances_to_polyline(tip[None], trace)[0])
+    d, at = corner_gap(F, 0, [trace], tol)
+    assert short - tol / 4 <= d <= short + 1e-12, (d / tol, short / tol)

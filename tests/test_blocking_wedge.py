@@ -381,3 +381,23 @@ def test_a_wedge_of_the_region_beyond_a_saddles_neck_is_taken(y):
 @functools.lru_cache(maxsize=None)
 def _external(z1, z2):
     return blocking_contour(PairSpec(z1, z2, 1.0), tol=TOL, lines=[])
+
+
+@pytest.mark.parametrize("y", [-0.9995, -0.998, -0.995, -0.985, -0.96])
+def test_a_wedge_whose_tip_lies_beyond_the_window_is_traced_to_the_frame(y):
+    """Internal 42/98 (shaper 16) at tol 1e-3: interference.1 and contact ratio 1 bound a wedge of the region whose
+    tip lies 3.8 tol below the window's bottom edge (x2 = -1). Carried to that tip, the path was no edge (a vertex
+    outside the window), and the grid's chord across the wedge, 5 tol wide there, was kept 70 tol short of the
+    frame (the exact measure 2.5 tol at its middle). On rows across the wedge down to the frame, the zeros of the
+    check's smallest hard margin (brentq) and the polygons' crossings within 2 tol of each other (no crossing on
+    the old code below the cut at x2 = -0.935), the wedge's middle passing check_pair and in the region."""
+    spec, field, c = _internal(42, 98, 16)
+    assert c.window[2] == pytest.approx(-1.0)
+    x = 0.154 + 0.856 * (y + 0.96)  # about the wedge's middle
+    a, b = np.array([x - 0.01, y]), np.array([x + 0.01, y])
+    t = np.linspace(0.0, 1.0, 801)
+    exact = _zeros(lambda s: _smallest(field, *(a + s * (b - a))), t) * float(np.hypot(*(b - a)))
+    assert len(exact) == 2, exact
+    got = _matched(c.region, a, b, exact)
+    mid = a + 0.5 * (got[0] + got[1]) / float(np.hypot(*(b - a))) * (b - a)
+    assert _passes(spec, *mid) and c.contains(*mid)

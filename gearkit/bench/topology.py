@@ -14,8 +14,9 @@ SCAN_FALL = 0.5  #: a solved sign change is a zero when |F| fell below this frac
 #: of F keeps |F| up)
 EDGE_SAMPLES = 96  #: samples between a scan line's last sample before the no-pair area and its edge ...
 EDGE_FLOOR = 1e-13  #: ... at distances from the edge down to this fraction of the spacing (round-off)
-CORNER_STEPS, CORNER_HALF, CORNER_SAMPLES = 64, 2.0, 65  #: sections on from a sharp corner of a trace: how
-#: many (a quarter tol apart), their half length in tol, their samples (_beyond_corners)
+CORNER_STEPS, CORNER_HALF, CORNER_SAMPLES = 320, 2.0, 65  #: sections on from a sharp corner of a trace: how
+#: many (a quarter tol apart: 80 tol on), their least half length in tol, their samples (_beyond_corners)
+CORNER_WIDEST = 32.0  #: ... widened (doubled) up to this half length in tol across a wedge wider than they are
 CORNER_COS = -0.5  #: ... from each corner whose chords are less than 120 degrees apart
 MEASURE_TOL = 1e-14  #: accuracy of the exact points the bench's measures solve for
 ROUND_OFF = 1e-12  #: |margin| taken as zero
@@ -233,9 +234,12 @@ def _beyond_corners(F, k, components, tol):
     ``CORNER_HALF`` tol either side of its middle. The first lies a quarter tol beyond the corner across its
     bisector; while a section holds a run of the other sign than its two ends (a thin wedge of the zero set
     going on), the next lies a quarter tol on from that run's middle, across the way from the first
-    section's middle (at most ``CORNER_STEPS``). A wedge traced short of its tip (internal 19/42 z0 19's tip
-    sweep at tol 1e-3, closed 2.9 tol short where it is 0.5 tol wide) lies between the scan lines; the last
-    sections cross its sides next to the tip.
+    section's middle (at most ``CORNER_STEPS``), twice as long as that run is wide (``CORNER_HALF`` tol either side
+    at least); a section all of the sign between the corner's chords lies inside a wedge wider than it, and is
+    taken again twice as long (up to ``CORNER_WIDEST`` tol either side: internal 42/98 z0 16's region at tol 1e-3,
+    a wedge closed 5 tol wide and 70 tol short of the window's frame). A wedge traced short of its tip (internal
+    19/42 z0 19's tip sweep at tol 1e-3, closed 2.9 tol short where it is 0.5 tol wide) lies between the scan
+    lines; the last sections cross its sides next to the tip.
 
     >>> F = lambda p, k: np.abs(p[:, 1] - 0.05 * p[:, 0]) - 0.1 * (1.0 - p[:, 0])  # a wedge, its tip at (1, 0.05)
     >>> Q, W = _beyond_corners(F, 0, [np.array([[0.0, 0.1], [0.99, 0.05], [0.0, -0.1]])], 1e-3)
@@ -244,7 +248,7 @@ def _beyond_corners(F, k, components, tol):
     >>> bool(np.hypot(*(last - [1.0, 0.05])) < 0.5e-3)
     True
     """
-    tips, ways = [], []
+    tips, ways, half = [], [], []
     for q in components:
         if len(q) < 3:
             continue
@@ -257,24 +261,43 @@ def _beyond_corners(F, k, components, tol):
         m = a[sharp] + b[sharp]
         tips.append(q[mid[sharp]])
         ways.append(-m / np.maximum(np.hypot(m[:, 0], m[:, 1]), 1e-300)[:, None])
+        half.append(np.full(len(m), CORNER_HALF * tol))
+        # two sharp corners next to each other whose outer chords run back the same way: a square cut across a
+        # wedge; on from its middle along the wedge (a section across either corner's bisector crosses one side)
+        j = np.flatnonzero(sharp[:-1] & sharp[1:] & (mid[1:] == mid[:-1] + 1))
+        j = j[np.einsum("ij,ij->i", a[j], b[j + 1]) > 0.0]
+        m = a[j] + b[j + 1]
+        tips.append(0.5 * (q[mid[j]] + q[mid[j] + 1]))
+        ways.append(-m / np.maximum(np.hypot(m[:, 0], m[:, 1]), 1e-300)[:, None])
+        half.append(np.maximum(CORNER_HALF * tol, np.hypot(*(q[mid[j] + 1] - q[mid[j]]).T)))
     rows, vals = [np.zeros((0, CORNER_SAMPLES, 2))], [np.zeros((0, CORNER_SAMPLES))]
     if not tips:
         return rows[0], vals[0]
-    C, D, first = np.concatenate(tips), np.concatenate(ways), None
-    t = CORNER_HALF * tol * np.linspace(-1.0, 1.0, CORNER_SAMPLES)
+    C, D, H = np.concatenate(tips), np.concatenate(ways), np.concatenate(half)
+    first = np.full_like(C, np.nan)
+    inner = F(C - 0.25 * tol * D, np.full(len(C), k)) > 0  # the sign between the corner's chords
+    u = np.linspace(-1.0, 1.0, CORNER_SAMPLES)
     for _ in range(CORNER_STEPS):
         if not len(C):
             break
         S = C + 0.25 * tol * D
-        Q = S[:, None, :] + t[None, :, None] * np.column_stack([-D[:, 1], D[:, 0]])[:, None, :]
+        Q = S[:, None, :] + (H[:, None] * u)[:, :, None] * np.column_stack([-D[:, 1], D[:, 0]])[:, None, :]
         W = F(Q.reshape(-1, 2), np.full(Q.shape[0] * CORNER_SAMPLES, k)).reshape(Q.shape[:2])
         rows.append(Q)
         vals.append(W)
         out = W[:, :1] > 0
         run = np.isfinite(W) & ((W > 0) != out)
         on = np.isfinite(W[:, 0]) & np.isfinite(W[:, -1]) & (out[:, 0] == (W[:, -1] > 0)) & run.any(axis=1)
-        C = np.array([Q[i, run[i]].mean(axis=0) for i in np.flatnonzero(on)]).reshape(-1, 2)
-        first, D = (C, D[on]) if first is None else (first[on], D[on])
+        # a section all of the sign between the chords lies inside a wedge wider than it: widened, taken again
+        wide = np.isfinite(W).all(axis=1) & ~run.any(axis=1) & (out[:, 0] == inner) & (H < CORNER_WIDEST * tol)
+        for i in np.flatnonzero(on):
+            r = Q[i, run[i]]
+            C[i] = r.mean(axis=0)
+            H[i] = min(CORNER_WIDEST * tol, max(CORNER_HALF * tol, float(np.hypot(*(r[-1] - r[0])))))  # twice its width
+        H[wide] *= 2.0
+        first[on & np.isnan(first[:, 0])] = C[on & np.isnan(first[:, 0])]
+        keep = on | wide
+        C, D, first, H, inner = C[keep], D[keep], first[keep], H[keep], inner[keep]
         way = C - first  # the way on: from the first section's centre (on the wedge's middle)
         far = np.hypot(way[:, 0], way[:, 1])
         D = np.where((far > 0.5 * tol)[:, None], way / np.maximum(far, 1e-300)[:, None], D)
